@@ -1,0 +1,11 @@
+//! Reading and writing what pointray consumes and produces: point clouds, triangle
+//! meshes and images. Each file format lives in `formats/`, one module per format.
+
+pub mod error;
+pub mod formats;
+pub mod point_cloud;
+pub mod triangle_mesh;
+
+pub use error::IoError;
+pub use point_cloud::PointCloud;
+pub use triangle_mesh::TriangleMesh;

@@ -1,0 +1,32 @@
+//! A rendered image and its arbitrary output variables (AOVs), as every backend returns it.
+
+use glam::Vec3;
+
+/// Row-major, top row first. Per-pixel AOVs come from the first sample's primary ray.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    pub width: u32,
+    pub height: u32,
+    /// Linear RGB radiance.
+    pub color: Vec<Vec3>,
+    /// Distance along the primary ray to the first hit; `f32::INFINITY` where it missed.
+    pub depth: Vec<f32>,
+    /// World-space shading normal at the first hit, facing the camera; zero where it missed.
+    pub normal: Vec<Vec3>,
+    /// Index of the scene object hit; `Frame::MISS` where it missed.
+    pub instance_id: Vec<u32>,
+    /// Index of the patch or triangle hit within its object; `Frame::MISS` where it missed.
+    pub primitive_id: Vec<u32>,
+}
+
+impl Frame {
+    pub const MISS: u32 = u32::MAX;
+
+    pub fn pixel_count(&self) -> usize {
+        (self.width * self.height) as usize
+    }
+
+    pub fn hit_mask(&self) -> Vec<bool> {
+        self.instance_id.iter().map(|&id| id != Self::MISS).collect()
+    }
+}

@@ -1,0 +1,44 @@
+//! A loaded scene, ready for any backend.
+
+use std::sync::Arc;
+
+use glam::{Affine3A, Vec3};
+use pointray_io::TriangleMesh;
+use pointray_surface::PatchSet;
+
+use crate::{Camera, Light, Material};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Background {
+    Solid(Vec3),
+    /// Blends from `bottom` (rays pointing down) to `top` (rays pointing up) by the ray
+    /// direction's y component.
+    Gradient {
+        top: Vec3,
+        bottom: Vec3,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub enum Geometry {
+    /// Patches in their local coordinates; the object's transform places them.
+    Patches(Arc<PatchSet>),
+    Mesh(Arc<TriangleMesh>),
+}
+
+#[derive(Clone, Debug)]
+pub struct SceneObject {
+    pub name: String,
+    /// Object to world.
+    pub transform: Affine3A,
+    pub material: Material,
+    pub geometry: Geometry,
+}
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub camera: Camera,
+    pub lights: Vec<Light>,
+    pub background: Background,
+    pub objects: Vec<SceneObject>,
+}

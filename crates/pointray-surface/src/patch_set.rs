@@ -1,0 +1,45 @@
+//! The result of `prep`: one patch per (deduplicated) point, in Morton order.
+
+use glam::DVec3;
+use pointray_kernels::{Aabb, PatchCold, PatchHot};
+
+/// The settings `prep` ran with; stored in the patch store's header.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrepParams {
+    /// Neighbours used for the support radius and the quadratic fit (SPEC.md §2.1).
+    pub k: u32,
+    /// Neighbours used for the PCA normal (SPEC.md §2.2).
+    pub normal_k: u32,
+}
+
+impl Default for PrepParams {
+    fn default() -> Self {
+        Self { k: 9, normal_k: 16 }
+    }
+}
+
+/// Patches in local, recentred f32 coordinates; `offset` takes them back to the
+/// input's coordinates (`input = local + offset`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PatchSet {
+    pub params: PrepParams,
+    pub offset: DVec3,
+    pub aabbs: Vec<Aabb>,
+    pub hot: Vec<PatchHot>,
+    pub cold: Vec<PatchCold>,
+}
+
+impl PatchSet {
+    pub fn len(&self) -> usize {
+        self.hot.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.hot.is_empty()
+    }
+
+    /// The union of all patch boxes, in local coordinates.
+    pub fn bounds(&self) -> Option<Aabb> {
+        self.aabbs.iter().copied().reduce(|a, b| a.union(&b))
+    }
+}
