@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Runs every check CI runs: installs the system's Vulkan pieces (lavapipe and the Khronos
+# validation layer) if missing, then formatting, clippy with warnings denied, and all tests
+# with validation on. Vulkan tests fail rather than skip when CI=true and no device is found.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-system-deps.sh
+export POINTRAY_VALIDATION=1
+export POINTRAY_DATA="${POINTRAY_DATA:-$(cd .. && pwd)/shared/data}"
+
+cargo fmt --all --check
+cargo clippy --workspace --all-targets --locked -- -D warnings
+cargo test --workspace --locked
