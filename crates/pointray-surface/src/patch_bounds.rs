@@ -1,0 +1,129 @@
+//! The axis-aligned box of a patch (SPEC.md §2.4): the paper's cube, or a tight box
+//! around the patch surface over its disk.
+
+use glam::{Vec2, Vec3};
+use pointray_kernels::{Aabb, PatchHot};
+
+use crate::quadratic_fit::evaluate;
+
+/// Which box each patch gets.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BoxKind {
+    /// The cube of half-size `d_i` around `p_i`, as in the paper.
+    #[default]
+    Cube,
+    /// The box around the patch surface `w = f(u, v)` over the disk `u² + v² <= d_i²`.
+    Tight,
+}
+
+impl BoxKind {
+    /// The code stored in the patch store's header.
+    pub fn code(self) -> u32 {
+        match self {
+            BoxKind::Cube => 0,
+            BoxKind::Tight => 1,
+        }
+    }
+
+    pub fn from_code(code: u32) -> Option<Self> {
+        match code {
+            0 => Some(BoxKind::Cube),
+            1 => Some(BoxKind::Tight),
+            _ => None,
+        }
+    }
+}
+
+/// Rim samples of the tight box.
+const RIM_SAMPLES: usize = 24;
+
+/// Padding of the tight box, as a fraction of `d_i`. It covers what the samples miss:
+/// the rim polygon falls short of the circle by `d_i (1 - cos(π/24)) ≈ 0.0086 d_i`, and
+/// the height between rim samples deviates by a similar fraction of the height range.
+const TIGHT_PADDING: f32 = 0.02;
+
+pub fn patch_box(patch: &PatchHot, kind: BoxKind) -> Aabb {
+    match kind {
+        BoxKind::Cube => Aabb::cube(patch.origin(), patch.radius()),
+        BoxKind::Tight => tight_box(patch),
+    }
+}
+
+/// The box around the centre, the rim and (when inside the disk) the critical point
+/// of `f`, where an interior extremum lies, padded by `TIGHT_PADDING d_i`.
+fn tight_box(patch: &PatchHot) -> Aabb {
+    let radius = patch.radius();
+    let coefficients = patch.coefficients();
+    let rim = (0..RIM_SAMPLES).map(|i| {
+        let angle = std::f32::consts::TAU * i as f32 / RIM_SAMPLES as f32;
+        Vec2::new(angle.cos(), angle.sin()) * radius
+    });
+    let interior = [Some(Vec2::ZERO), critical_point(&coefficients).filter(|c| c.length() <= radius)];
+    let (min, max) = rim.chain(interior.into_iter().flatten()).fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(min, max), uv| {
+            let world = patch.to_world(uv.extend(evaluate(&coefficients, uv.x, uv.y)));
+            (min.min(world), max.max(world))
+        },
+    );
+    let pad = Vec3::splat(TIGHT_PADDING * radius);
+    Aabb::new(min - pad, max + pad)
+}
+
+/// Where the gradient of `f` vanishes, if the quadratic part is not singular.
+fn critical_point(c: &[f32; 6]) -> Option<Vec2> {
+    // ∇f = 0:  [2c3  c4 ] [u]   [-c1]
+    //          [c4   2c5] [v] = [-c2]
+    let determinant = 4.0 * c[3] * c[5] - c[4] * c[4];
+    let scale = c[3].abs().max(c[4].abs()).max(c[5].abs());
+    if determinant.abs() <= 1e-6 * scale * scale || scale == 0.0 {
+        return None;
+    }
+    let u = (-c[1] * 2.0 * c[5] + c[2] * c[4]) / determinant;
+    let v = (-c[2] * 2.0 * c[3] + c[1] * c[4]) / determinant;
+    Some(Vec2::new(u, v))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample_patch() -> PatchHot {
+        let n = Vec3::new(0.3, -0.2, 1.0).normalize();
+        let frame = crate::frame::TangentFrame::from_normal(n);
+        PatchHot::new(Vec3::new(1.0, 2.0, 3.0), frame.t1, n, [0.01, 0.2, -0.1, 1.5, -0.7, 2.0], 0.3)
+    }
+
+    #[test]
+    fn cube_is_the_papers_box() {
+        let patch = sample_patch();
+        let cube = patch_box(&patch, BoxKind::Cube);
+        assert_eq!(cube, Aabb::cube(patch.origin(), 0.3));
+    }
+
+    #[test]
+    fn tight_box_contains_the_whole_patch_surface_over_its_disk() {
+        let patch = sample_patch();
+        let tight = patch_box(&patch, BoxKind::Tight);
+        let coefficients = patch.coefficients();
+        for ring in 0..=20 {
+            for step in 0..97 {
+                let r = patch.radius() * ring as f32 / 20.0;
+                let angle = step as f32 * std::f32::consts::TAU / 97.0;
+                let (u, v) = (r * angle.cos(), r * angle.sin());
+                let world = patch.to_world(Vec3::new(u, v, evaluate(&coefficients, u, v)));
+                assert!(tight.contains(world), "{world} outside {tight:?}");
+            }
+        }
+        let extent = Vec3::from(tight.max) - Vec3::from(tight.min);
+        assert!(extent.max_element() < 2.2 * patch.radius());
+    }
+
+    #[test]
+    fn box_codes_round_trip() {
+        for kind in [BoxKind::Cube, BoxKind::Tight] {
+            assert_eq!(BoxKind::from_code(kind.code()), Some(kind));
+        }
+        assert_eq!(BoxKind::from_code(7), None);
+    }
+}

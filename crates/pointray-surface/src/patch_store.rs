@@ -1,0 +1,256 @@
+//! The patch store: the versioned binary file that caches a `PatchSet`.
+//!
+//! All numbers are little-endian. Version 1 layout:
+//!
+//! | offset | size | field |
+//! |---|---|---|
+//! | 0 | 8 | magic `b"PRPATCH\0"` |
+//! | 8 | 4 | format version, u32 = 1 |
+//! | 12 | 4 | header size in bytes, u32 = 144 |
+//! | 16 | 8 | point (patch) count `n`, u64 |
+//! | 24 | 4 | `k`, u32 |
+//! | 28 | 4 | `normal_k`, u32 |
+//! | 32 | 4 | box kind, u32 (0 cube, 1 tight) |
+//! | 36 | 4 | duplicate tolerance (fraction of the bbox diagonal), f32 |
+//! | 40 | 24 | bounds of all boxes: min xyz, max xyz, f32 x 6 (local coordinates) |
+//! | 64 | 24 | offset, f64 x 3 (`input = local + offset`) |
+//! | 88 | 48 | section table: (byte offset u64, byte length u64) for aabbs, hot, cold |
+//! | 136 | 8 | reserved, zero |
+//! | 144 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
+//! | 16-aligned | 64 n | hot: `PatchHot` (origin+d_i, t1+c0, n+c1, c2..c5; f32 x 16) |
+//! | 16-aligned | 8 n | cold: `PatchCold` (RGBA8 u32, intensity f32) |
+//! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
+//!
+//! Gaps between sections (to the next multiple of 16) are zero. The record layouts are
+//! those of `pointray_kernels::layout`, so the sections can be uploaded to the GPU as
+//! they are. `docs/PATCH_STORE.md` describes the same format.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
+use pointray_kernels::{Aabb, PatchCold, PatchHot};
+
+use crate::patch_bounds::BoxKind;
+use crate::patch_set::{PatchSet, PrepParams};
+
+pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
+pub const FORMAT_VERSION: u32 = 1;
+const HEADER_BYTES: usize = std::mem::size_of::<Header>();
+const CHECKSUM_BYTES: usize = 4;
+const SECTION_ALIGNMENT: usize = 16;
+
+#[derive(Debug, thiserror::Error)]
+pub enum StoreError {
+    #[error("{path}: {source}")]
+    Io { path: PathBuf, source: std::io::Error },
+    #[error("{path}: not a pointray patch store (wrong magic)")]
+    NotAPatchStore { path: PathBuf },
+    #[error("{path}: patch store version {found}, this build reads version {FORMAT_VERSION}")]
+    WrongVersion { path: PathBuf, found: u32 },
+    #[error("{path}: truncated or wrong length: the header implies {expected} bytes, the file has {actual}")]
+    WrongLength { path: PathBuf, expected: u64, actual: u64 },
+    #[error("{path}: corrupted: checksum mismatch")]
+    ChecksumMismatch { path: PathBuf },
+    #[error("{path}: malformed patch store: {problem}")]
+    Malformed { path: PathBuf, problem: String },
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+struct Section {
+    offset: u64,
+    length: u64,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct Header {
+    magic: [u8; 8],
+    version: u32,
+    header_bytes: u32,
+    point_count: u64,
+    k: u32,
+    normal_k: u32,
+    box_kind: u32,
+    duplicate_tolerance: f32,
+    bounds_min: [f32; 3],
+    bounds_max: [f32; 3],
+    offset: [f64; 3],
+    sections: [Section; 3],
+    reserved: [u8; 8],
+}
+
+/// Where each section lies for `n` patches; the only layout version 1 allows.
+struct Layout {
+    sections: [Section; 3],
+    total_bytes: u64,
+}
+
+impl Layout {
+    fn for_count(n: u64) -> Option<Self> {
+        let strides = [size_of::<Aabb>(), size_of::<PatchHot>(), size_of::<PatchCold>()];
+        let mut cursor = HEADER_BYTES as u64;
+        let mut sections = [Section::zeroed(); 3];
+        for (section, stride) in sections.iter_mut().zip(strides) {
+            cursor = cursor.checked_next_multiple_of(SECTION_ALIGNMENT as u64)?;
+            let length = n.checked_mul(stride as u64)?;
+            *section = Section { offset: cursor, length };
+            cursor = cursor.checked_add(length)?;
+        }
+        Some(Self { sections, total_bytes: cursor.checked_add(CHECKSUM_BYTES as u64)? })
+    }
+}
+
+/// Writes `patches` to `path` atomically: a temporary file in the same directory,
+/// renamed over `path` only once complete.
+pub fn write(path: &Path, patches: &PatchSet) -> Result<(), StoreError> {
+    let io_error = |source| StoreError::Io { path: path.to_path_buf(), source };
+    let directory = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let temporary = tempfile::NamedTempFile::new_in(directory).map_err(io_error)?;
+    write_contents(temporary.as_file(), patches).map_err(io_error)?;
+    temporary.persist(path).map_err(|e| io_error(e.error))?;
+    Ok(())
+}
+
+/// The header and the sections, then the checksum of both.
+fn write_contents(file: &File, patches: &PatchSet) -> std::io::Result<()> {
+    let mut writer = ChecksummedWriter::new(BufWriter::with_capacity(1 << 20, file));
+    write_body(&mut writer, patches)?;
+    let checksum = writer.hasher.finalize();
+    let mut inner = writer.inner;
+    inner.write_all(&checksum.to_le_bytes())?;
+    inner.flush()?;
+    file.sync_all()
+}
+
+fn write_body(writer: &mut ChecksummedWriter<impl Write>, patches: &PatchSet) -> std::io::Result<()> {
+    let layout = Layout::for_count(patches.len() as u64).expect("an in-memory patch set fits in u64 bytes");
+    writer.write_all(bytemuck::bytes_of(&header_for(patches, &layout)))?;
+    let bodies: [&[u8]; 3] = [
+        bytemuck::cast_slice(&patches.aabbs),
+        bytemuck::cast_slice(&patches.hot),
+        bytemuck::cast_slice(&patches.cold),
+    ];
+    let mut position = HEADER_BYTES as u64;
+    for (section, body) in layout.sections.iter().zip(bodies) {
+        let padding = [0u8; SECTION_ALIGNMENT];
+        writer.write_all(&padding[..(section.offset - position) as usize])?;
+        writer.write_all(body)?;
+        position = section.offset + section.length;
+    }
+    Ok(())
+}
+
+fn header_for(patches: &PatchSet, layout: &Layout) -> Header {
+    let bounds = patches.bounds().unwrap_or_default();
+    Header {
+        magic: MAGIC,
+        version: FORMAT_VERSION,
+        header_bytes: HEADER_BYTES as u32,
+        point_count: patches.len() as u64,
+        k: patches.params.k,
+        normal_k: patches.params.normal_k,
+        box_kind: patches.params.box_kind.code(),
+        duplicate_tolerance: patches.params.duplicate_tolerance,
+        bounds_min: bounds.min,
+        bounds_max: bounds.max,
+        offset: patches.offset.to_array(),
+        sections: layout.sections,
+        reserved: [0; 8],
+    }
+}
+
+/// Passes bytes on and keeps a running CRC-32 of them.
+struct ChecksummedWriter<W> {
+    inner: W,
+    hasher: crc32fast::Hasher,
+}
+
+impl<W: Write> ChecksummedWriter<W> {
+    fn new(inner: W) -> Self {
+        Self { inner, hasher: crc32fast::Hasher::new() }
+    }
+
+    fn write_all(&mut self, bytes: &[u8]) -> std::io::Result<()> {
+        self.hasher.update(bytes);
+        self.inner.write_all(bytes)
+    }
+}
+
+/// Reads a patch store with a single read of the whole file, checking, in order, the
+/// magic, the version, the length and the checksum.
+pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
+    let bytes = std::fs::read(path).map_err(|source| StoreError::Io { path: path.to_path_buf(), source })?;
+    let header = checked_header(path, &bytes)?;
+    let malformed =
+        |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
+    let layout = Layout::for_count(header.point_count).ok_or_else(|| malformed("point count overflows"))?;
+    if header.sections != layout.sections || header.header_bytes as usize != HEADER_BYTES {
+        return Err(malformed("the section table does not match the point count"));
+    }
+    let box_kind = BoxKind::from_code(header.box_kind).ok_or_else(|| malformed("unknown box kind"))?;
+    let section = |i: usize| {
+        let Section { offset, length } = layout.sections[i];
+        &bytes[offset as usize..(offset + length) as usize]
+    };
+    Ok(PatchSet {
+        params: PrepParams {
+            k: header.k,
+            normal_k: header.normal_k,
+            box_kind,
+            duplicate_tolerance: header.duplicate_tolerance,
+        },
+        offset: DVec3::from_array(header.offset),
+        aabbs: bytemuck::pod_collect_to_vec(section(0)),
+        hot: bytemuck::pod_collect_to_vec(section(1)),
+        cold: bytemuck::pod_collect_to_vec(section(2)),
+    })
+}
+
+/// The header, once magic, version, length and checksum have been verified.
+fn checked_header(path: &Path, bytes: &[u8]) -> Result<Header, StoreError> {
+    let path_buf = || path.to_path_buf();
+    if bytes.len() < MAGIC.len() || bytes[..MAGIC.len()] != MAGIC {
+        return Err(StoreError::NotAPatchStore { path: path_buf() });
+    }
+    let too_short = || StoreError::WrongLength {
+        path: path_buf(),
+        expected: (HEADER_BYTES + CHECKSUM_BYTES) as u64,
+        actual: bytes.len() as u64,
+    };
+    let version_bytes = bytes.get(8..12).ok_or_else(too_short)?;
+    let found = u32::from_le_bytes(version_bytes.try_into().expect("four bytes"));
+    if found != FORMAT_VERSION {
+        return Err(StoreError::WrongVersion { path: path_buf(), found });
+    }
+    let header: Header = bytemuck::pod_read_unaligned(bytes.get(..HEADER_BYTES).ok_or_else(too_short)?);
+    let expected = Layout::for_count(header.point_count).map_or(u64::MAX, |layout| layout.total_bytes);
+    if expected != bytes.len() as u64 {
+        return Err(StoreError::WrongLength { path: path_buf(), expected, actual: bytes.len() as u64 });
+    }
+    let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
+    if crc32fast::hash(body) != u32::from_le_bytes(stored.try_into().expect("four bytes")) {
+        return Err(StoreError::ChecksumMismatch { path: path_buf() });
+    }
+    Ok(header)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn header_is_144_bytes_and_sections_are_aligned() {
+        assert_eq!(HEADER_BYTES, 144);
+        let layout = Layout::for_count(3).unwrap();
+        assert!(layout.sections.iter().all(|s| s.offset % 16 == 0));
+        assert_eq!(layout.sections[0], Section { offset: 144, length: 72 });
+        assert_eq!(layout.sections[1], Section { offset: 224, length: 192 });
+        assert_eq!(layout.sections[2], Section { offset: 416, length: 24 });
+        assert_eq!(layout.total_bytes, 444);
+        assert!(Layout::for_count(u64::MAX).is_none());
+    }
+}
