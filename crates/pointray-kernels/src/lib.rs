@@ -2,7 +2,25 @@
 //!
 //! Every function here has a twin of the same name in `shaders/NAME.glsl`; the file
 //! `src/NAME.rs` and `shaders/NAME.glsl` describe the same maths. Change both together.
+//! The frame methods of `PatchHot` (`src/layout.rs`) have their twins in
+//! `shaders/patch_frame.glsl`, prefixed `patch_`.
 
+pub mod background;
+pub mod camera_ray;
+pub mod face_forward;
+pub mod intersect_patch;
 pub mod layout;
+pub mod patch_normal;
+pub mod phong;
+pub mod quadratic_roots;
+pub mod ray;
 
+pub use background::background;
+pub use camera_ray::{PinholeCamera, camera_ray, sample_jitter};
+pub use face_forward::face_forward;
+pub use intersect_patch::{PatchAcceptance, PatchHit, intersect_patch};
 pub use layout::{Aabb, PatchCold, PatchHot};
+pub use patch_normal::patch_normal;
+pub use phong::{PhongSurface, phong};
+pub use quadratic_roots::{QuadraticRoots, quadratic_roots};
+pub use ray::Ray;

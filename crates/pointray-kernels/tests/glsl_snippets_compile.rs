@@ -1,0 +1,129 @@
+//! Every `#include`-able GLSL snippet in `shaders/` compiles with glslang, wrapped in a
+//! tiny compute shader that calls its functions (so their signatures are checked too).
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use glslang::include::{IncludeHandler, IncludeResult, IncludeType};
+use glslang::{
+    Compiler, CompilerOptions, ShaderInput, ShaderSource, ShaderStage, SourceLanguage, SpirvVersion, Target,
+    VulkanVersion,
+};
+
+fn shader_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders")
+}
+
+/// Resolves `#include "NAME"` from `shaders/`.
+struct ShaderDirIncludes;
+
+impl IncludeHandler for ShaderDirIncludes {
+    fn include(&mut self, _: IncludeType, header: &str, _: &str, _: usize) -> Option<IncludeResult> {
+        let data = fs::read_to_string(shader_dir().join(header)).ok()?;
+        Some(IncludeResult { name: header.to_owned(), data })
+    }
+}
+
+/// The maths snippets (twins of `src/*.rs`) and the body of a `main` that calls each one,
+/// so that their signatures are checked, not just their syntax. The entry-point stages and
+/// their own includes belong to the Vulkan crate's build, which compiles them.
+const MATHS_SNIPPETS: &[(&str, &str)] = &[
+    (
+        "ray.glsl",
+        "result = ray_at(Ray(vec3(0.0), vec3(1.0)), 2.0);",
+    ),
+    (
+        "camera_ray.glsl",
+        "PinholeCamera camera = PinholeCamera(vec3(0.0, 0.0, 5.0), vec3(0.0), vec3(0.0, 1.0, 0.0), 45.0);
+             Ray ray = camera_ray(camera, uvec2(640u, 480u), gl_GlobalInvocationID.xy, sample_jitter(3u));
+             result = ray.direction;",
+    ),
+    (
+        "quadratic_roots.glsl",
+        "vec2 roots; uint count = quadratic_roots(1.0, -4.0, 3.0, roots); result = vec3(roots, float(count));",
+    ),
+    (
+        "patch_frame.glsl",
+        "PatchHot hot_patch = PatchHot(vec4(0.0, 0.0, 0.0, 1.0), vec4(1.0, 0.0, 0.0, 0.0), vec4(0.0, 0.0, 1.0, 0.0), vec4(0.0));
+             result = patch_direction_to_world(hot_patch, patch_to_local(hot_patch, vec3(1.0)));",
+    ),
+    (
+        "intersect_patch.glsl",
+        "PatchHot hot_patch = PatchHot(vec4(0.0, 0.0, 0.0, 1.0), vec4(1.0, 0.0, 0.0, 0.0), vec4(0.0, 0.0, 1.0, 0.0), vec4(0.0, 0.5, 0.0, 0.5));
+             float t; vec2 uv;
+             bool hit = intersect_patch(Ray(vec3(0.0, 0.0, 2.0), vec3(0.0, 0.0, -1.0)), hot_patch, 0.0, 1e30, ACCEPTANCE_DISK, t, uv);
+             result = vec3(uv, hit ? t : -1.0);",
+    ),
+    (
+        "patch_normal.glsl",
+        "PatchHot hot_patch = PatchHot(vec4(0.0, 0.0, 0.0, 1.0), vec4(1.0, 0.0, 0.0, 0.0), vec4(0.0, 0.0, 1.0, 0.0), vec4(0.0, 0.5, 0.0, 0.5));
+             result = patch_normal(hot_patch, vec2(0.5, 0.25));",
+    ),
+    (
+        "face_forward.glsl",
+        "result = face_forward(vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0));",
+    ),
+    (
+        "phong.glsl",
+        "PhongSurface surface = PhongSurface(vec3(0.8), 0.3, 32.0);
+             result = phong(vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), vec3(1.0), surface);",
+    ),
+    (
+        "background.glsl",
+        "result = background(vec3(0.0, 1.0, 0.0), vec3(0.2, 0.4, 1.0), vec3(1.0));",
+    ),
+];
+
+fn wrapper(snippet: &str, calls: &str) -> String {
+    format!(
+        "#version 460
+#extension GL_GOOGLE_include_directive : require
+#include \"{snippet}\"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 0) buffer Output {{ vec3 result; }};
+void main() {{
+    {}
+}}
+",
+        calls
+    )
+}
+
+fn compile(snippet: &str, calls: &str) -> Result<Vec<u32>, String> {
+    let compiler = Compiler::acquire().ok_or("glslang failed to initialise")?;
+    let source = ShaderSource::from(wrapper(snippet, calls));
+    let options = CompilerOptions {
+        source_language: SourceLanguage::GLSL,
+        target: Target::Vulkan { version: VulkanVersion::Vulkan1_2, spirv_version: SpirvVersion::SPIRV1_5 },
+        version_profile: None,
+        ..CompilerOptions::default()
+    };
+    let mut includes = ShaderDirIncludes;
+    let input = ShaderInput::new(
+        &source,
+        ShaderStage::Compute,
+        &options,
+        None::<&[(&str, Option<&str>)]>,
+        Some(&mut includes),
+    )
+    .map_err(|e| e.to_string())?;
+    let shader = compiler.create_shader(input).map_err(|e| e.to_string())?;
+    shader.compile().map_err(|e| e.to_string())
+}
+
+#[test]
+fn every_snippet_compiles_in_a_compute_shader_that_calls_it() {
+    let failures: Vec<String> = MATHS_SNIPPETS
+        .iter()
+        .filter_map(|(name, calls)| compile(name, calls).err().map(|error| format!("{name}:\n{error}")))
+        .collect();
+    assert!(failures.is_empty(), "GLSL snippets failed to compile:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn a_broken_snippet_is_reported() {
+    // Guards the test above against passing vacuously: a missing file, or a call that
+    // does not match a signature, must fail.
+    assert!(compile("no_such_snippet.glsl", "").is_err());
+    assert!(compile("phong.glsl", "result = phong(vec3(1.0));").is_err());
+}
