@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+/// Every failure names the file it concerns.
 #[derive(Debug, thiserror::Error)]
 pub enum IoError {
     #[error("{path}: {source}")]
@@ -10,11 +11,20 @@ pub enum IoError {
     Malformed { path: PathBuf, problem: String },
     #[error("{path}: unsupported {what}; supported: {supported}")]
     Unsupported { path: PathBuf, what: String, supported: String },
+    #[error("{output}: refusing to write over the input file {input}")]
+    SameFile { input: PathBuf, output: PathBuf },
+    /// Data handed to a writer that cannot be written (mismatched lengths, bad indices, ...).
+    #[error("{path}: cannot write: {problem}")]
+    Unwritable { path: PathBuf, problem: String },
 }
 
 impl IoError {
     pub fn malformed(path: impl Into<PathBuf>, problem: impl Into<String>) -> Self {
         Self::Malformed { path: path.into(), problem: problem.into() }
+    }
+
+    pub fn unwritable(path: impl Into<PathBuf>, problem: impl Into<String>) -> Self {
+        Self::Unwritable { path: path.into(), problem: problem.into() }
     }
 
     pub fn os(path: impl Into<PathBuf>, source: std::io::Error) -> Self {

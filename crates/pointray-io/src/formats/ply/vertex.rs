@@ -1,0 +1,216 @@
+//! The PLY `vertex` element: which attributes a file carries, one record per vertex, and
+//! the conversion of those records into a `PointCloud`.
+
+use glam::DVec3;
+use ply_rs_bw::ply::{ElementDef, Property, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType};
+
+use crate::PointCloud;
+
+const POSITION: [&str; 3] = ["x", "y", "z"];
+const NORMAL: [&str; 3] = ["nx", "ny", "nz"];
+const COLOR: [&str; 3] = ["red", "green", "blue"];
+const INTENSITY: [&str; 2] = ["intensity", "scalar_intensity"];
+
+/// Which optional attributes the vertex element declares. Colours and intensities carry the
+/// value that means 1 in their stored type, to bring them to a common scale.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct VertexLayout {
+    pub has_normals: bool,
+    pub color_unit: Option<f64>,
+    pub intensity_unit: Option<f64>,
+}
+
+impl VertexLayout {
+    /// Reads the layout from the header; x, y and z must be numeric scalars.
+    pub fn from_element(element: &ElementDef) -> Result<Self, String> {
+        for name in POSITION {
+            scalar_type(element, name)?
+                .ok_or_else(|| format!("the vertex element has no '{name}' property"))?;
+        }
+        Ok(Self {
+            has_normals: group_type(element, &NORMAL)?.is_some(),
+            color_unit: group_type(element, &COLOR)?.as_ref().map(unit_value),
+            intensity_unit: first_scalar_type(element, &INTENSITY)?.as_ref().map(unit_value),
+        })
+    }
+}
+
+/// The type of the named scalar property, `None` when absent, an error when it is a list.
+fn scalar_type(element: &ElementDef, name: &str) -> Result<Option<ScalarType>, String> {
+    match element.properties.get(name).map(|p| &p.data_type) {
+        None => Ok(None),
+        Some(PropertyType::Scalar(scalar)) => Ok(Some(scalar.clone())),
+        Some(PropertyType::List(..)) => Err(format!("vertex property '{name}' is a list, expected a number")),
+    }
+}
+
+/// A group such as (nx, ny, nz) counts only when all of its members are present.
+fn group_type(element: &ElementDef, names: &[&str; 3]) -> Result<Option<ScalarType>, String> {
+    let types =
+        [scalar_type(element, names[0])?, scalar_type(element, names[1])?, scalar_type(element, names[2])?];
+    Ok(match types {
+        [Some(first), Some(_), Some(_)] => Some(first),
+        _ => None,
+    })
+}
+
+fn first_scalar_type(element: &ElementDef, names: &[&str]) -> Result<Option<ScalarType>, String> {
+    for name in names {
+        if let Some(scalar) = scalar_type(element, name)? {
+            return Ok(Some(scalar));
+        }
+    }
+    Ok(None)
+}
+
+/// One vertex as stored in the file, every attribute widened to f64 so that any numeric
+/// property type can be read; attributes the file lacks stay zero.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(super) struct VertexRecord {
+    pub position: [f64; 3],
+    pub normal: [f64; 3],
+    pub color: [f64; 3],
+    pub intensity: f64,
+}
+
+impl VertexRecord {
+    fn slot(&mut self, name: &str) -> Option<&mut f64> {
+        let [x, y, z] = &mut self.position;
+        let [nx, ny, nz] = &mut self.normal;
+        let [r, g, b] = &mut self.color;
+        Some(match name {
+            "x" => x,
+            "y" => y,
+            "z" => z,
+            "nx" => nx,
+            "ny" => ny,
+            "nz" => nz,
+            "red" => r,
+            "green" => g,
+            "blue" => b,
+            "intensity" | "scalar_intensity" => &mut self.intensity,
+            _ => return None,
+        })
+    }
+
+    fn value(&self, name: &str) -> Option<f64> {
+        let index = |names: &[&str]| names.iter().position(|n| *n == name);
+        if let Some(i) = index(&POSITION) {
+            Some(self.position[i])
+        } else if let Some(i) = index(&NORMAL) {
+            Some(self.normal[i])
+        } else if let Some(i) = index(&COLOR) {
+            Some(self.color[i])
+        } else {
+            index(&INTENSITY).map(|_| self.intensity)
+        }
+    }
+}
+
+impl PropertyAccess for VertexRecord {
+    fn new() -> Self {
+        Self::default()
+    }
+
+    fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
+        if let (Some(slot), Some(value)) = (self.slot(name), scalar_value(&property)) {
+            *slot = value;
+        }
+        PropertyAccessResult::Ignored
+    }
+
+    fn get_float(&self, name: &str) -> Option<f32> {
+        self.value(name).map(|v| v as f32)
+    }
+
+    fn get_double(&self, name: &str) -> Option<f64> {
+        self.value(name)
+    }
+
+    fn get_uchar(&self, name: &str) -> Option<u8> {
+        self.value(name).map(|v| v as u8)
+    }
+}
+
+fn scalar_value(property: &Property) -> Option<f64> {
+    Some(match *property {
+        Property::Char(v) => v.into(),
+        Property::UChar(v) => v.into(),
+        Property::Short(v) => v.into(),
+        Property::UShort(v) => v.into(),
+        Property::Int(v) => v.into(),
+        Property::UInt(v) => v.into(),
+        Property::Float(v) => v.into(),
+        Property::Double(v) => v,
+        _ => return None,
+    })
+}
+
+/// The stored value that means 1: integers use their type's maximum (so uchar 255 and ushort
+/// 65535 both mean 1); floating-point values are taken as already being on the unit scale.
+fn unit_value(stored_as: &ScalarType) -> f64 {
+    match stored_as {
+        ScalarType::Char => i8::MAX.into(),
+        ScalarType::UChar => u8::MAX.into(),
+        ScalarType::Short => i16::MAX.into(),
+        ScalarType::UShort => u16::MAX.into(),
+        ScalarType::Int => i32::MAX.into(),
+        ScalarType::UInt => u32::MAX.into(),
+        ScalarType::Float | ScalarType::Double => 1.0,
+    }
+}
+
+/// Turns the records into a cloud, refusing non-finite coordinates.
+pub(super) fn into_point_cloud(
+    records: &[VertexRecord],
+    layout: &VertexLayout,
+) -> Result<PointCloud, String> {
+    let positions = positions(records)?;
+    let normals =
+        layout.has_normals.then(|| records.iter().map(|r| DVec3::from(r.normal).as_vec3()).collect());
+    let colors =
+        layout.color_unit.map(|unit| records.iter().map(|r| r.color.map(|c| to_byte(c / unit))).collect());
+    let intensities = layout.intensity_unit.map(|unit| normalised_intensities(records, unit));
+    Ok(PointCloud { positions, normals, colors, intensities, sensor_position: None })
+}
+
+/// The positions in file order; an error names the first point with a NaN or infinite coordinate.
+pub(super) fn positions(records: &[VertexRecord]) -> Result<Vec<DVec3>, String> {
+    records
+        .iter()
+        .enumerate()
+        .map(|(index, record)| {
+            let position = DVec3::from(record.position);
+            if position.is_finite() {
+                Ok(position)
+            } else {
+                Err(format!("point {index} has a non-finite coordinate {position}"))
+            }
+        })
+        .collect()
+}
+
+fn to_byte(unit_channel: f64) -> u8 {
+    (unit_channel.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// Intensities on [0, 1]. Floating-point intensities outside that range (scanners write raw
+/// return strengths) are divided by the largest one, so that their relative sizes survive.
+fn normalised_intensities(records: &[VertexRecord], unit_value: f64) -> Vec<f32> {
+    let unit: Vec<f64> = records.iter().map(|r| r.intensity / unit_value).collect();
+    let largest = unit.iter().copied().filter(|v| v.is_finite()).fold(0.0, f64::max);
+    let divisor = if largest > 1.0 { largest } else { 1.0 };
+    unit.iter().map(|v| (v / divisor).clamp(0.0, 1.0) as f32).collect()
+}
+
+/// Records for writing a cloud back out.
+pub(super) fn records_of(cloud: &PointCloud) -> Vec<VertexRecord> {
+    (0..cloud.len())
+        .map(|i| VertexRecord {
+            position: cloud.positions[i].to_array(),
+            normal: cloud.normals.as_ref().map_or([0.0; 3], |n| n[i].as_dvec3().to_array()),
+            color: cloud.colors.as_ref().map_or([0.0; 3], |c| c[i].map(f64::from)),
+            intensity: cloud.intensities.as_ref().map_or(0.0, |v| v[i].into()),
+        })
+        .collect()
+}

@@ -1,0 +1,226 @@
+//! LAS/LAZ reader: round trips through the `las` crate's writer, geo-coordinate precision,
+//! malformed files, and the real Autzen tile.
+
+use std::path::{Path, PathBuf};
+
+use las::point::Format;
+use las::{Builder, Color, Point, Transform, Vector, Writer};
+use pointray_io::IoError;
+use pointray_io::formats::detect::{PointFormat, detect_format};
+use pointray_io::formats::las::read_las;
+
+/// Coordinates near 10^6 feet, stored at 0.01 resolution, as in geo-referenced tiles.
+const SCALE: f64 = 0.01;
+const EASTING: f64 = 1_234_567.89;
+const NORTHING: f64 = 987_654.32;
+
+fn geo_points() -> Vec<Point> {
+    (0..50)
+        .map(|i| Point {
+            x: EASTING + f64::from(i) * 0.37,
+            y: NORTHING - f64::from(i) * 0.11,
+            z: 412.05 + f64::from(i) * 0.01,
+            intensity: (i * 1000) as u16,
+            color: Some(Color::new(i as u16 * 1000, 65535 - i as u16 * 1000, 32768)),
+            gps_time: Some(f64::from(i)),
+            ..Point::default()
+        })
+        .collect()
+}
+
+fn write_las(path: &Path, format: u8, compressed: bool, points: &[Point]) {
+    let mut builder = Builder::from((1, 4));
+    builder.point_format = Format::new(format).unwrap();
+    builder.point_format.is_compressed = compressed;
+    let transform = Transform { scale: SCALE, offset: 0.0 };
+    builder.transforms = Vector { x: transform, y: transform, z: transform };
+    let mut writer = Writer::from_path(path, builder.into_header().unwrap()).unwrap();
+    for point in points {
+        writer.write_point(point.clone()).unwrap();
+    }
+    writer.close().unwrap();
+}
+
+fn assert_same_points(path: &Path, points: &[Point], expect_color: bool) {
+    let cloud = read_las(path).unwrap();
+    assert_eq!(cloud.len(), points.len());
+    for (read, written) in cloud.positions.iter().zip(points) {
+        // The file stores integers of 0.01: the read value is within half a step.
+        assert!((read.x - written.x).abs() <= SCALE / 2.0 + 1e-9, "{} vs {}", read.x, written.x);
+        assert!((read.y - written.y).abs() <= SCALE / 2.0 + 1e-9);
+        assert!((read.z - written.z).abs() <= SCALE / 2.0 + 1e-9);
+    }
+    let intensities = cloud.intensities.expect("intensities were written");
+    for (read, written) in intensities.iter().zip(points) {
+        assert!((read - f32::from(written.intensity) / 65535.0).abs() < 1e-6);
+    }
+    match (cloud.colors, expect_color) {
+        (Some(colors), true) => {
+            for (read, written) in colors.iter().zip(points) {
+                let c = written.color.unwrap();
+                assert_eq!(*read, [(c.red >> 8) as u8, (c.green >> 8) as u8, (c.blue >> 8) as u8]);
+            }
+        }
+        (None, false) => {}
+        (colors, _) => panic!("colours {colors:?}, expected present = {expect_color}"),
+    }
+}
+
+#[test]
+fn las_round_trip_keeps_geo_coordinates_colours_and_intensities() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("geo.las");
+    let points = geo_points();
+    write_las(&path, 3, false, &points);
+    assert_same_points(&path, &points, true);
+    assert_eq!(detect_format(&path).unwrap(), PointFormat::Las);
+}
+
+#[test]
+fn las_positions_keep_centimetres_at_a_million_feet() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("precision.las");
+    let points = geo_points();
+    write_las(&path, 3, false, &points);
+    let cloud = read_las(&path).unwrap();
+    // f32 would round 1.2 million to 0.125; f64 keeps neighbouring points 0.37 apart.
+    let step = cloud.positions[1].x - cloud.positions[0].x;
+    assert!((step - 0.37).abs() < 1e-6, "step {step}");
+}
+
+#[test]
+fn laz_round_trip_matches_the_written_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("geo.laz");
+    let points = geo_points();
+    write_las(&path, 3, true, &points);
+    assert_eq!(detect_format(&path).unwrap(), PointFormat::Laz);
+    assert_same_points(&path, &points, true);
+}
+
+#[test]
+fn las_1_4_format_6_has_no_colours() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("format6.las");
+    let points: Vec<Point> = geo_points().into_iter().map(|p| Point { color: None, ..p }).collect();
+    write_las(&path, 6, false, &points);
+    assert_same_points(&path, &points, false);
+}
+
+// ---- malformed files ----
+
+fn valid_las_bytes() -> Vec<u8> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("valid.las");
+    write_las(&path, 3, false, &geo_points());
+    std::fs::read(path).unwrap()
+}
+
+/// Writes `bytes` to a file named `name`, reads it, and returns the error (the directory
+/// lives as long as the returned guard).
+fn read_bytes(name: &str, bytes: &[u8]) -> (tempfile::TempDir, PathBuf, IoError) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).unwrap();
+    let error = read_las(&path).expect_err("a malformed file must not read");
+    (dir, path, error)
+}
+
+fn assert_names_file(path: &Path, error: &IoError, needle: &str) {
+    let message = error.to_string();
+    assert!(message.contains(&path.display().to_string()), "{message}");
+    assert!(message.to_lowercase().contains(&needle.to_lowercase()), "{message:?} lacks {needle:?}");
+}
+
+#[test]
+fn empty_file_is_refused() {
+    let (_dir, path, error) = read_bytes("empty.las", &[]);
+    assert_names_file(&path, &error, "LAS");
+}
+
+#[test]
+fn wrong_signature_is_refused() {
+    let mut bytes = valid_las_bytes();
+    bytes[..4].copy_from_slice(b"LASX");
+    let (_dir, path, error) = read_bytes("signature.las", &bytes);
+    assert_names_file(&path, &error, "signature");
+}
+
+#[test]
+fn truncated_point_data_is_refused() {
+    let mut bytes = valid_las_bytes();
+    bytes.truncate(bytes.len() - 10);
+    let (_dir, path, error) = read_bytes("truncated.las", &bytes);
+    assert_names_file(&path, &error, "truncated");
+}
+
+#[test]
+fn truncated_header_is_refused() {
+    let bytes = valid_las_bytes();
+    let (_dir, path, error) = read_bytes("header.las", &bytes[..60]);
+    assert_names_file(&path, &error, "LAS");
+}
+
+#[test]
+fn unknown_point_format_is_unsupported_and_says_so() {
+    let mut bytes = valid_las_bytes();
+    bytes[104] = 42;
+    let (_dir, path, error) = read_bytes("format42.las", &bytes);
+    assert!(matches!(error, IoError::Unsupported { .. }), "{error}");
+    assert_names_file(&path, &error, "point format 42");
+    assert!(error.to_string().contains("supported: LAS 1.0-1.4"));
+}
+
+#[test]
+fn unknown_version_is_unsupported() {
+    let mut bytes = valid_las_bytes();
+    bytes[24] = 2; // major version
+    let (_dir, path, error) = read_bytes("version2.las", &bytes);
+    assert!(matches!(error, IoError::Unsupported { .. }), "{error}");
+    assert_names_file(&path, &error, "LAS version 2.4");
+}
+
+#[test]
+fn more_declared_points_than_stored_is_refused() {
+    let mut bytes = valid_las_bytes();
+    // The legacy 32-bit count (offset 107) and the LAS 1.4 64-bit count (offset 247).
+    bytes[107..111].copy_from_slice(&4_000_000_000u32.to_le_bytes());
+    bytes[247..255].copy_from_slice(&4_000_000_000u64.to_le_bytes());
+    let (_dir, path, error) = read_bytes("count.las", &bytes);
+    assert_names_file(&path, &error, "LAS");
+}
+
+// ---- the real tile ----
+
+fn data_dir() -> Option<PathBuf> {
+    let dir = std::env::var_os("POINTRAY_DATA")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
+    if dir.exists() {
+        return Some(dir);
+    }
+    assert!(std::env::var("CI").as_deref() != Ok("true"), "test data missing at {}", dir.display());
+    eprintln!("note: test data missing at {}; skipping", dir.display());
+    None
+}
+
+#[test]
+fn autzen_tile_reads_with_its_point_count_colours_and_bounds() {
+    let Some(data) = data_dir() else { return };
+    let cloud = read_las(&data.join("scans/autzen_trim.las")).unwrap();
+    assert_eq!(cloud.len(), 110_000);
+    let colors = cloud.colors.as_ref().expect("autzen has RGB");
+    assert_eq!(colors.len(), 110_000);
+    let distinct: std::collections::HashSet<_> = colors.iter().take(5000).collect();
+    assert!(distinct.len() > 50, "colours look constant: {} distinct", distinct.len());
+    let (min, max) = cloud
+        .positions
+        .iter()
+        .fold((cloud.positions[0], cloud.positions[0]), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    // State-plane feet: eastings and northings near 10^6, a tile of a few thousand feet,
+    // terrain and buildings a few hundred feet high.
+    assert!(min.x > 1e5 && max.x < 1e7 && min.y > 1e5 && max.y < 1e7, "{min} {max}");
+    let extent = max - min;
+    assert!(extent.x > 100.0 && extent.x < 20_000.0 && extent.y > 100.0 && extent.y < 20_000.0, "{extent}");
+    assert!(extent.z > 10.0 && extent.z < 2_000.0, "{extent}");
+}
