@@ -1,14 +1,34 @@
-pub fn add(left: u64, right: u64) -> u64 {
-    left + right
-}
+//! The Vulkan ray-tracing renderer (SPEC.md §3): point sets as procedural AABB geometry with
+//! a quadratic-patch intersection shader, meshes as triangles, shaded by an iterative path in
+//! ray generation (ARCHITECTURE.md, rendering contract).
+//!
+//! ```no_run
+//! # fn demo(scene: &pointray_scene::Scene) -> Result<(), pointray_vulkan::VulkanError> {
+//! use pointray_vulkan::{DeviceSelector, VulkanRenderer};
+//! let renderer = VulkanRenderer::new(DeviceSelector::Auto)?;
+//! let prepared = renderer.prepare(scene)?;
+//! let frame = renderer.trace(&prepared, &pointray_scene::RenderSettings::default())?;
+//! # let _ = frame; Ok(()) }
+//! ```
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+mod acceleration;
+mod binding_table;
+mod buffer;
+mod context;
+mod device;
+mod error;
+mod gpu_records;
+mod instance;
+mod pipeline;
+mod prepared_scene;
+mod renderer;
+mod shaders;
+mod trace;
+mod validation;
 
-    #[test]
-    fn it_works() {
-        let result = add(2, 2);
-        assert_eq!(result, 4);
-    }
-}
+pub use acceleration::BlasLayout;
+pub use device::{DeviceInfo, DeviceSelector, list_devices};
+pub use error::VulkanError;
+pub use prepared_scene::PreparedScene;
+pub use renderer::{TraceTiming, VulkanRenderer};
+pub use validation::validation_requested_by_env;

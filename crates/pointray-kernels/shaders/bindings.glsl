@@ -1,0 +1,95 @@
+// The ray-tracing pipeline's resources, shared by its entry points. Mirrored on the Rust
+// side in pointray-vulkan's `gpu_records.rs` (records) and `pipeline.rs` (bindings).
+#ifndef POINTRAY_BINDINGS_GLSL
+#define POINTRAY_BINDINGS_GLSL
+
+#extension GL_EXT_ray_tracing : require
+#extension GL_EXT_buffer_reference : require
+
+#include "layout.glsl"
+
+// Hot and cold records together, for BufferLayout::Combined (std430 pads it to 80 bytes).
+struct PatchCombined {
+    PatchHot hot;
+    PatchCold cold;
+};
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HotPatches { PatchHot records[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer ColdPatches { PatchCold records[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CombinedPatches { PatchCombined records[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MeshVertices { vec4 positions[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer MeshIndices { uint indices[]; };
+
+// One per scene object, indexed by gl_InstanceCustomIndexEXT. Addresses that the object's
+// kind does not use are zero; only the hit group of that kind dereferences them.
+struct ObjectRecord {
+    HotPatches hot;
+    ColdPatches cold;
+    CombinedPatches combined;
+    MeshVertices vertices;
+    MeshIndices indices;
+    uint pad0;
+    uint pad1;
+    vec4 diffuse_ambient;                   // rgb = diffuse colour, a = ambient
+    vec4 specular_shininess_reflect_colors; // x = specular, y = shininess, z = reflectivity, w = use point colours
+};
+
+// Point light: xyz = position, w = 0. Directional: xyz = travel direction, w = 1.
+struct LightRecord {
+    vec4 position_or_direction;
+    vec4 radiance; // colour * intensity
+};
+
+layout(set = 0, binding = 0) uniform accelerationStructureEXT scene_tlas;
+
+layout(set = 0, binding = 1, std140) uniform FrameUniforms {
+    vec4 camera_position_fov; // xyz = position, w = vertical fov in degrees
+    vec4 camera_look_at;
+    vec4 camera_up;
+    vec4 background_top;      // a solid background has top == bottom
+    vec4 background_bottom;
+    uint light_count;
+    float ray_epsilon;
+    uint pad0;
+    uint pad1;
+} frame;
+
+layout(set = 0, binding = 2, std430) readonly buffer Objects { ObjectRecord objects[]; };
+layout(set = 0, binding = 3, std430) readonly buffer Lights { LightRecord lights[]; };
+
+struct PixelRecord {
+    vec4 color;
+    vec4 normal_depth;   // face-forwarded world normal, depth (negative = miss)
+    uvec4 ids;           // instance, primitive
+};
+layout(set = 0, binding = 4, std430) writeonly buffer Pixels { PixelRecord pixels[]; };
+
+const uint LAYOUT_SPLIT = 0u;
+const uint LAYOUT_COMBINED = 1u;
+
+// Small per-trace settings that the intersection shader reads on every call.
+layout(push_constant) uniform TraceSettings {
+    uint width;
+    uint height;
+    uint samples_per_pixel;
+    uint max_depth;
+    uint shadows;
+    uint acceptance; // ACCEPTANCE_BOX or ACCEPTANCE_DISK of intersect_patch.glsl
+    uint buffer_layout;
+} settings;
+
+PatchHot load_hot(ObjectRecord object, uint patch_index) {
+    if (settings.buffer_layout == LAYOUT_COMBINED) {
+        return object.combined.records[patch_index].hot;
+    }
+    return object.hot.records[patch_index];
+}
+
+PatchCold load_cold(ObjectRecord object, uint patch_index) {
+    if (settings.buffer_layout == LAYOUT_COMBINED) {
+        return object.combined.records[patch_index].cold;
+    }
+    return object.cold.records[patch_index];
+}
+
+#endif

@@ -1,0 +1,81 @@
+//! Compiles every ray-tracing entry point in `pointray-kernels/shaders/` to SPIR-V 1.4
+//! (Vulkan 1.2) into `OUT_DIR`, where `src/shaders.rs` embeds it with `include_bytes!`.
+
+use std::path::{Path, PathBuf};
+
+use glslang::include::{IncludeHandler, IncludeResult, IncludeType};
+use glslang::{
+    CompilerOptions, ShaderInput, ShaderSource, ShaderStage, SourceLanguage, SpirvVersion, Target,
+    VulkanVersion,
+};
+
+/// The entry points this crate's pipeline uses, with their stages.
+const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
+    ("primary.rgen", ShaderStage::RayGeneration),
+    ("background.rmiss", ShaderStage::Miss),
+    ("shadow.rmiss", ShaderStage::Miss),
+    ("patch.rint", ShaderStage::Intersect),
+    ("patch.rchit", ShaderStage::ClosestHit),
+    ("triangle.rchit", ShaderStage::ClosestHit),
+];
+
+/// Resolves `#include "NAME"` against the shaders folder only.
+struct ShaderFolderIncludes {
+    folder: PathBuf,
+}
+
+impl IncludeHandler for ShaderFolderIncludes {
+    fn include(
+        &mut self,
+        _ty: IncludeType,
+        header: &str,
+        _includer: &str,
+        _depth: usize,
+    ) -> Option<IncludeResult> {
+        let path = self.folder.join(header);
+        let data = std::fs::read_to_string(&path).ok()?;
+        Some(IncludeResult { name: path.display().to_string(), data })
+    }
+}
+
+fn compile(folder: &Path, name: &str, stage: ShaderStage) -> Result<Vec<u32>, String> {
+    let path = folder.join(name);
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let source = ShaderSource::from(text);
+    let options = CompilerOptions {
+        source_language: SourceLanguage::GLSL,
+        target: Target::Vulkan { version: VulkanVersion::Vulkan1_2, spirv_version: SpirvVersion::SPIRV1_4 },
+        version_profile: None,
+        ..CompilerOptions::default()
+    };
+    let mut includes = ShaderFolderIncludes { folder: folder.to_path_buf() };
+    let input =
+        ShaderInput::new(&source, stage, &options, None::<&[(&str, Option<&str>)]>, Some(&mut includes))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+    let compiler = glslang::Compiler::acquire().ok_or("glslang failed to initialise")?;
+    let shader = compiler.create_shader(input).map_err(|e| format!("{}: {e}", path.display()))?;
+    shader.compile().map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn main() {
+    let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
+    let folder = manifest.join("../pointray-kernels/shaders");
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
+    println!("cargo:rerun-if-changed={}", folder.display());
+    for entry in std::fs::read_dir(&folder).into_iter().flatten().flatten() {
+        println!("cargo:rerun-if-changed={}", entry.path().display());
+    }
+    let mut failures = Vec::new();
+    for &(name, stage) in ENTRY_POINTS {
+        match compile(&folder, name, stage) {
+            Ok(words) => {
+                let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+                std::fs::write(out.join(format!("{name}.spv")), bytes).expect("OUT_DIR is writable");
+            }
+            Err(message) => failures.push(message),
+        }
+    }
+    if !failures.is_empty() {
+        panic!("shader compilation failed:\n{}", failures.join("\n"));
+    }
+}

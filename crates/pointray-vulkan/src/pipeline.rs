@@ -1,0 +1,178 @@
+//! The ray-tracing pipeline: ray generation, two miss shaders (background, shadow) and two
+//! hit groups (0: patch intersection + closest hit, 1: triangle closest hit), with the
+//! descriptor layout of `shaders/bindings.glsl`.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use crate::context::GpuContext;
+use crate::error::{VkContext, VulkanError};
+use crate::gpu_records::TraceSettings;
+use crate::shaders;
+
+pub(crate) const BINDING_TLAS: u32 = 0;
+pub(crate) const BINDING_FRAME: u32 = 1;
+pub(crate) const BINDING_OBJECTS: u32 = 2;
+pub(crate) const BINDING_LIGHTS: u32 = 3;
+pub(crate) const BINDING_PIXELS: u32 = 4;
+
+/// Shader groups in pipeline order; the shader binding table follows it.
+pub(crate) const GROUP_RAYGEN: u32 = 0;
+pub(crate) const GROUP_MISS_FIRST: u32 = 1;
+pub(crate) const MISS_GROUP_COUNT: u32 = 2;
+pub(crate) const GROUP_HIT_FIRST: u32 = 3;
+pub(crate) const HIT_GROUP_COUNT: u32 = 2;
+/// The instance SBT offsets (`instanceShaderBindingTableRecordOffset`).
+pub(crate) const HIT_GROUP_PATCHES: u32 = 0;
+pub(crate) const HIT_GROUP_TRIANGLES: u32 = 1;
+
+pub(crate) struct RayTracingPipeline {
+    context: Arc<GpuContext>,
+    pub(crate) set_layout: vk::DescriptorSetLayout,
+    pub(crate) layout: vk::PipelineLayout,
+    pub(crate) pipeline: vk::Pipeline,
+}
+
+impl RayTracingPipeline {
+    pub(crate) fn new(context: &Arc<GpuContext>) -> Result<Self, VulkanError> {
+        let device = &context.device;
+        let set_layout = create_set_layout(device)?;
+        let mut owned = Self {
+            context: context.clone(),
+            set_layout,
+            layout: vk::PipelineLayout::null(),
+            pipeline: vk::Pipeline::null(),
+        };
+        let push_constants = [vk::PushConstantRange::default()
+            .stage_flags(all_ray_stages())
+            .size(std::mem::size_of::<TraceSettings>() as u32)];
+        let set_layouts = [set_layout];
+        let info = vk::PipelineLayoutCreateInfo::default()
+            .set_layouts(&set_layouts)
+            .push_constant_ranges(&push_constants);
+        // SAFETY: the device is alive; handles are destroyed in Drop.
+        owned.layout =
+            unsafe { device.create_pipeline_layout(&info, None) }.during("creating the pipeline layout")?;
+        owned.pipeline = create_pipeline(context, owned.layout)?;
+        Ok(owned)
+    }
+}
+
+impl Drop for RayTracingPipeline {
+    fn drop(&mut self) {
+        let device = &self.context.device;
+        // SAFETY: no trace using the pipeline is pending; null handles are ignored.
+        unsafe {
+            device.destroy_pipeline(self.pipeline, None);
+            device.destroy_pipeline_layout(self.layout, None);
+            device.destroy_descriptor_set_layout(self.set_layout, None);
+        }
+    }
+}
+
+pub(crate) fn all_ray_stages() -> vk::ShaderStageFlags {
+    vk::ShaderStageFlags::RAYGEN_KHR
+        | vk::ShaderStageFlags::MISS_KHR
+        | vk::ShaderStageFlags::INTERSECTION_KHR
+        | vk::ShaderStageFlags::CLOSEST_HIT_KHR
+}
+
+fn create_set_layout(device: &ash::Device) -> Result<vk::DescriptorSetLayout, VulkanError> {
+    let binding = |index, ty, stages| {
+        vk::DescriptorSetLayoutBinding::default()
+            .binding(index)
+            .descriptor_type(ty)
+            .descriptor_count(1)
+            .stage_flags(stages)
+    };
+    let raygen = vk::ShaderStageFlags::RAYGEN_KHR;
+    let bindings = [
+        binding(BINDING_TLAS, vk::DescriptorType::ACCELERATION_STRUCTURE_KHR, raygen),
+        binding(BINDING_FRAME, vk::DescriptorType::UNIFORM_BUFFER, raygen | vk::ShaderStageFlags::MISS_KHR),
+        binding(BINDING_OBJECTS, vk::DescriptorType::STORAGE_BUFFER, all_ray_stages()),
+        binding(BINDING_LIGHTS, vk::DescriptorType::STORAGE_BUFFER, raygen),
+        binding(BINDING_PIXELS, vk::DescriptorType::STORAGE_BUFFER, raygen),
+    ];
+    let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
+    // SAFETY: the device is alive.
+    unsafe { device.create_descriptor_set_layout(&info, None) }.during("creating the descriptor set layout")
+}
+
+/// Shader modules, destroyed once the pipeline holds them.
+struct Modules<'a> {
+    device: &'a ash::Device,
+    handles: Vec<vk::ShaderModule>,
+}
+
+impl Modules<'_> {
+    fn add(&mut self, spirv: &[u8]) -> Result<vk::ShaderModule, VulkanError> {
+        let words = shaders::words(spirv);
+        let info = vk::ShaderModuleCreateInfo::default().code(&words);
+        // SAFETY: the SPIR-V was produced by glslang in build.rs.
+        let module =
+            unsafe { self.device.create_shader_module(&info, None) }.during("creating a shader module")?;
+        self.handles.push(module);
+        Ok(module)
+    }
+}
+
+impl Drop for Modules<'_> {
+    fn drop(&mut self) {
+        for &module in &self.handles {
+            // SAFETY: pipeline creation has finished with the modules.
+            unsafe { self.device.destroy_shader_module(module, None) };
+        }
+    }
+}
+
+fn create_pipeline(context: &GpuContext, layout: vk::PipelineLayout) -> Result<vk::Pipeline, VulkanError> {
+    let mut modules = Modules { device: &context.device, handles: Vec::new() };
+    let stage = |stage, module| {
+        vk::PipelineShaderStageCreateInfo::default().stage(stage).module(module).name(c"main")
+    };
+    let stages = [
+        stage(vk::ShaderStageFlags::RAYGEN_KHR, modules.add(shaders::PRIMARY_RGEN)?),
+        stage(vk::ShaderStageFlags::MISS_KHR, modules.add(shaders::BACKGROUND_RMISS)?),
+        stage(vk::ShaderStageFlags::MISS_KHR, modules.add(shaders::SHADOW_RMISS)?),
+        stage(vk::ShaderStageFlags::INTERSECTION_KHR, modules.add(shaders::PATCH_RINT)?),
+        stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::PATCH_RCHIT)?),
+        stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::TRIANGLE_RCHIT)?),
+    ];
+    let group = |ty| {
+        vk::RayTracingShaderGroupCreateInfoKHR::default()
+            .ty(ty)
+            .general_shader(vk::SHADER_UNUSED_KHR)
+            .closest_hit_shader(vk::SHADER_UNUSED_KHR)
+            .any_hit_shader(vk::SHADER_UNUSED_KHR)
+            .intersection_shader(vk::SHADER_UNUSED_KHR)
+    };
+    let general = vk::RayTracingShaderGroupTypeKHR::GENERAL;
+    let groups = [
+        group(general).general_shader(0),
+        group(general).general_shader(1),
+        group(general).general_shader(2),
+        group(vk::RayTracingShaderGroupTypeKHR::PROCEDURAL_HIT_GROUP)
+            .intersection_shader(3)
+            .closest_hit_shader(4),
+        group(vk::RayTracingShaderGroupTypeKHR::TRIANGLES_HIT_GROUP).closest_hit_shader(5),
+    ];
+    // Ray generation shades and traces every bounce itself; hit shaders trace nothing.
+    let info = vk::RayTracingPipelineCreateInfoKHR::default()
+        .stages(&stages)
+        .groups(&groups)
+        .max_pipeline_ray_recursion_depth(1)
+        .layout(layout);
+    // SAFETY: every array the create info points to outlives the call.
+    let pipelines = unsafe {
+        context.ray_tracing.create_ray_tracing_pipelines(
+            vk::DeferredOperationKHR::null(),
+            vk::PipelineCache::null(),
+            &[info],
+            None,
+        )
+    };
+    pipelines
+        .map(|p| p[0])
+        .map_err(|(_, result)| VulkanError::from_vk("creating the ray-tracing pipeline", result))
+}

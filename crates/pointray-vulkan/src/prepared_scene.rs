@@ -1,0 +1,238 @@
+//! A scene uploaded to the GPU: per-object buffers and BLASes, the TLAS, the object
+//! (material) table and the lights. Built once, traced many times.
+
+use std::sync::Arc;
+
+use ash::vk;
+use glam::{Affine3A, Vec4};
+use pointray_io::TriangleMesh;
+use pointray_scene::{Background, Camera, Geometry, Scene};
+use pointray_surface::PatchSet;
+
+use crate::acceleration::{
+    AccelerationStructure, BlasLayout, aabb_input, build, instance_input, triangle_input,
+};
+use crate::buffer::{Buffer, addressable};
+use crate::context::GpuContext;
+use crate::error::VulkanError;
+use crate::gpu_records::{LightRecord, ObjectRecord, PatchCombined};
+use crate::pipeline::{HIT_GROUP_PATCHES, HIT_GROUP_TRIANGLES};
+
+/// The largest object index an instance's 24-bit custom index can carry.
+const MAX_OBJECTS: usize = (1 << 24) - 1;
+
+pub struct PreparedScene {
+    pub(crate) context: Arc<GpuContext>,
+    /// The camera `trace` renders from; change it to re-trace from elsewhere.
+    pub camera: Camera,
+    pub(crate) background: Background,
+    pub(crate) light_count: u32,
+    pub(crate) ray_epsilon: f32,
+    pub(crate) objects: Buffer,
+    pub(crate) lights: Buffer,
+    pub(crate) tlas: AccelerationStructure,
+    // Kept alive for the TLAS and the shaders' buffer addresses.
+    _bottom_levels: Vec<AccelerationStructure>,
+    _geometry: Vec<Buffer>,
+}
+
+/// One object's contribution: its record and, unless it is empty, its BLAS.
+struct PreparedObject {
+    record: ObjectRecord,
+    blas: Option<(AccelerationStructure, u32)>,
+    buffers: Vec<Buffer>,
+}
+
+fn storage_usage() -> vk::BufferUsageFlags {
+    addressable(vk::BufferUsageFlags::STORAGE_BUFFER)
+}
+
+fn build_input_usage() -> vk::BufferUsageFlags {
+    addressable(
+        vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
+            | vk::BufferUsageFlags::STORAGE_BUFFER,
+    )
+}
+
+fn prepare_patches(
+    context: &Arc<GpuContext>,
+    patches: &PatchSet,
+    layout: BlasLayout,
+) -> Result<PreparedObject, VulkanError> {
+    let count = patches.len();
+    if patches.aabbs.len() != count || patches.cold.len() != count {
+        return Err(VulkanError::InvalidScene(format!(
+            "a patch set has {} hot records, {} cold records and {} boxes; they must match",
+            count,
+            patches.cold.len(),
+            patches.aabbs.len()
+        )));
+    }
+    let combined: Vec<PatchCombined> =
+        patches.hot.iter().zip(&patches.cold).map(|(&hot, &cold)| PatchCombined::new(hot, cold)).collect();
+    let aabbs = Buffer::device_with_data(
+        context,
+        "patch boxes",
+        bytemuck::cast_slice(&patches.aabbs),
+        build_input_usage(),
+    )?;
+    let hot = Buffer::device_with_data(
+        context,
+        "hot patch records",
+        bytemuck::cast_slice(&patches.hot),
+        storage_usage(),
+    )?;
+    let cold = Buffer::device_with_data(
+        context,
+        "cold patch records",
+        bytemuck::cast_slice(&patches.cold),
+        storage_usage(),
+    )?;
+    let combined = Buffer::device_with_data(
+        context,
+        "combined patch records",
+        bytemuck::cast_slice(&combined),
+        storage_usage(),
+    )?;
+    let blas = (count > 0)
+        .then(|| build(context, &aabb_input(aabbs.device_address(), count as u32, layout)))
+        .transpose()?
+        .map(|blas| (blas, HIT_GROUP_PATCHES));
+    let record = ObjectRecord {
+        hot: hot.device_address(),
+        cold: cold.device_address(),
+        combined: combined.device_address(),
+        ..ObjectRecord::default()
+    };
+    Ok(PreparedObject { record, blas, buffers: vec![aabbs, hot, cold, combined] })
+}
+
+fn prepare_mesh(context: &Arc<GpuContext>, mesh: &TriangleMesh) -> Result<PreparedObject, VulkanError> {
+    let vertex_count = mesh.positions.len();
+    if let Some(bad) = mesh.triangles.iter().flatten().find(|&&i| i as usize >= vertex_count) {
+        return Err(VulkanError::InvalidScene(format!(
+            "a mesh triangle uses vertex {bad}, but the mesh has {vertex_count}"
+        )));
+    }
+    let vertices: Vec<Vec4> = mesh.positions.iter().map(|p| p.extend(1.0)).collect();
+    let vertices = Buffer::device_with_data(
+        context,
+        "mesh vertices",
+        bytemuck::cast_slice(&vertices),
+        build_input_usage(),
+    )?;
+    let indices = Buffer::device_with_data(
+        context,
+        "mesh indices",
+        bytemuck::cast_slice(&mesh.triangles),
+        build_input_usage(),
+    )?;
+    let triangle_count = mesh.triangles.len() as u32;
+    let blas = (triangle_count > 0)
+        .then(|| {
+            build(
+                context,
+                &triangle_input(
+                    vertices.device_address(),
+                    vertex_count as u32,
+                    indices.device_address(),
+                    triangle_count,
+                ),
+            )
+        })
+        .transpose()?
+        .map(|blas| (blas, HIT_GROUP_TRIANGLES));
+    let record = ObjectRecord {
+        vertices: vertices.device_address(),
+        indices: indices.device_address(),
+        ..ObjectRecord::default()
+    };
+    Ok(PreparedObject { record, blas, buffers: vec![vertices, indices] })
+}
+
+/// Object to world as the 3x4 row-major matrix Vulkan instances carry.
+fn instance_transform(transform: &Affine3A) -> vk::TransformMatrixKHR {
+    let m = transform.matrix3;
+    let t = transform.translation;
+    let row = |r: usize| [m.x_axis[r], m.y_axis[r], m.z_axis[r], t[r]];
+    let [a, b, c] = [row(0), row(1), row(2)];
+    vk::TransformMatrixKHR {
+        matrix: [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3], c[0], c[1], c[2], c[3]],
+    }
+}
+
+fn instance(
+    transform: &Affine3A,
+    object_index: u32,
+    blas: &AccelerationStructure,
+    hit_group: u32,
+) -> vk::AccelerationStructureInstanceKHR {
+    vk::AccelerationStructureInstanceKHR {
+        transform: instance_transform(transform),
+        instance_custom_index_and_mask: vk::Packed24_8::new(object_index, 0xff),
+        instance_shader_binding_table_record_offset_and_flags: vk::Packed24_8::new(
+            hit_group,
+            // Point-set patches and meshes are seen from both sides.
+            vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE.as_raw() as u8,
+        ),
+        acceleration_structure_reference: vk::AccelerationStructureReferenceKHR {
+            device_handle: blas.address,
+        },
+    }
+}
+
+fn instance_bytes(instances: &[vk::AccelerationStructureInstanceKHR]) -> &[u8] {
+    // SAFETY: the instance record is a plain repr(C) struct of 64 bytes with no padding.
+    unsafe { std::slice::from_raw_parts(instances.as_ptr().cast::<u8>(), std::mem::size_of_val(instances)) }
+}
+
+/// Uploads `scene` and builds its acceleration structures.
+pub(crate) fn prepare(
+    context: &Arc<GpuContext>,
+    scene: &Scene,
+    layout: BlasLayout,
+) -> Result<PreparedScene, VulkanError> {
+    if scene.objects.len() > MAX_OBJECTS {
+        return Err(VulkanError::InvalidScene(format!(
+            "{} objects; at most {MAX_OBJECTS} fit",
+            scene.objects.len()
+        )));
+    }
+    let mut records = Vec::with_capacity(scene.objects.len());
+    let mut instances = Vec::new();
+    let mut bottom_levels = Vec::new();
+    let mut geometry = Vec::new();
+    for (index, object) in scene.objects.iter().enumerate() {
+        let prepared = match &object.geometry {
+            Geometry::Patches(patches) => prepare_patches(context, patches, layout)?,
+            Geometry::Mesh(mesh) => prepare_mesh(context, mesh)?,
+        };
+        records.push(prepared.record.with_material(&object.material));
+        if let Some((blas, hit_group)) = prepared.blas {
+            instances.push(instance(&object.transform, index as u32, &blas, hit_group));
+            bottom_levels.push(blas);
+        }
+        geometry.extend(prepared.buffers);
+    }
+    let instance_buffer =
+        Buffer::device_with_data(context, "TLAS instances", instance_bytes(&instances), build_input_usage())?;
+    let tlas = build(context, &instance_input(instance_buffer.device_address(), instances.len() as u32))?;
+    geometry.push(instance_buffer);
+    let lights: Vec<LightRecord> = scene.lights.iter().map(LightRecord::from).collect();
+    // Storage buffers may not be empty: an empty list still gets one (unread) record.
+    let light_bytes = if lights.is_empty() { vec![0u8; 32] } else { bytemuck::cast_slice(&lights).to_vec() };
+    let record_bytes =
+        if records.is_empty() { vec![0u8; 80] } else { bytemuck::cast_slice(&records).to_vec() };
+    Ok(PreparedScene {
+        context: context.clone(),
+        camera: scene.camera,
+        background: scene.background,
+        light_count: lights.len() as u32,
+        ray_epsilon: scene.ray_epsilon(),
+        objects: Buffer::device_with_data(context, "object records", &record_bytes, storage_usage())?,
+        lights: Buffer::device_with_data(context, "light records", &light_bytes, storage_usage())?,
+        tlas,
+        _bottom_levels: bottom_levels,
+        _geometry: geometry,
+    })
+}

@@ -1,0 +1,99 @@
+//! The public face of the backend: pick a device, prepare scenes, trace frames.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use pointray_scene::{Frame, RenderSettings, Scene};
+
+use crate::acceleration::BlasLayout;
+use crate::binding_table::ShaderBindingTable;
+use crate::context::GpuContext;
+use crate::device::{DeviceInfo, DeviceSelector};
+use crate::error::VulkanError;
+use crate::pipeline::RayTracingPipeline;
+use crate::prepared_scene::{PreparedScene, prepare};
+use crate::trace::trace;
+use crate::validation::validation_requested_by_env;
+
+/// How long one trace took.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TraceTiming {
+    /// GPU time between timestamps around `vkCmdTraceRaysKHR`; `None` without timestamps.
+    pub gpu: Option<Duration>,
+    /// Wall time of the whole call: per-trace setup, trace, read-back and conversion.
+    pub wall: Duration,
+}
+
+/// A ray-tracing renderer on one Vulkan device.
+pub struct VulkanRenderer {
+    // Field order is drop order: the table and pipeline go before the device context.
+    table: ShaderBindingTable,
+    pipeline: RayTracingPipeline,
+    context: Arc<GpuContext>,
+}
+
+impl VulkanRenderer {
+    /// A renderer on the selected device; validation is on when `POINTRAY_VALIDATION=1`.
+    pub fn new(selector: DeviceSelector) -> Result<Self, VulkanError> {
+        Self::with_validation(selector, validation_requested_by_env())
+    }
+
+    /// A renderer with the Khronos validation layer on or off.
+    pub fn with_validation(selector: DeviceSelector, validation: bool) -> Result<Self, VulkanError> {
+        let context = Arc::new(GpuContext::new(&selector, validation)?);
+        let pipeline = RayTracingPipeline::new(&context)?;
+        let table = ShaderBindingTable::new(&context, &pipeline)?;
+        Ok(Self { table, pipeline, context })
+    }
+
+    pub fn device_name(&self) -> &str {
+        &self.context.info.name
+    }
+
+    pub fn device_info(&self) -> &DeviceInfo {
+        &self.context.info
+    }
+
+    /// Warnings and errors the validation layer has reported so far (0 when it is off).
+    pub fn validation_messages(&self) -> u32 {
+        self.context.validation_messages()
+    }
+
+    /// Uploads `scene` and builds its acceleration structures (one geometry per point set).
+    pub fn prepare(&self, scene: &Scene) -> Result<PreparedScene, VulkanError> {
+        self.prepare_with_layout(scene, BlasLayout::OneGeometry)
+    }
+
+    /// As `prepare`, with a chosen BLAS layout (the benchmark's ablation).
+    pub fn prepare_with_layout(
+        &self,
+        scene: &Scene,
+        layout: BlasLayout,
+    ) -> Result<PreparedScene, VulkanError> {
+        prepare(&self.context, scene, layout)
+    }
+
+    /// Traces a prepared scene into a frame (colour and AOVs).
+    pub fn trace(&self, scene: &PreparedScene, settings: &RenderSettings) -> Result<Frame, VulkanError> {
+        self.trace_timed(scene, settings).map(|(frame, _)| frame)
+    }
+
+    /// As `trace`, also returning how long it took.
+    pub fn trace_timed(
+        &self,
+        scene: &PreparedScene,
+        settings: &RenderSettings,
+    ) -> Result<(Frame, TraceTiming), VulkanError> {
+        if !Arc::ptr_eq(&scene.context, &self.context) {
+            return Err(VulkanError::InvalidScene("the scene was prepared by another renderer".into()));
+        }
+        let start = Instant::now();
+        let (frame, gpu) = trace(&self.context, &self.pipeline, &self.table, scene, settings)?;
+        Ok((frame, TraceTiming { gpu, wall: start.elapsed() }))
+    }
+
+    /// Prepares and traces in one go.
+    pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<Frame, VulkanError> {
+        self.trace(&self.prepare(scene)?, settings)
+    }
+}

@@ -1,0 +1,19 @@
+//! The SPIR-V that `build.rs` compiled from `pointray-kernels/shaders/`.
+
+macro_rules! spirv {
+    ($name:literal) => {
+        include_bytes!(concat!(env!("OUT_DIR"), "/", $name, ".spv"))
+    };
+}
+
+pub(crate) const PRIMARY_RGEN: &[u8] = spirv!("primary.rgen");
+pub(crate) const BACKGROUND_RMISS: &[u8] = spirv!("background.rmiss");
+pub(crate) const SHADOW_RMISS: &[u8] = spirv!("shadow.rmiss");
+pub(crate) const PATCH_RINT: &[u8] = spirv!("patch.rint");
+pub(crate) const PATCH_RCHIT: &[u8] = spirv!("patch.rchit");
+pub(crate) const TRIANGLE_RCHIT: &[u8] = spirv!("triangle.rchit");
+
+/// SPIR-V bytes as the u32 words Vulkan wants (`include_bytes!` gives no alignment).
+pub(crate) fn words(bytes: &[u8]) -> Vec<u32> {
+    bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
+}
