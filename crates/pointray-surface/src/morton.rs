@@ -1,0 +1,62 @@
+//! Morton (Z-order) sorting: every later stage (kNN, fit, BVH build) gains from the
+//! locality, and some acceleration-structure builders need sorted primitives.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// Bits per axis: 3 x 21 = 63 bits fit one `u64` code.
+const BITS_PER_AXIS: u32 = 21;
+const MAX_CELL: f32 = ((1u32 << BITS_PER_AXIS) - 1) as f32;
+
+/// The permutation that sorts `points` along a Morton curve over their bounding box:
+/// `sorted[i] = points[perm[i]]`. Ties (points in one cell) keep input order, so the
+/// result is deterministic. Non-finite coordinates land in cell 0 of their axis.
+pub fn morton_order(points: &[Vec3]) -> Vec<u32> {
+    let Some((min, max)) = finite_bounds(points) else {
+        return (0..points.len() as u32).collect();
+    };
+    let extent = (max - min).max(Vec3::splat(f32::MIN_POSITIVE));
+    let scale = Vec3::splat(MAX_CELL) / extent;
+    let mut keyed: Vec<(u64, u32)> =
+        points.par_iter().enumerate().map(|(i, &p)| (morton_code(p, min, scale), i as u32)).collect();
+    keyed.par_sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// The bounding box of the finite points, or `None` when there are none.
+fn finite_bounds(points: &[Vec3]) -> Option<(Vec3, Vec3)> {
+    points
+        .par_iter()
+        .filter(|p| p.is_finite())
+        .map(|&p| (p, p))
+        .reduce_with(|a, b| (a.0.min(b.0), a.1.max(b.1)))
+}
+
+/// The interleaved 63-bit code of `p`'s cell. Float-to-int casts saturate (NaN gives 0).
+fn morton_code(p: Vec3, min: Vec3, scale: Vec3) -> u64 {
+    let cell = ((p - min) * scale).clamp(Vec3::ZERO, Vec3::splat(MAX_CELL));
+    spread_bits(cell.x as u32) | (spread_bits(cell.y as u32) << 1) | (spread_bits(cell.z as u32) << 2)
+}
+
+/// Puts two zero bits between each of the low 21 bits of `v`.
+fn spread_bits(v: u32) -> u64 {
+    let mut x = u64::from(v) & 0x1f_ffff;
+    x = (x | (x << 32)) & 0x001f_0000_0000_ffff;
+    x = (x | (x << 16)) & 0x001f_0000_ff00_00ff;
+    x = (x | (x << 8)) & 0x100f_00f0_0f00_f00f;
+    x = (x | (x << 4)) & 0x10c3_0c30_c30c_30c3;
+    x = (x | (x << 2)) & 0x1249_2492_4924_9249;
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spread_bits_interleaves() {
+        assert_eq!(spread_bits(0b1), 0b1);
+        assert_eq!(spread_bits(0b11), 0b1001);
+        assert_eq!(spread_bits(0x1f_ffff), 0x1249_2492_4924_9249);
+    }
+}

@@ -1,0 +1,84 @@
+//! The k-nearest-neighbour table (SPEC.md §2.1), shared by normals, orientation and the fit.
+
+use std::num::NonZeroUsize;
+
+use glam::Vec3;
+use kiddo::{ImmutableKdTree, SquaredEuclidean};
+use rayon::prelude::*;
+
+/// `k` neighbours per point in one flat table. Row `i` lists point `i`'s neighbours by
+/// increasing Euclidean distance and never contains `i` itself.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Neighbors {
+    pub k: usize,
+    pub indices: Vec<u32>,
+    pub distances: Vec<f32>,
+}
+
+impl Neighbors {
+    /// Point `i`'s neighbours, nearest first.
+    pub fn of(&self, i: usize) -> &[u32] {
+        &self.indices[i * self.k..(i + 1) * self.k]
+    }
+
+    /// The distances to `of(i)`, in the same order.
+    pub fn distances_of(&self, i: usize) -> &[f32] {
+        &self.distances[i * self.k..(i + 1) * self.k]
+    }
+
+    pub fn point_count(&self) -> usize {
+        self.indices.len().checked_div(self.k).unwrap_or(0)
+    }
+}
+
+/// Points per rayon task: large enough to amortise scheduling, small enough to balance.
+const CHUNK: usize = 4096;
+
+/// The `k` nearest neighbours of every point, in parallel.
+///
+/// Callers guarantee `points.len() > k` and fewer than `u32::MAX` points. Should a row
+/// still come up short, it is padded by repeating its farthest neighbour so the table
+/// keeps its shape. Coincident points are neighbours of each other at distance 0.
+pub fn k_nearest(points: &[Vec3], k: usize) -> Neighbors {
+    if k == 0 || points.is_empty() {
+        return Neighbors { k, ..Neighbors::default() };
+    }
+    let entries: Vec<[f32; 3]> = points.iter().map(|p| p.to_array()).collect();
+    let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
+        .unwrap_or_else(|e| unreachable!("point indices fit u32 by contract: {e}"));
+    let mut indices = vec![0u32; points.len() * k];
+    let mut distances = vec![0f32; points.len() * k];
+    indices.par_chunks_mut(CHUNK * k).zip(distances.par_chunks_mut(CHUNK * k)).enumerate().for_each(
+        |(chunk, (index_rows, distance_rows))| {
+            let first = chunk * CHUNK;
+            let rows = index_rows.chunks_mut(k).zip(distance_rows.chunks_mut(k));
+            for (offset, (row, row_distances)) in rows.enumerate() {
+                let i = first + offset;
+                fill_row(&tree, &entries[i], i as u32, row, row_distances);
+            }
+        },
+    );
+    Neighbors { k, indices, distances }
+}
+
+/// Queries `k + 1` points and drops `self_index`. Dropping by index, not by position,
+/// matters when duplicates tie with the query point at distance 0.
+fn fill_row(
+    tree: &ImmutableKdTree<f32, 3>,
+    query: &[f32; 3],
+    self_index: u32,
+    row: &mut [u32],
+    row_distances: &mut [f32],
+) {
+    let k = row.len();
+    let wanted = NonZeroUsize::new(k + 1).unwrap_or(NonZeroUsize::MIN);
+    let found = tree.query(query).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
+    let mut others = found.iter().filter(|hit| hit.item != self_index).take(k);
+    let mut last = (self_index, 0.0);
+    for (slot, slot_distance) in row.iter_mut().zip(row_distances.iter_mut()) {
+        if let Some(hit) = others.next() {
+            last = (hit.item, hit.distance.sqrt());
+        }
+        (*slot, *slot_distance) = last;
+    }
+}

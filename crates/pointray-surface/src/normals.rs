@@ -1,0 +1,119 @@
+//! PCA normals (SPEC.md §2.2): the direction of least spread of each neighbourhood.
+
+use glam::{DMat3, DVec3, Vec3};
+use rayon::prelude::*;
+
+use crate::neighbors::Neighbors;
+
+/// Unoriented unit normals: for each point, the eigenvector of the smallest eigenvalue of
+/// the covariance of the point and its first `normal_k` neighbours (at most `neighbors.k`).
+/// Degenerate neighbourhoods (coincident or collinear points) still give a finite unit
+/// vector, just an arbitrary one among the equally good directions.
+pub fn pca_normals(points: &[Vec3], neighbors: &Neighbors, normal_k: usize) -> Vec<Vec3> {
+    let used = normal_k.min(neighbors.k);
+    (0..points.len())
+        .into_par_iter()
+        .with_min_len(1024)
+        .map(|i| {
+            let covariance = neighbourhood_covariance(points, i, &neighbors.of(i)[..used]);
+            smallest_eigenvector(covariance).as_vec3()
+        })
+        .collect()
+}
+
+/// Covariance of `p_i` and its neighbours, in f64 and relative to `p_i` so that
+/// recentred-but-large coordinates lose no precision.
+fn neighbourhood_covariance(points: &[Vec3], i: usize, neighbours: &[u32]) -> DMat3 {
+    let origin = points[i];
+    let offsets = || {
+        std::iter::once(DVec3::ZERO)
+            .chain(neighbours.iter().map(move |&j| (points[j as usize] - origin).as_dvec3()))
+    };
+    let count = (neighbours.len() + 1) as f64;
+    let mean = offsets().sum::<DVec3>() / count;
+    let mut sums = [0.0f64; 6]; // xx, xy, xz, yy, yz, zz
+    for d in offsets().map(|o| o - mean) {
+        sums[0] += d.x * d.x;
+        sums[1] += d.x * d.y;
+        sums[2] += d.x * d.z;
+        sums[3] += d.y * d.y;
+        sums[4] += d.y * d.z;
+        sums[5] += d.z * d.z;
+    }
+    let [xx, xy, xz, yy, yz, zz] = sums.map(|s| s / count);
+    DMat3::from_cols(DVec3::new(xx, xy, xz), DVec3::new(xy, yy, yz), DVec3::new(xz, yz, zz))
+}
+
+/// Sweeps of the cyclic Jacobi method: it converges quadratically, so 3x3 matrices are
+/// diagonal to f64 precision after 4 or 5; the cap only guards against NaN input.
+const MAX_JACOBI_SWEEPS: usize = 16;
+
+/// The unit eigenvector of the smallest eigenvalue of a symmetric matrix, by cyclic
+/// Jacobi rotations: slower than the closed form but accurate for nearly equal or zero
+/// eigenvalues, which flat and noise-free neighbourhoods produce.
+fn smallest_eigenvector(matrix: DMat3) -> DVec3 {
+    let mut a = matrix.to_cols_array_2d();
+    let mut v = DMat3::IDENTITY.to_cols_array_2d();
+    for _ in 0..MAX_JACOBI_SWEEPS {
+        let off_diagonal = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
+        let diagonal = a[0][0].abs() + a[1][1].abs() + a[2][2].abs();
+        if off_diagonal <= f64::EPSILON * diagonal || !off_diagonal.is_normal() {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            jacobi_rotate(&mut a, &mut v, p, q);
+        }
+    }
+    let smallest = (0..3).min_by(|&x, &y| a[x][x].total_cmp(&a[y][y])).unwrap_or(2);
+    let normal = DVec3::from_array(v[smallest]);
+    normal.try_normalize().unwrap_or(DVec3::Z)
+}
+
+/// One Jacobi rotation that zeroes `a[p][q]` (Numerical Recipes' stable form);
+/// the rotation is accumulated into the columns of `v`.
+fn jacobi_rotate(a: &mut [[f64; 3]; 3], v: &mut [[f64; 3]; 3], p: usize, q: usize) {
+    let apq = a[p][q];
+    if apq == 0.0 {
+        return;
+    }
+    let theta = (a[q][q] - a[p][p]) / (2.0 * apq);
+    let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+    let c = 1.0 / (t * t + 1.0).sqrt();
+    let s = t * c;
+    let mut rotated = *a;
+    for r in 0..3 {
+        rotated[r][p] = c * a[r][p] - s * a[r][q];
+        rotated[r][q] = s * a[r][p] + c * a[r][q];
+    }
+    let columns_rotated = rotated;
+    for r in 0..3 {
+        rotated[p][r] = c * columns_rotated[p][r] - s * columns_rotated[q][r];
+        rotated[q][r] = s * columns_rotated[p][r] + c * columns_rotated[q][r];
+    }
+    *a = rotated;
+    let (vp, vq) = (v[p], v[q]);
+    for r in 0..3 {
+        v[p][r] = c * vp[r] - s * vq[r];
+        v[q][r] = s * vp[r] + c * vq[r];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn smallest_eigenvector_of_a_rotated_diagonal_matrix() {
+        let rotation = DMat3::from_euler(glam::EulerRot::XYZ, 0.3, -1.1, 0.7);
+        let matrix = rotation * DMat3::from_diagonal(DVec3::new(5.0, 1e-9, 2.0)) * rotation.transpose();
+        let expected = rotation.col(1);
+        let found = smallest_eigenvector(matrix);
+        assert!(found.dot(expected).abs() > 1.0 - 1e-12, "{found} vs {expected}");
+    }
+
+    #[test]
+    fn smallest_eigenvector_of_zero_matrix_is_finite_and_unit() {
+        let found = smallest_eigenvector(DMat3::ZERO);
+        assert!((found.length() - 1.0).abs() < 1e-12);
+    }
+}
