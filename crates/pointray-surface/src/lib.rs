@@ -1,10 +1,24 @@
 //! From a point set to MLS quadratic patches (SPEC.md §2): the offline half of pointray.
 
-pub mod duplicates;
-pub mod morton;
-pub mod neighbors;
-pub mod normals;
-pub mod orientation;
+pub mod cold_records;
+pub mod frame;
+pub mod input_validation;
+pub mod patch_bounds;
 pub mod patch_set;
+pub mod patch_store;
+pub mod prep_error;
+pub mod prep_progress;
+pub mod prep_report;
+pub mod quadratic_fit;
+pub mod sampling;
+pub mod support_radius;
+pub mod wendland;
 
+pub use frame::TangentFrame;
+pub use patch_bounds::BoxKind;
 pub use patch_set::{PatchSet, PrepParams};
+pub use prep_error::PrepError;
+pub use prep_progress::{NoProgress, PrepProgress, Stage};
+pub use prep_report::{FitCounts, PrepReport, RadiusFallbacks};
+pub use quadratic_fit::{FitKind, PatchFit};
+pub use sampling::sample_mesh;

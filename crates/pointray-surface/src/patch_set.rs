@@ -3,6 +3,8 @@
 use glam::DVec3;
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
 
+use crate::patch_bounds::BoxKind;
+
 /// The settings `prep` ran with; stored in the patch store's header.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PrepParams {
@@ -10,11 +12,16 @@ pub struct PrepParams {
     pub k: u32,
     /// Neighbours used for the PCA normal (SPEC.md §2.2).
     pub normal_k: u32,
+    /// The box each patch gets (SPEC.md §2.4).
+    pub box_kind: BoxKind,
+    /// Points closer than this fraction of the bounding-box diagonal are merged as
+    /// duplicates; 1e-6 is about ten f32 ulps of the recentred coordinates.
+    pub duplicate_tolerance: f32,
 }
 
 impl Default for PrepParams {
     fn default() -> Self {
-        Self { k: 9, normal_k: 16 }
+        Self { k: 9, normal_k: 16, box_kind: BoxKind::Cube, duplicate_tolerance: 1e-6 }
     }
 }
 

@@ -39,7 +39,7 @@ const RIM_SAMPLES: usize = 16;
 /// `r` to the patch's point. `h` is the Wendland scale, `disk_radius` is `d_i`: a fit
 /// whose height anywhere on the disk exceeds `d_i` is judged wild and falls back.
 pub fn fit_patch(samples: impl Iterator<Item = (Vec3, f32)>, h: f32, disk_radius: f32) -> PatchFit {
-    if !(h > 0.0) {
+    if h.is_nan() || h <= 0.0 {
         return PatchFit { coefficients: [0.0; 6], kind: FitKind::Flat };
     }
     let h = f64::from(h);
@@ -51,10 +51,10 @@ pub fn fit_patch(samples: impl Iterator<Item = (Vec3, f32)>, h: f32, disk_radius
     }
     let disk = f64::from(disk_radius);
     for (unknowns, kind) in [(6, FitKind::Quadratic), (3, FitKind::Plane)] {
-        if let Some(scaled) = equations.solve_leading(unknowns) {
-            if stays_within_disk(&scaled, disk / h, disk) {
-                return PatchFit { coefficients: unscale(scaled, h), kind };
-            }
+        if let Some(scaled) = equations.solve_leading(unknowns)
+            && stays_within_disk(&scaled, disk / h, disk)
+        {
+            return PatchFit { coefficients: unscale(scaled, h), kind };
         }
     }
     PatchFit { coefficients: [0.0; 6], kind: FitKind::Flat }
@@ -70,10 +70,10 @@ struct NormalEquations {
 impl NormalEquations {
     fn add(&mut self, s: f64, t: f64, height: f64, weight: f64) {
         let basis = [1.0, s, t, s * s, s * t, t * t];
-        for row in 0..6 {
-            let weighted = weight * basis[row];
-            for col in 0..=row {
-                self.matrix[row][col] += weighted * basis[col];
+        for (row, &basis_row) in basis.iter().enumerate() {
+            let weighted = weight * basis_row;
+            for (entry, &basis_col) in self.matrix[row][..=row].iter_mut().zip(&basis) {
+                *entry += weighted * basis_col;
             }
             self.rhs[row] += weighted * height;
         }

@@ -1,0 +1,19 @@
+//! Why `prep` refuses a point set.
+
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum PrepError {
+    #[error("point {index} has a coordinate that is NaN or infinite")]
+    NonFiniteCoordinate { index: usize },
+    #[error("{found} points, but k = {k} needs at least {} distinct points", k + 1)]
+    TooFewPoints { found: usize, k: usize },
+    #[error("{found} distinct points after merging duplicates, but k = {k} needs at least {}", k + 1)]
+    TooFewDistinctPoints { found: usize, k: usize },
+    #[error("all {count} points are identical: there is no surface to fit")]
+    AllPointsIdentical { count: usize },
+    #[error("all {count} points lie on one line: there is no surface to fit")]
+    AllPointsCollinear { count: usize },
+    #[error("the cloud has {found} {attribute} for {expected} points")]
+    AttributeLength { attribute: &'static str, found: usize, expected: usize },
+    #[error("invalid settings: {problem}")]
+    InvalidSettings { problem: String },
+}

@@ -1,0 +1,66 @@
+//! Progress reporting for `prep`, so that the CLI can drive a progress bar.
+
+use std::fmt;
+use std::time::Duration;
+
+/// The stages of `prep`, in the order they run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Stage {
+    Validate,
+    Recentre,
+    MortonSort,
+    MergeDuplicates,
+    Neighbours,
+    Normals,
+    Orientation,
+    Frames,
+    SupportRadii,
+    QuadraticFit,
+    Boxes,
+    ColdRecords,
+}
+
+impl Stage {
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Validate => "validate",
+            Stage::Recentre => "recentre",
+            Stage::MortonSort => "Morton sort",
+            Stage::MergeDuplicates => "merge duplicates",
+            Stage::Neighbours => "k nearest neighbours",
+            Stage::Normals => "normals",
+            Stage::Orientation => "orientation",
+            Stage::Frames => "frames",
+            Stage::SupportRadii => "support radii",
+            Stage::QuadraticFit => "quadratic fit",
+            Stage::Boxes => "boxes",
+            Stage::ColdRecords => "cold records",
+        }
+    }
+}
+
+impl fmt::Display for Stage {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Receives `prep`'s progress. `advanced` may be called from several threads at once.
+pub trait PrepProgress: Sync {
+    /// `stage` begins and will process `items` points.
+    fn stage_started(&self, stage: Stage, items: u64);
+    /// `items` more points of the current stage are done.
+    fn advanced(&self, items: u64);
+    /// `stage` is done after `elapsed`.
+    fn stage_finished(&self, stage: Stage, elapsed: Duration);
+}
+
+/// Progress that goes nowhere.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoProgress;
+
+impl PrepProgress for NoProgress {
+    fn stage_started(&self, _stage: Stage, _items: u64) {}
+    fn advanced(&self, _items: u64) {}
+    fn stage_finished(&self, _stage: Stage, _elapsed: Duration) {}
+}
