@@ -1,0 +1,143 @@
+//! LAS 1.0–1.4 and LAZ (LASzip-compressed LAS), read with the `las` crate.
+//!
+//! Coordinates are decoded to f64 with the header's scale and offset, so geo-referenced
+//! tiles (coordinates near 10^6) keep the file's full precision.
+
+use std::fs::File;
+use std::io::{BufReader, Read, Seek};
+use std::path::Path;
+
+use glam::DVec3;
+use las::{PointData, PointDataBuilder};
+
+use super::intensity::normalise_intensities;
+use crate::{IoError, PointCloud};
+
+const SUPPORTED: &str = "LAS 1.0-1.4 with point formats 0-10, uncompressed or LAZ-compressed";
+
+/// Points decoded per batch: big enough to amortise the per-call cost, small enough that a
+/// header that lies about its point count cannot make us allocate more than the data holds.
+const BATCH_POINTS: u64 = 65_536;
+
+/// Reads a `.las` or `.laz` file. Colours are scaled to 8 bits (files that store 8-bit values
+/// in the 16-bit fields are detected and kept as they are); intensities are normalised to
+/// [0, 1]; an all-zero colour or intensity field is reported as absent.
+pub fn read_las(path: &Path) -> Result<PointCloud, IoError> {
+    let file = File::open(path).map_err(|source| IoError::os(path, source))?;
+    read_las_from(BufReader::new(file), path)
+}
+
+/// Reads LAS or LAZ data from any seekable stream; `origin` names it in errors.
+pub fn read_las_from<R>(read: R, origin: &Path) -> Result<PointCloud, IoError>
+where
+    R: Read + Seek + Send + Sync + 'static,
+{
+    let mut reader = las::Reader::new(read).map_err(|error| las_error(origin, error))?;
+    check_version(reader.header(), origin)?;
+    let declared = reader.header().number_of_points();
+    let mut columns = LasColumns::default();
+    let mut batch = PointDataBuilder::new().for_header(reader.header()).build();
+    loop {
+        let read = reader.fill_points(BATCH_POINTS, &mut batch).map_err(|error| las_error(origin, error))?;
+        if read == 0 {
+            break;
+        }
+        columns.append(&batch);
+    }
+    if columns.positions.len() as u64 != declared {
+        let problem =
+            format!("header declares {declared} points but the data holds {}", columns.positions.len());
+        return Err(IoError::malformed(origin, problem));
+    }
+    Ok(columns.into_point_cloud())
+}
+
+fn check_version(header: &las::Header, origin: &Path) -> Result<(), IoError> {
+    let version = header.version();
+    if version.major == 1 && version.minor <= 4 {
+        return Ok(());
+    }
+    Err(IoError::Unsupported {
+        path: origin.into(),
+        what: format!("LAS version {}.{}", version.major, version.minor),
+        supported: SUPPORTED.into(),
+    })
+}
+
+/// Sorts the `las` crate's errors into "we cannot read this variant" and "this file is broken".
+fn las_error(origin: &Path, error: las::Error) -> IoError {
+    let unsupported =
+        |what: String| IoError::Unsupported { path: origin.into(), what, supported: SUPPORTED.into() };
+    match error {
+        las::Error::InvalidPointFormatNumber(number) => unsupported(format!("LAS point format {number}")),
+        // `Format` displays itself as "point format N".
+        las::Error::InvalidPointFormat(format) => unsupported(format!("LAS {format}")),
+        las::Error::UnsupportedFormat { version, format } => {
+            unsupported(format!("{format} in LAS version {version}"))
+        }
+        las::Error::LasZipError(error) => {
+            IoError::malformed(origin, format!("LAZ decompression failed: {error}"))
+        }
+        las::Error::Io(source) if source.kind() == std::io::ErrorKind::UnexpectedEof => {
+            IoError::malformed(origin, "LAS data is truncated (file ends before the declared points)")
+        }
+        other => IoError::malformed(origin, format!("not a readable LAS/LAZ file: {other}")),
+    }
+}
+
+/// The columns we keep, filled batch by batch.
+#[derive(Default)]
+struct LasColumns {
+    positions: Vec<DVec3>,
+    raw_intensities: Vec<f64>,
+    raw_colors: Option<Vec<[u16; 3]>>,
+}
+
+impl LasColumns {
+    fn append(&mut self, batch: &PointData) {
+        self.positions.extend(batch.x().zip(batch.y()).zip(batch.z()).map(|((x, y), z)| DVec3::new(x, y, z)));
+        self.raw_intensities.extend(batch.intensity().map(f64::from));
+        if let Some(rgb) = batch.rgb() {
+            self.raw_colors.get_or_insert_with(Vec::new).extend(rgb.map(|(r, g, b)| [r, g, b]));
+        }
+    }
+
+    fn into_point_cloud(self) -> PointCloud {
+        PointCloud {
+            intensities: normalise_intensities(&self.raw_intensities),
+            colors: self.raw_colors.as_deref().and_then(colors_to_8_bit),
+            ..PointCloud::from_positions(self.positions)
+        }
+    }
+}
+
+/// LAS stores colour in 16 bits, but many writers put 8-bit values there unscaled: when no
+/// channel exceeds 255 the values are taken as 8-bit, otherwise the high byte is kept.
+fn colors_to_8_bit(raw: &[[u16; 3]]) -> Option<Vec<[u8; 3]>> {
+    let max = raw.iter().flatten().copied().max()?;
+    if max == 0 {
+        return None;
+    }
+    let shift = if max <= 255 { 0 } else { 8 };
+    Some(raw.iter().map(|rgb| rgb.map(|channel| (channel >> shift) as u8)).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn eight_bit_colours_in_sixteen_bit_fields_are_kept() {
+        assert_eq!(colors_to_8_bit(&[[255, 10, 0]]), Some(vec![[255, 10, 0]]));
+    }
+
+    #[test]
+    fn sixteen_bit_colours_keep_their_high_byte() {
+        assert_eq!(colors_to_8_bit(&[[65535, 256, 0]]), Some(vec![[255, 1, 0]]));
+    }
+
+    #[test]
+    fn all_black_colours_are_absent() {
+        assert_eq!(colors_to_8_bit(&[[0, 0, 0]]), None);
+    }
+}
