@@ -1,11 +1,17 @@
 //! From a point set to MLS quadratic patches (SPEC.md §2): the offline half of pointray.
 
 pub mod cold_records;
+pub mod duplicates;
 pub mod frame;
 pub mod input_validation;
+pub mod morton;
+pub mod neighbors;
+pub mod normals;
+pub mod orientation;
 pub mod patch_bounds;
 pub mod patch_set;
 pub mod patch_store;
+pub mod prep;
 pub mod prep_error;
 pub mod prep_progress;
 pub mod prep_report;
@@ -17,6 +23,7 @@ pub mod wendland;
 pub use frame::TangentFrame;
 pub use patch_bounds::BoxKind;
 pub use patch_set::{PatchSet, PrepParams};
+pub use prep::{PrepOptions, prep};
 pub use prep_error::PrepError;
 pub use prep_progress::{NoProgress, PrepProgress, Stage};
 pub use prep_report::{FitCounts, PrepReport, RadiusFallbacks};

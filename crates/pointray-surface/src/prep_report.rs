@@ -31,6 +31,9 @@ pub struct PrepReport {
     pub replaced_input_normals: usize,
     pub fits: FitCounts,
     pub radius_fallbacks: RadiusFallbacks,
+    /// For each patch, the index of the input point it was made from (patches are in
+    /// Morton order, and merged duplicates have no patch of their own).
+    pub patch_sources: Vec<u32>,
     /// Wall time of each stage, in the order they ran.
     pub stage_times: Vec<(Stage, Duration)>,
 }

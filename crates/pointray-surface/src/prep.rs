@@ -1,0 +1,275 @@
+//! `prep`: from a point cloud to a `PatchSet` (SPEC.md §2), stage by stage.
+
+use std::time::{Duration, Instant};
+
+use glam::{DVec3, Vec3};
+use pointray_io::PointCloud;
+use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use rayon::prelude::*;
+
+use crate::cold_records::cold_records;
+use crate::duplicates::merge_duplicates;
+use crate::frame::TangentFrame;
+use crate::input_validation::{validate_params, validate_positions};
+use crate::morton::morton_order;
+use crate::neighbors::{Neighbors, k_nearest};
+use crate::normals::pca_normals;
+use crate::orientation::{orient_consistently, orient_toward};
+use crate::patch_bounds::patch_box;
+use crate::patch_set::{PatchSet, PrepParams};
+use crate::prep_error::PrepError;
+use crate::prep_progress::{PrepProgress, Stage};
+use crate::prep_report::{FitCounts, PrepReport, RadiusFallbacks};
+use crate::quadratic_fit::{FitKind, PatchFit, fit_patch};
+use crate::support_radius::{RadiusSource, support_radius};
+
+/// The Wendland scale `h_i` is this multiple of the farthest neighbour's distance, so
+/// that every neighbour keeps some weight (SPEC.md §2.6, ours).
+const WENDLAND_SCALE: f32 = 1.1;
+
+/// Points per progress report in the per-point stages.
+const PROGRESS_CHUNK: usize = 16_384;
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PrepOptions {
+    pub params: PrepParams,
+    /// Compute PCA normals even when the input carries normals.
+    pub recompute_normals: bool,
+    /// Orient normals toward this point (input coordinates); overrides the cloud's own
+    /// sensor position.
+    pub sensor: Option<DVec3>,
+}
+
+/// Turns `cloud` into one patch per distinct point, in Morton order.
+pub fn prep(
+    cloud: &PointCloud,
+    options: &PrepOptions,
+    progress: &dyn PrepProgress,
+) -> Result<(PatchSet, PrepReport), PrepError> {
+    let params = options.params;
+    let (k, normal_k) = (params.k as usize, params.normal_k as usize);
+    let mut clock = StageClock { progress, times: Vec::new() };
+    let count = cloud.len();
+    clock.run(Stage::Validate, count, || validate(cloud, &params))?;
+    let (offset, recentred) = clock.run(Stage::Recentre, count, || recentre(&cloud.positions));
+    let order = clock.run(Stage::MortonSort, count, || morton_order(&recentred));
+    let sorted = gather(&recentred, &order);
+    drop(recentred);
+    let merge = clock.run(Stage::MergeDuplicates, count, || {
+        merge_duplicates(&sorted, params.duplicate_tolerance * diagonal(&sorted))
+    });
+    if merge.kept.len() < k + 1 {
+        return Err(PrepError::TooFewDistinctPoints { found: merge.kept.len(), k });
+    }
+    // `source[i]` is the input index of patch `i`: every per-point attribute is gathered
+    // through it once.
+    let source = gather(&order, &merge.kept);
+    let points = gather(&sorted, &merge.kept);
+    drop(sorted);
+    let patches = points.len();
+    let neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
+    let (normals, replaced_input_normals) =
+        clock.run(Stage::Normals, patches, || normals_for(&points, &neighbors, cloud, &source, options));
+    let mut normals = normals;
+    clock.run(Stage::Orientation, patches, || {
+        orient(&points, &mut normals, &neighbors, cloud, options, offset)
+    });
+    let frames: Vec<TangentFrame> = clock
+        .run(Stage::Frames, patches, || normals.par_iter().map(|&n| TangentFrame::from_normal(n)).collect());
+    let (radii, radius_fallbacks) =
+        clock.run(Stage::SupportRadii, patches, || support_radii(&points, &normals, &neighbors, k));
+    let (hot, fits) = clock
+        .run(Stage::QuadraticFit, patches, || fit_patches(&points, &frames, &radii, &neighbors, k, progress));
+    let aabbs: Vec<Aabb> =
+        clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
+    let cold = clock.run(Stage::ColdRecords, patches, || gather_cold(cloud, &source));
+    let report = PrepReport {
+        input_points: count,
+        merged_duplicates: merge.merged_count,
+        patches,
+        replaced_input_normals,
+        fits,
+        radius_fallbacks,
+        patch_sources: source,
+        stage_times: clock.times,
+    };
+    Ok((PatchSet { params, offset, aabbs, hot, cold }, report))
+}
+
+/// Times each stage and tells `progress` about it.
+struct StageClock<'a> {
+    progress: &'a dyn PrepProgress,
+    times: Vec<(Stage, Duration)>,
+}
+
+impl StageClock<'_> {
+    fn run<T>(&mut self, stage: Stage, items: usize, work: impl FnOnce() -> T) -> T {
+        self.progress.stage_started(stage, items as u64);
+        let start = Instant::now();
+        let result = work();
+        let elapsed = start.elapsed();
+        self.progress.stage_finished(stage, elapsed);
+        self.times.push((stage, elapsed));
+        result
+    }
+}
+
+fn validate(cloud: &PointCloud, params: &PrepParams) -> Result<(), PrepError> {
+    validate_params(params)?;
+    let expected = cloud.len();
+    let lengths = [
+        ("normals", cloud.normals.as_ref().map(Vec::len)),
+        ("colours", cloud.colors.as_ref().map(Vec::len)),
+        ("intensities", cloud.intensities.as_ref().map(Vec::len)),
+    ];
+    for (attribute, found) in lengths {
+        if let Some(found) = found.filter(|&found| found != expected) {
+            return Err(PrepError::AttributeLength { attribute, found, expected });
+        }
+    }
+    validate_positions(&cloud.positions, params.k as usize)
+}
+
+/// Recentres on the bounding-box centre in f64, then drops to f32: geo-referenced
+/// coordinates (~10^6) would otherwise lose their centimetres.
+fn recentre(positions: &[DVec3]) -> (DVec3, Vec<Vec3>) {
+    let (min, max) = positions
+        .par_iter()
+        .fold(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
+        .reduce(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)));
+    let centre = (min + max) * 0.5;
+    (centre, positions.par_iter().map(|&p| (p - centre).as_vec3()).collect())
+}
+
+fn diagonal(points: &[Vec3]) -> f32 {
+    let (min, max) = points
+        .par_iter()
+        .fold(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
+        .reduce(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)));
+    (max - min).length()
+}
+
+/// The input's normals (normalised) unless asked to recompute or absent, else PCA
+/// normals. Input normals that cannot be normalised are replaced by PCA normals, turned
+/// to agree with their neighbours' input normals; their count is returned.
+fn normals_for(
+    points: &[Vec3],
+    neighbors: &Neighbors,
+    cloud: &PointCloud,
+    source: &[u32],
+    options: &PrepOptions,
+) -> (Vec<Vec3>, usize) {
+    let normal_k = options.params.normal_k as usize;
+    let input = cloud.normals.as_ref().filter(|_| !options.recompute_normals);
+    let Some(input) = input else {
+        return (pca_normals(points, neighbors, normal_k), 0);
+    };
+    let mut normals: Vec<Vec3> =
+        source.par_iter().map(|&i| input[i as usize].try_normalize().unwrap_or(Vec3::ZERO)).collect();
+    let broken: Vec<usize> = (0..normals.len()).filter(|&i| normals[i] == Vec3::ZERO).collect();
+    if !broken.is_empty() {
+        let pca = pca_normals(points, neighbors, normal_k);
+        for &i in &broken {
+            let around: Vec3 = neighbors.of(i).iter().map(|&j| normals[j as usize]).sum();
+            normals[i] = if pca[i].dot(around) < 0.0 { -pca[i] } else { pca[i] };
+        }
+    }
+    (normals, broken.len())
+}
+
+/// Toward the sensor when one is known; else, for computed normals, consistently over
+/// the neighbour graph. Input normals are taken as already oriented.
+fn orient(
+    points: &[Vec3],
+    normals: &mut [Vec3],
+    neighbors: &Neighbors,
+    cloud: &PointCloud,
+    options: &PrepOptions,
+    offset: DVec3,
+) {
+    if let Some(sensor) = options.sensor.or(cloud.sensor_position) {
+        orient_toward(points, normals, (sensor - offset).as_vec3());
+    } else if options.recompute_normals || cloud.normals.is_none() {
+        orient_consistently(points, normals, neighbors);
+    }
+}
+
+fn support_radii(
+    points: &[Vec3],
+    normals: &[Vec3],
+    neighbors: &Neighbors,
+    k: usize,
+) -> (Vec<f32>, RadiusFallbacks) {
+    let spacing_sum: f64 =
+        (0..points.len()).into_par_iter().map(|i| f64::from(neighbors.distances_of(i)[0])).sum();
+    let mean_spacing = (spacing_sum / points.len() as f64) as f32;
+    let (radii, sources): (Vec<f32>, Vec<RadiusSource>) = (0..points.len())
+        .into_par_iter()
+        .map(|i| {
+            let farthest = points[neighbors.of(i)[k - 1] as usize];
+            support_radius(points[i], normals[i], farthest, mean_spacing)
+        })
+        .unzip();
+    let count = |wanted| sources.par_iter().filter(|&&s| s == wanted).count();
+    (
+        radii,
+        RadiusFallbacks { distance: count(RadiusSource::Distance), spacing: count(RadiusSource::Spacing) },
+    )
+}
+
+fn fit_patches(
+    points: &[Vec3],
+    frames: &[TangentFrame],
+    radii: &[f32],
+    neighbors: &Neighbors,
+    k: usize,
+    progress: &dyn PrepProgress,
+) -> (Vec<PatchHot>, FitCounts) {
+    let (hot, kinds): (Vec<PatchHot>, Vec<FitKind>) = (0..points.len())
+        .into_par_iter()
+        .with_min_len(PROGRESS_CHUNK)
+        .map(|i| {
+            if i % PROGRESS_CHUNK == 0 {
+                progress.advanced(PROGRESS_CHUNK.min(points.len() - i) as u64);
+            }
+            let fit = fit_one(points, &frames[i], radii[i], neighbors, k, i);
+            let frame = &frames[i];
+            (PatchHot::new(points[i], frame.t1, frame.n, fit.coefficients, radii[i]), fit.kind)
+        })
+        .unzip();
+    let count = |wanted| kinds.par_iter().filter(|&&kind| kind == wanted).count();
+    let fits = FitCounts {
+        quadratic: count(FitKind::Quadratic),
+        plane: count(FitKind::Plane),
+        flat: count(FitKind::Flat),
+    };
+    (hot, fits)
+}
+
+/// The patch of point `i` from the point itself and its `k` nearest neighbours.
+fn fit_one(
+    points: &[Vec3],
+    frame: &TangentFrame,
+    radius: f32,
+    neighbors: &Neighbors,
+    k: usize,
+    i: usize,
+) -> PatchFit {
+    let origin = points[i];
+    let indices = &neighbors.of(i)[..k];
+    let distances = &neighbors.distances_of(i)[..k];
+    let samples =
+        indices.iter().zip(distances).map(|(&j, &r)| (frame.to_local(points[j as usize] - origin), r));
+    let h = WENDLAND_SCALE * distances[k - 1];
+    fit_patch(std::iter::once((Vec3::ZERO, 0.0)).chain(samples), h, radius)
+}
+
+fn gather_cold(cloud: &PointCloud, source: &[u32]) -> Vec<PatchCold> {
+    let colors = cloud.colors.as_deref().map(|values| gather(values, source));
+    let intensities = cloud.intensities.as_deref().map(|values| gather(values, source));
+    cold_records(colors.as_deref(), intensities.as_deref(), source.len())
+}
+
+fn gather<T: Copy + Send + Sync>(values: &[T], source: &[u32]) -> Vec<T> {
+    source.par_iter().map(|&i| values[i as usize]).collect()
+}
