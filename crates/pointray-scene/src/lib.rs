@@ -1,16 +1,34 @@
 //! What gets rendered: camera, lights, background and objects (point sets and meshes),
 //! the settings of one render and the frame that comes back.
 
+pub mod bounds;
 pub mod camera;
+mod checks;
+pub mod demo;
+pub mod error;
 pub mod frame;
+mod framing;
+pub mod ground;
 pub mod light;
+pub mod load;
 pub mod material;
+pub mod material_spec;
+pub mod object_spec;
+pub mod point_sets;
+pub mod procedural;
 pub mod render_settings;
 pub mod scene;
+pub mod scene_file;
+pub mod transform_spec;
 
 pub use camera::Camera;
+pub use demo::{demo_scene, load_demo};
+pub use error::SceneError;
 pub use frame::Frame;
 pub use light::Light;
+pub use load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
 pub use material::Material;
+pub use point_sets::{PointSetOrigin, PrepRequest};
 pub use render_settings::{AcceptanceTest, BufferLayout, RenderSettings};
 pub use scene::{Background, Geometry, Scene, SceneObject};
+pub use scene_file::SceneFile;

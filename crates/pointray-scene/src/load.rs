@@ -1,0 +1,158 @@
+//! From a scene file to a `Scene`: read meshes, prep (or load from the cache) point sets,
+//! build grounds and procedural objects, and place everything.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use glam::{Affine3A, Vec3};
+use pointray_kernels::Aabb;
+use pointray_surface::prep_progress::{NoProgress, PrepProgress};
+
+use crate::error::{InvalidValue, SceneError};
+use crate::ground::GroundPlacement;
+use crate::object_spec::{ObjectSpec, ShapeSpec};
+use crate::point_sets::{self, PointSetOrigin};
+use crate::procedural;
+use crate::scene_file::SceneFile;
+use crate::{Camera, Geometry, RenderSettings, Scene, SceneObject};
+
+/// Without a `[camera]`, the objects are seen from the front (+Z), a little from the right and
+/// above.
+pub const DEFAULT_VIEW_DIRECTION: Vec3 = Vec3::new(0.35, 0.4, 1.0);
+pub const DEFAULT_VFOV_DEGREES: f32 = 40.0;
+
+#[derive(Clone, Copy)]
+pub struct LoadOptions<'a> {
+    /// Where point sets prepped from points files are cached. `None` preps them in memory on
+    /// every load and writes nothing.
+    pub cache_dir: Option<&'a Path>,
+    pub progress: &'a dyn PrepProgress,
+}
+
+impl Default for LoadOptions<'_> {
+    fn default() -> Self {
+        Self { cache_dir: None, progress: &NoProgress }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct LoadedScene {
+    pub scene: Scene,
+    /// `RenderSettings::default()` with the file's `[render]` table on top; command-line flags
+    /// go on top of these.
+    pub settings: RenderSettings,
+    /// How each point-set object got its patches, by object index.
+    pub point_sets: Vec<(usize, PointSetOrigin)>,
+}
+
+pub fn load_scene(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
+    load_scene_file(&SceneFile::read(path)?, options)
+}
+
+pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
+    let in_file = |invalid: InvalidValue| invalid.in_file(&file.path);
+    let settings = file.render.settings().map_err(in_file)?;
+    let lights =
+        file.lights.iter().map(|light| light.to_light()).collect::<Result<_, _>>().map_err(in_file)?;
+    let background = file.background().map_err(in_file)?;
+
+    // Grounds are sized and placed from the other objects, so they are built last, but they
+    // keep their place in the object list: renderers report object indices as instance ids.
+    let is_ground = |spec: &ObjectSpec| matches!(spec.shape, ShapeSpec::Ground { .. });
+    let mut slots: Vec<Option<SceneObject>> = vec![None; file.objects.len()];
+    let mut point_sets = Vec::new();
+    for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| !is_ground(spec)) {
+        let (object, origin) = load_object(file, index, spec, options, None)?;
+        point_sets.extend(origin.map(|origin| (index, origin)));
+        slots[index] = Some(object);
+    }
+    let others = slots.iter().flatten().filter_map(SceneObject::world_bounds).reduce(|a, b| a.union(&b));
+    for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| is_ground(spec)) {
+        slots[index] = Some(load_object(file, index, spec, options, others.as_ref())?.0);
+    }
+    let objects: Vec<SceneObject> = slots.into_iter().flatten().collect();
+
+    let camera = match &file.camera {
+        Some(camera) => camera.to_camera().map_err(|e| in_file(e.within("camera")))?,
+        None => default_camera(others.as_ref(), &settings),
+    };
+    Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets })
+}
+
+fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
+    let unit_box = Aabb::new(Vec3::splat(-0.5), Vec3::splat(0.5));
+    let aspect = settings.width as f32 / settings.height as f32;
+    Scene::framing_camera(bounds.unwrap_or(&unit_box), DEFAULT_VIEW_DIRECTION, DEFAULT_VFOV_DEGREES, aspect)
+}
+
+/// Loads one object and says where a point set's patches came from. `others` are the bounds
+/// of every non-ground object, which a ground is fitted to.
+fn load_object(
+    file: &SceneFile,
+    index: usize,
+    spec: &ObjectSpec,
+    options: &LoadOptions,
+    others: Option<&Aabb>,
+) -> Result<(SceneObject, Option<PointSetOrigin>), SceneError> {
+    let key = object_key(index, spec);
+    let transform =
+        spec.transform.to_affine().map_err(|e| e.within(&format!("{key}.transform")).in_file(&file.path))?;
+    let material =
+        spec.material.to_material().map_err(|e| e.within(&format!("{key}.material")).in_file(&file.path))?;
+    let (geometry, origin, default_name) = match &spec.shape {
+        ShapeSpec::Mesh { path } => {
+            let path = existing_file(file, &key, path)?;
+            let mesh = pointray_io::formats::ply::read_triangle_mesh(&path)
+                .map_err(|source| SceneError::Input { scene: file.path.clone(), key: key.clone(), source })?;
+            (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
+        }
+        ShapeSpec::Points { path, k, normal_k } => {
+            let path = existing_file(file, &key, path)?;
+            let request = point_sets::PrepRequest { k: *k, normal_k: *normal_k };
+            let (patches, origin) = point_sets::load_points_file(&path, &request, options)
+                .map_err(|e| e.in_scene(&file.path, &key))?;
+            (Geometry::Patches(Arc::new(patches)), Some(origin), file_stem(&path))
+        }
+        ShapeSpec::SpherePoints { center, radius, count } => {
+            let cloud = procedural::sphere_points(Vec3::from(*center), *radius, *count);
+            let patches =
+                point_sets::prep_in_memory(&cloud, options).map_err(|e| e.in_scene(&file.path, &key))?;
+            (Geometry::Patches(Arc::new(patches)), Some(PointSetOrigin::Procedural), "sphere".to_string())
+        }
+        ShapeSpec::TorusPoints { center, major_radius, minor_radius, count } => {
+            let cloud = procedural::torus_points(Vec3::from(*center), *major_radius, *minor_radius, *count);
+            let patches =
+                point_sets::prep_in_memory(&cloud, options).map_err(|e| e.in_scene(&file.path, &key))?;
+            (Geometry::Patches(Arc::new(patches)), Some(PointSetOrigin::Procedural), "torus".to_string())
+        }
+        &ShapeSpec::Ground { auto, height, size } => {
+            let mesh = GroundPlacement::new(others, auto, height, size).mesh();
+            (Geometry::Mesh(Arc::new(mesh)), None, "ground".to_string())
+        }
+    };
+    let transform = match &geometry {
+        // prep recentred the points (`input = local + offset`); put them back where they were.
+        Geometry::Patches(patches) => transform * Affine3A::from_translation(patches.offset.as_vec3()),
+        Geometry::Mesh(_) => transform,
+    };
+    let name = spec.name.clone().unwrap_or(default_name);
+    Ok((SceneObject { name, transform, material, geometry }, origin))
+}
+
+fn object_key(index: usize, spec: &ObjectSpec) -> String {
+    format!("objects[{index}] (type \"{}\")", spec.shape.type_name())
+}
+
+/// The file's path resolved against the scene's folder; an error naming it when it is missing.
+fn existing_file(file: &SceneFile, key: &str, relative: &Path) -> Result<std::path::PathBuf, SceneError> {
+    let path = file.resolve(relative);
+    if path.is_file() {
+        Ok(path)
+    } else {
+        Err(SceneError::MissingFile { scene: file.path.clone(), key: format!("{key}.path"), file: path })
+    }
+}
+
+fn file_stem(path: &Path) -> String {
+    path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default()
+}

@@ -1,0 +1,181 @@
+//! Point sets for the scene: patch stores load as they are; points files go through `prep`,
+//! whose result is cached as a patch store in a folder the caller names (never next to the
+//! input, which may be read-only or shared).
+//!
+//! A cache file is `<cache_dir>/<stem>-<key>.patches`, where the key hashes the input's
+//! canonical path, size and modification time, the prep options and this crate's version, so
+//! that a changed input or setting never reuses a stale result. A cache file that cannot be
+//! read (truncated, corrupted, from another format version) is regenerated.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+use pointray_io::PointCloud;
+use pointray_surface::patch_store::{self, StoreError};
+use pointray_surface::{PatchSet, PrepError, PrepOptions, prep};
+
+use crate::error::SceneError;
+use crate::load::LoadOptions;
+
+/// The file's prep settings; `None` keeps `PrepParams::default()`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PrepRequest {
+    pub k: Option<u32>,
+    pub normal_k: Option<u32>,
+}
+
+/// Where a point set's patches came from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PointSetOrigin {
+    /// The input was a patch store.
+    PatchStore,
+    /// Sampled on an analytic surface and prepped in memory.
+    Procedural,
+    /// Prepped now; `cache` is the file it was written to, if caching was asked for.
+    Prepped { cache: Option<PathBuf> },
+    /// Read from a valid cache file; prep did not run.
+    CacheHit { cache: PathBuf },
+    /// The cache file was unreadable (`problem`), so prep ran and replaced it.
+    CacheRegenerated { cache: PathBuf, problem: String },
+}
+
+/// Why a point set could not be loaded; `in_scene` names the scene file and object.
+#[derive(Debug)]
+pub(crate) enum PointSetError {
+    Input(pointray_io::IoError),
+    Prep { file: PathBuf, source: PrepError },
+    Store(StoreError),
+    CacheDir { path: PathBuf, source: std::io::Error },
+    StoreWithPrepSettings { file: PathBuf },
+}
+
+impl PointSetError {
+    pub fn in_scene(self, scene: &Path, key: &str) -> SceneError {
+        let (scene, key) = (scene.to_path_buf(), key.to_string());
+        match self {
+            Self::Input(source) => SceneError::Input { scene, key, source },
+            Self::Prep { file, source } => SceneError::Prep { scene, key, file, source },
+            Self::Store(source) => SceneError::PatchStore { scene, key, source },
+            Self::CacheDir { path, source } => SceneError::CacheDir { path, source },
+            Self::StoreWithPrepSettings { file } => SceneError::Invalid {
+                path: scene,
+                key,
+                problem: format!(
+                    "{}: is a patch store, already prepped: `k` and `normal_k` apply only to points files",
+                    file.display()
+                ),
+            },
+        }
+    }
+}
+
+/// Loads a patch store, or preps a points file through the cache in `options.cache_dir`.
+pub(crate) fn load_points_file(
+    path: &Path,
+    request: &PrepRequest,
+    options: &LoadOptions,
+) -> Result<(PatchSet, PointSetOrigin), PointSetError> {
+    if is_patch_store(path) {
+        if *request != PrepRequest::default() {
+            return Err(PointSetError::StoreWithPrepSettings { file: path.to_path_buf() });
+        }
+        return Ok((patch_store::read(path).map_err(PointSetError::Store)?, PointSetOrigin::PatchStore));
+    }
+    let prep_options = request.prep_options();
+    let Some(cache_dir) = options.cache_dir else {
+        return Ok((prep_file(path, &prep_options, options)?, PointSetOrigin::Prepped { cache: None }));
+    };
+    std::fs::create_dir_all(cache_dir)
+        .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
+    let cache = cache_dir.join(cache_file_name(path, &prep_options).map_err(PointSetError::Input)?);
+    let regenerated_because = match patch_store::read(&cache) {
+        Ok(patches) => return Ok((patches, PointSetOrigin::CacheHit { cache })),
+        Err(StoreError::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => None,
+        Err(problem) => {
+            tracing::warn!("{problem}; regenerating it");
+            Some(problem.to_string())
+        }
+    };
+    let patches = prep_file(path, &prep_options, options)?;
+    patch_store::write(&cache, &patches).map_err(PointSetError::Store)?;
+    let origin = match regenerated_because {
+        Some(problem) => PointSetOrigin::CacheRegenerated { cache, problem },
+        None => PointSetOrigin::Prepped { cache: Some(cache) },
+    };
+    Ok((patches, origin))
+}
+
+/// Preps a procedural cloud with default settings; nothing is cached, since sampling and prep
+/// are cheap at demo sizes.
+pub(crate) fn prep_in_memory(cloud: &PointCloud, options: &LoadOptions) -> Result<PatchSet, PointSetError> {
+    let (patches, _report) = prep(cloud, &PrepOptions::default(), options.progress)
+        .map_err(|source| PointSetError::Prep { file: PathBuf::from("(procedural points)"), source })?;
+    Ok(patches)
+}
+
+fn prep_file(
+    path: &Path,
+    prep_options: &PrepOptions,
+    options: &LoadOptions,
+) -> Result<PatchSet, PointSetError> {
+    let cloud = pointray_io::formats::ply::read_point_cloud(path).map_err(PointSetError::Input)?;
+    let (patches, report) = prep(&cloud, prep_options, options.progress)
+        .map_err(|source| PointSetError::Prep { file: path.to_path_buf(), source })?;
+    tracing::info!("prepped {}:\n{report}", path.display());
+    Ok(patches)
+}
+
+impl PrepRequest {
+    fn prep_options(&self) -> PrepOptions {
+        let mut options = PrepOptions::default();
+        options.params.k = self.k.unwrap_or(options.params.k);
+        options.params.normal_k = self.normal_k.unwrap_or(options.params.normal_k);
+        options
+    }
+}
+
+/// Recognised by content, so that a store renamed to any extension still loads as one.
+fn is_patch_store(path: &Path) -> bool {
+    let mut magic = [0u8; 8];
+    std::fs::File::open(path).and_then(|mut file| file.read_exact(&mut magic)).is_ok()
+        && magic == patch_store::MAGIC
+}
+
+fn cache_file_name(input: &Path, prep_options: &PrepOptions) -> Result<String, pointray_io::IoError> {
+    let os_error = |source| pointray_io::IoError::os(input, source);
+    let canonical = input.canonicalize().map_err(os_error)?;
+    let metadata = std::fs::metadata(&canonical).map_err(os_error)?;
+    let modified = metadata
+        .modified()
+        .ok()
+        .and_then(|time| time.duration_since(std::time::UNIX_EPOCH).ok())
+        .map_or(0, |since| since.as_nanos());
+    let mut key = Fnv1a::default();
+    key.write(canonical.as_os_str().as_encoded_bytes());
+    key.write(&metadata.len().to_le_bytes());
+    key.write(&modified.to_le_bytes());
+    // Debug covers every option, including ones added later, without listing them here.
+    key.write(format!("{prep_options:?}").as_bytes());
+    key.write(env!("CARGO_PKG_VERSION").as_bytes());
+    let stem = input.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    Ok(format!("{stem}-{:016x}.patches", key.0))
+}
+
+/// 64-bit FNV-1a: a hash that stays the same across builds and platforms (std's
+/// `DefaultHasher` promises neither), which a cache key on disk needs.
+struct Fnv1a(u64);
+
+impl Default for Fnv1a {
+    fn default() -> Self {
+        Self(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Fnv1a {
+    /// Hashes the length first, so that ("ab", "c") and ("a", "bc") differ.
+    fn write(&mut self, bytes: &[u8]) {
+        for &byte in (bytes.len() as u64).to_le_bytes().iter().chain(bytes) {
+            self.0 = (self.0 ^ byte as u64).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+}

@@ -1,0 +1,250 @@
+//! The scene file (TOML). Unknown keys are errors. Relative paths are relative to the scene
+//! file's folder.
+//!
+//! ```toml
+//! [camera]                  # optional: without it, the objects are framed automatically
+//! position = [0.0, 0.15, 0.45]
+//! look_at = [0.0, 0.1, 0.0]
+//! up = [0.0, 1.0, 0.0]      # default
+//! vfov_degrees = 40.0       # default 45
+//!
+//! [[lights]]
+//! type = "point"            # or "directional" with `direction` (the way the light travels)
+//! position = [1.0, 2.0, 1.0]
+//! color = [1.0, 1.0, 1.0]   # default white
+//! intensity = 1.0           # default 1
+//!
+//! background = [0.1, 0.1, 0.1]                        # a colour, or
+//! # background = { top = [0.5, 0.7, 1.0], bottom = [1.0, 1.0, 1.0] }
+//!
+//! [render]                  # defaults that command-line flags override
+//! width = 640
+//! height = 640
+//! spp = 1
+//! max_depth = 2
+//! ```
+//!
+//! Objects are described in `object_spec`, their transforms in `transform_spec` and their
+//! materials in `material_spec`.
+
+use std::path::{Path, PathBuf};
+
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer};
+
+use crate::checks;
+use crate::error::{InvalidValue, SceneError};
+use crate::object_spec::ObjectSpec;
+use crate::{Background, Camera, Light, RenderSettings};
+
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    pub camera: Option<CameraSpec>,
+    #[serde(default)]
+    pub lights: Vec<LightSpec>,
+    pub background: Option<BackgroundSpec>,
+    #[serde(default)]
+    pub objects: Vec<ObjectSpec>,
+    #[serde(default)]
+    pub render: RenderSpec,
+    /// The file this was read from; relative paths inside resolve against its folder.
+    #[serde(skip)]
+    pub path: PathBuf,
+}
+
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSpec {
+    pub position: [f32; 3],
+    pub look_at: [f32; 3],
+    #[serde(default = "default_up")]
+    pub up: [f32; 3],
+    #[serde(default = "default_vfov_degrees")]
+    pub vfov_degrees: f32,
+}
+
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum LightSpec {
+    Point {
+        position: [f32; 3],
+        #[serde(default = "white")]
+        color: [f32; 3],
+        #[serde(default = "unit_intensity")]
+        intensity: f32,
+    },
+    Directional {
+        direction: [f32; 3],
+        #[serde(default = "white")]
+        color: [f32; 3],
+        #[serde(default = "unit_intensity")]
+        intensity: f32,
+    },
+}
+
+/// A colour `[r, g, b]`, or a table `{ top = [r, g, b], bottom = [r, g, b] }`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BackgroundSpec {
+    Solid([f32; 3]),
+    Gradient(GradientSpec),
+}
+
+// Chosen by the value's shape rather than `untagged`, which would hide the table's own error
+// (such as an unknown key) behind "did not match any variant".
+impl<'de> Deserialize<'de> for BackgroundSpec {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        match toml::Value::deserialize(deserializer)? {
+            table @ toml::Value::Table(_) => GradientSpec::deserialize(table).map(Self::Gradient),
+            other => <[f32; 3]>::deserialize(other).map(Self::Solid),
+        }
+        .map_err(|e| D::Error::custom(e.message()))
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GradientSpec {
+    pub top: [f32; 3],
+    pub bottom: [f32; 3],
+}
+
+/// Render defaults; each is `None` when the file does not set it.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderSpec {
+    pub width: Option<u32>,
+    pub height: Option<u32>,
+    pub spp: Option<u32>,
+    pub max_depth: Option<u32>,
+}
+
+fn default_up() -> [f32; 3] {
+    [0.0, 1.0, 0.0]
+}
+
+fn default_vfov_degrees() -> f32 {
+    45.0
+}
+
+fn white() -> [f32; 3] {
+    [1.0; 3]
+}
+
+fn unit_intensity() -> f32 {
+    1.0
+}
+
+/// Shown when a scene file gives no background.
+pub const DEFAULT_BACKGROUND: Background =
+    Background::Gradient { top: glam::Vec3::new(0.55, 0.7, 0.9), bottom: glam::Vec3::splat(0.95) };
+
+impl SceneFile {
+    pub fn read(path: &Path) -> Result<Self, SceneError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses and checks `text`; `path` names it in errors and anchors relative paths.
+    pub fn parse(text: &str, path: &Path) -> Result<Self, SceneError> {
+        let mut file: Self = toml::from_str(text)
+            .map_err(|e| SceneError::Parse { path: path.to_path_buf(), message: e.to_string() })?;
+        file.path = path.to_path_buf();
+        file.check().map_err(|invalid| invalid.in_file(path))?;
+        Ok(file)
+    }
+
+    /// A path from the file, relative to the file's folder unless absolute.
+    pub fn resolve(&self, relative: &Path) -> PathBuf {
+        self.path.parent().unwrap_or(Path::new("")).join(relative)
+    }
+
+    pub(crate) fn background(&self) -> Result<Background, InvalidValue> {
+        match &self.background {
+            None => Ok(DEFAULT_BACKGROUND),
+            Some(BackgroundSpec::Solid(c)) => Ok(Background::Solid(checks::color("background", *c)?)),
+            Some(BackgroundSpec::Gradient(GradientSpec { top, bottom })) => Ok(Background::Gradient {
+                top: checks::color("background.top", *top)?,
+                bottom: checks::color("background.bottom", *bottom)?,
+            }),
+        }
+    }
+
+    /// Every check that needs no file, so that a typo fails before any slow loading.
+    fn check(&self) -> Result<(), InvalidValue> {
+        if let Some(camera) = &self.camera {
+            camera.to_camera().map_err(|e| e.within("camera"))?;
+        }
+        for (i, light) in self.lights.iter().enumerate() {
+            light.to_light().map_err(|e| e.within(&format!("lights[{i}]")))?;
+        }
+        self.background()?;
+        self.render.settings()?;
+        for (i, object) in self.objects.iter().enumerate() {
+            let key = format!("objects[{i}]");
+            object.shape.check().map_err(|e| e.within(&key))?;
+            object.transform.to_affine().map_err(|e| e.within(&format!("{key}.transform")))?;
+            object.material.to_material().map_err(|e| e.within(&format!("{key}.material")))?;
+        }
+        Ok(())
+    }
+}
+
+impl CameraSpec {
+    pub(crate) fn to_camera(&self) -> Result<Camera, InvalidValue> {
+        let position = checks::finite_vec3("position", self.position)?;
+        let look_at = checks::finite_vec3("look_at", self.look_at)?;
+        let up = checks::nonzero_vec3("up", self.up)?;
+        let forward = look_at - position;
+        if forward.length_squared() == 0.0 {
+            return Err(InvalidValue::new("look_at", "must differ from the camera position"));
+        }
+        if forward.normalize().cross(up.normalize()).length() < 1e-4 {
+            return Err(InvalidValue::new("up", "must not be parallel to the viewing direction"));
+        }
+        if !(self.vfov_degrees > 0.0 && self.vfov_degrees < 180.0) {
+            return Err(InvalidValue::new(
+                "vfov_degrees",
+                format!("must be between 0 and 180, got {}", self.vfov_degrees),
+            ));
+        }
+        Ok(Camera { position, look_at, up, vertical_fov_degrees: self.vfov_degrees })
+    }
+}
+
+impl LightSpec {
+    pub(crate) fn to_light(&self) -> Result<Light, InvalidValue> {
+        Ok(match self {
+            Self::Point { position, color, intensity } => Light::Point {
+                position: checks::finite_vec3("position", *position)?,
+                color: checks::color("color", *color)?,
+                intensity: checks::non_negative("intensity", *intensity)?,
+            },
+            Self::Directional { direction, color, intensity } => Light::Directional {
+                direction: checks::nonzero_vec3("direction", *direction)?.normalize(),
+                color: checks::color("color", *color)?,
+                intensity: checks::non_negative("intensity", *intensity)?,
+            },
+        })
+    }
+}
+
+impl RenderSpec {
+    /// `RenderSettings::default()` with this file's values on top.
+    pub(crate) fn settings(&self) -> Result<RenderSettings, InvalidValue> {
+        let key = |name: &str| format!("render.{name}");
+        let default = RenderSettings::default();
+        Ok(RenderSettings {
+            width: checks::at_least(&key("width"), self.width.unwrap_or(default.width), 1)?,
+            height: checks::at_least(&key("height"), self.height.unwrap_or(default.height), 1)?,
+            samples_per_pixel: checks::at_least(
+                &key("spp"),
+                self.spp.unwrap_or(default.samples_per_pixel),
+                1,
+            )?,
+            max_depth: checks::at_least(&key("max_depth"), self.max_depth.unwrap_or(default.max_depth), 1)?,
+            ..default
+        })
+    }
+}
