@@ -1,14 +1,23 @@
-pub fn add(left: u64, right: u64) -> u64 {
-    left + right
-}
+//! The CPU reference renderer: pure Rust, rayon over pixel tiles, a BVH per object (obvhs
+//! CWBVH over patch boxes or triangles) under a BVH over object instances. It follows the
+//! rendering contract of docs/ARCHITECTURE.md with the maths of `pointray-kernels`, the
+//! same functions the Vulkan shaders include, so both backends draw the same image.
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+mod instance;
+mod object_bvh;
+mod path;
+mod ray_epsilon;
+mod renderer;
+mod shading;
+mod top_level;
+mod triangle;
 
-    #[test]
-    fn it_works() {
-        let result = add(2, 2);
-        assert_eq!(result, 4);
-    }
+pub use renderer::CpuRenderer;
+
+use pointray_scene::{Frame, RenderSettings, Scene};
+
+/// Builds the acceleration structures and renders one frame. To render several frames of
+/// one scene, build a `CpuRenderer` once instead.
+pub fn render(scene: &Scene, settings: &RenderSettings) -> Frame {
+    CpuRenderer::new(scene).render(settings)
 }

@@ -1,0 +1,82 @@
+//! An object placed in the world: its bottom-level BVH and its transforms.
+
+use glam::{Affine3A, Mat3A, Vec3};
+use pointray_kernels::{Aabb, PatchAcceptance, Ray};
+use pointray_scene::SceneObject;
+
+use crate::object_bvh::{ObjectBvh, ObjectHit};
+
+pub struct Instance {
+    /// The object's index in `Scene::objects` (the `instance_id` AOV).
+    pub object_index: u32,
+    pub blas: ObjectBvh,
+    world_to_object: Affine3A,
+    /// Object normals to world: the inverse transpose of the object-to-world linear part.
+    normal_to_world: Mat3A,
+    world_bounds: Aabb,
+}
+
+impl Instance {
+    /// `None` for an object with nothing to hit or a transform that cannot be inverted
+    /// (a zero scale flattens it to nothing visible).
+    pub fn new(object_index: u32, object: &SceneObject) -> Option<Self> {
+        if object.transform.matrix3.determinant().abs() <= f32::MIN_POSITIVE || !object.transform.is_finite()
+        {
+            tracing::warn!("CPU renderer: object {:?} has a singular transform; left out", object.name);
+            return None;
+        }
+        let blas = ObjectBvh::build(&object.geometry)?;
+        let world_to_object = object.transform.inverse();
+        let world_bounds = transformed_box(&blas.bounds(), &object.transform);
+        Some(Self {
+            object_index,
+            blas,
+            world_to_object,
+            normal_to_world: world_to_object.matrix3.transpose(),
+            world_bounds,
+        })
+    }
+
+    pub fn world_bounds(&self) -> Aabb {
+        self.world_bounds
+    }
+
+    /// The world ray in object space. The direction is not renormalised, so `t` is the
+    /// same in both spaces.
+    pub fn to_object(&self, ray: &Ray) -> Ray {
+        Ray::new(
+            self.world_to_object.transform_point3(ray.origin),
+            self.world_to_object.transform_vector3(ray.direction),
+        )
+    }
+
+    pub fn closest_hit(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        acceptance: PatchAcceptance,
+    ) -> Option<ObjectHit> {
+        self.blas.closest_hit(&self.to_object(ray), t_min, t_max, acceptance)
+    }
+
+    pub fn occludes(&self, ray: &Ray, t_min: f32, t_max: f32, acceptance: PatchAcceptance) -> bool {
+        self.blas.occludes(&self.to_object(ray), t_min, t_max, acceptance)
+    }
+
+    /// An object-space normal in world space, unit length.
+    pub fn normal_to_world(&self, normal: Vec3) -> Vec3 {
+        (self.normal_to_world * normal).normalize_or_zero()
+    }
+}
+
+/// The world box around the eight corners of an object-space box.
+fn transformed_box(bounds: &Aabb, transform: &Affine3A) -> Aabb {
+    let (min, max) = (Vec3::from(bounds.min), Vec3::from(bounds.max));
+    let corner = |index: usize| {
+        let pick = |axis: usize| if index & (1 << axis) == 0 { min[axis] } else { max[axis] };
+        transform.transform_point3(Vec3::new(pick(0), pick(1), pick(2)))
+    };
+    let first = corner(0);
+    (1..8).map(corner).fold(Aabb::new(first, first), |b, p| b.union(&Aabb::new(p, p)))
+}

@@ -1,0 +1,107 @@
+//! One camera ray's path: primary hit, then mirror bounces, iteratively (the rendering
+//! contract: up to `max_depth` segments, each hit's Phong weighted by `1 - reflectivity`
+//! when the path goes on).
+
+use glam::Vec3;
+use pointray_kernels::{Ray, background, face_forward, patch_normal};
+use pointray_scene::{Background, Frame, Geometry, RenderSettings};
+
+use crate::object_bvh::triangle_corners;
+use crate::renderer::CpuRenderer;
+use crate::shading::ShadingPoint;
+use crate::top_level::SceneHit;
+
+/// The AOVs of a primary ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimaryAov {
+    pub depth: f32,
+    pub normal: Vec3,
+    pub instance_id: u32,
+    pub primitive_id: u32,
+}
+
+impl PrimaryAov {
+    pub const MISS: Self = Self {
+        depth: f32::INFINITY,
+        normal: Vec3::ZERO,
+        instance_id: Frame::MISS,
+        primitive_id: Frame::MISS,
+    };
+}
+
+impl CpuRenderer {
+    /// The radiance along `ray`, and the AOVs of its first segment.
+    pub(crate) fn trace_path(&self, mut ray: Ray, settings: &RenderSettings) -> (Vec3, PrimaryAov) {
+        let mut radiance = Vec3::ZERO;
+        let mut weight = 1.0;
+        let mut aov = PrimaryAov::MISS;
+        for depth in 0..settings.max_depth {
+            let Some(hit) = self.closest_hit(&ray, settings) else {
+                return (radiance + weight * self.background(ray.direction), aov);
+            };
+            let instance = &self.top.instances[hit.instance];
+            let object = &self.scene.objects[instance.object_index as usize];
+            let normal = face_forward(instance.normal_to_world(self.object_normal(&hit)), ray.direction);
+            let position = ray.at(hit.t);
+            if depth == 0 {
+                aov = PrimaryAov {
+                    depth: hit.t,
+                    normal,
+                    instance_id: instance.object_index,
+                    primitive_id: hit.primitive,
+                };
+            }
+            let point = ShadingPoint {
+                position,
+                normal,
+                to_viewer: -ray.direction,
+                base_color: self.base_color(&hit),
+            };
+            let local = self.shade(&point, &object.material, settings);
+            let reflectivity = object.material.reflectivity;
+            if reflectivity <= 0.0 || depth + 1 >= settings.max_depth {
+                return (radiance + weight * local, aov);
+            }
+            radiance += weight * (1.0 - reflectivity) * local;
+            weight *= reflectivity;
+            let mirrored = ray.direction - 2.0 * normal.dot(ray.direction) * normal;
+            ray = Ray::new(position + normal * self.ray_epsilon, mirrored);
+        }
+        (radiance, aov)
+    }
+
+    /// The hit primitive's normal in object space (not face-forwarded, any length).
+    fn object_normal(&self, hit: &SceneHit) -> Vec3 {
+        let index = hit.primitive as usize;
+        match self.top.instances[hit.instance].blas.geometry() {
+            Geometry::Patches(patches) => patch_normal(&patches.hot[index], hit.uv),
+            Geometry::Mesh(mesh) => {
+                let [a, b, c] = triangle_corners(mesh, index);
+                (b - a).cross(c - a)
+            }
+        }
+    }
+
+    /// The material's diffuse colour, or the point's colour where the material asks for it
+    /// (white for meshes, which have none).
+    fn base_color(&self, hit: &SceneHit) -> Vec3 {
+        let instance = &self.top.instances[hit.instance];
+        let material = &self.scene.objects[instance.object_index as usize].material;
+        if !material.use_point_colors {
+            return material.diffuse;
+        }
+        match instance.blas.geometry() {
+            Geometry::Patches(patches) => {
+                patches.cold.get(hit.primitive as usize).map_or(Vec3::ONE, |c| c.color())
+            }
+            Geometry::Mesh(_) => Vec3::ONE,
+        }
+    }
+
+    fn background(&self, direction: Vec3) -> Vec3 {
+        match self.scene.background {
+            Background::Solid(color) => background(direction, color, color),
+            Background::Gradient { top, bottom } => background(direction, top, bottom),
+        }
+    }
+}

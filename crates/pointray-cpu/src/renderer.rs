@@ -1,0 +1,126 @@
+//! The CPU renderer: acceleration structures built once, frames rendered in parallel
+//! over pixel tiles.
+
+use glam::{UVec2, Vec3};
+use pointray_kernels::{PatchAcceptance, PinholeCamera, Ray, camera_ray, sample_jitter};
+use pointray_scene::{AcceptanceTest, Frame, RenderSettings, Scene};
+use rayon::prelude::*;
+
+use crate::path::PrimaryAov;
+use crate::ray_epsilon::ray_epsilon;
+use crate::top_level::{SceneHit, TopLevel};
+
+/// Tiles are squares of this many pixels a side: small enough to balance two to many
+/// cores, large enough that neighbouring rays share BVH nodes in cache.
+const TILE_SIZE: u32 = 16;
+
+pub struct CpuRenderer {
+    pub(crate) scene: Scene,
+    pub(crate) top: TopLevel,
+    pub(crate) ray_epsilon: f32,
+}
+
+/// One pixel's result.
+#[derive(Clone, Copy)]
+struct Pixel {
+    color: Vec3,
+    aov: PrimaryAov,
+}
+
+impl CpuRenderer {
+    /// Builds every object's BVH and the top level once; objects with nothing to hit or a
+    /// singular transform are left out (with a warning).
+    pub fn new(scene: &Scene) -> Self {
+        Self { scene: scene.clone(), top: TopLevel::build(scene), ray_epsilon: ray_epsilon(scene) }
+    }
+
+    /// Renders one frame. Zero samples per pixel count as one.
+    pub fn render(&self, settings: &RenderSettings) -> Frame {
+        let (width, height) = (settings.width, settings.height);
+        let tiles: Vec<UVec2> = (0..height.div_ceil(TILE_SIZE))
+            .flat_map(|ty| (0..width.div_ceil(TILE_SIZE)).map(move |tx| UVec2::new(tx, ty) * TILE_SIZE))
+            .collect();
+        let rendered: Vec<(UVec2, Vec<Pixel>)> =
+            tiles.par_iter().map(|&corner| (corner, self.render_tile(corner, settings))).collect();
+        let mut frame = empty_frame(width, height);
+        for (corner, pixels) in rendered {
+            for (pixel, result) in tile_pixels(corner, width, height).zip(pixels) {
+                let index = (pixel.y * width + pixel.x) as usize;
+                frame.color[index] = result.color;
+                frame.depth[index] = result.aov.depth;
+                frame.normal[index] = result.aov.normal;
+                frame.instance_id[index] = result.aov.instance_id;
+                frame.primitive_id[index] = result.aov.primitive_id;
+            }
+        }
+        frame
+    }
+
+    fn render_tile(&self, corner: UVec2, settings: &RenderSettings) -> Vec<Pixel> {
+        let camera = self.pinhole_camera();
+        let size = UVec2::new(settings.width, settings.height);
+        tile_pixels(corner, settings.width, settings.height)
+            .map(|pixel| self.render_pixel(&camera, size, pixel, settings))
+            .collect()
+    }
+
+    /// The average over the pixel's samples; AOVs from sample 0.
+    fn render_pixel(
+        &self,
+        camera: &PinholeCamera,
+        size: UVec2,
+        pixel: UVec2,
+        settings: &RenderSettings,
+    ) -> Pixel {
+        let samples = settings.samples_per_pixel.max(1);
+        let (first_color, aov) = self.trace_path(camera_ray(camera, size, pixel, sample_jitter(0)), settings);
+        let rest: Vec3 = (1..samples)
+            .map(|s| self.trace_path(camera_ray(camera, size, pixel, sample_jitter(s)), settings).0)
+            .sum();
+        Pixel { color: (first_color + rest) / samples as f32, aov }
+    }
+
+    fn pinhole_camera(&self) -> PinholeCamera {
+        let camera = &self.scene.camera;
+        PinholeCamera {
+            position: camera.position,
+            look_at: camera.look_at,
+            up: camera.up,
+            vertical_fov_degrees: camera.vertical_fov_degrees,
+        }
+    }
+
+    pub(crate) fn closest_hit(&self, ray: &Ray, settings: &RenderSettings) -> Option<SceneHit> {
+        self.top.closest_hit(ray, 0.0, f32::INFINITY, acceptance(settings.acceptance))
+    }
+
+    pub(crate) fn occluded(&self, ray: &Ray, distance: f32, settings: &RenderSettings) -> bool {
+        self.top.occluded(ray, 0.0, distance, acceptance(settings.acceptance))
+    }
+}
+
+fn acceptance(test: AcceptanceTest) -> PatchAcceptance {
+    match test {
+        AcceptanceTest::Box => PatchAcceptance::Box,
+        AcceptanceTest::Disk => PatchAcceptance::Disk,
+    }
+}
+
+/// The pixels of the tile at `corner`, clipped to the image, row by row.
+fn tile_pixels(corner: UVec2, width: u32, height: u32) -> impl Iterator<Item = UVec2> {
+    let end = (corner + TILE_SIZE).min(UVec2::new(width, height));
+    (corner.y..end.y).flat_map(move |y| (corner.x..end.x).map(move |x| UVec2::new(x, y)))
+}
+
+fn empty_frame(width: u32, height: u32) -> Frame {
+    let count = width as usize * height as usize;
+    Frame {
+        width,
+        height,
+        color: vec![Vec3::ZERO; count],
+        depth: vec![f32::INFINITY; count],
+        normal: vec![Vec3::ZERO; count],
+        instance_id: vec![Frame::MISS; count],
+        primitive_id: vec![Frame::MISS; count],
+    }
+}
