@@ -4,6 +4,7 @@
 pub mod atomic_write;
 pub mod error;
 pub mod formats;
+pub mod image_output;
 pub mod point_cloud;
 pub mod triangle_mesh;
 
