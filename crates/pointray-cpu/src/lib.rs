@@ -6,12 +6,13 @@
 mod instance;
 mod object_bvh;
 mod path;
-mod ray_epsilon;
+mod ray_counts;
 mod renderer;
 mod shading;
 mod top_level;
 mod triangle;
 
+pub use ray_counts::RayCounts;
 pub use renderer::CpuRenderer;
 
 use pointray_scene::{Frame, RenderSettings, Scene};

@@ -7,6 +7,7 @@ use pointray_kernels::{Ray, background, face_forward, patch_normal};
 use pointray_scene::{Background, Frame, Geometry, RenderSettings};
 
 use crate::object_bvh::triangle_corners;
+use crate::ray_counts::RayCounts;
 use crate::renderer::CpuRenderer;
 use crate::shading::ShadingPoint;
 use crate::top_level::SceneHit;
@@ -31,11 +32,21 @@ impl PrimaryAov {
 
 impl CpuRenderer {
     /// The radiance along `ray`, and the AOVs of its first segment.
-    pub(crate) fn trace_path(&self, mut ray: Ray, settings: &RenderSettings) -> (Vec3, PrimaryAov) {
+    pub(crate) fn trace_path(
+        &self,
+        mut ray: Ray,
+        settings: &RenderSettings,
+        counts: &mut RayCounts,
+    ) -> (Vec3, PrimaryAov) {
         let mut radiance = Vec3::ZERO;
         let mut weight = 1.0;
         let mut aov = PrimaryAov::MISS;
         for depth in 0..settings.max_depth {
+            if depth == 0 {
+                counts.primary += 1;
+            } else {
+                counts.reflection += 1;
+            }
             let Some(hit) = self.closest_hit(&ray, settings) else {
                 return (radiance + weight * self.background(ray.direction), aov);
             };
@@ -57,7 +68,7 @@ impl CpuRenderer {
                 to_viewer: -ray.direction,
                 base_color: self.base_color(&hit),
             };
-            let local = self.shade(&point, &object.material, settings);
+            let local = self.shade(&point, &object.material, settings, counts);
             let reflectivity = object.material.reflectivity;
             if reflectivity <= 0.0 || depth + 1 >= settings.max_depth {
                 return (radiance + weight * local, aov);

@@ -7,7 +7,7 @@ use pointray_scene::{AcceptanceTest, Frame, RenderSettings, Scene};
 use rayon::prelude::*;
 
 use crate::path::PrimaryAov;
-use crate::ray_epsilon::ray_epsilon;
+use crate::ray_counts::RayCounts;
 use crate::top_level::{SceneHit, TopLevel};
 
 /// Tiles are squares of this many pixels a side: small enough to balance two to many
@@ -31,19 +31,31 @@ impl CpuRenderer {
     /// Builds every object's BVH and the top level once; objects with nothing to hit or a
     /// singular transform are left out (with a warning).
     pub fn new(scene: &Scene) -> Self {
-        Self { scene: scene.clone(), top: TopLevel::build(scene), ray_epsilon: ray_epsilon(scene) }
+        Self { scene: scene.clone(), top: TopLevel::build(scene), ray_epsilon: scene.ray_epsilon() }
     }
 
     /// Renders one frame. Zero samples per pixel count as one.
     pub fn render(&self, settings: &RenderSettings) -> Frame {
+        self.render_counting_rays(settings).0
+    }
+
+    /// Renders one frame and says how many rays of each kind it traced.
+    pub fn render_counting_rays(&self, settings: &RenderSettings) -> (Frame, RayCounts) {
         let (width, height) = (settings.width, settings.height);
         let tiles: Vec<UVec2> = (0..height.div_ceil(TILE_SIZE))
             .flat_map(|ty| (0..width.div_ceil(TILE_SIZE)).map(move |tx| UVec2::new(tx, ty) * TILE_SIZE))
             .collect();
-        let rendered: Vec<(UVec2, Vec<Pixel>)> =
-            tiles.par_iter().map(|&corner| (corner, self.render_tile(corner, settings))).collect();
+        let rendered: Vec<(UVec2, Vec<Pixel>, RayCounts)> = tiles
+            .par_iter()
+            .map(|&corner| {
+                let mut counts = RayCounts::default();
+                (corner, self.render_tile(corner, settings, &mut counts), counts)
+            })
+            .collect();
         let mut frame = empty_frame(width, height);
-        for (corner, pixels) in rendered {
+        let mut total = RayCounts::default();
+        for (corner, pixels, counts) in rendered {
+            total += counts;
             for (pixel, result) in tile_pixels(corner, width, height).zip(pixels) {
                 let index = (pixel.y * width + pixel.x) as usize;
                 frame.color[index] = result.color;
@@ -53,14 +65,14 @@ impl CpuRenderer {
                 frame.primitive_id[index] = result.aov.primitive_id;
             }
         }
-        frame
+        (frame, total)
     }
 
-    fn render_tile(&self, corner: UVec2, settings: &RenderSettings) -> Vec<Pixel> {
+    fn render_tile(&self, corner: UVec2, settings: &RenderSettings, counts: &mut RayCounts) -> Vec<Pixel> {
         let camera = self.pinhole_camera();
         let size = UVec2::new(settings.width, settings.height);
         tile_pixels(corner, settings.width, settings.height)
-            .map(|pixel| self.render_pixel(&camera, size, pixel, settings))
+            .map(|pixel| self.render_pixel(&camera, size, pixel, settings, counts))
             .collect()
     }
 
@@ -71,12 +83,13 @@ impl CpuRenderer {
         size: UVec2,
         pixel: UVec2,
         settings: &RenderSettings,
+        counts: &mut RayCounts,
     ) -> Pixel {
         let samples = settings.samples_per_pixel.max(1);
-        let (first_color, aov) = self.trace_path(camera_ray(camera, size, pixel, sample_jitter(0)), settings);
-        let rest: Vec3 = (1..samples)
-            .map(|s| self.trace_path(camera_ray(camera, size, pixel, sample_jitter(s)), settings).0)
-            .sum();
+        let mut sample =
+            |s| self.trace_path(camera_ray(camera, size, pixel, sample_jitter(s)), settings, counts);
+        let (first_color, aov) = sample(0);
+        let rest: Vec3 = (1..samples).map(|s| sample(s).0).sum();
         Pixel { color: (first_color + rest) / samples as f32, aov }
     }
 

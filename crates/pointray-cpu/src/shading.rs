@@ -4,6 +4,7 @@ use glam::Vec3;
 use pointray_kernels::{PhongSurface, Ray, phong};
 use pointray_scene::{Light, Material, RenderSettings};
 
+use crate::ray_counts::RayCounts;
 use crate::renderer::CpuRenderer;
 
 /// A surface point ready to shade, in world space.
@@ -19,7 +20,13 @@ pub struct ShadingPoint {
 
 impl CpuRenderer {
     /// `ambient * C + Σ visible lights phong(...)`.
-    pub(crate) fn shade(&self, point: &ShadingPoint, material: &Material, settings: &RenderSettings) -> Vec3 {
+    pub(crate) fn shade(
+        &self,
+        point: &ShadingPoint,
+        material: &Material,
+        settings: &RenderSettings,
+        counts: &mut RayCounts,
+    ) -> Vec3 {
         let surface = PhongSurface {
             base_color: point.base_color,
             specular: material.specular,
@@ -33,8 +40,11 @@ impl CpuRenderer {
             if point.normal.dot(to_light) <= 0.0 {
                 continue;
             }
-            if settings.shadows && self.occluded(&Ray::new(shadow_origin, to_light), distance, settings) {
-                continue;
+            if settings.shadows {
+                counts.shadow += 1;
+                if self.occluded(&Ray::new(shadow_origin, to_light), distance, settings) {
+                    continue;
+                }
             }
             color += phong(point.normal, point.to_viewer, to_light, radiance, &surface);
         }

@@ -134,3 +134,19 @@ fn a_reflective_floor_mirrors_the_sphere_and_the_background() {
     }
     assert!(mirrored_sphere > 20 && mirrored_sky > 1000, "sphere {mirrored_sphere}, sky {mirrored_sky}");
 }
+
+#[test]
+fn ray_counts_follow_the_settings() {
+    let pixels = u64::from(SIZE * SIZE);
+    let matte_floor = CpuRenderer::new(&floor_and_sphere(matte(), point_light()));
+    let (_, counts) = matte_floor.render_counting_rays(&settings());
+    assert_eq!(counts.primary, pixels);
+    assert_eq!(counts.reflection, 0, "nothing is reflective");
+    assert!(counts.shadow > pixels / 2 && counts.shadow <= pixels, "one light: {counts:?}");
+    let (_, unshadowed) = matte_floor.render_counting_rays(&RenderSettings { shadows: false, ..settings() });
+    assert_eq!(unshadowed.shadow, 0);
+    let mirror_floor =
+        CpuRenderer::new(&floor_and_sphere(Material { reflectivity: 0.5, ..matte() }, point_light()));
+    let (_, mirrored) = mirror_floor.render_counting_rays(&settings());
+    assert!(mirrored.reflection > pixels / 4, "the floor covers much of the image: {mirrored:?}");
+}
