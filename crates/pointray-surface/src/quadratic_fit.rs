@@ -5,6 +5,8 @@
 //! neighbours in the point's local frame. `c0` is free: the patch need not pass
 //! through the point, as in the paper.
 
+use std::sync::LazyLock;
+
 use glam::Vec3;
 
 use crate::wendland::wendland;
@@ -124,12 +126,18 @@ fn evaluate_scaled(a: &[f64; 6], s: f64, t: f64) -> f64 {
 /// scaled radius `scaled_radius`: a larger height means the fit bends away from its
 /// neighbours.
 fn stays_within_disk(a: &[f64; 6], scaled_radius: f64, limit: f64) -> bool {
-    let rim = (0..RIM_SAMPLES).map(|i| {
-        let angle = std::f64::consts::TAU * i as f64 / RIM_SAMPLES as f64;
-        evaluate_scaled(a, scaled_radius * angle.cos(), scaled_radius * angle.sin())
-    });
+    let rim = RIM_DIRECTIONS.iter().map(|&(cos, sin)| evaluate_scaled(a, scaled_radius * cos, scaled_radius * sin));
     std::iter::once(a[0]).chain(rim).all(|height| height.abs() <= limit)
 }
+
+/// Unit directions to the rim samples, computed once: the trigonometry would otherwise
+/// dominate the cost of a fit.
+static RIM_DIRECTIONS: LazyLock<[(f64, f64); RIM_SAMPLES]> = LazyLock::new(|| {
+    std::array::from_fn(|i| {
+        let angle = std::f64::consts::TAU * i as f64 / RIM_SAMPLES as f64;
+        (angle.cos(), angle.sin())
+    })
+});
 
 /// From coefficients in `(u/h, v/h)` back to coefficients in `(u, v)`.
 fn unscale(a: [f64; 6], h: f64) -> [f32; 6] {

@@ -1,0 +1,54 @@
+//! Measures `prep` and the patch store on points sampled from a mesh:
+//!
+//! ```text
+//! cargo run --release -p pointray-surface --example prep_bench -- MESH.ply [COUNT] [SEED]
+//! ```
+//!
+//! Prints `prep`'s per-stage wall times, then the store's write time and its load time
+//! (median of 5 loads). A measurement, not a test: bench/PREP.md records its output.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use pointray_io::formats::ply;
+use pointray_surface::{NoProgress, PrepOptions, patch_store, prep, sample_mesh};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut args = std::env::args().skip(1);
+    let mesh_path = PathBuf::from(args.next().ok_or("usage: prep_bench MESH.ply [COUNT] [SEED]")?);
+    let count: usize = args.next().map_or(Ok(1_000_000), |a| a.parse())?;
+    let seed: u64 = args.next().map_or(Ok(1), |a| a.parse())?;
+    let mesh = ply::read_triangle_mesh(&mesh_path)?;
+    let start = Instant::now();
+    let cloud = sample_mesh(&mesh, count, seed, false);
+    println!(
+        "sampled {} points from {} in {:.3} s",
+        cloud.len(),
+        mesh_path.display(),
+        seconds(start.elapsed())
+    );
+    println!("rayon threads: {}", rayon::current_num_threads());
+    let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoProgress)?;
+    println!("{report}");
+    let directory = tempfile::tempdir()?;
+    let store = directory.path().join("bench.patches");
+    let start = Instant::now();
+    patch_store::write(&store, &patches)?;
+    let bytes = std::fs::metadata(&store)?.len();
+    println!("store write: {:.3} s, {:.1} MB", seconds(start.elapsed()), bytes as f64 / 1e6);
+    let mut loads: Vec<Duration> = (0..5)
+        .map(|_| {
+            let start = Instant::now();
+            let loaded = patch_store::read(&store).map(|p| p.len());
+            (start.elapsed(), loaded)
+        })
+        .map(|(time, loaded)| loaded.map(|_| time))
+        .collect::<Result<_, _>>()?;
+    loads.sort();
+    println!("store load (median of 5, file in page cache): {:.3} s", seconds(loads[2]));
+    Ok(())
+}
+
+fn seconds(duration: Duration) -> f64 {
+    duration.as_secs_f64()
+}
