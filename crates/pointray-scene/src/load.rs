@@ -102,7 +102,7 @@ fn load_object(
     let (geometry, origin, default_name) = match &spec.shape {
         ShapeSpec::Mesh { path } => {
             let path = existing_file(file, &key, path)?;
-            let mesh = pointray_io::formats::ply::read_triangle_mesh(&path)
+            let mesh = pointray_io::formats::read_triangle_mesh(&path)
                 .map_err(|source| SceneError::Input { scene: file.path.clone(), key: key.clone(), source })?;
             (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
         }

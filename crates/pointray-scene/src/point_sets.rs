@@ -118,7 +118,7 @@ fn prep_file(
     prep_options: &PrepOptions,
     options: &LoadOptions,
 ) -> Result<PatchSet, PointSetError> {
-    let cloud = pointray_io::formats::ply::read_point_cloud(path).map_err(PointSetError::Input)?;
+    let cloud = pointray_io::formats::read_point_cloud(path).map_err(PointSetError::Input)?;
     let (patches, report) = prep(&cloud, prep_options, options.progress)
         .map_err(|source| PointSetError::Prep { file: path.to_path_buf(), source })?;
     tracing::info!("prepped {}:\n{report}", path.display());

@@ -300,3 +300,14 @@ fn the_example_scenes_load_with_the_shared_data() {
         assert!((floor.min[1] - bunny.min[1]).abs() < 1e-3, "{name}: the floor touches the bunny");
     }
 }
+
+#[test]
+fn obj_meshes_load_like_ply_meshes() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("quad.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+    let scene = write_scene(dir.path(), "[[objects]]\ntype = \"mesh\"\npath = \"quad.obj\"\n");
+    let scene = load_scene(&scene, &LoadOptions::default()).unwrap().scene;
+    let Geometry::Mesh(mesh) = &scene.objects[0].geometry else { panic!("a mesh") };
+    assert_eq!(mesh.triangles.len(), 2, "the quad is split in two");
+    assert_eq!(scene.objects[0].name, "quad");
+}
