@@ -224,3 +224,17 @@ fn autzen_tile_reads_with_its_point_count_colours_and_bounds() {
     assert!(extent.x > 100.0 && extent.x < 20_000.0 && extent.y > 100.0 && extent.y < 20_000.0, "{extent}");
     assert!(extent.z > 10.0 && extent.z < 2_000.0, "{extent}");
 }
+
+#[test]
+fn laz_chunk_count_beyond_the_file_is_refused_before_allocating() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("valid.laz");
+    write_las(&path, 3, true, &geo_points());
+    let mut bytes = std::fs::read(&path).unwrap();
+    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+    let data_start = word(96);
+    let table = i64::from_le_bytes(bytes[data_start..data_start + 8].try_into().unwrap()) as usize;
+    bytes[table + 4..table + 8].copy_from_slice(&u32::MAX.to_le_bytes());
+    let (_dir, path, error) = read_bytes("chunks.laz", &bytes);
+    assert_names_file(&path, &error, "chunk table declares 4294967295 chunks");
+}

@@ -4,7 +4,7 @@
 //! tiles (coordinates near 10^6) keep the file's full precision.
 
 use std::fs::File;
-use std::io::{BufReader, Read, Seek};
+use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::Path;
 
 use glam::DVec3;
@@ -15,9 +15,10 @@ use crate::{IoError, PointCloud};
 
 const SUPPORTED: &str = "LAS 1.0-1.4 with point formats 0-10, uncompressed or LAZ-compressed";
 
-/// Points decoded per batch: big enough to amortise the per-call cost, small enough that a
-/// header that lies about its point count cannot make us allocate more than the data holds.
-const BATCH_POINTS: u64 = 65_536;
+/// Bytes decoded per batch: big enough to amortise the per-call cost, small enough that a
+/// header that lies about its point count or record length cannot make us allocate much more
+/// than the data holds (the `las` crate sizes its buffer before reading).
+const BATCH_BYTES: u64 = 4 << 20;
 
 /// Reads a `.las` or `.laz` file. Colours are scaled to 8 bits (files that store 8-bit values
 /// in the 16-bit fields are detected and kept as they are); intensities are normalised to
@@ -28,17 +29,19 @@ pub fn read_las(path: &Path) -> Result<PointCloud, IoError> {
 }
 
 /// Reads LAS or LAZ data from any seekable stream; `origin` names it in errors.
-pub fn read_las_from<R>(read: R, origin: &Path) -> Result<PointCloud, IoError>
+pub fn read_las_from<R>(mut read: R, origin: &Path) -> Result<PointCloud, IoError>
 where
     R: Read + Seek + Send + Sync + 'static,
 {
+    check_laz_chunk_count(&mut read, origin)?;
     let mut reader = las::Reader::new(read).map_err(|error| las_error(origin, error))?;
     check_version(reader.header(), origin)?;
     let declared = reader.header().number_of_points();
     let mut columns = LasColumns::default();
+    let batch_points = (BATCH_BYTES / u64::from(reader.header().point_format().len()).max(1)).max(1);
     let mut batch = PointDataBuilder::new().for_header(reader.header()).build();
     loop {
-        let read = reader.fill_points(BATCH_POINTS, &mut batch).map_err(|error| las_error(origin, error))?;
+        let read = reader.fill_points(batch_points, &mut batch).map_err(|error| las_error(origin, error))?;
         if read == 0 {
             break;
         }
@@ -50,6 +53,57 @@ where
         return Err(IoError::malformed(origin, problem));
     }
     Ok(columns.into_point_cloud())
+}
+
+/// The `laz` crate reserves room for the chunk table's declared chunk count before reading
+/// it, so a corrupt count would ask for gigabytes; refuse counts the stream cannot hold.
+fn check_laz_chunk_count<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError> {
+    match laz_chunk_count(read) {
+        Ok(Some((chunks, stream_bytes))) if chunks > stream_bytes => Err(IoError::malformed(
+            origin,
+            format!("LAZ chunk table declares {chunks} chunks in a {stream_bytes}-byte file"),
+        )),
+        // Short or odd headers are left to the `las` crate, which reports them.
+        _ => read.seek(SeekFrom::Start(0)).map(drop).map_err(|source| IoError::os(origin, source)),
+    }
+}
+
+/// The chunk count of a LAZ stream and the stream length, or `None` when the stream is not
+/// LAZ. Follows LASzip: the point data starts with the chunk table's offset, or with -1 and
+/// the offset in the last 8 bytes.
+fn laz_chunk_count<R: Read + Seek>(read: &mut R) -> std::io::Result<Option<(u64, u64)>> {
+    let mut header = [0u8; 105];
+    read.seek(SeekFrom::Start(0))?;
+    read.read_exact(&mut header)?;
+    if &header[..4] != b"LASF" || header[104] & 0xC0 == 0 {
+        return Ok(None);
+    }
+    let stream_bytes = read.seek(SeekFrom::End(0))?;
+    let data_start = u64::from(u32::from_le_bytes([header[96], header[97], header[98], header[99]]));
+    let mut table_at = read_i64_at(read, SeekFrom::Start(data_start))?;
+    if table_at <= data_start as i64 {
+        table_at = read_i64_at(read, SeekFrom::End(-8))?;
+    }
+    if table_at <= data_start as i64 {
+        return Ok(None);
+    }
+    let mut version_and_count = [0u8; 8];
+    read.seek(SeekFrom::Start(table_at as u64))?;
+    read.read_exact(&mut version_and_count)?;
+    let count = u32::from_le_bytes([
+        version_and_count[4],
+        version_and_count[5],
+        version_and_count[6],
+        version_and_count[7],
+    ]);
+    Ok(Some((u64::from(count), stream_bytes)))
+}
+
+fn read_i64_at<R: Read + Seek>(read: &mut R, at: SeekFrom) -> std::io::Result<i64> {
+    let mut bytes = [0u8; 8];
+    read.seek(at)?;
+    read.read_exact(&mut bytes)?;
+    Ok(i64::from_le_bytes(bytes))
 }
 
 fn check_version(header: &las::Header, origin: &Path) -> Result<(), IoError> {
