@@ -1,0 +1,93 @@
+//! The two scenes compared: the mesh alone and the patches alone, with the same camera,
+//! lights and background, and no floor (a floor would count as surface in both).
+
+use std::sync::Arc;
+
+use glam::{Affine3A, Vec3};
+use pointray_io::TriangleMesh;
+use pointray_kernels::Aabb;
+use pointray_scene::bounds::{bounds_of_points, diagonal};
+use pointray_scene::{Background, Camera, Geometry, Light, Material, Scene, SceneObject};
+use pointray_surface::PatchSet;
+
+use crate::FidelityError;
+
+/// A moderate lens: wide lenses stretch the silhouette pixels that dominate the hole count.
+const VERTICAL_FOV_DEGREES: f32 = 40.0;
+
+/// The light comes from over the camera's shoulder (up and to the right of the view), so
+/// every view is lit from the front and the shadows it casts fall where the camera sees them.
+const LIGHT_UP_OFFSET: f32 = 0.5;
+const LIGHT_RIGHT_OFFSET: f32 = 0.3;
+
+pub struct ComparisonScenes {
+    mesh: Scene,
+    points: Scene,
+    bounds: Aabb,
+}
+
+/// One view's pair of scenes.
+pub struct ViewScenes {
+    pub mesh: Scene,
+    pub points: Scene,
+}
+
+impl ComparisonScenes {
+    /// `patches` must come from points in the mesh's coordinates: they are placed back there
+    /// by a translation by `patches.offset` (prep recentres them).
+    pub fn new(patches: Arc<PatchSet>, mesh: Arc<TriangleMesh>) -> Result<Self, FidelityError> {
+        if patches.is_empty() {
+            return Err(FidelityError::EmptyPatchSet);
+        }
+        let bounds = bounds_of_points(mesh.positions.iter().copied())
+            .filter(|_| !mesh.triangles.is_empty())
+            .ok_or(FidelityError::EmptyMesh)?;
+        let offset = Affine3A::from_translation(patches.offset.as_vec3());
+        Ok(Self {
+            mesh: single_object_scene("mesh", Affine3A::IDENTITY, Geometry::Mesh(mesh)),
+            points: single_object_scene("points", offset, Geometry::Patches(patches)),
+            bounds,
+        })
+    }
+
+    /// The mesh's bounds, which every camera frames.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// The mesh's bounding-box diagonal: the unit of the depth error.
+    pub fn diagonal(&self) -> f32 {
+        diagonal(&self.bounds)
+    }
+
+    /// Both scenes seen from `direction` (from the model's centre toward the camera) on a
+    /// square image.
+    pub fn for_view(&self, direction: Vec3) -> ViewScenes {
+        let camera = Scene::framing_camera(&self.bounds, direction, VERTICAL_FOV_DEGREES, 1.0);
+        let lights = vec![shoulder_light(&camera)];
+        let place = |scene: &Scene| Scene { camera, lights: lights.clone(), ..scene.clone() };
+        ViewScenes { mesh: place(&self.mesh), points: place(&self.points) }
+    }
+}
+
+fn single_object_scene(name: &str, transform: Affine3A, geometry: Geometry) -> Scene {
+    Scene {
+        camera: Scene::framing_camera(&Aabb::new(Vec3::ZERO, Vec3::ONE), Vec3::Z, VERTICAL_FOV_DEGREES, 1.0),
+        lights: Vec::new(),
+        background: Background::Solid(Vec3::ZERO),
+        objects: vec![SceneObject {
+            name: name.to_owned(),
+            transform,
+            material: Material::default(),
+            geometry,
+        }],
+    }
+}
+
+fn shoulder_light(camera: &Camera) -> Light {
+    let toward_camera = (camera.position - camera.look_at).normalize_or(Vec3::Z);
+    let right = (-toward_camera).cross(camera.up).normalize_or(Vec3::X);
+    let up = right.cross(-toward_camera);
+    let toward_light = toward_camera + up * LIGHT_UP_OFFSET + right * LIGHT_RIGHT_OFFSET;
+    Light::Directional { direction: -toward_light.normalize(), color: Vec3::ONE, intensity: 1.0 }
+}

@@ -1,0 +1,79 @@
+//! The pixel-by-pixel comparison of a points frame against the mesh frame of the same view,
+//! kept as counts and error samples so that views can be pooled before the statistics.
+
+use glam::Vec3;
+use pointray_scene::Frame;
+
+use crate::FidelityError;
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PixelComparison {
+    /// Pixels the mesh covers.
+    pub mesh_pixels: u64,
+    /// Pixels the mesh covers and the points miss.
+    pub hole_pixels: u64,
+    /// Pixels the points cover and the mesh misses.
+    pub false_surface_pixels: u64,
+    /// `|d_points - d_mesh| / diagonal` at each pixel both hit.
+    pub depth_errors: Vec<f32>,
+    /// Unsigned angle in degrees between the two normals at each pixel both hit.
+    pub normal_errors_degrees: Vec<f32>,
+    /// Sum over all pixels and channels of the squared difference of the colours, each
+    /// clamped to [0, 1] as a display would.
+    pub squared_color_error: f64,
+    /// Pixels times channels summed in `squared_color_error`.
+    pub color_samples: u64,
+}
+
+impl PixelComparison {
+    /// Compares two frames of the same camera; depth errors are divided by `diagonal`.
+    pub fn of_frames(mesh: &Frame, points: &Frame, diagonal: f32) -> Result<Self, FidelityError> {
+        if (mesh.width, mesh.height) != (points.width, points.height) {
+            return Err(FidelityError::FrameSizeMismatch {
+                mesh_width: mesh.width,
+                mesh_height: mesh.height,
+                points_width: points.width,
+                points_height: points.height,
+            });
+        }
+        let mut comparison = Self::default();
+        for pixel in 0..mesh.pixel_count() {
+            comparison.add_pixel(mesh, points, pixel, diagonal);
+        }
+        Ok(comparison)
+    }
+
+    /// Pools another view's pixels into this one.
+    pub fn merge(&mut self, other: PixelComparison) {
+        self.mesh_pixels += other.mesh_pixels;
+        self.hole_pixels += other.hole_pixels;
+        self.false_surface_pixels += other.false_surface_pixels;
+        self.depth_errors.extend(other.depth_errors);
+        self.normal_errors_degrees.extend(other.normal_errors_degrees);
+        self.squared_color_error += other.squared_color_error;
+        self.color_samples += other.color_samples;
+    }
+
+    fn add_pixel(&mut self, mesh: &Frame, points: &Frame, pixel: usize, diagonal: f32) {
+        let mesh_hit = mesh.instance_id[pixel] != Frame::MISS;
+        let points_hit = points.instance_id[pixel] != Frame::MISS;
+        self.mesh_pixels += u64::from(mesh_hit);
+        self.hole_pixels += u64::from(mesh_hit && !points_hit);
+        self.false_surface_pixels += u64::from(points_hit && !mesh_hit);
+        if mesh_hit && points_hit {
+            self.depth_errors.push((points.depth[pixel] - mesh.depth[pixel]).abs() / diagonal);
+            self.normal_errors_degrees.push(unsigned_angle_degrees(mesh.normal[pixel], points.normal[pixel]));
+        }
+        let difference =
+            mesh.color[pixel].clamp(Vec3::ZERO, Vec3::ONE) - points.color[pixel].clamp(Vec3::ZERO, Vec3::ONE);
+        self.squared_color_error += f64::from(difference.length_squared());
+        self.color_samples += 3;
+    }
+}
+
+/// The angle between two lines (a normal and its flip count as the same); a zero normal is
+/// treated as perpendicular to everything, so a broken normal shows as a large error.
+fn unsigned_angle_degrees(a: Vec3, b: Vec3) -> f32 {
+    let cosine = a.normalize_or_zero().dot(b.normalize_or_zero()).abs().min(1.0);
+    cosine.acos().to_degrees()
+}
