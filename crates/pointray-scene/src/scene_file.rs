@@ -34,7 +34,9 @@ use serde::{Deserialize, Deserializer};
 
 use crate::checks;
 use crate::error::{InvalidValue, SceneError};
-use crate::object_spec::ObjectSpec;
+use crate::material_spec::MaterialSpec;
+use crate::object_spec::{ObjectSpec, ShapeSpec};
+use crate::transform_spec::TransformSpec;
 use crate::{Background, Camera, Light, RenderSettings};
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -153,6 +155,34 @@ impl SceneFile {
         file.path = path.to_path_buf();
         file.check().map_err(|invalid| invalid.in_file(path))?;
         Ok(file)
+    }
+
+    /// The default scene for a bare points file (or patch store): the model on a slightly
+    /// reflective automatic ground, lit by one directional light (which needs no knowledge of
+    /// the model's size), framed by the default camera.
+    pub fn for_points_file(points: &Path) -> Self {
+        let object =
+            |shape, material| ObjectSpec { name: None, transform: TransformSpec::default(), material, shape };
+        let floor = MaterialSpec { specular: Some(0.0), reflectivity: Some(0.3), ..MaterialSpec::default() };
+        Self {
+            camera: None,
+            lights: vec![LightSpec::Directional {
+                direction: [-0.4, -1.0, -0.5],
+                color: white(),
+                intensity: unit_intensity(),
+            }],
+            background: None,
+            objects: vec![
+                object(
+                    ShapeSpec::Points { path: points.to_path_buf(), k: None, normal_k: None },
+                    MaterialSpec::default(),
+                ),
+                object(ShapeSpec::Ground { auto: true, height: None, size: None }, floor),
+            ],
+            render: RenderSpec::default(),
+            // Relative paths stay relative to the working directory, as the user typed them.
+            path: PathBuf::from("(default scene)"),
+        }
     }
 
     /// A path from the file, relative to the file's folder unless absolute.

@@ -311,3 +311,20 @@ fn obj_meshes_load_like_ply_meshes() {
     assert_eq!(mesh.triangles.len(), 2, "the quad is split in two");
     assert_eq!(scene.objects[0].name, "quad");
 }
+
+#[test]
+fn a_bare_points_file_gets_a_framed_scene_on_a_ground() {
+    let dir = tempfile::tempdir().unwrap();
+    let points = dir.path().join("ball.ply");
+    common::write_sphere_ply(&points, DVec3::new(0.0, 5.0, 0.0), 1000);
+    let file = pointray_scene::SceneFile::for_points_file(&points);
+    let loaded = pointray_scene::load_scene_file(&file, &LoadOptions::default()).unwrap();
+    let scene = &loaded.scene;
+    assert_eq!(scene.objects.len(), 2);
+    assert_eq!(scene.lights.len(), 1);
+    let ball = scene.objects[0].world_bounds().unwrap();
+    assert_close(scene.camera.look_at, center(&ball), 1e-3);
+    let ground = scene.objects[1].world_bounds().unwrap();
+    assert!((ground.min[1] - ball.min[1]).abs() < 1e-6, "the ground is under the ball");
+    assert!(scene.objects[1].material.reflectivity > 0.0);
+}
