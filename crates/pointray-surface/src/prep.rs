@@ -68,9 +68,8 @@ pub fn prep(
     drop(sorted);
     let patches = points.len();
     let neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
-    let (normals, replaced_input_normals) =
+    let (mut normals, replaced_input_normals) =
         clock.run(Stage::Normals, patches, || normals_for(&points, &neighbors, cloud, &source, options));
-    let mut normals = normals;
     clock.run(Stage::Orientation, patches, || {
         orient(&points, &mut normals, &neighbors, cloud, options, offset)
     });
