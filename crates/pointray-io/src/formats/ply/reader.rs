@@ -3,7 +3,7 @@
 //! the last element, and elements that would loop forever without consuming input.
 
 use std::fs::File;
-use std::io::{BufRead, BufReader, Read, Seek};
+use std::io::{BufRead, BufReader, Seek};
 use std::path::Path;
 
 use ply_rs_bw::parser::{Parser, Reader};
@@ -144,17 +144,23 @@ fn read_element<E: PropertyAccess>(
 }
 
 /// Leftover bytes mean the header understates its counts (ascii files may end in blank lines).
+/// The rest is scanned in buffer-sized chunks, never loaded whole.
 fn check_nothing_after(reader: &mut FileReader, encoding: Encoding) -> Result<(), String> {
-    let mut rest = Vec::new();
-    reader.get_mut().read_to_end(&mut rest).map_err(|e| e.to_string())?;
-    let unexpected = match encoding {
-        Encoding::Ascii => rest.iter().filter(|b| !b.is_ascii_whitespace()).count(),
-        Encoding::BinaryBigEndian | Encoding::BinaryLittleEndian => rest.len(),
-    };
-    if unexpected > 0 {
+    let buffered = reader.get_mut();
+    let (mut leftover, mut unexpected) = (0u64, false);
+    loop {
+        let chunk = buffered.fill_buf().map_err(|e| e.to_string())?;
+        if chunk.is_empty() {
+            break;
+        }
+        unexpected |= encoding != Encoding::Ascii || chunk.iter().any(|b| !b.is_ascii_whitespace());
+        let length = chunk.len();
+        leftover += length as u64;
+        buffered.consume(length);
+    }
+    if unexpected {
         return Err(format!(
-            "{} bytes follow the last element: the header's counts do not match the body",
-            rest.len()
+            "{leftover} bytes follow the last element: the header's counts do not match the body"
         ));
     }
     Ok(())
