@@ -15,8 +15,10 @@ pub fn morton_order(points: &[Vec3]) -> Vec<u32> {
     let Some((min, max)) = finite_bounds(points) else {
         return (0..points.len() as u32).collect();
     };
-    let extent = (max - min).max(Vec3::splat(f32::MIN_POSITIVE));
-    let scale = Vec3::splat(MAX_CELL) / extent;
+    // One scale for all axes (the bounding cube): per-axis scales would stretch a flat
+    // axis to full resolution and make the curve zigzag across it.
+    let extent = (max - min).max_element().max(f32::MIN_POSITIVE);
+    let scale = Vec3::splat(MAX_CELL / extent);
     let mut keyed: Vec<(u64, u32)> =
         points.par_iter().enumerate().map(|(i, &p)| (morton_code(p, min, scale), i as u32)).collect();
     keyed.par_sort_unstable();
