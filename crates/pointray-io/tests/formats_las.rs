@@ -238,3 +238,18 @@ fn laz_chunk_count_beyond_the_file_is_refused_before_allocating() {
     let (_dir, path, error) = read_bytes("chunks.laz", &bytes);
     assert_names_file(&path, &error, "chunk table declares 4294967295 chunks");
 }
+
+#[test]
+fn laz_without_point_items_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("valid.laz");
+    write_las(&path, 3, true, &geo_points());
+    let mut bytes = std::fs::read(&path).unwrap();
+    // The LASzip VLR: a 54-byte header whose user id starts 2 bytes in, then the item
+    // count 32 bytes into its data.
+    let user_id = bytes.windows(14).position(|w| w == b"laszip encoded").unwrap();
+    let count_at = user_id - 2 + 54 + 32;
+    bytes[count_at..count_at + 2].copy_from_slice(&0u16.to_le_bytes());
+    let (_dir, path, error) = read_bytes("items.laz", &bytes);
+    assert_names_file(&path, &error, "describes no point items");
+}

@@ -33,9 +33,8 @@ pub fn read_las_from<R>(mut read: R, origin: &Path) -> Result<PointCloud, IoErro
 where
     R: Read + Seek + Send + Sync + 'static,
 {
-    check_laz_chunk_count(&mut read, origin)?;
+    preflight(&mut read, origin)?;
     let mut reader = las::Reader::new(read).map_err(|error| las_error(origin, error))?;
-    check_version(reader.header(), origin)?;
     let declared = reader.header().number_of_points();
     let mut columns = LasColumns::default();
     let batch_points = (BATCH_BYTES / u64::from(reader.header().point_format().len()).max(1)).max(1);
@@ -55,48 +54,50 @@ where
     Ok(columns.into_point_cloud())
 }
 
-/// The `laz` crate reserves room for the chunk table's declared chunk count before reading
-/// it, so a corrupt count would ask for gigabytes; refuse counts the stream cannot hold.
-fn check_laz_chunk_count<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError> {
-    match laz_chunk_count(read) {
-        Ok(Some((chunks, stream_bytes))) if chunks > stream_bytes => Err(IoError::malformed(
-            origin,
-            format!("LAZ chunk table declares {chunks} chunks in a {stream_bytes}-byte file"),
-        )),
-        // Short or odd headers are left to the `las` crate, which reports them.
-        _ => read.seek(SeekFrom::Start(0)).map(drop).map_err(|source| IoError::os(origin, source)),
+/// Checks what the `las` and `laz` crates would otherwise trust: a LAZ item list they
+/// index without looking (an empty one panics) and a chunk count they reserve room for
+/// before reading (a corrupt one asks for gigabytes). Leaves the stream at its start.
+fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError> {
+    let header = las::Header::new(&mut *read).map_err(|error| las_error(origin, error))?;
+    check_version(&header, origin)?;
+    if header.point_format().is_compressed {
+        check_laszip_items(&header, origin)?;
+        let stream_bytes = read.seek(SeekFrom::End(0)).map_err(|source| IoError::os(origin, source))?;
+        // A chunk table we cannot locate is left to the `laz` crate, which reports it.
+        if let Ok(chunks) = laz_chunk_count(read)
+            && chunks > stream_bytes
+        {
+            let problem = format!("LAZ chunk table declares {chunks} chunks in a {stream_bytes}-byte file");
+            return Err(IoError::malformed(origin, problem));
+        }
     }
+    read.seek(SeekFrom::Start(0)).map(drop).map_err(|source| IoError::os(origin, source))
 }
 
-/// The chunk count of a LAZ stream and the stream length, or `None` when the stream is not
-/// LAZ. Follows LASzip: the point data starts with the chunk table's offset, or with -1 and
-/// the offset in the last 8 bytes.
-fn laz_chunk_count<R: Read + Seek>(read: &mut R) -> std::io::Result<Option<(u64, u64)>> {
-    let mut header = [0u8; 105];
-    read.seek(SeekFrom::Start(0))?;
-    read.read_exact(&mut header)?;
-    if &header[..4] != b"LASF" || header[104] & 0xC0 == 0 {
-        return Ok(None);
+fn check_laszip_items(header: &las::Header, origin: &Path) -> Result<(), IoError> {
+    let laszip = header.laz_vlr().map_err(|error| las_error(origin, error))?;
+    if laszip.items().is_empty() {
+        return Err(IoError::malformed(origin, "LAZ header (LASzip VLR) describes no point items"));
     }
-    let stream_bytes = read.seek(SeekFrom::End(0))?;
-    let data_start = u64::from(u32::from_le_bytes([header[96], header[97], header[98], header[99]]));
-    let mut table_at = read_i64_at(read, SeekFrom::Start(data_start))?;
-    if table_at <= data_start as i64 {
+    Ok(())
+}
+
+/// The chunk count of a LAZ stream. Follows LASzip: the point data starts with the chunk
+/// table's offset, or with -1 and the offset in the last 8 bytes.
+fn laz_chunk_count<R: Read + Seek>(read: &mut R) -> std::io::Result<u64> {
+    let mut offset_to_point_data = [0u8; 4];
+    read.seek(SeekFrom::Start(96))?;
+    read.read_exact(&mut offset_to_point_data)?;
+    let data_start = i64::from(u32::from_le_bytes(offset_to_point_data));
+    let mut table_at = read_i64_at(read, SeekFrom::Start(data_start as u64))?;
+    if table_at <= data_start {
         table_at = read_i64_at(read, SeekFrom::End(-8))?;
     }
-    if table_at <= data_start as i64 {
-        return Ok(None);
+    if table_at <= data_start {
+        return Err(std::io::ErrorKind::NotFound.into());
     }
-    let mut version_and_count = [0u8; 8];
-    read.seek(SeekFrom::Start(table_at as u64))?;
-    read.read_exact(&mut version_and_count)?;
-    let count = u32::from_le_bytes([
-        version_and_count[4],
-        version_and_count[5],
-        version_and_count[6],
-        version_and_count[7],
-    ]);
-    Ok(Some((u64::from(count), stream_bytes)))
+    let version_and_count = read_i64_at(read, SeekFrom::Start(table_at as u64))?;
+    Ok((version_and_count as u64) >> 32)
 }
 
 fn read_i64_at<R: Read + Seek>(read: &mut R, at: SeekFrom) -> std::io::Result<i64> {
