@@ -99,7 +99,7 @@ fn load_object(
         spec.transform.to_affine().map_err(|e| e.within(&format!("{key}.transform")).in_file(&file.path))?;
     let material =
         spec.material.to_material().map_err(|e| e.within(&format!("{key}.material")).in_file(&file.path))?;
-    let (geometry, origin, default_name) = match &spec.shape {
+    let (geometry, origin, default_name): LoadedGeometry = match &spec.shape {
         ShapeSpec::Mesh { path } => {
             let path = existing_file(file, &key, path)?;
             let mesh = pointray_io::formats::read_triangle_mesh(&path)
@@ -115,15 +115,11 @@ fn load_object(
         }
         ShapeSpec::SpherePoints { center, radius, count } => {
             let cloud = procedural::sphere_points(Vec3::from(*center), *radius, *count);
-            let patches =
-                point_sets::prep_in_memory(&cloud, options).map_err(|e| e.in_scene(&file.path, &key))?;
-            (Geometry::Patches(Arc::new(patches)), Some(PointSetOrigin::Procedural), "sphere".to_string())
+            procedural_object(&cloud, "sphere", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
         ShapeSpec::TorusPoints { center, major_radius, minor_radius, count } => {
             let cloud = procedural::torus_points(Vec3::from(*center), *major_radius, *minor_radius, *count);
-            let patches =
-                point_sets::prep_in_memory(&cloud, options).map_err(|e| e.in_scene(&file.path, &key))?;
-            (Geometry::Patches(Arc::new(patches)), Some(PointSetOrigin::Procedural), "torus".to_string())
+            procedural_object(&cloud, "torus", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
         &ShapeSpec::Ground { auto, height, size } => {
             let mesh = GroundPlacement::new(others, auto, height, size).mesh();
@@ -137,6 +133,18 @@ fn load_object(
     };
     let name = spec.name.clone().unwrap_or(default_name);
     Ok((SceneObject { name, transform, material, geometry }, origin))
+}
+
+/// The parts `load_object` needs: geometry, where its patches came from, a default name.
+type LoadedGeometry = (Geometry, Option<PointSetOrigin>, String);
+
+fn procedural_object(
+    cloud: &pointray_io::PointCloud,
+    name: &str,
+    options: &LoadOptions,
+) -> Result<LoadedGeometry, point_sets::PointSetError> {
+    let patches = point_sets::prep_in_memory(cloud, options)?;
+    Ok((Geometry::Patches(Arc::new(patches)), Some(PointSetOrigin::Procedural), name.to_string()))
 }
 
 fn object_key(index: usize, spec: &ObjectSpec) -> String {
