@@ -253,3 +253,17 @@ fn laz_without_point_items_is_refused() {
     let (_dir, path, error) = read_bytes("items.laz", &bytes);
     assert_names_file(&path, &error, "describes no point items");
 }
+
+#[test]
+fn evlr_longer_than_the_file_is_refused_before_allocating() {
+    let mut bytes = valid_las_bytes();
+    // Point the LAS 1.4 header at one EVLR, just past the points, claiming 3 GB of data.
+    let evlr_at = bytes.len() as u64;
+    bytes[235..243].copy_from_slice(&evlr_at.to_le_bytes());
+    bytes[243..247].copy_from_slice(&1u32.to_le_bytes());
+    let mut evlr = vec![0u8; 60];
+    evlr[20..28].copy_from_slice(&3_000_000_000u64.to_le_bytes());
+    bytes.extend(evlr);
+    let (_dir, path, error) = read_bytes("evlr.las", &bytes);
+    assert_names_file(&path, &error, "declares 3000000000 bytes");
+}

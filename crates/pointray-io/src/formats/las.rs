@@ -54,10 +54,13 @@ where
     Ok(columns.into_point_cloud())
 }
 
-/// Checks what the `las` and `laz` crates would otherwise trust: a LAZ item list they
+/// Checks what the `las` and `laz` crates would otherwise trust: EVLR lengths they allocate
+/// before reading (a corrupt one asks for gigabytes), a LAZ item list they
 /// index without looking (an empty one panics) and a chunk count they reserve room for
 /// before reading (a corrupt one asks for gigabytes). Leaves the stream at its start.
 fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError> {
+    check_evlr_lengths(read, origin)?;
+    read.seek(SeekFrom::Start(0)).map_err(|source| IoError::os(origin, source))?;
     let header = las::Header::new(&mut *read).map_err(|error| las_error(origin, error))?;
     check_version(&header, origin)?;
     if header.point_format().is_compressed {
@@ -74,6 +77,43 @@ fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError>
     read.seek(SeekFrom::Start(0)).map(drop).map_err(|source| IoError::os(origin, source))
 }
 
+/// Size of an extended VLR's header; its u64 data length sits 20 bytes in.
+const EVLR_HEADER_BYTES: u64 = 60;
+
+/// Refuses LAS 1.4 EVLRs whose declared lengths run past the end of the stream. Headers
+/// too short to hold the EVLR fields are left to the `las` crate, which reports them.
+fn check_evlr_lengths<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError> {
+    let os = |source| IoError::os(origin, source);
+    let stream_bytes = read.seek(SeekFrom::End(0)).map_err(os)?;
+    let Ok(version) = read_array_at::<_, 2>(read, 24) else { return Ok(()) };
+    let (Ok(start), Ok(count)) = (read_array_at::<_, 8>(read, 235), read_array_at::<_, 4>(read, 243)) else {
+        return Ok(());
+    };
+    if version != [1, 4] {
+        return Ok(());
+    }
+    let mut at = u64::from_le_bytes(start);
+    for _ in 0..u32::from_le_bytes(count) {
+        let Ok(length) = read_array_at::<_, 8>(read, at.saturating_add(20)).map(u64::from_le_bytes) else {
+            return Ok(());
+        };
+        let data_at = at.saturating_add(EVLR_HEADER_BYTES);
+        if length > stream_bytes.saturating_sub(data_at) {
+            let problem = format!("EVLR at byte {at} declares {length} bytes in a {stream_bytes}-byte file");
+            return Err(IoError::malformed(origin, problem));
+        }
+        at = data_at + length;
+    }
+    Ok(())
+}
+
+fn read_array_at<R: Read + Seek, const N: usize>(read: &mut R, at: u64) -> std::io::Result<[u8; N]> {
+    let mut bytes = [0u8; N];
+    read.seek(SeekFrom::Start(at))?;
+    read.read_exact(&mut bytes)?;
+    Ok(bytes)
+}
+
 fn check_laszip_items(header: &las::Header, origin: &Path) -> Result<(), IoError> {
     let laszip = header.laz_vlr().map_err(|error| las_error(origin, error))?;
     if laszip.items().is_empty() {
@@ -85,10 +125,7 @@ fn check_laszip_items(header: &las::Header, origin: &Path) -> Result<(), IoError
 /// The chunk count of a LAZ stream. Follows LASzip: the point data starts with the chunk
 /// table's offset, or with -1 and the offset in the last 8 bytes.
 fn laz_chunk_count<R: Read + Seek>(read: &mut R) -> std::io::Result<u64> {
-    let mut offset_to_point_data = [0u8; 4];
-    read.seek(SeekFrom::Start(96))?;
-    read.read_exact(&mut offset_to_point_data)?;
-    let data_start = i64::from(u32::from_le_bytes(offset_to_point_data));
+    let data_start = i64::from(u32::from_le_bytes(read_array_at(read, 96)?));
     let mut table_at = read_i64_at(read, SeekFrom::Start(data_start as u64))?;
     if table_at <= data_start {
         table_at = read_i64_at(read, SeekFrom::End(-8))?;
@@ -101,10 +138,8 @@ fn laz_chunk_count<R: Read + Seek>(read: &mut R) -> std::io::Result<u64> {
 }
 
 fn read_i64_at<R: Read + Seek>(read: &mut R, at: SeekFrom) -> std::io::Result<i64> {
-    let mut bytes = [0u8; 8];
-    read.seek(at)?;
-    read.read_exact(&mut bytes)?;
-    Ok(i64::from_le_bytes(bytes))
+    let at = read.seek(at)?;
+    read_array_at(read, at).map(i64::from_le_bytes)
 }
 
 fn check_version(header: &las::Header, origin: &Path) -> Result<(), IoError> {
