@@ -65,6 +65,7 @@ fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError>
     check_version(&header, origin)?;
     if header.point_format().is_compressed {
         check_laszip_items(&header, origin)?;
+        check_laz_chunks_cover_points(read, &header, origin)?;
         let stream_bytes = read.seek(SeekFrom::End(0)).map_err(|source| IoError::os(origin, source))?;
         // A chunk table we cannot locate is left to the `laz` crate, which reports it.
         if let Ok(chunks) = laz_chunk_count(read)
@@ -118,6 +119,33 @@ fn check_laszip_items(header: &las::Header, origin: &Path) -> Result<(), IoError
     let laszip = header.laz_vlr().map_err(|error| las_error(origin, error))?;
     if laszip.items().is_empty() {
         return Err(IoError::malformed(origin, "LAZ header (LASzip VLR) describes no point items"));
+    }
+    Ok(())
+}
+
+/// With variable-size chunks the `laz` crate looks up each chunk's point count in the chunk
+/// table without checking that the table has that many entries; refuse tables that cover
+/// fewer points than the header declares. Tables that cannot be read are left to the `laz`
+/// crate, which reports them.
+fn check_laz_chunks_cover_points<R: Read + Seek>(
+    read: &mut R,
+    header: &las::Header,
+    origin: &Path,
+) -> Result<(), IoError> {
+    let laszip = header.laz_vlr().map_err(|error| las_error(origin, error))?;
+    if !laszip.uses_variable_size_chunks() {
+        return Ok(());
+    }
+    let Ok(data_start) = read_array_at(read, 96).map(u32::from_le_bytes) else { return Ok(()) };
+    if read.seek(SeekFrom::Start(data_start.into())).is_err() {
+        return Ok(());
+    }
+    let Ok(table) = laz::laszip::ChunkTable::read_from(&mut *read, &laszip) else { return Ok(()) };
+    let covered = (0..table.len()).fold(0u64, |sum, chunk| sum.saturating_add(table[chunk].point_count));
+    let declared = header.number_of_points();
+    if covered < declared {
+        let problem = format!("LAZ chunk table covers {covered} points but the header declares {declared}");
+        return Err(IoError::malformed(origin, problem));
     }
     Ok(())
 }
