@@ -26,6 +26,10 @@ pub struct ObjectHit {
 
 pub struct ObjectBvh {
     bvh: CwBvh,
+    /// Each primitive's box. BVH leaves hold several primitives under one box; testing the
+    /// ray against the primitive's own box first skips most quadratic solves, and matches
+    /// the GPU, whose hardware calls the intersection shader only for boxes the ray enters.
+    boxes: Vec<obvhs::aabb::Aabb>,
     geometry: Geometry,
 }
 
@@ -43,7 +47,7 @@ impl ObjectBvh {
             return None;
         }
         let bvh = build_bvh(&boxes);
-        Some(Self { bvh, geometry: geometry.clone() })
+        Some(Self { bvh, boxes, geometry: geometry.clone() })
     }
 
     /// The object-space box around every primitive.
@@ -64,7 +68,7 @@ impl ObjectBvh {
         let mut hit = obvhs::ray::RayHit::none();
         self.bvh.ray_traverse(traversal_ray(ray, t_min, t_max), &mut hit, |candidate, id| {
             let primitive = self.bvh.primitive_indices[id];
-            match self.intersect(ray, primitive, candidate.tmin, candidate.tmax, acceptance) {
+            match self.intersect(ray, candidate, primitive, acceptance) {
                 Some(found) if found.t < candidate.tmax => {
                     nearest = Some(found);
                     found.t
@@ -79,20 +83,23 @@ impl ObjectBvh {
     pub fn occludes(&self, ray: &Ray, t_min: f32, t_max: f32, acceptance: PatchAcceptance) -> bool {
         !self.bvh.ray_traverse_miss(traversal_ray(ray, t_min, t_max), |candidate, id| {
             let primitive = self.bvh.primitive_indices[id];
-            self.intersect(ray, primitive, candidate.tmin, candidate.tmax, acceptance)
-                .map_or(f32::INFINITY, |found| found.t)
+            self.intersect(ray, candidate, primitive, acceptance).map_or(f32::INFINITY, |found| found.t)
         })
     }
 
+    /// `ray` and `candidate` are the same ray; `candidate` carries the current `[t_min, t_max]`.
     fn intersect(
         &self,
         ray: &Ray,
+        candidate: &obvhs::ray::Ray,
         primitive: u32,
-        t_min: f32,
-        t_max: f32,
         acceptance: PatchAcceptance,
     ) -> Option<ObjectHit> {
         let index = primitive as usize;
+        if !enters_box(&self.boxes[index], candidate) {
+            return None;
+        }
+        let (t_min, t_max) = (candidate.tmin, candidate.tmax);
         match &self.geometry {
             Geometry::Patches(patches) => intersect_patch(ray, &patches.hot[index], t_min, t_max, acceptance)
                 .map(|hit| ObjectHit { t: hit.t, primitive, uv: hit.uv }),
@@ -104,6 +111,15 @@ impl ObjectBvh {
     pub fn geometry(&self) -> &Geometry {
         &self.geometry
     }
+}
+
+/// Whether the ray passes through the box within its `[tmin, tmax]` (the slab test).
+fn enters_box(bounds: &obvhs::aabb::Aabb, ray: &obvhs::ray::Ray) -> bool {
+    let t1 = (bounds.min - ray.origin) * ray.inv_direction;
+    let t2 = (bounds.max - ray.origin) * ray.inv_direction;
+    let entry = t1.min(t2).max_element().max(ray.tmin);
+    let exit = t1.max(t2).min_element().min(ray.tmax);
+    entry <= exit
 }
 
 fn inconsistency(geometry: &Geometry) -> Option<String> {
