@@ -1,1 +1,70 @@
-fn main() {}
+//! `pointray`: point clouds rendered as smooth surfaces by ray tracing.
+
+mod backend;
+mod commands;
+mod progress;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "pointray", version, about = "Ray-traced point-set surfaces (Min & Kim's MLS patches)")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+    /// Log more (repeat for more detail).
+    #[arg(short, long, global = true, action = clap::ArgAction::Count)]
+    verbose: u8,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    Sample(commands::sample::SampleArgs),
+    Prep(commands::prep::PrepArgs),
+    Render(commands::render::RenderArgs),
+    Devices(commands::devices::DevicesArgs),
+    Fidelity(commands::fidelity::FidelityArgs),
+}
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    init_logging(cli.verbose);
+    let result = match cli.command {
+        Command::Sample(args) => commands::sample::run(args),
+        Command::Prep(args) => commands::prep::run(args),
+        Command::Render(args) => commands::render::run(args),
+        Command::Devices(args) => commands::devices::run(args),
+        Command::Fidelity(args) => commands::fidelity::run(args),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {}", describe(&error));
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+fn init_logging(verbose: u8) {
+    let level = match verbose {
+        0 => tracing::Level::WARN,
+        1 => tracing::Level::INFO,
+        _ => tracing::Level::DEBUG,
+    };
+    tracing_subscriber::fmt().with_max_level(level).with_writer(std::io::stderr).init();
+}
+
+/// The error and its causes on one line. Our library errors already quote their source in
+/// their own message, so a cause is only added when its text is not there yet.
+fn describe(error: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in error.chain() {
+        let cause = cause.to_string();
+        if !text.contains(&cause) {
+            if !text.is_empty() {
+                text.push_str(": ");
+            }
+            text.push_str(&cause);
+        }
+    }
+    text
+}

@@ -1,0 +1,102 @@
+//! `pointray fidelity`: a points file against the mesh it came from, as numbers (issue 4).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::Context;
+use clap::{Args, ValueEnum};
+use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, measure_fidelity};
+use pointray_scene::{AcceptanceTest, Frame, RenderSettings, Scene};
+use pointray_surface::{PatchSet, PrepOptions, PrepParams, prep};
+use pointray_vulkan::DeviceSelector;
+
+use crate::backend::{Backend, BackendChoice};
+use crate::progress::PrepBar;
+
+/// Render the points' patches and the mesh from cameras around the model and report holes,
+/// false surfaces, depth and normal error and PSNR, as a table (and JSON with `--json`).
+#[derive(Args)]
+pub struct FidelityArgs {
+    /// The points file (any format `prep` reads), in the mesh's coordinates.
+    points: PathBuf,
+    /// The mesh the points were sampled from (PLY or OBJ).
+    mesh: PathBuf,
+    /// Cameras around the model: 6 looks along the axes, more are spread evenly.
+    #[arg(long, default_value_t = 6)]
+    views: usize,
+    /// Square images of this many pixels a side.
+    #[arg(long, default_value_t = 512)]
+    size: u32,
+    /// Neighbours for the support radius and the quadratic fit.
+    #[arg(long, default_value_t = 9)]
+    k: u32,
+    /// Which hits on a patch count: inside its box (the paper) or also over its disk.
+    #[arg(long, value_enum, default_value_t = Acceptance::Box)]
+    acceptance: Acceptance,
+    /// Also write the report as JSON to this file.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    #[arg(long, value_enum, default_value_t = BackendChoice::Cpu)]
+    backend: BackendChoice,
+    /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
+    #[arg(long, default_value = "auto")]
+    device: DeviceSelector,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Acceptance {
+    Box,
+    Disk,
+}
+
+impl From<Acceptance> for AcceptanceTest {
+    fn from(acceptance: Acceptance) -> Self {
+        match acceptance {
+            Acceptance::Box => AcceptanceTest::Box,
+            Acceptance::Disk => AcceptanceTest::Disk,
+        }
+    }
+}
+
+/// The CLI's backend choice (CPU or Vulkan) as the fidelity crate's renderer.
+struct ChosenBackend(Backend);
+
+impl FrameRenderer for ChosenBackend {
+    fn name(&self) -> String {
+        self.0.describe()
+    }
+
+    fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<Frame, RenderError> {
+        Ok(self.0.render(scene, settings)?)
+    }
+}
+
+pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
+    if let Some(json) = &args.json {
+        pointray_io::ensure_not_same_file(&args.points, json)?;
+        pointray_io::ensure_not_same_file(&args.mesh, json)?;
+    }
+    let options = FidelityOptions::around(args.views, args.size, args.acceptance.into())?;
+    let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
+    let patches = prep_points(&args.points, args.k)?;
+    let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);
+    println!("backend: {}", backend.name());
+    let mut report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &backend)
+        .with_context(|| format!("comparing {} against {}", args.points.display(), args.mesh.display()))?;
+    report.setup.points_file = Some(args.points.clone());
+    report.setup.mesh_file = Some(args.mesh.clone());
+    println!("{report}");
+    if let Some(json) = &args.json {
+        report.write_json(json)?;
+        println!("wrote {}", json.display());
+    }
+    Ok(())
+}
+
+fn prep_points(path: &Path, k: u32) -> anyhow::Result<PatchSet> {
+    let cloud = pointray_io::formats::read_point_cloud(path)?;
+    let options = PrepOptions { params: PrepParams { k, ..PrepParams::default() }, ..PrepOptions::default() };
+    let (patches, _) = prep(&cloud, &options, &PrepBar::default())
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    Ok(patches)
+}

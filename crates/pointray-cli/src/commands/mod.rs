@@ -1,0 +1,7 @@
+//! One module per subcommand.
+
+pub mod devices;
+pub mod fidelity;
+pub mod prep;
+pub mod render;
+pub mod sample;

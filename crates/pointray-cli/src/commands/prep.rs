@@ -1,0 +1,81 @@
+//! `pointray prep`: a points file to a patch store (SPEC.md §2).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use glam::DVec3;
+use pointray_surface::{BoxKind, PrepOptions, PrepParams, prep};
+
+use crate::progress::PrepBar;
+
+/// Fit an MLS quadratic patch to every point and write the patch store.
+#[derive(Args)]
+pub struct PrepArgs {
+    /// The points file (PLY, LAS/LAZ, PCD, E57, XYZ/CSV, KITTI .bin).
+    points: PathBuf,
+    /// The patch store to write.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Neighbours for the support radius and the quadratic fit.
+    #[arg(long, default_value_t = 9)]
+    k: u32,
+    /// Neighbours for the PCA normal.
+    #[arg(long, default_value_t = 16)]
+    normal_k: u32,
+    /// Recompute normals even when the file carries them.
+    #[arg(long)]
+    recompute_normals: bool,
+    /// Orient normals toward this sensor position, `x,y,z` in the file's coordinates.
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
+    sensor: Option<DVec3>,
+    /// The box around each patch: the paper's cube of half-size d_i, or a tight box
+    /// around the patch over its disk.
+    #[arg(long, value_enum, default_value_t = Boxes::Cube)]
+    boxes: Boxes,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Boxes {
+    Cube,
+    Tight,
+}
+
+impl From<Boxes> for BoxKind {
+    fn from(boxes: Boxes) -> Self {
+        match boxes {
+            Boxes::Cube => BoxKind::Cube,
+            Boxes::Tight => BoxKind::Tight,
+        }
+    }
+}
+
+pub fn run(args: PrepArgs) -> anyhow::Result<()> {
+    pointray_io::ensure_not_same_file(&args.points, &args.output)?;
+    let cloud = pointray_io::formats::read_point_cloud(&args.points)?;
+    let params = PrepParams {
+        k: args.k,
+        normal_k: args.normal_k,
+        box_kind: args.boxes.into(),
+        ..PrepParams::default()
+    };
+    let options = PrepOptions { params, recompute_normals: args.recompute_normals, sensor: args.sensor };
+    let bar = PrepBar::default();
+    let (patches, report) =
+        prep(&cloud, &options, &bar).map_err(|e| anyhow::anyhow!("{}: {e}", args.points.display()))?;
+    pointray_surface::patch_store::write(&args.output, &patches)?;
+    println!("{report}");
+    println!("wrote {} patches to {}", patches.len(), args.output.display());
+    Ok(())
+}
+
+/// Parses `x,y,z`.
+pub fn parse_point(text: &str) -> Result<DVec3, String> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|part| part.trim().parse::<f64>().map_err(|e| format!("`{part}`: {e}")))
+        .collect::<Result<_, _>>()?;
+    match values[..] {
+        [x, y, z] => Ok(DVec3::new(x, y, z)),
+        _ => Err(format!("expected x,y,z, got `{text}`")),
+    }
+}
