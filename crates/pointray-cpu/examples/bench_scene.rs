@@ -1,14 +1,16 @@
 //! Throughput of the CPU renderer on a scene file: frames per second and rays per second.
 //!
-//! `cargo run --release -p pointray-cpu --example bench_scene -- [SCENE.toml] [FRAMES]`
+//! `cargo run --release -p pointray-cpu --example bench_scene -- [SCENE.toml] [FRAMES] [OUT.png]`
 //! (default: `scenes/bunny_floor.toml`, the bunny on a reflective floor at 640x640 with
-//! shadows and reflections, and 5 timed frames after one warm-up frame).
+//! shadows and reflections, and 5 timed frames after one warm-up frame). With `OUT.png`,
+//! the warm-up frame is written there, to look at what was timed.
 
 use std::error::Error;
 use std::path::PathBuf;
 use std::time::Instant;
 
 use pointray_cpu::{CpuRenderer, RayCounts};
+use pointray_io::image_output::write_png_srgb;
 use pointray_scene::{LoadOptions, load_scene};
 
 fn main() -> Result<(), Box<dyn Error>> {
@@ -18,6 +20,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/bunny_floor.toml"));
     let frames: u32 = args.next().map(|n| n.parse()).transpose()?.unwrap_or(5).max(1);
+    let image_path = args.next().map(PathBuf::from);
 
     let started = Instant::now();
     let loaded = load_scene(&scene_path, &LoadOptions::default())?;
@@ -41,6 +44,11 @@ fn main() -> Result<(), Box<dyn Error>> {
         100.0 * hits as f64 / warm_up.pixel_count() as f64,
         rayon::current_num_threads()
     );
+
+    if let Some(path) = &image_path {
+        write_png_srgb(path, warm_up.width, warm_up.height, &warm_up.color)?;
+        println!("wrote {}", path.display());
+    }
 
     let mut total = RayCounts::default();
     let started = Instant::now();
