@@ -1,7 +1,7 @@
 //! Measures `prep` and the patch store on points sampled from a mesh:
 //!
 //! ```text
-//! cargo run --release -p pointray-surface --example prep_bench -- MESH.ply [COUNT] [SEED]
+//! cargo run --release -p pointray-surface --example prep_bench -- MESH.ply [COUNT] [SEED] [blue]
 //! ```
 //!
 //! Prints `prep`'s per-stage wall times, then the store's write time and its load time
@@ -15,18 +15,16 @@ use pointray_surface::{NoProgress, PrepOptions, patch_store, prep, sample_mesh};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
-    let mesh_path = PathBuf::from(args.next().ok_or("usage: prep_bench MESH.ply [COUNT] [SEED]")?);
+    let mesh_path = PathBuf::from(args.next().ok_or("usage: prep_bench MESH.ply [COUNT] [SEED] [blue]")?);
     let count: usize = args.next().map_or(Ok(1_000_000), |a| a.parse())?;
     let seed: u64 = args.next().map_or(Ok(1), |a| a.parse())?;
+    let blue_noise = args.next().as_deref() == Some("blue");
     let mesh = ply::read_triangle_mesh(&mesh_path)?;
     let start = Instant::now();
-    let cloud = sample_mesh(&mesh, count, seed, false);
-    println!(
-        "sampled {} points from {} in {:.3} s",
-        cloud.len(),
-        mesh_path.display(),
-        seconds(start.elapsed())
-    );
+    let cloud = sample_mesh(&mesh, count, seed, blue_noise);
+    let kind = if blue_noise { "blue-noise" } else { "uniform" };
+    let elapsed = seconds(start.elapsed());
+    println!("sampled {} {kind} points from {} in {elapsed:.3} s", cloud.len(), mesh_path.display());
     println!("rayon threads: {}", rayon::current_num_threads());
     let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoProgress)?;
     println!("{report}");
