@@ -19,6 +19,11 @@ const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
     ("triangle.rchit", ShaderStage::ClosestHit),
 ];
 
+/// Entry points compiled a second time with a define, as `(source, define, output name)`:
+/// the benchmark's ray-counting ray generation.
+const VARIANTS: &[(&str, ShaderStage, &str, &str)] =
+    &[("primary.rgen", ShaderStage::RayGeneration, "COUNT_RAYS", "primary_counting.rgen")];
+
 /// Resolves `#include "NAME"` against the shaders folder only.
 struct ShaderFolderIncludes {
     folder: PathBuf,
@@ -38,7 +43,7 @@ impl IncludeHandler for ShaderFolderIncludes {
     }
 }
 
-fn compile(folder: &Path, name: &str, stage: ShaderStage) -> Result<Vec<u32>, String> {
+fn compile(folder: &Path, name: &str, stage: ShaderStage, define: Option<&str>) -> Result<Vec<u32>, String> {
     let path = folder.join(name);
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let source = ShaderSource::from(text);
@@ -49,9 +54,9 @@ fn compile(folder: &Path, name: &str, stage: ShaderStage) -> Result<Vec<u32>, St
         ..CompilerOptions::default()
     };
     let mut includes = ShaderFolderIncludes { folder: folder.to_path_buf() };
-    let input =
-        ShaderInput::new(&source, stage, &options, None::<&[(&str, Option<&str>)]>, Some(&mut includes))
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+    let defines: Vec<(&str, Option<&str>)> = define.map(|d| (d, None)).into_iter().collect();
+    let input = ShaderInput::new(&source, stage, &options, Some(&defines[..]), Some(&mut includes))
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     let compiler = glslang::Compiler::acquire().ok_or("glslang failed to initialise")?;
     let shader = compiler.create_shader(input).map_err(|e| format!("{}: {e}", path.display()))?;
     shader.compile().map_err(|e| format!("{}: {e}", path.display()))
@@ -66,11 +71,13 @@ fn main() {
         println!("cargo:rerun-if-changed={}", entry.path().display());
     }
     let mut failures = Vec::new();
-    for &(name, stage) in ENTRY_POINTS {
-        match compile(&folder, name, stage) {
+    let plain = ENTRY_POINTS.iter().map(|&(name, stage)| (name, stage, None, name));
+    let variants = VARIANTS.iter().map(|&(name, stage, define, output)| (name, stage, Some(define), output));
+    for (name, stage, define, output) in plain.chain(variants) {
+        match compile(&folder, name, stage, define) {
             Ok(words) => {
                 let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
-                std::fs::write(out.join(format!("{name}.spv")), bytes).expect("OUT_DIR is writable");
+                std::fs::write(out.join(format!("{output}.spv")), bytes).expect("OUT_DIR is writable");
             }
             Err(message) => failures.push(message),
         }

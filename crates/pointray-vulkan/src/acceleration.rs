@@ -2,6 +2,7 @@
 //! single AABB geometry holds every patch box, one triangle BLAS per mesh, one TLAS.
 
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
@@ -28,7 +29,16 @@ pub(crate) struct AccelerationStructure {
     context: Arc<GpuContext>,
     pub(crate) handle: vk::AccelerationStructureKHR,
     pub(crate) address: vk::DeviceAddress,
+    /// Wall time of the build, compaction included (its inputs are already on the GPU).
+    pub(crate) build_time: Duration,
     _storage: Buffer,
+}
+
+impl AccelerationStructure {
+    /// Bytes of GPU memory holding the structure (after compaction, if it was compacted).
+    pub(crate) fn size(&self) -> u64 {
+        self._storage.size
+    }
 }
 
 impl Drop for AccelerationStructure {
@@ -114,6 +124,7 @@ pub(crate) fn build(
     context: &Arc<GpuContext>,
     input: &BuildInput<'_>,
 ) -> Result<AccelerationStructure, VulkanError> {
+    let started = Instant::now();
     let compact = input.ty == vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL;
     let mut flags = vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE;
     if compact {
@@ -158,10 +169,12 @@ pub(crate) fn build(
             }
         }
     })?;
-    match queries {
-        Some(queries) => compact_if_it_pays(context, structure, queries.compacted_size(context)?),
-        None => Ok(structure),
-    }
+    let mut structure = match queries {
+        Some(queries) => compact_if_it_pays(context, structure, queries.compacted_size(context)?)?,
+        None => structure,
+    };
+    structure.build_time = started.elapsed();
+    Ok(structure)
 }
 
 fn create(
@@ -184,7 +197,13 @@ fn create(
         vk::AccelerationStructureDeviceAddressInfoKHR::default().acceleration_structure(handle);
     // SAFETY: `handle` was just created.
     let address = unsafe { context.acceleration.get_acceleration_structure_device_address(&address_info) };
-    Ok(AccelerationStructure { context: context.clone(), handle, address, _storage: storage })
+    Ok(AccelerationStructure {
+        context: context.clone(),
+        handle,
+        address,
+        build_time: Duration::ZERO,
+        _storage: storage,
+    })
 }
 
 fn compact_if_it_pays(

@@ -36,6 +36,11 @@ pub(crate) struct RayTracingPipeline {
 
 impl RayTracingPipeline {
     pub(crate) fn new(context: &Arc<GpuContext>) -> Result<Self, VulkanError> {
+        Self::with_raygen(context, shaders::PRIMARY_RGEN)
+    }
+
+    /// The pipeline with another ray generation shader (the ray-counting variant).
+    pub(crate) fn with_raygen(context: &Arc<GpuContext>, raygen: &[u8]) -> Result<Self, VulkanError> {
         let device = &context.device;
         let set_layout = create_set_layout(device)?;
         let mut owned = Self {
@@ -54,7 +59,7 @@ impl RayTracingPipeline {
         // SAFETY: the device is alive; handles are destroyed in Drop.
         owned.layout =
             unsafe { device.create_pipeline_layout(&info, None) }.during("creating the pipeline layout")?;
-        owned.pipeline = create_pipeline(context, owned.layout)?;
+        owned.pipeline = create_pipeline(context, owned.layout, raygen)?;
         Ok(owned)
     }
 }
@@ -126,13 +131,17 @@ impl Drop for Modules<'_> {
     }
 }
 
-fn create_pipeline(context: &GpuContext, layout: vk::PipelineLayout) -> Result<vk::Pipeline, VulkanError> {
+fn create_pipeline(
+    context: &GpuContext,
+    layout: vk::PipelineLayout,
+    raygen: &[u8],
+) -> Result<vk::Pipeline, VulkanError> {
     let mut modules = Modules { device: &context.device, handles: Vec::new() };
     let stage = |stage, module| {
         vk::PipelineShaderStageCreateInfo::default().stage(stage).module(module).name(c"main")
     };
     let stages = [
-        stage(vk::ShaderStageFlags::RAYGEN_KHR, modules.add(shaders::PRIMARY_RGEN)?),
+        stage(vk::ShaderStageFlags::RAYGEN_KHR, modules.add(raygen)?),
         stage(vk::ShaderStageFlags::MISS_KHR, modules.add(shaders::BACKGROUND_RMISS)?),
         stage(vk::ShaderStageFlags::MISS_KHR, modules.add(shaders::SHADOW_RMISS)?),
         stage(vk::ShaderStageFlags::INTERSECTION_KHR, modules.add(shaders::PATCH_RINT)?),

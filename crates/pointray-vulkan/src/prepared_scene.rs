@@ -31,9 +31,10 @@ pub struct PreparedScene {
     pub(crate) objects: Buffer,
     pub(crate) lights: Buffer,
     pub(crate) tlas: AccelerationStructure,
-    // Kept alive for the TLAS and the shaders' buffer addresses.
-    _bottom_levels: Vec<AccelerationStructure>,
-    _geometry: Vec<Buffer>,
+    // Kept alive for the TLAS and the shaders' buffer addresses (and measured by
+    // `memory_report.rs`).
+    pub(crate) _bottom_levels: Vec<AccelerationStructure>,
+    pub(crate) _geometry: Vec<Buffer>,
 }
 
 /// One object's contribution: its record and, unless it is empty, its BLAS.

@@ -27,9 +27,9 @@ pub struct TraceTiming {
 /// A ray-tracing renderer on one Vulkan device.
 pub struct VulkanRenderer {
     // Field order is drop order: the table and pipeline go before the device context.
-    table: ShaderBindingTable,
-    pipeline: RayTracingPipeline,
-    context: Arc<GpuContext>,
+    pub(crate) table: ShaderBindingTable,
+    pub(crate) pipeline: RayTracingPipeline,
+    pub(crate) context: Arc<GpuContext>,
 }
 
 impl VulkanRenderer {
@@ -84,12 +84,18 @@ impl VulkanRenderer {
         scene: &PreparedScene,
         settings: &RenderSettings,
     ) -> Result<(Frame, TraceTiming), VulkanError> {
-        if !Arc::ptr_eq(&scene.context, &self.context) {
-            return Err(VulkanError::InvalidScene("the scene was prepared by another renderer".into()));
-        }
+        self.ensure_prepared_here(scene)?;
         let start = Instant::now();
         let (frame, gpu) = trace(&self.context, &self.pipeline, &self.table, scene, settings)?;
         Ok((frame, TraceTiming { gpu, wall: start.elapsed() }))
+    }
+
+    /// Scenes hold GPU resources of the renderer that prepared them; no other may trace them.
+    pub(crate) fn ensure_prepared_here(&self, scene: &PreparedScene) -> Result<(), VulkanError> {
+        if !Arc::ptr_eq(&scene.context, &self.context) {
+            return Err(VulkanError::InvalidScene("the scene was prepared by another renderer".into()));
+        }
+        Ok(())
     }
 
     /// Prepares and traces in one go.

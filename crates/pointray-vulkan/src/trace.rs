@@ -21,11 +21,11 @@ use crate::pipeline::{
 use crate::prepared_scene::PreparedScene;
 
 /// Per-trace resources, freed on drop (after the trace has been waited on).
-struct TraceResources {
+pub(crate) struct TraceResources {
     context: Arc<GpuContext>,
     uniforms: Buffer,
     pixels: Buffer,
-    readback: Buffer,
+    pub(crate) readback: Buffer,
     descriptor_pool: vk::DescriptorPool,
     set: vk::DescriptorSet,
     timestamps: Option<vk::QueryPool>,
@@ -64,7 +64,7 @@ pub(crate) fn validate(settings: &RenderSettings, context: &GpuContext) -> Resul
     Ok(())
 }
 
-fn create_resources(
+pub(crate) fn create_resources(
     context: &Arc<GpuContext>,
     pipeline: &RayTracingPipeline,
     scene: &PreparedScene,
@@ -151,7 +151,34 @@ fn write_descriptors(device: &ash::Device, resources: &TraceResources, scene: &P
 }
 
 /// Records the trace between two timestamps and the copy of the pixels to host memory.
-fn record(
+pub(crate) fn record(
+    context: &GpuContext,
+    command: vk::CommandBuffer,
+    pipeline: &RayTracingPipeline,
+    table: &ShaderBindingTable,
+    resources: &TraceResources,
+    settings: &RenderSettings,
+) {
+    let device = &context.device;
+    // SAFETY: `command` is recording; every bound resource outlives the submission.
+    unsafe {
+        if let Some(pool) = resources.timestamps {
+            device.cmd_reset_query_pool(command, pool, 0, 2);
+            device.cmd_write_timestamp(command, vk::PipelineStageFlags::TOP_OF_PIPE, pool, 0);
+        }
+        record_trace_rays(context, command, pipeline, table, resources, settings);
+        if let Some(pool) = resources.timestamps {
+            device.cmd_write_timestamp(command, vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, pool, 1);
+        }
+        record_copy_out(context, command, resources);
+    }
+}
+
+/// Records the binding of the pipeline and its resources and one `vkCmdTraceRaysKHR`.
+///
+/// # Safety
+/// `command` is recording; every bound resource outlives the submission.
+pub(crate) unsafe fn record_trace_rays(
     context: &GpuContext,
     command: vk::CommandBuffer,
     pipeline: &RayTracingPipeline,
@@ -162,12 +189,8 @@ fn record(
     let device = &context.device;
     let bind_point = vk::PipelineBindPoint::RAY_TRACING_KHR;
     let push = TraceSettings::from(settings);
-    // SAFETY: `command` is recording; every bound resource outlives the submission.
+    // SAFETY: the caller's contract.
     unsafe {
-        if let Some(pool) = resources.timestamps {
-            device.cmd_reset_query_pool(command, pool, 0, 2);
-            device.cmd_write_timestamp(command, vk::PipelineStageFlags::TOP_OF_PIPE, pool, 0);
-        }
         device.cmd_bind_pipeline(command, bind_point, pipeline.pipeline);
         device.cmd_bind_descriptor_sets(command, bind_point, pipeline.layout, 0, &[resources.set], &[]);
         device.cmd_push_constants(command, pipeline.layout, all_ray_stages(), 0, bytemuck::bytes_of(&push));
@@ -181,9 +204,22 @@ fn record(
             settings.height,
             1,
         );
-        if let Some(pool) = resources.timestamps {
-            device.cmd_write_timestamp(command, vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, pool, 1);
-        }
+    }
+}
+
+/// Records the wait for the trace, the copy of the pixels to the read-back buffer and the
+/// barrier that makes them visible to the host.
+///
+/// # Safety
+/// `command` is recording; the resources outlive the submission.
+pub(crate) unsafe fn record_copy_out(
+    context: &GpuContext,
+    command: vk::CommandBuffer,
+    resources: &TraceResources,
+) {
+    let device = &context.device;
+    // SAFETY: the caller's contract.
+    unsafe {
         let barrier = vk::MemoryBarrier::default()
             .src_access_mask(vk::AccessFlags::SHADER_WRITE)
             .dst_access_mask(vk::AccessFlags::TRANSFER_READ);

@@ -36,7 +36,9 @@ fn blas_and_buffer_layouts_render_the_same_image() {
 fn bad_settings_are_errors_not_panics() {
     let Some(renderer) = renderer() else { return };
     let prepared = renderer.prepare(&sphere_on_floor(0.0, 1.0)).expect("prepares");
-    for bad in [RenderSettings { width: 0, ..settings(8) }, RenderSettings { samples_per_pixel: 0, ..settings(8) }] {
+    for bad in
+        [RenderSettings { width: 0, ..settings(8) }, RenderSettings { samples_per_pixel: 0, ..settings(8) }]
+    {
         let error = renderer.trace(&prepared, &bad).expect_err("invalid settings must be refused");
         assert!(error.to_string().contains("invalid"), "{error}");
     }

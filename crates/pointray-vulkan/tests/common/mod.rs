@@ -7,11 +7,12 @@ use std::sync::Arc;
 
 use glam::{Affine3A, UVec2, Vec3};
 use pointray_io::TriangleMesh;
+use pointray_io::formats::ply::read_point_cloud;
 use pointray_kernels::{Aabb, PatchCold, PatchHot, PinholeCamera, camera_ray};
 use pointray_scene::{
     Background, Camera, Frame, Geometry, Light, Material, RenderSettings, Scene, SceneObject,
 };
-use pointray_surface::PatchSet;
+use pointray_surface::{NoProgress, PatchSet, PrepOptions, prep};
 use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer};
 
 fn in_ci() -> bool {
@@ -151,4 +152,29 @@ pub fn mean_luminance(frame: &Frame, select: impl Fn(usize) -> bool) -> f32 {
         .filter(|&i| select(i))
         .fold((0.0, 0usize), |(sum, count), i| (sum + frame.color[i].element_sum() / 3.0, count + 1));
     sum / count.max(1) as f32
+}
+
+/// A points file prepped into patches, placed back where its input was (prep recentres).
+pub fn prepped_points(name: &str, path: &std::path::Path, material: Material) -> SceneObject {
+    let cloud = read_point_cloud(path).unwrap_or_else(|e| panic!("{} does not load: {e}", path.display()));
+    let (patches, _) = prep(&cloud, &PrepOptions::default(), &NoProgress).expect("prep succeeds");
+    SceneObject {
+        name: name.into(),
+        transform: Affine3A::from_translation(patches.offset.as_vec3()),
+        material,
+        geometry: Geometry::Patches(Arc::new(patches)),
+    }
+}
+
+/// `model` (object 0) on a floor just under `bounds`, lit from above, framed from the front
+/// and a little above: the paper's figure setting.
+pub fn model_on_floor(model: SceneObject, bounds: Aabb, floor_reflectivity: f32) -> Scene {
+    let size = (Vec3::from(bounds.max) - Vec3::from(bounds.min)).max_element();
+    let floor_material = Material { reflectivity: floor_reflectivity, ..Material::default() };
+    Scene {
+        camera: Scene::framing_camera(&bounds, Vec3::new(0.3, 0.4, 1.0), 40.0, 1.0),
+        lights: vec![point_light(Vec3::from(bounds.max) + Vec3::splat(size), 1.0)],
+        background: Background::Solid(Vec3::splat(0.2)),
+        objects: vec![model, object("floor", mesh(floor(bounds.min[1], 4.0 * size)), floor_material)],
+    }
 }

@@ -1,0 +1,159 @@
+//! The benchmark's frame loop: many frames of one prepared scene in one submission, each
+//! between GPU timestamps, with the copy-out recorded but no per-frame read-back on the host.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use ash::vk;
+use pointray_scene::RenderSettings;
+
+use crate::context::GpuContext;
+use crate::error::{VkContext, VulkanError};
+use crate::prepared_scene::PreparedScene;
+use crate::renderer::VulkanRenderer;
+use crate::trace::{TraceResources, create_resources, record_copy_out, record_trace_rays, validate};
+
+/// Timestamps per frame: start, trace done, copy-out done.
+const STAMPS_PER_FRAME: u32 = 3;
+
+/// GPU times of each frame of a loop, in order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameLoopTimes {
+    /// From the frame's start to the end of its `vkCmdTraceRaysKHR`.
+    pub trace: Vec<Duration>,
+    /// From the frame's start to the end of the copy of its pixels to host-visible memory.
+    pub frame: Vec<Duration>,
+    /// Host wall time of the whole loop: recording, submission and the wait.
+    pub wall: Duration,
+}
+
+/// A timestamp query pool, destroyed on drop (after its submission was waited on).
+struct TimestampPool {
+    context: Arc<GpuContext>,
+    handle: vk::QueryPool,
+    count: u32,
+}
+
+impl TimestampPool {
+    fn new(context: &Arc<GpuContext>, count: u32) -> Result<Self, VulkanError> {
+        let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(count);
+        // SAFETY: the device is alive; the pool is destroyed in Drop.
+        let handle = unsafe { context.device.create_query_pool(&info, None) }
+            .during("creating the frame loop's timestamp pool")?;
+        Ok(Self { context: context.clone(), handle, count })
+    }
+
+    fn ticks(&self) -> Result<Vec<u64>, VulkanError> {
+        let mut ticks = vec![0u64; self.count as usize];
+        // SAFETY: every query was written by a completed submission.
+        unsafe {
+            self.context.device.get_query_pool_results(
+                self.handle,
+                0,
+                &mut ticks,
+                vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+            )
+        }
+        .during("reading the frame loop's timestamps")?;
+        Ok(ticks)
+    }
+}
+
+impl Drop for TimestampPool {
+    fn drop(&mut self) {
+        // SAFETY: the submission that used the pool has completed.
+        unsafe { self.context.device.destroy_query_pool(self.handle, None) };
+    }
+}
+
+impl VulkanRenderer {
+    /// Traces `frames` frames of `scene` back to back in one submission and returns each
+    /// frame's GPU times. The pixels are copied out every frame, as a viewer would, but not
+    /// converted on the host. Needs a queue with timestamps.
+    pub fn trace_frames(
+        &self,
+        scene: &PreparedScene,
+        settings: &RenderSettings,
+        frames: u32,
+    ) -> Result<FrameLoopTimes, VulkanError> {
+        self.ensure_prepared_here(scene)?;
+        validate(settings, &self.context)?;
+        let Some(period_ns) = self.context.timestamp_period_ns else {
+            return Err(VulkanError::InvalidSettings(format!(
+                "{} has no timestamps on its compute queue; the frame loop times with them",
+                self.context.info.name
+            )));
+        };
+        if frames == 0 {
+            return Err(VulkanError::InvalidSettings("the frame loop needs at least one frame".into()));
+        }
+        let resources = create_resources(&self.context, &self.pipeline, scene, settings)?;
+        let pool = TimestampPool::new(&self.context, frames * STAMPS_PER_FRAME)?;
+        let started = Instant::now();
+        self.context.submit_and_wait("tracing the frame loop", |command| {
+            self.record_frames(command, &resources, &pool, settings, frames)
+        })?;
+        let wall = started.elapsed();
+        let ticks = pool.ticks()?;
+        let span = |from: u64, to: u64| {
+            Duration::from_secs_f64(to.saturating_sub(from) as f64 * f64::from(period_ns) * 1e-9)
+        };
+        let per_frame = ticks.chunks_exact(STAMPS_PER_FRAME as usize);
+        Ok(FrameLoopTimes {
+            trace: per_frame.clone().map(|t| span(t[0], t[1])).collect(),
+            frame: per_frame.map(|t| span(t[0], t[2])).collect(),
+            wall,
+        })
+    }
+
+    fn record_frames(
+        &self,
+        command: vk::CommandBuffer,
+        resources: &TraceResources,
+        pool: &TimestampPool,
+        settings: &RenderSettings,
+        frames: u32,
+    ) {
+        let device = &self.context.device;
+        // A frame starts once everything before it is done (ALL_COMMANDS), so frames never
+        // overlap in the timings; the trace ends when ray tracing has drained.
+        let all = vk::PipelineStageFlags::ALL_COMMANDS;
+        // SAFETY: `command` is recording; the resources and the pool outlive the submission.
+        unsafe {
+            device.cmd_reset_query_pool(command, pool.handle, 0, pool.count);
+            for frame in 0..frames {
+                let first = frame * STAMPS_PER_FRAME;
+                device.cmd_write_timestamp(command, all, pool.handle, first);
+                record_trace_rays(&self.context, command, &self.pipeline, &self.table, resources, settings);
+                let traced = vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR;
+                device.cmd_write_timestamp(command, traced, pool.handle, first + 1);
+                record_copy_out(&self.context, command, resources);
+                device.cmd_write_timestamp(command, all, pool.handle, first + 2);
+                record_next_frame_barrier(device, command);
+            }
+        }
+    }
+}
+
+/// The next frame's trace rewrites the pixels this frame's copy reads, and its copy rewrites
+/// the read-back buffer.
+///
+/// # Safety
+/// `command` is recording.
+unsafe fn record_next_frame_barrier(device: &ash::Device, command: vk::CommandBuffer) {
+    let barrier = vk::MemoryBarrier::default()
+        .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+        .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE);
+    // SAFETY: the caller's contract.
+    unsafe {
+        device.cmd_pipeline_barrier(
+            command,
+            vk::PipelineStageFlags::TRANSFER,
+            vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR | vk::PipelineStageFlags::TRANSFER,
+            vk::DependencyFlags::empty(),
+            &[barrier],
+            &[],
+            &[],
+        )
+    };
+}

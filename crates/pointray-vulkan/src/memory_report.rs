@@ -1,0 +1,35 @@
+//! What a prepared scene cost to build and holds in GPU memory (the benchmark's "costs").
+
+use std::time::Duration;
+
+use crate::prepared_scene::PreparedScene;
+
+/// Build times and memory of a prepared scene's acceleration structures and buffers.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BuildReport {
+    /// Bottom levels built (one per non-empty object).
+    pub blas_count: usize,
+    /// Sum of the bottom levels' build wall times, compaction included.
+    pub blas_build: Duration,
+    pub tlas_build: Duration,
+    /// GPU bytes of the bottom levels (after compaction) and of the top level.
+    pub blas_bytes: u64,
+    pub tlas_bytes: u64,
+    /// GPU bytes of every geometry buffer: boxes, hot/cold/combined records, mesh vertices and
+    /// indices, TLAS instances.
+    pub geometry_bytes: u64,
+}
+
+impl PreparedScene {
+    /// What building this scene took and what it occupies.
+    pub fn build_report(&self) -> BuildReport {
+        BuildReport {
+            blas_count: self._bottom_levels.len(),
+            blas_build: self._bottom_levels.iter().map(|b| b.build_time).sum(),
+            tlas_build: self.tlas.build_time,
+            blas_bytes: self._bottom_levels.iter().map(|b| b.size()).sum(),
+            tlas_bytes: self.tlas.size(),
+            geometry_bytes: self._geometry.iter().map(|b| b.size).sum(),
+        }
+    }
+}
