@@ -21,27 +21,31 @@ pub fn pca_normals(points: &[Vec3], neighbors: &Neighbors, normal_k: usize) -> V
         .collect()
 }
 
-/// Covariance of `p_i` and its neighbours, in f64 and relative to `p_i` so that
-/// recentred-but-large coordinates lose no precision.
+/// Covariance of `p_i` and its neighbours in one pass, `E[d dᵀ] - E[d] E[d]ᵀ` over the
+/// offsets `d = p_j - p_i`: in f64 and relative to `p_i`, so that the subtraction loses
+/// nothing even for recentred-but-large coordinates.
 fn neighbourhood_covariance(points: &[Vec3], i: usize, neighbours: &[u32]) -> DMat3 {
     let origin = points[i];
-    let offsets = || {
-        std::iter::once(DVec3::ZERO)
-            .chain(neighbours.iter().map(move |&j| (points[j as usize] - origin).as_dvec3()))
-    };
-    let count = (neighbours.len() + 1) as f64;
-    let mean = offsets().sum::<DVec3>() / count;
-    let mut sums = [0.0f64; 6]; // xx, xy, xz, yy, yz, zz
-    for d in offsets().map(|o| o - mean) {
-        sums[0] += d.x * d.x;
-        sums[1] += d.x * d.y;
-        sums[2] += d.x * d.z;
-        sums[3] += d.y * d.y;
-        sums[4] += d.y * d.z;
-        sums[5] += d.z * d.z;
+    let mut sum = DVec3::ZERO;
+    let mut products = [0.0f64; 6]; // xx, xy, xz, yy, yz, zz
+    for &j in neighbours {
+        let d = (points[j as usize] - origin).as_dvec3();
+        sum += d;
+        products[0] += d.x * d.x;
+        products[1] += d.x * d.y;
+        products[2] += d.x * d.z;
+        products[3] += d.y * d.y;
+        products[4] += d.y * d.z;
+        products[5] += d.z * d.z;
     }
-    let [xx, xy, xz, yy, yz, zz] = sums.map(|s| s / count);
-    DMat3::from_cols(DVec3::new(xx, xy, xz), DVec3::new(xy, yy, yz), DVec3::new(xz, yz, zz))
+    let count = (neighbours.len() + 1) as f64; // p_i itself adds a zero offset
+    let mean = sum / count;
+    let [xx, xy, xz, yy, yz, zz] = products.map(|p| p / count);
+    DMat3::from_cols(
+        DVec3::new(xx - mean.x * mean.x, xy - mean.x * mean.y, xz - mean.x * mean.z),
+        DVec3::new(xy - mean.x * mean.y, yy - mean.y * mean.y, yz - mean.y * mean.z),
+        DVec3::new(xz - mean.x * mean.z, yz - mean.y * mean.z, zz - mean.z * mean.z),
+    )
 }
 
 /// Sweeps of the cyclic Jacobi method: it converges quadratically, so 3x3 matrices are

@@ -6,9 +6,9 @@ use rayon::prelude::*;
 
 use crate::neighbors::Neighbors;
 
-/// Neighbours per point that the orientation graph uses (a prefix of each row). Beyond
-/// about ten, extra edges mostly reach across thin parts to the opposite side, and they
-/// cost time; see `examples/normals_pipeline.rs` for the measurements.
+/// Neighbours per point that the orientation graph uses (a prefix of each row): enough
+/// to connect a surface sampled unevenly, while fewer edges keep the pass fast and
+/// reach less often across thin parts to the opposite side.
 const ORIENTATION_K: usize = 10;
 
 /// Edge weights `1 - |n_i . n_j|` are bucketed on the square-root scale, which is about
