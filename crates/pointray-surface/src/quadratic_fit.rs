@@ -126,7 +126,8 @@ fn evaluate_scaled(a: &[f64; 6], s: f64, t: f64) -> f64 {
 /// scaled radius `scaled_radius`: a larger height means the fit bends away from its
 /// neighbours.
 fn stays_within_disk(a: &[f64; 6], scaled_radius: f64, limit: f64) -> bool {
-    let rim = RIM_DIRECTIONS.iter().map(|&(cos, sin)| evaluate_scaled(a, scaled_radius * cos, scaled_radius * sin));
+    let rim =
+        RIM_DIRECTIONS.iter().map(|&(cos, sin)| evaluate_scaled(a, scaled_radius * cos, scaled_radius * sin));
     std::iter::once(a[0]).chain(rim).all(|height| height.abs() <= limit)
 }
 
