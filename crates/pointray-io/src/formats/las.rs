@@ -120,7 +120,31 @@ fn check_laszip_items(header: &las::Header, origin: &Path) -> Result<(), IoError
     if laszip.items().is_empty() {
         return Err(IoError::malformed(origin, "LAZ header (LASzip VLR) describes no point items"));
     }
+    // The decoder splits each record by the sizes its item types imply, without checking
+    // that they add up to the record it is handed.
+    let record_bytes = u64::from(header.point_format().len());
+    let items_bytes: u64 = laszip.items().iter().map(|item| laz_item_bytes(item.item_type())).sum();
+    if items_bytes != record_bytes {
+        let problem = format!(
+            "LAZ items describe {items_bytes}-byte points but the header's point format has {record_bytes}"
+        );
+        return Err(IoError::malformed(origin, problem));
+    }
     Ok(())
+}
+
+/// Bytes of a point record that a LAZ item decodes (LASzip's fixed sizes per item type).
+fn laz_item_bytes(item: laz::LazItemType) -> u64 {
+    use laz::LazItemType::*;
+    match item {
+        Byte(bytes) | Byte14(bytes) => bytes.into(),
+        Point10 => 20,
+        GpsTime => 8,
+        RGB12 | RGB14 => 6,
+        RGBNIR14 => 8,
+        WavePacket13 | WavePacket14 => 29,
+        Point14 => 30,
+    }
 }
 
 /// With variable-size chunks the `laz` crate looks up each chunk's point count in the chunk
