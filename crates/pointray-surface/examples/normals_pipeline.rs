@@ -7,6 +7,19 @@
 //!
 //! It has its own sampler because `sampling::sample_mesh` does not say which triangle each
 //! point came from, and that triangle's normal is the reference here.
+//!
+//! Measured 2026-11-21, 1,000,000 points from `dragon_res2.ply`, seed 1, release build,
+//! 2 rayon threads (wall ms; sign agreement 99.69% of 1,000,000, unoriented 50.71%):
+//!
+//! | stage | 2 cores of an idle 16-core host (`taskset -c 0,1`), fastest of 3 runs | the 2-core dev VM, load average ~7 |
+//! |---|---|---|
+//! | morton order | 41 | 70 |
+//! | apply order | 13 | 17 |
+//! | merge duplicates | 163 | 206 |
+//! | k nearest (k = 16) | 867 | 1814 |
+//! | pca normals | 330 | 1024 |
+//! | orientation | 382 (2.6 M points/s) | 831 (1.2 M points/s) |
+//! | total | 1801 (the 3 totals: 1906, 1850, 1801) | 3969 |
 
 #[path = "../tests/normals_support/mod.rs"]
 mod normals_support;
