@@ -74,6 +74,22 @@ fn the_cap_has_no_holes_and_normals_within_half_a_degree() {
     assert_eq!(overall.hole_rate, Some(0.0), "{overall:?}");
     assert!(overall.normal_error_mean_degrees.unwrap() < 0.5, "{overall:?}");
     assert!(report.views.iter().all(|view| view.metrics.hole_rate == Some(0.0)));
+    assert_json_carries_the_numbers(&report);
+}
+
+/// The JSON file holds the same numbers as the report, with the setup and one entry per view.
+fn assert_json_carries_the_numbers(report: &FidelityReport) {
+    let directory = tempfile::tempdir().unwrap();
+    let path = directory.path().join("fidelity.json");
+    report.write_json(&path).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    assert_eq!(json["overall"]["hole_rate"], serde_json::json!(0.0));
+    assert_eq!(
+        json["overall"]["normal_error_mean_degrees"],
+        serde_json::json!(report.overall.normal_error_mean_degrees)
+    );
+    assert_eq!(json["setup"]["acceptance"], "box");
+    assert_eq!(json["views"].as_array().map(Vec::len), Some(report.views.len()));
 }
 
 #[test]
