@@ -24,8 +24,8 @@ const LIGHT_RIGHT_OFFSET: f32 = 0.3;
 const LIGHT_INTENSITY: f32 = 0.8;
 
 pub struct ComparisonScenes {
-    mesh: Scene,
-    points: Scene,
+    mesh: SceneObject,
+    points: SceneObject,
     bounds: Aabb,
 }
 
@@ -47,8 +47,8 @@ impl ComparisonScenes {
             .ok_or(FidelityError::EmptyMesh)?;
         let offset = Affine3A::from_translation(patches.offset.as_vec3());
         Ok(Self {
-            mesh: single_object_scene("mesh", Affine3A::IDENTITY, Geometry::Mesh(mesh)),
-            points: single_object_scene("points", offset, Geometry::Patches(patches)),
+            mesh: object("mesh", Affine3A::IDENTITY, Geometry::Mesh(mesh)),
+            points: object("points", offset, Geometry::Patches(patches)),
             bounds,
         })
     }
@@ -67,24 +67,18 @@ impl ComparisonScenes {
     /// square image.
     pub fn for_view(&self, direction: Vec3) -> ViewScenes {
         let camera = Scene::framing_camera(&self.bounds, direction, VERTICAL_FOV_DEGREES, 1.0);
-        let lights = vec![shoulder_light(&camera)];
-        let place = |scene: &Scene| Scene { camera, lights: lights.clone(), ..scene.clone() };
-        ViewScenes { mesh: place(&self.mesh), points: place(&self.points) }
+        let scene_of = |object: &SceneObject| Scene {
+            camera,
+            lights: vec![shoulder_light(&camera)],
+            background: Background::Solid(Vec3::ZERO),
+            objects: vec![object.clone()],
+        };
+        ViewScenes { mesh: scene_of(&self.mesh), points: scene_of(&self.points) }
     }
 }
 
-fn single_object_scene(name: &str, transform: Affine3A, geometry: Geometry) -> Scene {
-    Scene {
-        camera: Scene::framing_camera(&Aabb::new(Vec3::ZERO, Vec3::ONE), Vec3::Z, VERTICAL_FOV_DEGREES, 1.0),
-        lights: Vec::new(),
-        background: Background::Solid(Vec3::ZERO),
-        objects: vec![SceneObject {
-            name: name.to_owned(),
-            transform,
-            material: Material::default(),
-            geometry,
-        }],
-    }
+fn object(name: &str, transform: Affine3A, geometry: Geometry) -> SceneObject {
+    SceneObject { name: name.to_owned(), transform, material: Material::default(), geometry }
 }
 
 fn shoulder_light(camera: &Camera) -> Light {
