@@ -65,7 +65,6 @@ fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError>
     check_version(&header, origin)?;
     if header.point_format().is_compressed {
         check_laszip_items(&header, origin)?;
-        check_laz_chunks_cover_points(read, &header, origin)?;
         let stream_bytes = read.seek(SeekFrom::End(0)).map_err(|source| IoError::os(origin, source))?;
         // A chunk table we cannot locate is left to the `laz` crate, which reports it.
         if let Ok(chunks) = laz_chunk_count(read)
@@ -74,6 +73,8 @@ fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError>
             let problem = format!("LAZ chunk table declares {chunks} chunks in a {stream_bytes}-byte file");
             return Err(IoError::malformed(origin, problem));
         }
+        // Reads the chunk table, so only after its count is known to be sane.
+        check_laz_chunks_cover_points(read, &header, origin)?;
     }
     read.seek(SeekFrom::Start(0)).map(drop).map_err(|source| IoError::os(origin, source))
 }
