@@ -37,6 +37,12 @@ impl Instance {
         })
     }
 
+    /// Object lengths to world lengths, exact for uniform scales. Taken from the inverse
+    /// transform's first column, as the GPU's closest-hit shader does.
+    pub fn world_scale(&self) -> f32 {
+        1.0 / self.world_to_object.matrix3.x_axis.length()
+    }
+
     pub fn world_bounds(&self) -> Aabb {
         self.world_bounds
     }

@@ -3,7 +3,7 @@
 //! when the path goes on).
 
 use glam::Vec3;
-use pointray_kernels::{Ray, background, face_forward, patch_normal};
+use pointray_kernels::{Ray, background, face_forward, patch_normal, self_clearance};
 use pointray_scene::{Background, Frame, Geometry, RenderSettings};
 
 use crate::object_bvh::triangle_corners;
@@ -41,13 +41,14 @@ impl CpuRenderer {
         let mut radiance = Vec3::ZERO;
         let mut weight = 1.0;
         let mut aov = PrimaryAov::MISS;
+        let mut t_min = 0.0;
         for depth in 0..settings.max_depth {
             if depth == 0 {
                 counts.primary += 1;
             } else {
                 counts.reflection += 1;
             }
-            let Some(hit) = self.closest_hit(&ray, settings) else {
+            let Some(hit) = self.closest_hit(&ray, t_min, settings) else {
                 return (radiance + weight * self.background(ray.direction), aov);
             };
             let instance = &self.top.instances[hit.instance];
@@ -67,6 +68,7 @@ impl CpuRenderer {
                 normal,
                 to_viewer: -ray.direction,
                 base_color: self.base_color(&hit),
+                clearance: self.clearance(&hit),
             };
             let local = self.shade(&point, &object.material, settings, counts);
             let reflectivity = object.material.reflectivity;
@@ -77,6 +79,7 @@ impl CpuRenderer {
             weight *= reflectivity;
             let mirrored = ray.direction - 2.0 * normal.dot(ray.direction) * normal;
             ray = Ray::new(position + normal * self.ray_epsilon, mirrored);
+            t_min = point.clearance;
         }
         (radiance, aov)
     }
@@ -90,6 +93,18 @@ impl CpuRenderer {
                 let [a, b, c] = triangle_corners(mesh, index);
                 (b - a).cross(c - a)
             }
+        }
+    }
+
+    /// How far secondary rays leaving the hit ignore what they meet: a fraction of the hit
+    /// patch's support radius in world units, nothing for triangles.
+    fn clearance(&self, hit: &SceneHit) -> f32 {
+        let instance = &self.top.instances[hit.instance];
+        match instance.blas.geometry() {
+            Geometry::Patches(patches) => {
+                self_clearance(patches.hot[hit.primitive as usize].radius() * instance.world_scale())
+            }
+            Geometry::Mesh(_) => 0.0,
         }
     }
 

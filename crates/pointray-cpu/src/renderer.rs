@@ -103,12 +103,12 @@ impl CpuRenderer {
         }
     }
 
-    pub(crate) fn closest_hit(&self, ray: &Ray, settings: &RenderSettings) -> Option<SceneHit> {
-        self.top.closest_hit(ray, 0.0, f32::INFINITY, acceptance(settings.acceptance))
+    pub(crate) fn closest_hit(&self, ray: &Ray, t_min: f32, settings: &RenderSettings) -> Option<SceneHit> {
+        self.top.closest_hit(ray, t_min, f32::INFINITY, acceptance(settings.acceptance))
     }
 
-    pub(crate) fn occluded(&self, ray: &Ray, distance: f32, settings: &RenderSettings) -> bool {
-        self.top.occluded(ray, 0.0, distance, acceptance(settings.acceptance))
+    pub(crate) fn occluded(&self, ray: &Ray, t_min: f32, distance: f32, settings: &RenderSettings) -> bool {
+        self.top.occluded(ray, t_min, distance, acceptance(settings.acceptance))
     }
 }
 

@@ -16,6 +16,8 @@ pub struct ShadingPoint {
     pub to_viewer: Vec3,
     /// The material's diffuse colour, or the point's colour.
     pub base_color: Vec3,
+    /// Secondary rays leaving this point ignore hits closer than this (`self_clearance`).
+    pub clearance: f32,
 }
 
 impl CpuRenderer {
@@ -42,7 +44,7 @@ impl CpuRenderer {
             }
             if settings.shadows {
                 counts.shadow += 1;
-                if self.occluded(&Ray::new(shadow_origin, to_light), distance, settings) {
+                if self.occluded(&Ray::new(shadow_origin, to_light), point.clearance, distance, settings) {
                     continue;
                 }
             }

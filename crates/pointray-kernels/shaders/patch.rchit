@@ -6,6 +6,7 @@
 #include "bindings.glsl"
 #include "payload.glsl"
 #include "patch_normal.glsl"
+#include "self_clearance.glsl"
 
 layout(location = HIT_PAYLOAD_LOCATION) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec2 hit_uv;
@@ -21,4 +22,7 @@ void main() {
     payload.instance = gl_InstanceCustomIndexEXT;
     payload.primitive = patch_index;
     payload.color_rgba8 = load_cold(object, patch_index).color_rgba8;
+    // World lengths from the inverse transform's first column, as the CPU renderer does.
+    float world_scale = 1.0 / length(gl_WorldToObjectEXT[0]);
+    payload.clearance = self_clearance(patch_record.origin_radius.w * world_scale);
 }

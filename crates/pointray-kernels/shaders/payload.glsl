@@ -11,6 +11,7 @@ struct HitPayload {
     uint instance;             // MISS_ID on a miss
     uint primitive;
     uint color_rgba8;          // the point's colour (white for meshes)
+    float clearance;           // secondary rays leaving the hit start at this t (self_clearance)
 };
 
 struct ShadowPayload {

@@ -20,4 +20,5 @@ void main() {
     payload.instance = gl_InstanceCustomIndexEXT;
     payload.primitive = uint(gl_PrimitiveID);
     payload.color_rgba8 = 0xffffffffu;
+    payload.clearance = 0.0;
 }

@@ -14,6 +14,7 @@ pub mod patch_normal;
 pub mod phong;
 pub mod quadratic_roots;
 pub mod ray;
+pub mod self_clearance;
 
 pub use background::background;
 pub use camera_ray::{PinholeCamera, camera_ray, sample_jitter};
@@ -24,3 +25,4 @@ pub use patch_normal::patch_normal;
 pub use phong::{PhongSurface, phong};
 pub use quadratic_roots::{QuadraticRoots, quadratic_roots};
 pub use ray::Ray;
+pub use self_clearance::self_clearance;

@@ -69,6 +69,10 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
              result = phong(vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), vec3(1.0), surface);",
     ),
     (
+        "self_clearance.glsl",
+        "result = vec3(self_clearance(0.5));",
+    ),
+    (
         "background.glsl",
         "result = background(vec3(0.0, 1.0, 0.0), vec3(0.2, 0.4, 1.0), vec3(1.0));",
     ),
