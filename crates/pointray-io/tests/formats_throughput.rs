@@ -34,8 +34,9 @@ fn write_las(path: &Path, compressed: bool) {
     let mut builder = Builder::from((1, 2));
     builder.point_format = Format::new(3).unwrap();
     builder.point_format.is_compressed = compressed;
-    let transform = Transform { scale: 0.001, offset: 0.0 };
-    builder.transforms = Vector { x: transform, y: transform, z: transform };
+    // Millimetre steps around a geo-referenced origin, as survey tiles store them.
+    let around = |offset| Transform { scale: 0.001, offset };
+    builder.transforms = Vector { x: around(500_000.0), y: around(4_000_000.0), z: around(0.0) };
     let mut writer = las::Writer::from_path(path, builder.into_header().unwrap()).unwrap();
     for i in 0..POINTS {
         let ([x, y, z], [r, g, b], intensity) = sample(i);
