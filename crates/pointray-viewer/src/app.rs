@@ -1,0 +1,327 @@
+//! The window and its frame loop (winit): input to camera and toggles, render, present,
+//! title statistics, and the scripted turntable.
+
+use std::collections::HashSet;
+use std::sync::Arc;
+use std::time::Instant;
+
+use glam::{Vec2, Vec3};
+use pointray_scene::{Camera, Frame, RenderSettings};
+use winit::application::ApplicationHandler;
+use winit::dpi::{PhysicalPosition, PhysicalSize};
+use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow};
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::raw_window_handle::{HasDisplayHandle, HasWindowHandle};
+use winit::window::{Window, WindowId};
+
+use crate::controls::{self, Action};
+use crate::error::ViewerError;
+use crate::frame_source::FrameSource;
+use crate::frame_stats::FrameStats;
+use crate::orbit::orbit_camera;
+use crate::pixels::frame_bytes;
+use crate::present::{MessageCounter, Presenter};
+use crate::refinement::{Pass, Refinement};
+use crate::screenshots;
+use crate::view_state::ViewState;
+use crate::{Script, ViewerOptions};
+
+/// The scripted run's progress.
+struct ScriptRun {
+    script: Script,
+    start: Camera,
+    next_frame: u32,
+}
+
+#[derive(Default)]
+struct Mouse {
+    position: Option<Vec2>,
+    orbiting: bool,
+    panning: bool,
+}
+
+pub(crate) struct App {
+    // Before the window: the swapchain must go while the window still exists.
+    presenter: Option<Presenter>,
+    window: Option<Window>,
+    pub(crate) presenter_messages: Option<Arc<MessageCounter>>,
+    pub(crate) source: FrameSource,
+    pub(crate) view: ViewState,
+    options: ViewerOptions,
+    script: Option<ScriptRun>,
+    refinement: Refinement,
+    stats: FrameStats,
+    shown: Option<Frame>,
+    mouse: Mouse,
+    held: HashSet<KeyCode>,
+    last_tick: Instant,
+    pub(crate) frames_presented: u64,
+    pub(crate) error: Option<ViewerError>,
+}
+
+impl App {
+    pub(crate) fn new(source: FrameSource, view: ViewState, options: ViewerOptions) -> Self {
+        let now = Instant::now();
+        let script = options.script.clone().map(|script| ScriptRun { script, start: view.scene.camera, next_frame: 0 });
+        Self {
+            presenter: None,
+            window: None,
+            presenter_messages: None,
+            refinement: Refinement::new(view.settings.samples_per_pixel, now),
+            stats: FrameStats::new(now),
+            source,
+            view,
+            options,
+            script,
+            shown: None,
+            mouse: Mouse::default(),
+            held: HashSet::new(),
+            last_tick: now,
+            frames_presented: 0,
+            error: None,
+        }
+    }
+
+    /// Tears the presentation down before the window it draws into.
+    pub(crate) fn close_window(&mut self) {
+        self.presenter = None;
+        self.window = None;
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, error: ViewerError) {
+        self.error.get_or_insert(error);
+        event_loop.exit();
+    }
+
+    fn open_window(&mut self, event_loop: &ActiveEventLoop) -> Result<(), ViewerError> {
+        let size = PhysicalSize::new(self.view.settings.width, self.view.settings.height);
+        let attributes = Window::default_attributes().with_title("pointray view").with_inner_size(size);
+        let window = event_loop.create_window(attributes).map_err(|e| ViewerError::Window(e.to_string()))?;
+        let display = window.display_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
+        let handle = window.window_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
+        let inner = window.inner_size();
+        let presenter = Presenter::new(
+            display,
+            handle,
+            (inner.width, inner.height),
+            self.options.vsync,
+            self.options.validation,
+            self.source.vulkan_device_name(),
+        )?;
+        self.presenter_messages = Some(presenter.message_counter());
+        self.presenter = Some(presenter);
+        self.window = Some(window);
+        Ok(())
+    }
+
+    fn redraw(&mut self) -> Result<(), ViewerError> {
+        let started = Instant::now();
+        let frame = match &mut self.script {
+            Some(_) => Some(self.scripted_frame()?),
+            None => self.interactive_frame(started)?,
+        };
+        if let Some(frame) = frame {
+            self.shown = Some(frame);
+        }
+        self.present_shown()?;
+        if let Some((fps, mean)) = self.stats.record(Instant::now(), started.elapsed()) {
+            let title = format!(
+                "pointray view: {fps:.1} fps, {:.1} ms/frame, {} spp, {}",
+                mean.as_secs_f64() * 1e3,
+                self.view.settings.samples_per_pixel,
+                self.source.describe()
+            );
+            if let Some(window) = &self.window {
+                window.set_title(&title);
+            }
+        }
+        Ok(())
+    }
+
+    /// Frame `i` of the turntable, at the settings' size and samples, so that it is the
+    /// image `pointray render` makes from that camera.
+    fn scripted_frame(&mut self) -> Result<Frame, ViewerError> {
+        let run = self.script.as_mut().expect("scripted");
+        let index = run.next_frame;
+        self.view.scene.camera = orbit_camera(&run.start, index, run.script.frames, run.script.arc_degrees);
+        run.next_frame += 1;
+        let frame = self.source.render(&self.view.scene, &self.view.settings)?;
+        if let Some(dir) = &run.script.sequence {
+            screenshots::save(&frame, &screenshots::sequence_path(dir, index))?;
+        }
+        Ok(frame)
+    }
+
+    fn interactive_frame(&mut self, now: Instant) -> Result<Option<Frame>, ViewerError> {
+        let step = controls::fly_direction(&self.held);
+        let seconds = now.duration_since(self.last_tick).as_secs_f32().min(0.1);
+        self.last_tick = now;
+        if step != Vec3::ZERO {
+            self.view.rig.fly(step * seconds);
+            self.refinement.restart(now);
+        }
+        self.view.sync_camera();
+        let Some(pass) = self.refinement.next(now, self.source.is_cpu()) else { return Ok(None) };
+        let settings = self.pass_settings(pass);
+        Ok(Some(self.source.render(&self.view.scene, &settings)?))
+    }
+
+    /// The window's size (divided for previews) and the pass's samples.
+    fn pass_settings(&self, pass: Pass) -> RenderSettings {
+        let size = self.window.as_ref().map(Window::inner_size).unwrap_or(PhysicalSize::new(1, 1));
+        RenderSettings {
+            width: (size.width / pass.divisor).max(1),
+            height: (size.height / pass.divisor).max(1),
+            samples_per_pixel: pass.samples_per_pixel,
+            ..self.view.settings
+        }
+    }
+
+    fn present_shown(&mut self) -> Result<(), ViewerError> {
+        let (Some(presenter), Some(frame)) = (&mut self.presenter, &self.shown) else { return Ok(()) };
+        let Some((extent, order)) = presenter.target()? else { return Ok(()) };
+        let bytes = frame_bytes(frame, extent.width, extent.height, order);
+        if presenter.present(&bytes)? == crate::present::Presented::Shown {
+            self.frames_presented += 1;
+        }
+        Ok(())
+    }
+
+    /// After the last scripted frame: the screenshot, then the end of the loop.
+    fn finish_script(&mut self, event_loop: &ActiveEventLoop) -> Result<(), ViewerError> {
+        let Some(run) = &self.script else { return Ok(()) };
+        if run.next_frame < run.script.frames {
+            return Ok(());
+        }
+        if let (Some(path), Some(frame)) = (&run.script.screenshot, &self.shown) {
+            screenshots::save(frame, path)?;
+        }
+        event_loop.exit();
+        Ok(())
+    }
+
+    fn key(&mut self, event_loop: &ActiveEventLoop, event: &KeyEvent) -> Result<(), ViewerError> {
+        let PhysicalKey::Code(code) = event.physical_key else { return Ok(()) };
+        if event.state == ElementState::Released {
+            self.held.remove(&code);
+            return Ok(());
+        }
+        self.held.insert(code);
+        if event.repeat || self.script.is_some() {
+            return Ok(());
+        }
+        match controls::action_for(code) {
+            Some(Action::Quit) => event_loop.exit(),
+            Some(Action::Screenshot) => self.save_screenshot()?,
+            Some(Action::ToggleVsync) => {
+                if let Some(presenter) = &mut self.presenter {
+                    presenter.set_vsync(!presenter.vsync());
+                    println!("vsync {}", if presenter.vsync() { "on" } else { "off" });
+                }
+            }
+            Some(action) => {
+                if self.view.apply(action) {
+                    self.refinement.restart(Instant::now());
+                }
+            }
+            None => {}
+        }
+        Ok(())
+    }
+
+    fn save_screenshot(&self) -> Result<(), ViewerError> {
+        let Some(frame) = &self.shown else { return Ok(()) };
+        let path = screenshots::next_screenshot_path(std::path::Path::new("."));
+        screenshots::save(frame, &path)?;
+        println!("saved {}", path.display());
+        Ok(())
+    }
+
+    fn mouse_moved(&mut self, position: PhysicalPosition<f64>) {
+        let position = Vec2::new(position.x as f32, position.y as f32);
+        let delta = self.mouse.position.map(|last| position - last).unwrap_or(Vec2::ZERO);
+        self.mouse.position = Some(position);
+        if self.script.is_some() || delta == Vec2::ZERO {
+            return;
+        }
+        if self.mouse.orbiting {
+            self.view.rig.orbit(delta);
+        } else if self.mouse.panning {
+            let height = self.window.as_ref().map_or(1, |w| w.inner_size().height);
+            self.view.rig.pan(delta, height);
+        } else {
+            return;
+        }
+        self.refinement.restart(Instant::now());
+    }
+
+    fn handle(&mut self, event_loop: &ActiveEventLoop, event: WindowEvent) -> Result<(), ViewerError> {
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => {
+                if let Some(presenter) = &mut self.presenter {
+                    presenter.resize(size.width, size.height);
+                }
+                self.refinement.restart(Instant::now());
+            }
+            WindowEvent::KeyboardInput { event, .. } => self.key(event_loop, &event)?,
+            WindowEvent::MouseInput { state, button, .. } => {
+                let pressed = state == ElementState::Pressed;
+                match button {
+                    MouseButton::Left => self.mouse.orbiting = pressed,
+                    MouseButton::Right | MouseButton::Middle => self.mouse.panning = pressed,
+                    _ => {}
+                }
+            }
+            WindowEvent::CursorMoved { position, .. } => self.mouse_moved(position),
+            WindowEvent::MouseWheel { delta, .. } if self.script.is_none() => {
+                let lines = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                };
+                self.view.rig.zoom(lines);
+                self.refinement.restart(Instant::now());
+            }
+            WindowEvent::RedrawRequested => {
+                self.redraw()?;
+                self.finish_script(event_loop)?;
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// Whether frames must keep coming without input.
+    fn busy(&self) -> bool {
+        self.script.is_some() || !self.refinement.done() || controls::fly_direction(&self.held) != Vec3::ZERO
+    }
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.window.is_some() {
+            return;
+        }
+        if let Err(error) = self.open_window(event_loop) {
+            self.fail(event_loop, error);
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        if let Err(error) = self.handle(event_loop, event) {
+            self.fail(event_loop, error);
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if self.busy() {
+            event_loop.set_control_flow(ControlFlow::Poll);
+            if let Some(window) = &self.window {
+                window.request_redraw();
+            }
+        } else {
+            event_loop.set_control_flow(ControlFlow::Wait);
+        }
+    }
+}

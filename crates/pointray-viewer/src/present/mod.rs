@@ -1,0 +1,12 @@
+//! Presentation: a Vulkan swapchain on the window, fed with the host pixels of each frame.
+
+mod context;
+mod instance;
+mod presenter;
+mod staging;
+mod swapchain;
+mod validation;
+
+pub use presenter::{Presented, Presenter};
+pub(crate) use swapchain::ByteOrder;
+pub use validation::MessageCounter;
