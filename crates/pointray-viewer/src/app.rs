@@ -63,7 +63,11 @@ pub(crate) struct App {
 impl App {
     pub(crate) fn new(source: FrameSource, view: ViewState, options: ViewerOptions) -> Self {
         let now = Instant::now();
-        let script = options.script.clone().map(|script| ScriptRun { script, start: view.scene.camera, next_frame: 0 });
+        let script = options.script.clone().map(|script| ScriptRun {
+            script,
+            start: view.scene.camera,
+            next_frame: 0,
+        });
         Self {
             presenter: None,
             window: None,
@@ -220,12 +224,8 @@ impl App {
                     println!("vsync {}", if presenter.vsync() { "on" } else { "off" });
                 }
             }
-            Some(action) => {
-                if self.view.apply(action) {
-                    self.refinement.restart(Instant::now());
-                }
-            }
-            None => {}
+            Some(action) if self.view.apply(action) => self.refinement.restart(Instant::now()),
+            Some(_) | None => {}
         }
         Ok(())
     }

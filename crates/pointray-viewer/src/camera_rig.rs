@@ -30,7 +30,14 @@ impl CameraRig {
         let height = offset.dot(up) / distance;
         let pitch = height.clamp(-1.0, 1.0).asin().clamp(-PITCH_LIMIT, PITCH_LIMIT);
         let yaw = offset.dot(right_axis).atan2(offset.dot(back_axis));
-        Self { target: camera.look_at, distance, yaw, pitch, up, vertical_fov_degrees: camera.vertical_fov_degrees }
+        Self {
+            target: camera.look_at,
+            distance,
+            yaw,
+            pitch,
+            up,
+            vertical_fov_degrees: camera.vertical_fov_degrees,
+        }
     }
 
     pub fn camera(&self) -> Camera {
@@ -54,8 +61,8 @@ impl CameraRig {
     /// A drag of `pixels` in a window `height` pixels high moves the scene with the mouse.
     pub fn pan(&mut self, pixels: Vec2, height: u32) {
         let (right, up) = self.screen_axes();
-        let world_per_pixel = 2.0 * self.distance * (self.vertical_fov_degrees.to_radians() / 2.0).tan()
-            / height.max(1) as f32;
+        let world_per_pixel =
+            2.0 * self.distance * (self.vertical_fov_degrees.to_radians() / 2.0).tan() / height.max(1) as f32;
         self.target += (-right * pixels.x + up * pixels.y) * world_per_pixel;
     }
 

@@ -52,7 +52,9 @@ pub(crate) fn action_for(key: KeyCode) -> Option<Action> {
 
 /// The flight direction (right, up, forward) of the held keys; zero when none is held.
 pub(crate) fn fly_direction(held: &HashSet<KeyCode>) -> Vec3 {
-    let axis = |minus: KeyCode, plus: KeyCode| held.contains(&plus) as i32 as f32 - held.contains(&minus) as i32 as f32;
+    let axis = |minus: KeyCode, plus: KeyCode| {
+        held.contains(&plus) as i32 as f32 - held.contains(&minus) as i32 as f32
+    };
     Vec3::new(
         axis(KeyCode::KeyA, KeyCode::KeyD),
         axis(KeyCode::KeyQ, KeyCode::KeyE),

@@ -15,7 +15,7 @@ pub enum ViewerError {
     #[error("the Vulkan renderer: {0}")]
     Renderer(#[from] pointray_vulkan::VulkanError),
     #[error("writing the screenshot {path}: {source}")]
-    Screenshot { path: PathBuf, source: pointray_scene::SceneError },
+    Screenshot { path: PathBuf, source: Box<pointray_scene::SceneError> },
     #[error("creating the sequence folder {path}: {source}")]
     SequenceDir { path: PathBuf, source: std::io::Error },
     #[error("the Vulkan validation layer reported {0} message(s) (printed above)")]

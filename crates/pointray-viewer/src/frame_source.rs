@@ -21,7 +21,7 @@ pub enum RenderBackend {
 pub(crate) enum FrameSource {
     Vulkan {
         // Before the renderer: its GPU objects go first.
-        prepared: PreparedScene,
+        prepared: Box<PreparedScene>,
         lights: Vec<Light>,
         renderer: Box<VulkanRenderer>,
     },
@@ -42,13 +42,13 @@ impl FrameSource {
         let renderer = match choice {
             RenderBackend::Cpu => None,
             RenderBackend::Vulkan => Some(open()?),
-            RenderBackend::Auto => open()
-                .ok()
-                .filter(|r| !r.device_info().device_type.to_ascii_lowercase().contains("cpu")),
+            RenderBackend::Auto => {
+                open().ok().filter(|r| !r.device_info().device_type.to_ascii_lowercase().contains("cpu"))
+            }
         };
         match renderer {
             Some(renderer) => {
-                let prepared = renderer.prepare(scene)?;
+                let prepared = Box::new(renderer.prepare(scene)?);
                 Ok(Self::Vulkan { prepared, lights: scene.lights.clone(), renderer: Box::new(renderer) })
             }
             None => Ok(Self::cpu(scene)),
@@ -56,7 +56,11 @@ impl FrameSource {
     }
 
     fn cpu(scene: &Scene) -> Self {
-        Self::Cpu { renderer: Box::new(CpuRenderer::new(scene)), camera: scene.camera, lights: scene.lights.clone() }
+        Self::Cpu {
+            renderer: Box::new(CpuRenderer::new(scene)),
+            camera: scene.camera,
+            lights: scene.lights.clone(),
+        }
     }
 
     pub(crate) fn describe(&self) -> String {
@@ -91,7 +95,7 @@ impl FrameSource {
                 if *lights != scene.lights {
                     // Lights live in a GPU buffer built by `prepare`; re-preparing is the
                     // public way to change them (a key press, not every frame).
-                    *prepared = renderer.prepare(scene)?;
+                    **prepared = renderer.prepare(scene)?;
                     *lights = scene.lights.clone();
                 }
                 prepared.camera = scene.camera;

@@ -41,7 +41,8 @@ mod tests {
         let start = Instant::now();
         let mut stats = FrameStats::new(start);
         assert_eq!(stats.record(start + Duration::from_millis(100), Duration::from_millis(10)), None);
-        let (fps, mean) = stats.record(start + Duration::from_millis(500), Duration::from_millis(30)).unwrap();
+        let (fps, mean) =
+            stats.record(start + Duration::from_millis(500), Duration::from_millis(30)).unwrap();
         assert!((fps - 4.0).abs() < 1e-9);
         assert_eq!(mean, Duration::from_millis(20));
     }

@@ -74,9 +74,14 @@ pub struct ViewerSummary {
 
 /// Opens the window and runs until it is closed, Escape is pressed, or the script ends.
 /// The event loop may be created once per process.
-pub fn run_viewer(scene: Scene, settings: RenderSettings, options: ViewerOptions) -> Result<ViewerSummary, ViewerError> {
+pub fn run_viewer(
+    scene: Scene,
+    settings: RenderSettings,
+    options: ViewerOptions,
+) -> Result<ViewerSummary, ViewerError> {
     if let Some(dir) = options.script.as_ref().and_then(|s| s.sequence.as_ref()) {
-        std::fs::create_dir_all(dir).map_err(|source| ViewerError::SequenceDir { path: dir.clone(), source })?;
+        std::fs::create_dir_all(dir)
+            .map_err(|source| ViewerError::SequenceDir { path: dir.clone(), source })?;
     }
     let source = FrameSource::open(options.backend, &options.device, options.validation, &scene)?;
     let backend = source.describe();

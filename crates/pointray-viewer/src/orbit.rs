@@ -17,7 +17,12 @@ mod tests {
     use super::*;
 
     fn start() -> Camera {
-        Camera { position: Vec3::new(0.0, 1.0, 5.0), look_at: Vec3::new(0.0, 1.0, 0.0), up: Vec3::Y, vertical_fov_degrees: 40.0 }
+        Camera {
+            position: Vec3::new(0.0, 1.0, 5.0),
+            look_at: Vec3::new(0.0, 1.0, 0.0),
+            up: Vec3::Y,
+            vertical_fov_degrees: 40.0,
+        }
     }
 
     #[test]

@@ -12,7 +12,8 @@ pub(crate) fn frame_bytes(frame: &Frame, width: u32, height: u32, order: ByteOrd
         let source_y = nearest(y, height, frame.height);
         for x in 0..width {
             let source_x = nearest(x, width, frame.width);
-            let [r, g, b] = frame.color[(source_y * frame.width + source_x) as usize].to_array().map(srgb_encode);
+            let [r, g, b] =
+                frame.color[(source_y * frame.width + source_x) as usize].to_array().map(srgb_encode);
             let pixel = match order {
                 ByteOrder::Bgra => [b, g, r, 255],
                 ByteOrder::Rgba => [r, g, b, 255],
@@ -39,7 +40,10 @@ mod tests {
         Frame {
             width,
             height,
-            color: (0..height).flat_map(|y| (0..width).map(move |x| (x, y))).map(|(x, y)| color(x, y)).collect(),
+            color: (0..height)
+                .flat_map(|y| (0..width).map(move |x| (x, y)))
+                .map(|(x, y)| color(x, y))
+                .collect(),
             depth: vec![0.0; n],
             normal: vec![Vec3::ZERO; n],
             instance_id: vec![Frame::MISS; n],
@@ -59,6 +63,9 @@ mod tests {
         let f = frame(2, 2, |x, y| Vec3::splat(if (x + y) % 2 == 0 { 1.0 } else { 0.0 }));
         let bytes = frame_bytes(&f, 4, 4, ByteOrder::Rgba);
         let red = |x: usize, y: usize| bytes[(y * 4 + x) * 4];
-        assert_eq!([red(0, 0), red(1, 1), red(2, 0), red(3, 1), red(2, 2), red(0, 3)], [255, 255, 0, 0, 255, 0]);
+        assert_eq!(
+            [red(0, 0), red(1, 1), red(2, 0), red(3, 1), red(2, 2), red(0, 3)],
+            [255, 255, 0, 0, 255, 0]
+        );
     }
 }

@@ -63,7 +63,8 @@ mod tests {
     fn still_view_doubles_samples_then_stops() {
         let start = Instant::now();
         let mut refinement = Refinement::new(1, start);
-        let samples: Vec<u32> = std::iter::from_fn(|| refinement.next(start, false)).map(|p| p.samples_per_pixel).collect();
+        let samples: Vec<u32> =
+            std::iter::from_fn(|| refinement.next(start, false)).map(|p| p.samples_per_pixel).collect();
         assert_eq!(samples, vec![1, 2, 4, 8, 16]);
         refinement.restart(start);
         assert_eq!(refinement.next(start, false), Some(Pass { samples_per_pixel: 1, divisor: 1 }));
@@ -73,7 +74,10 @@ mod tests {
     fn moving_cpu_view_gets_previews_until_it_settles() {
         let start = Instant::now();
         let mut refinement = Refinement::new(2, start);
-        assert_eq!(refinement.next(start, true), Some(Pass { samples_per_pixel: 2, divisor: PREVIEW_DIVISOR }));
+        assert_eq!(
+            refinement.next(start, true),
+            Some(Pass { samples_per_pixel: 2, divisor: PREVIEW_DIVISOR })
+        );
         let later = start + SETTLE;
         assert_eq!(refinement.next(later, true), Some(Pass { samples_per_pixel: 2, divisor: 1 }));
     }

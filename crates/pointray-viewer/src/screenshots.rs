@@ -10,7 +10,7 @@ use crate::error::ViewerError;
 pub(crate) fn save(frame: &Frame, path: &Path) -> Result<(), ViewerError> {
     write_frame(frame, path, &AovSelection::default())
         .map(|_| ())
-        .map_err(|source| ViewerError::Screenshot { path: path.to_path_buf(), source })
+        .map_err(|source| ViewerError::Screenshot { path: path.to_path_buf(), source: Box::new(source) })
 }
 
 /// `DIR/frame-00012.png`: zero-padded so the files sort in frame order.

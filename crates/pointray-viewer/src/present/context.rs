@@ -54,7 +54,6 @@ impl PresentContext {
         Ok(Self { device, queue, physical, queue_family, memory, surface, surface_fn, instance })
     }
 
-
     /// A memory type with all of `flags` among those `bits` allows.
     pub(crate) fn memory_type(&self, bits: u32, flags: vk::MemoryPropertyFlags) -> Option<u32> {
         let types = &self.memory.memory_types[..self.memory.memory_type_count as usize];
@@ -82,8 +81,8 @@ fn open_device(
     preferred: Option<&str>,
 ) -> Result<(vk::PhysicalDevice, u32, ash::Device), ViewerError> {
     // SAFETY: plain enumeration on a live instance.
-    let mut devices =
-        unsafe { instance.enumerate_physical_devices() }.map_err(ViewerError::vk("vkEnumeratePhysicalDevices"))?;
+    let mut devices = unsafe { instance.enumerate_physical_devices() }
+        .map_err(ViewerError::vk("vkEnumeratePhysicalDevices"))?;
     let name_of = |device: vk::PhysicalDevice| {
         // SAFETY: plain query on an enumerated device.
         let properties = unsafe { instance.get_physical_device_properties(device) };
@@ -97,11 +96,14 @@ fn open_device(
             ViewerError::PresentSetup("no Vulkan device can present to this window (VK_KHR_swapchain)".into())
         })?;
     let priorities = [1.0f32];
-    let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(family).queue_priorities(&priorities)];
+    let queues =
+        [vk::DeviceQueueCreateInfo::default().queue_family_index(family).queue_priorities(&priorities)];
     let extensions = [ash::khr::swapchain::NAME.as_ptr()];
-    let info = vk::DeviceCreateInfo::default().queue_create_infos(&queues).enabled_extension_names(&extensions);
+    let info =
+        vk::DeviceCreateInfo::default().queue_create_infos(&queues).enabled_extension_names(&extensions);
     // SAFETY: every pointer in `info` lives until the call returns.
-    let device = unsafe { instance.create_device(physical, &info, None) }.map_err(ViewerError::vk("vkCreateDevice"))?;
+    let device = unsafe { instance.create_device(physical, &info, None) }
+        .map_err(ViewerError::vk("vkCreateDevice"))?;
     Ok((physical, family, device))
 }
 

@@ -50,7 +50,8 @@ impl PresentInstance {
             info = info.push_next(&mut instance_messenger);
         }
         // SAFETY: every pointer in `info` lives until the call returns.
-        let instance = unsafe { entry.create_instance(&info, None) }.map_err(ViewerError::vk("vkCreateInstance"))?;
+        let instance =
+            unsafe { entry.create_instance(&info, None) }.map_err(ViewerError::vk("vkCreateInstance"))?;
         let mut owner = Self { entry, instance, messenger: None, counter };
         if validation {
             let debug_utils = ash::ext::debug_utils::Instance::new(&owner.entry, &owner.instance);

@@ -65,8 +65,9 @@ impl Presenter {
             context,
         };
         unsafe {
-            presenter.command_pool =
-                device.create_command_pool(&pool_info, None).map_err(ViewerError::vk("vkCreateCommandPool"))?;
+            presenter.command_pool = device
+                .create_command_pool(&pool_info, None)
+                .map_err(ViewerError::vk("vkCreateCommandPool"))?;
             let allocate = vk::CommandBufferAllocateInfo::default()
                 .command_pool(presenter.command_pool)
                 .level(vk::CommandBufferLevel::PRIMARY)
@@ -129,8 +130,9 @@ impl Presenter {
         unsafe { device.wait_for_fences(&[self.in_flight], true, u64::MAX) }
             .map_err(ViewerError::vk("vkWaitForFences"))?;
         // SAFETY: the semaphore is unsignalled (its last wait completed with the fence).
-        let acquired =
-            unsafe { self.swapchain_fn.acquire_next_image(swapchain.handle, u64::MAX, self.acquired, vk::Fence::null()) };
+        let acquired = unsafe {
+            self.swapchain_fn.acquire_next_image(swapchain.handle, u64::MAX, self.acquired, vk::Fence::null())
+        };
         let index = match acquired {
             Ok((index, _suboptimal)) => index,
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => {
@@ -153,8 +155,12 @@ impl Presenter {
         self.staging = Some(staging);
         let swapchain = self.swapchain.as_ref().expect("checked above");
         self.submit_copy(swapchain, buffer, index)?;
-        let (swapchains, indices, waits) = ([swapchain.handle], [index], [swapchain.copy_done[index as usize]]);
-        let info = vk::PresentInfoKHR::default().wait_semaphores(&waits).swapchains(&swapchains).image_indices(&indices);
+        let (swapchains, indices, waits) =
+            ([swapchain.handle], [index], [swapchain.copy_done[index as usize]]);
+        let info = vk::PresentInfoKHR::default()
+            .wait_semaphores(&waits)
+            .swapchains(&swapchains)
+            .image_indices(&indices);
         // SAFETY: the image was acquired and its copy submitted, signalling `waits`.
         match unsafe { self.swapchain_fn.queue_present(self.context.queue, &info) } {
             Ok(false) => Ok(Presented::Shown),
@@ -175,8 +181,11 @@ impl Presenter {
             device
                 .reset_command_buffer(self.commands, vk::CommandBufferResetFlags::empty())
                 .map_err(ViewerError::vk("vkResetCommandBuffer"))?;
-            let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
-            device.begin_command_buffer(self.commands, &begin).map_err(ViewerError::vk("vkBeginCommandBuffer"))?;
+            let begin =
+                vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+            device
+                .begin_command_buffer(self.commands, &begin)
+                .map_err(ViewerError::vk("vkBeginCommandBuffer"))?;
             record_copy(device, self.commands, buffer, image, swapchain.extent);
             device.end_command_buffer(self.commands).map_err(ViewerError::vk("vkEndCommandBuffer"))?;
             let (waits, stages) = ([self.acquired], [vk::PipelineStageFlags::TRANSFER]);
@@ -186,7 +195,9 @@ impl Presenter {
                 .wait_dst_stage_mask(&stages)
                 .command_buffers(&commands)
                 .signal_semaphores(&signals);
-            device.queue_submit(self.context.queue, &[submit], self.in_flight).map_err(ViewerError::vk("vkQueueSubmit"))
+            device
+                .queue_submit(self.context.queue, &[submit], self.in_flight)
+                .map_err(ViewerError::vk("vkQueueSubmit"))
         }
     }
 
@@ -200,7 +211,8 @@ impl Presenter {
             old.destroy(&self.context.device, &self.swapchain_fn);
         }
         if self.window_size.0 > 0 && self.window_size.1 > 0 {
-            self.swapchain = Some(Swapchain::new(&self.context, &self.swapchain_fn, self.window_size, self.vsync)?);
+            self.swapchain =
+                Some(Swapchain::new(&self.context, &self.swapchain_fn, self.window_size, self.vsync)?);
         }
         self.stale = false;
         Ok(())
@@ -239,7 +251,9 @@ unsafe fn record_copy(
         .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
         .new_layout(vk::ImageLayout::PRESENT_SRC_KHR);
     let region = vk::BufferImageCopy::default()
-        .image_subresource(vk::ImageSubresourceLayers::default().aspect_mask(vk::ImageAspectFlags::COLOR).layer_count(1))
+        .image_subresource(
+            vk::ImageSubresourceLayers::default().aspect_mask(vk::ImageAspectFlags::COLOR).layer_count(1),
+        )
         .image_extent(vk::Extent3D { width: extent.width, height: extent.height, depth: 1 });
     let none = vk::DependencyFlags::empty();
     // SAFETY (caller): `commands` is recording; buffer and image are live and big enough.
@@ -253,7 +267,13 @@ unsafe fn record_copy(
             &[],
             &[to_transfer],
         );
-        device.cmd_copy_buffer_to_image(commands, buffer, image, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[region]);
+        device.cmd_copy_buffer_to_image(
+            commands,
+            buffer,
+            image,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            &[region],
+        );
         device.cmd_pipeline_barrier(
             commands,
             vk::PipelineStageFlags::TRANSFER,

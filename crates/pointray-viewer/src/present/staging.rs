@@ -20,7 +20,8 @@ impl StagingBuffer {
             .usage(vk::BufferUsageFlags::TRANSFER_SRC)
             .sharing_mode(vk::SharingMode::EXCLUSIVE);
         // SAFETY: plain creation; on a later failure the buffer is destroyed before returning.
-        let buffer = unsafe { device.create_buffer(&info, None) }.map_err(ViewerError::vk("vkCreateBuffer"))?;
+        let buffer =
+            unsafe { device.create_buffer(&info, None) }.map_err(ViewerError::vk("vkCreateBuffer"))?;
         let bound = Self::bind_memory(context, buffer);
         match bound {
             Ok((memory, mapped)) => Ok(Self { buffer, memory, mapped, size }),
@@ -32,7 +33,10 @@ impl StagingBuffer {
         }
     }
 
-    fn bind_memory(context: &PresentContext, buffer: vk::Buffer) -> Result<(vk::DeviceMemory, *mut u8), ViewerError> {
+    fn bind_memory(
+        context: &PresentContext,
+        buffer: vk::Buffer,
+    ) -> Result<(vk::DeviceMemory, *mut u8), ViewerError> {
         let device = &context.device;
         // SAFETY: the buffer is live.
         let requirements = unsafe { device.get_buffer_memory_requirements(buffer) };
@@ -40,11 +44,13 @@ impl StagingBuffer {
         let memory_type = context
             .memory_type(requirements.memory_type_bits, flags)
             .ok_or_else(|| ViewerError::PresentSetup("no host-visible coherent memory for staging".into()))?;
-        let allocate =
-            vk::MemoryAllocateInfo::default().allocation_size(requirements.size).memory_type_index(memory_type);
+        let allocate = vk::MemoryAllocateInfo::default()
+            .allocation_size(requirements.size)
+            .memory_type_index(memory_type);
         // SAFETY: allocation, binding and mapping of fresh objects; freed on failure.
         unsafe {
-            let memory = device.allocate_memory(&allocate, None).map_err(ViewerError::vk("vkAllocateMemory"))?;
+            let memory =
+                device.allocate_memory(&allocate, None).map_err(ViewerError::vk("vkAllocateMemory"))?;
             let mapped = device
                 .bind_buffer_memory(buffer, memory, 0)
                 .and_then(|()| device.map_memory(memory, 0, vk::WHOLE_SIZE, vk::MemoryMapFlags::empty()));

@@ -69,8 +69,8 @@ impl Swapchain {
             .present_mode(pick_present_mode(&modes, vsync))
             .clipped(true);
         // SAFETY: `info` refers to the live surface; the caller destroyed any previous swapchain.
-        let handle =
-            unsafe { swapchain_fn.create_swapchain(&info, None) }.map_err(ViewerError::vk("vkCreateSwapchainKHR"))?;
+        let handle = unsafe { swapchain_fn.create_swapchain(&info, None) }
+            .map_err(ViewerError::vk("vkCreateSwapchainKHR"))?;
         let mut swapchain = Self { handle, images: Vec::new(), extent, byte_order, copy_done: Vec::new() };
         let filled = swapchain.fill(context, swapchain_fn);
         if let Err(error) = filled {
@@ -80,14 +80,19 @@ impl Swapchain {
         Ok(swapchain)
     }
 
-    fn fill(&mut self, context: &PresentContext, swapchain_fn: &ash::khr::swapchain::Device) -> Result<(), ViewerError> {
+    fn fill(
+        &mut self,
+        context: &PresentContext,
+        swapchain_fn: &ash::khr::swapchain::Device,
+    ) -> Result<(), ViewerError> {
         // SAFETY: the swapchain is live.
         self.images = unsafe { swapchain_fn.get_swapchain_images(self.handle) }
             .map_err(ViewerError::vk("vkGetSwapchainImagesKHR"))?;
         for _ in &self.images {
             // SAFETY: plain creation on the live device.
-            let semaphore = unsafe { context.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }
-                .map_err(ViewerError::vk("vkCreateSemaphore"))?;
+            let semaphore =
+                unsafe { context.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }
+                    .map_err(ViewerError::vk("vkCreateSemaphore"))?;
             self.copy_done.push(semaphore);
         }
         Ok(())
@@ -114,10 +119,9 @@ fn pick_format(formats: &[vk::SurfaceFormatKHR]) -> Result<(vk::SurfaceFormatKHR
         vk::Format::R8G8B8A8_UNORM | vk::Format::R8G8B8A8_SRGB => Some(ByteOrder::Rgba),
         _ => None,
     };
-    formats
-        .iter()
-        .find_map(|f| order(f.format).map(|o| (*f, o)))
-        .ok_or_else(|| ViewerError::PresentSetup(format!("no 8-bit RGBA/BGRA surface format among {formats:?}")))
+    formats.iter().find_map(|f| order(f.format).map(|o| (*f, o))).ok_or_else(|| {
+        ViewerError::PresentSetup(format!("no 8-bit RGBA/BGRA surface format among {formats:?}"))
+    })
 }
 
 fn pick_extent(capabilities: &vk::SurfaceCapabilitiesKHR, (width, height): (u32, u32)) -> vk::Extent2D {
@@ -129,10 +133,14 @@ fn pick_extent(capabilities: &vk::SurfaceCapabilitiesKHR, (width, height): (u32,
 }
 
 fn pick_composite_alpha(supported: vk::CompositeAlphaFlagsKHR) -> vk::CompositeAlphaFlagsKHR {
-    [vk::CompositeAlphaFlagsKHR::OPAQUE, vk::CompositeAlphaFlagsKHR::INHERIT, vk::CompositeAlphaFlagsKHR::PRE_MULTIPLIED]
-        .into_iter()
-        .find(|&mode| supported.contains(mode))
-        .unwrap_or(vk::CompositeAlphaFlagsKHR::POST_MULTIPLIED)
+    [
+        vk::CompositeAlphaFlagsKHR::OPAQUE,
+        vk::CompositeAlphaFlagsKHR::INHERIT,
+        vk::CompositeAlphaFlagsKHR::PRE_MULTIPLIED,
+    ]
+    .into_iter()
+    .find(|&mode| supported.contains(mode))
+    .unwrap_or(vk::CompositeAlphaFlagsKHR::POST_MULTIPLIED)
 }
 
 /// FIFO waits for the display (vsync, always supported); without vsync, mailbox or immediate.

@@ -1,0 +1,143 @@
+//! The viewer opens a real window (Xvfb when there is no display), renders a 30-frame
+//! scripted orbit of the procedural demo with the Vulkan backend (lavapipe here) under the
+//! validation layer, saves a screenshot, and the screenshot is the image the renderers make
+//! from the final camera.
+
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+use pointray_scene::{AovSelection, Frame, LoadOptions, RenderSettings, load_demo, write_frame};
+use pointray_viewer::{RenderBackend, Script, ViewerError, ViewerOptions, orbit_camera, run_viewer};
+use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer};
+
+const FRAMES: u32 = 30;
+const ARC_DEGREES: f32 = 360.0;
+const MIN_PSNR_DB: f64 = 35.0;
+
+fn in_ci() -> bool {
+    std::env::var("CI").is_ok_and(|v| v == "true")
+}
+
+/// Skips (with a note) outside CI; fails in CI.
+fn missing(what: &str) {
+    assert!(!in_ci(), "CI=true but {what}");
+    eprintln!("note: skipping, {what}");
+}
+
+/// An Xvfb server started for this test, killed (by its own pid) when dropped.
+struct VirtualDisplay(Child);
+
+impl Drop for VirtualDisplay {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// Uses `DISPLAY` when set; otherwise starts Xvfb on a display numbered after this process.
+fn display() -> Result<Option<VirtualDisplay>, String> {
+    if std::env::var_os("DISPLAY").is_some() {
+        return Ok(None);
+    }
+    let name = format!(":{}", 99 + std::process::id() % 400);
+    let child = Command::new("Xvfb")
+        .args([name.as_str(), "-screen", "0", "640x480x24", "-nolisten", "tcp"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .map_err(|e| format!("Xvfb cannot be started ({e}); run scripts/install-system-deps.sh"))?;
+    let server = VirtualDisplay(child);
+    let socket = format!("/tmp/.X11-unix/X{}", &name[1..]);
+    for _ in 0..100 {
+        if Path::new(&socket).exists() {
+            // SAFETY: set before any thread of this test binary reads the environment (this
+            // binary has one test, and the viewer starts after this).
+            unsafe { std::env::set_var("DISPLAY", &name) };
+            return Ok(Some(server));
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    Err(format!("Xvfb did not open {socket}"))
+}
+
+fn read_png(path: &Path) -> image::RgbImage {
+    image::open(path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display())).to_rgb8()
+}
+
+fn psnr(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
+    assert_eq!(a.dimensions(), b.dimensions(), "image sizes differ");
+    let squared: f64 = a.as_raw().iter().zip(b.as_raw()).map(|(&x, &y)| (x as f64 - y as f64).powi(2)).sum();
+    let mse = squared / a.as_raw().len() as f64;
+    if mse == 0.0 { f64::INFINITY } else { 10.0 * (255.0f64 * 255.0 / mse).log10() }
+}
+
+fn covered_objects(frame: &Frame) -> usize {
+    let mut ids: Vec<u32> = frame.instance_id.iter().copied().filter(|&id| id != Frame::MISS).collect();
+    ids.sort_unstable();
+    ids.dedup();
+    ids.len()
+}
+
+#[test]
+fn scripted_orbit_screenshot_matches_the_renderer() {
+    let _display = match display() {
+        Ok(display) => display,
+        Err(problem) => return missing(&problem),
+    };
+    let loaded = load_demo(&LoadOptions::default()).expect("the demo scene loads");
+    let settings = RenderSettings { width: 96, height: 72, samples_per_pixel: 1, ..loaded.settings };
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let screenshot = dir.path().join("viewer.png");
+    let options = ViewerOptions {
+        backend: RenderBackend::Vulkan,
+        device: DeviceSelector::Auto,
+        vsync: false,
+        validation: true,
+        script: Some(Script {
+            frames: FRAMES,
+            arc_degrees: ARC_DEGREES,
+            screenshot: Some(screenshot.clone()),
+            sequence: None,
+        }),
+    };
+    let summary = match run_viewer(loaded.scene.clone(), settings, options) {
+        Ok(summary) => summary,
+        Err(
+            error @ ViewerError::Renderer(
+                VulkanError::NoSuitableDevice(_)
+                | VulkanError::LoaderMissing(_)
+                | VulkanError::ValidationLayerMissing,
+            ),
+        ) => return missing(&format!("no usable Vulkan device: {error}")),
+        Err(error) => panic!("the viewer failed: {error}"),
+    };
+    assert_eq!(summary.frames_presented, FRAMES as u64, "every scripted frame is presented");
+    let expected_camera = orbit_camera(&loaded.scene.camera, FRAMES - 1, FRAMES, ARC_DEGREES);
+    assert_eq!(summary.final_camera, expected_camera);
+    assert!(expected_camera.position.distance(loaded.scene.camera.position) > 1e-3, "the orbit moved");
+
+    // `pointray render` with the final camera: the same scene, settings and camera.
+    let renderer =
+        VulkanRenderer::with_validation(DeviceSelector::Auto, true).expect("the renderer opens again");
+    let mut final_scene = loaded.scene.clone();
+    final_scene.camera = summary.final_camera;
+    let reference = renderer.render(&final_scene, &settings).expect("the reference renders");
+    assert_eq!(renderer.validation_messages(), 0, "validation messages (printed above)");
+    assert!(covered_objects(&reference) >= 2, "the reference view shows the demo's objects");
+    let reference_path = dir.path().join("reference.png");
+    write_frame(&reference, &reference_path, &AovSelection::default()).expect("the reference is written");
+
+    // `pointray render --backend auto` picks the CPU renderer on CPU Vulkan drivers: the
+    // screenshot must match it too.
+    let cpu_reference = pointray_cpu::render(&final_scene, &settings);
+    let cpu_path = dir.path().join("cpu.png");
+    write_frame(&cpu_reference, &cpu_path, &AovSelection::default()).expect("the CPU reference is written");
+
+    let shot = read_png(&screenshot);
+    for (name, path) in [("vulkan", &reference_path), ("cpu", &cpu_path)] {
+        let quality = psnr(&shot, &read_png(path));
+        eprintln!("screenshot vs {name} render: PSNR {quality:.2} dB");
+        assert!(quality >= MIN_PSNR_DB, "vs {name}: PSNR {quality:.2} dB < {MIN_PSNR_DB} dB");
+    }
+}
