@@ -23,6 +23,7 @@ enum Command {
     Render(commands::render::RenderArgs),
     Devices(commands::devices::DevicesArgs),
     Fidelity(commands::fidelity::FidelityArgs),
+    Bench(commands::bench::BenchArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -34,6 +35,7 @@ fn main() -> std::process::ExitCode {
         Command::Render(args) => commands::render::run(args),
         Command::Devices(args) => commands::devices::run(args),
         Command::Fidelity(args) => commands::fidelity::run(args),
+        Command::Bench(args) => commands::bench::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

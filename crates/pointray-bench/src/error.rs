@@ -1,0 +1,27 @@
+//! Everything that can stop a benchmark, naming the file or case and the problem.
+
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum BenchError {
+    #[error("{path}: cannot read the suite: {source}")]
+    ReadSuite { path: PathBuf, source: std::io::Error },
+    #[error("{path}: not a valid suite: {message}")]
+    ParseSuite { path: PathBuf, message: String },
+    #[error("{path}: model `{model}`: {problem}")]
+    InvalidModel { path: PathBuf, model: String, problem: String },
+    #[error("{path}: the data file is missing; set --data or POINTRAY_DATA to the data folder")]
+    MissingData { path: PathBuf },
+    #[error("{path}: cannot create the cache folder: {source}")]
+    CacheDir { path: PathBuf, source: std::io::Error },
+    #[error(transparent)]
+    Io(#[from] pointray_io::IoError),
+    #[error(transparent)]
+    Scene(#[from] pointray_scene::SceneError),
+    #[error("{case}: prep failed: {source}")]
+    Prep { case: String, source: pointray_surface::PrepError },
+    #[error("{case}: {source}")]
+    Vulkan { case: String, source: pointray_vulkan::VulkanError },
+    #[error("{path}: cannot write the report: {message}")]
+    WriteReport { path: PathBuf, message: String },
+}

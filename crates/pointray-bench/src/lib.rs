@@ -1,0 +1,24 @@
+//! `pointray bench`: the paper's Table 1 (and any scene) timed on the Vulkan renderer: GPU
+//! timestamps per frame (trace and whole frame), rays counted on the GPU, build times and
+//! memory, the mesh limit and the ablations; reports as JSON and markdown.
+
+pub mod case_result;
+pub mod data;
+pub mod error;
+pub mod markdown;
+pub mod measure;
+pub mod model_scene;
+pub mod output;
+pub mod report;
+pub mod run;
+pub mod stand_in;
+pub mod stats;
+pub mod suite;
+
+pub use case_result::{CaseResult, Variant};
+pub use error::BenchError;
+pub use measure::FrameCounts;
+pub use output::{write_json, write_markdown};
+pub use report::{LimitRow, Report};
+pub use run::{BenchOptions, run_scene_file, run_suite};
+pub use suite::Suite;

@@ -1,0 +1,54 @@
+//! Timing one scene at one setting: prepare (build), warm up, time the frame loop, count
+//! the rays.
+
+use std::time::Duration;
+
+use pointray_scene::{RenderSettings, Scene};
+use pointray_vulkan::{BlasLayout, BuildReport, VulkanError, VulkanRenderer};
+
+use crate::stats::{median, p90};
+
+/// How many frames to warm up with and how many to time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameCounts {
+    pub warmup: u32,
+    pub timed: u32,
+}
+
+/// What one timed case measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Measurement {
+    pub trace_median: Duration,
+    pub trace_p90: Duration,
+    pub frame_median: Duration,
+    pub frame_p90: Duration,
+    /// Host wall time of the timed loop divided by its frames.
+    pub wall_per_frame: Duration,
+    /// Every ray one frame traces, counted on the GPU.
+    pub rays_per_frame: u64,
+    pub build: BuildReport,
+}
+
+pub fn measure(
+    renderer: &VulkanRenderer,
+    scene: &Scene,
+    settings: &RenderSettings,
+    layout: BlasLayout,
+    frames: FrameCounts,
+) -> Result<Measurement, VulkanError> {
+    let prepared = renderer.prepare_with_layout(scene, layout)?;
+    if frames.warmup > 0 {
+        renderer.trace_frames(&prepared, settings, frames.warmup)?;
+    }
+    let times = renderer.trace_frames(&prepared, settings, frames.timed)?;
+    let rays_per_frame = renderer.count_rays(&prepared, settings)?;
+    Ok(Measurement {
+        trace_median: median(&times.trace),
+        trace_p90: p90(&times.trace),
+        frame_median: median(&times.frame),
+        frame_p90: p90(&times.frame),
+        wall_per_frame: times.wall / frames.timed,
+        rays_per_frame,
+        build: prepared.build_report(),
+    })
+}

@@ -1,0 +1,201 @@
+//! Running a suite (or one scene file): for each model and size, the point set, its mesh
+//! (the limit) and, when asked, the ablations.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use pointray_scene::load::{LoadOptions, load_scene};
+use pointray_scene::{AcceptanceTest, BufferLayout, Geometry, RenderSettings, Scene};
+use pointray_surface::{BoxKind, NoProgress, PrepOptions, PrepParams};
+use pointray_vulkan::{BlasLayout, VulkanRenderer};
+
+use crate::case_result::{CaseLabel, CaseResult, Variant};
+use crate::data::ensure_cache_dir;
+use crate::error::BenchError;
+use crate::measure::{FrameCounts, measure};
+use crate::model_scene::{ModelGeometry, load_model_scene, model_points};
+use crate::report::{Report, limit_rows};
+use crate::stand_in::stand_in_label;
+use crate::suite::{ModelSpec, Suite};
+
+/// The ablations that rebuild or re-prep per box (one geometry per AABB, tight boxes) only
+/// run on models up to this many points, to keep a suite run short.
+pub const PER_BOX_ABLATION_MAX_POINTS: usize = 200_000;
+
+pub struct BenchOptions<'a> {
+    pub data: PathBuf,
+    /// Stand-in points, prep results and generated scene files.
+    pub cache: PathBuf,
+    pub frames: FrameCounts,
+    /// Replaces every model's sizes.
+    pub size: Option<(u32, u32)>,
+    /// Time the mesh twin of each model (the limit).
+    pub limit: bool,
+    pub ablations: bool,
+    /// Only the models with these names (all when empty).
+    pub models: Vec<String>,
+    /// Called with each case as it completes.
+    pub on_case: &'a dyn Fn(&CaseResult),
+}
+
+/// Everything one model contributes at one size.
+struct ModelRun<'a> {
+    renderer: &'a VulkanRenderer,
+    options: &'a BenchOptions<'a>,
+    model: &'a ModelSpec,
+    stand_in: Option<String>,
+    cases: Vec<CaseResult>,
+}
+
+pub fn run_suite(
+    renderer: &VulkanRenderer,
+    suite: &Suite,
+    options: &BenchOptions,
+) -> Result<Report, BenchError> {
+    ensure_cache_dir(&options.cache)?;
+    let wanted = |m: &&ModelSpec| options.models.is_empty() || options.models.iter().any(|n| n == &m.name);
+    let mut cases = Vec::new();
+    for model in suite.models.iter().filter(wanted) {
+        let stand_in = model.stand_in.as_ref().map(stand_in_label);
+        let mut run = ModelRun { renderer, options, model, stand_in, cases: Vec::new() };
+        run.all_sizes()?;
+        cases.append(&mut run.cases);
+    }
+    Ok(report(renderer, &suite.name, options, cases))
+}
+
+/// One scene file, timed at its own size (or `options.size`); no paper numbers.
+pub fn run_scene_file(
+    renderer: &VulkanRenderer,
+    path: &Path,
+    options: &BenchOptions,
+) -> Result<Report, BenchError> {
+    ensure_cache_dir(&options.cache)?;
+    let loaded = load_scene(path, &LoadOptions { cache_dir: Some(&options.cache), progress: &NoProgress })?;
+    let (width, height) = options.size.unwrap_or((loaded.settings.width, loaded.settings.height));
+    let settings = RenderSettings { width, height, ..loaded.settings };
+    let name = path.display().to_string();
+    let measured = measure(renderer, &loaded.scene, &settings, BlasLayout::OneGeometry, options.frames)
+        .map_err(|source| BenchError::Vulkan { case: name.clone(), source })?;
+    let label = CaseLabel {
+        model: &name,
+        stand_in: None,
+        variant: Variant::Points,
+        primitives: loaded.scene.objects.iter().map(|o| primitive_count(&o.geometry)).sum(),
+        paper_fps: None,
+    };
+    let case = CaseResult::new(label, width, height, options.frames.timed, &measured);
+    (options.on_case)(&case);
+    Ok(report(renderer, &name, options, vec![case]))
+}
+
+fn report(renderer: &VulkanRenderer, suite: &str, options: &BenchOptions, cases: Vec<CaseResult>) -> Report {
+    let info = renderer.device_info();
+    Report {
+        suite: suite.to_string(),
+        device: info.name.clone(),
+        driver: info.driver.clone(),
+        vulkan_api: info.api_version.clone(),
+        warmup_frames: options.frames.warmup,
+        timed_frames: options.frames.timed,
+        limits: limit_rows(&cases),
+        cases,
+    }
+}
+
+fn primitive_count(geometry: &Geometry) -> usize {
+    match geometry {
+        Geometry::Patches(patches) => patches.len(),
+        Geometry::Mesh(mesh) => mesh.triangles.len(),
+    }
+}
+
+/// The model object (the suite's first) of a loaded model scene.
+fn model_primitives(scene: &Scene) -> usize {
+    scene.objects.first().map(|o| primitive_count(&o.geometry)).unwrap_or(0)
+}
+
+impl ModelRun<'_> {
+    fn all_sizes(&mut self) -> Result<(), BenchError> {
+        let sizes = self.options.size.map(|s| vec![s]).unwrap_or_else(|| self.model.size_list());
+        // A point set always loads (or fails with its reason); only a mesh may be absent.
+        let (base, file_settings) =
+            self.load(ModelGeometry::Points)?.ok_or_else(|| BenchError::InvalidModel {
+                path: self.options.cache.clone(),
+                model: self.model.name.clone(),
+                problem: "its point set did not load".into(),
+            })?;
+        let mesh = if self.options.limit { self.load(ModelGeometry::Mesh)? } else { None };
+        for (index, &(width, height)) in sizes.iter().enumerate() {
+            let settings = RenderSettings { width, height, ..file_settings };
+            self.time(&base, &settings, BlasLayout::OneGeometry, Variant::Points)?;
+            if let Some((mesh_scene, _)) = &mesh {
+                self.time(mesh_scene, &settings, BlasLayout::OneGeometry, Variant::Mesh)?;
+            }
+            // Ablations at the first size only: they compare layouts, not sizes.
+            if self.options.ablations && index == 0 {
+                self.ablations(&base, &settings)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn load(&self, geometry: ModelGeometry) -> Result<Option<(Scene, RenderSettings)>, BenchError> {
+        let loaded = load_model_scene(self.model, geometry, &self.options.data, &self.options.cache)?;
+        Ok(loaded.map(|l| (l.scene, l.settings)))
+    }
+
+    fn ablations(&mut self, base: &Scene, settings: &RenderSettings) -> Result<(), BenchError> {
+        let combined = RenderSettings { buffer_layout: BufferLayout::Combined, ..*settings };
+        self.time(base, &combined, BlasLayout::OneGeometry, Variant::CombinedBuffers)?;
+        let disk = RenderSettings { acceptance: AcceptanceTest::Disk, ..*settings };
+        self.time(base, &disk, BlasLayout::OneGeometry, Variant::DiskAcceptance)?;
+        if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
+            return Ok(());
+        }
+        self.time(base, settings, BlasLayout::GeometryPerAabb, Variant::GeometryPerAabb)?;
+        let tight = self.with_tight_boxes(base)?;
+        self.time(&tight, settings, BlasLayout::OneGeometry, Variant::TightBoxes)
+    }
+
+    /// The scene with the model re-prepped with tight boxes.
+    fn with_tight_boxes(&self, base: &Scene) -> Result<Scene, BenchError> {
+        let points = model_points(self.model, &self.options.data, &self.options.cache)?;
+        let cloud = pointray_io::formats::read_point_cloud(&points)?;
+        let options = PrepOptions {
+            params: PrepParams { box_kind: BoxKind::Tight, ..PrepParams::default() },
+            ..PrepOptions::default()
+        };
+        let (patches, _) = pointray_surface::prep(&cloud, &options, &NoProgress)
+            .map_err(|source| BenchError::Prep { case: self.model.name.clone(), source })?;
+        let mut scene = base.clone();
+        if let Some(model) = scene.objects.first_mut() {
+            model.geometry = Geometry::Patches(Arc::new(patches));
+        }
+        Ok(scene)
+    }
+
+    fn time(
+        &mut self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        layout: BlasLayout,
+        variant: Variant,
+    ) -> Result<(), BenchError> {
+        let (width, height) = (settings.width, settings.height);
+        let case = format!("{} {width}x{height} {}", self.model.name, variant.label());
+        let measured = measure(self.renderer, scene, settings, layout, self.options.frames)
+            .map_err(|source| BenchError::Vulkan { case, source })?;
+        let label = CaseLabel {
+            model: &self.model.name,
+            stand_in: self.stand_in.clone(),
+            variant,
+            primitives: model_primitives(scene),
+            paper_fps: (variant == Variant::Points).then(|| self.model.paper_fps_at(width, height)).flatten(),
+        };
+        let result = CaseResult::new(label, width, height, self.options.frames.timed, &measured);
+        (self.options.on_case)(&result);
+        self.cases.push(result);
+        Ok(())
+    }
+}

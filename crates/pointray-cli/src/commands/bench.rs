@@ -1,0 +1,104 @@
+//! `pointray bench`: time a scene file or a suite (`table1`) on the Vulkan renderer.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Args;
+use pointray_bench::{BenchOptions, CaseResult, FrameCounts, Suite, run_scene_file, run_suite};
+use pointray_vulkan::{DeviceSelector, VulkanRenderer};
+
+/// Time frames with GPU timestamps: FPS, frame and trace times, rays/s, build costs.
+#[derive(Args)]
+pub struct BenchArgs {
+    /// A scene file (.toml), a suite file (bench/suites/*.toml), or `table1`.
+    target: String,
+    /// Timed frames per case.
+    #[arg(long, default_value_t = 100)]
+    frames: u32,
+    /// Untimed frames before the timed ones.
+    #[arg(long, default_value_t = 10)]
+    warmup: u32,
+    /// Replace every size (both flags are needed).
+    #[arg(long, requires = "height")]
+    width: Option<u32>,
+    #[arg(long, requires = "width")]
+    height: Option<u32>,
+    /// Only these models of the suite (repeatable).
+    #[arg(long = "model")]
+    models: Vec<String>,
+    /// Also time the ablations (BLAS layout, buffers, box kind, acceptance test).
+    #[arg(long)]
+    ablations: bool,
+    /// Skip the mesh twin of each model (the limit).
+    #[arg(long)]
+    no_limit: bool,
+    /// The data folder (default: POINTRAY_DATA, else ../shared/data).
+    #[arg(long)]
+    data: Option<PathBuf>,
+    /// Where stand-ins and prepped point sets are cached.
+    #[arg(long, default_value = ".pointray-cache/bench")]
+    cache: PathBuf,
+    #[arg(long)]
+    json: Option<PathBuf>,
+    #[arg(long)]
+    markdown: Option<PathBuf>,
+    /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
+    #[arg(long, default_value = "auto")]
+    device: DeviceSelector,
+}
+
+fn print_case(case: &CaseResult) {
+    let paper = case.paper_fps.map(|p| format!(" (paper {p:.0}, x{:.2})", case.fps / p)).unwrap_or_default();
+    println!(
+        "{} {}x{} {}: {:.3} ms/frame (p90 {:.3}), trace {:.3} ms, {:.0} FPS{paper}, {:.2} G rays/s",
+        case.model,
+        case.width,
+        case.height,
+        case.variant.label(),
+        case.frame_median_ms,
+        case.frame_p90_ms,
+        case.trace_median_ms,
+        case.fps,
+        case.rays_per_second / 1e9
+    );
+}
+
+pub fn run(args: BenchArgs) -> anyhow::Result<()> {
+    anyhow::ensure!(args.frames > 0, "--frames must be at least 1");
+    let renderer = VulkanRenderer::new(args.device.clone()).context("opening the Vulkan backend")?;
+    println!("device: {}", renderer.device_info());
+    let options = BenchOptions {
+        data: args.data.clone().unwrap_or_else(pointray_bench::data::default_data_dir),
+        cache: args.cache.clone(),
+        frames: FrameCounts { warmup: args.warmup, timed: args.frames },
+        size: args.width.zip(args.height),
+        limit: !args.no_limit,
+        ablations: args.ablations,
+        models: args.models.clone(),
+        on_case: &print_case,
+    };
+    let report = if args.target == "table1" {
+        run_suite(&renderer, &Suite::table1()?, &options)?
+    } else {
+        let path = PathBuf::from(&args.target);
+        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+        // A suite lists models; anything else is a scene file.
+        if text.contains("[[models]]") {
+            run_suite(&renderer, &Suite::parse(&text, &path)?, &options)?
+        } else {
+            run_scene_file(&renderer, &path, &options)?
+        }
+    };
+    if let Some(path) = &args.json {
+        pointray_bench::write_json(&report, path)?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(path) = &args.markdown {
+        pointray_bench::write_markdown(&report, path)?;
+        println!("wrote {}", path.display());
+    }
+    if args.json.is_none() && args.markdown.is_none() {
+        print!("{}", pointray_bench::markdown::markdown(&report));
+    }
+    Ok(())
+}
