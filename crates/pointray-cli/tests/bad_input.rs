@@ -1,0 +1,145 @@
+//! Every bad input gives a clear error that names the file, and a non-zero exit, never a panic.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn pointray(args: &[&str]) -> (bool, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_pointray")).args(args).output().expect("pointray runs");
+    (output.status.success(), String::from_utf8_lossy(&output.stderr).into_owned())
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+fn ascii_ply(points: &[[f32; 3]]) -> Vec<u8> {
+    let mut text = format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
+        points.len()
+    );
+    for [x, y, z] in points {
+        text += &format!("{x} {y} {z}\n");
+    }
+    text.into_bytes()
+}
+
+fn binary_ply_header(count: usize) -> Vec<u8> {
+    format!(
+        "ply\nformat binary_little_endian 1.0\nelement vertex {count}\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+    )
+    .into_bytes()
+}
+
+fn grid(count: usize) -> Vec<[f32; 3]> {
+    (0..count).map(|i| [(i % 7) as f32, (i / 7) as f32, ((i * 3) % 5) as f32 * 0.1]).collect()
+}
+
+/// `prep` on `bytes` fails cleanly, and the message names the file and says `expected`.
+fn assert_prep_refuses(name: &str, bytes: &[u8], expected: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(dir.path(), name, bytes);
+    let output = dir.path().join("out.patches");
+    let (ok, stderr) = pointray(&["prep", input.to_str().unwrap(), "-o", output.to_str().unwrap()]);
+    assert!(!ok, "{name}: prep must fail");
+    assert!(!stderr.contains("panicked"), "{name}: prep panicked: {stderr}");
+    assert!(stderr.contains(name), "{name}: the error must name the file: {stderr}");
+    assert!(stderr.to_lowercase().contains(expected), "{name}: expected `{expected}` in: {stderr}");
+    assert!(!output.exists(), "{name}: no output may be left behind");
+}
+
+#[test]
+fn empty_file() {
+    assert_prep_refuses("empty.ply", b"", "empty");
+}
+
+#[test]
+fn truncated_binary_body() {
+    let mut bytes = binary_ply_header(100);
+    bytes.extend(std::iter::repeat_n(0u8, 12 * 60));
+    assert_prep_refuses("truncated.ply", &bytes, "truncated");
+}
+
+#[test]
+fn header_that_lies_about_its_counts() {
+    let mut bytes = binary_ply(&grid(40));
+    let header_of_20 = binary_ply_header(20);
+    bytes.splice(..header_of_20.len(), header_of_20);
+    assert_prep_refuses("lying.ply", &bytes, "bytes");
+}
+
+fn binary_ply(points: &[[f32; 3]]) -> Vec<u8> {
+    let mut bytes = binary_ply_header(points.len());
+    bytes.extend(points.iter().flatten().flat_map(|v| v.to_le_bytes()));
+    bytes
+}
+
+#[test]
+fn non_finite_coordinates() {
+    let mut points = grid(40);
+    points[17] = [f32::NAN, 0.0, 0.0];
+    assert_prep_refuses("nan.ply", &binary_ply(&points), "17");
+    let mut points = grid(40);
+    points[5] = [0.0, f32::INFINITY, 0.0];
+    assert_prep_refuses("infinite.ply", &binary_ply(&points), "5");
+}
+
+#[test]
+fn fewer_points_than_k_plus_one() {
+    assert_prep_refuses("few.ply", &ascii_ply(&grid(6)), "points");
+}
+
+#[test]
+fn all_points_identical() {
+    assert_prep_refuses("same.ply", &ascii_ply(&[[1.0, 2.0, 3.0]; 50]), "identical");
+}
+
+#[test]
+fn all_points_on_one_line() {
+    let line: Vec<[f32; 3]> = (0..50).map(|i| [i as f32, 2.0 * i as f32, 0.5]).collect();
+    assert_prep_refuses("line.ply", &ascii_ply(&line), "line");
+}
+
+#[test]
+fn not_a_points_file() {
+    assert_prep_refuses("notes.ply", b"\x00\x01\x02 this is not a point cloud \xff\xfe", "");
+}
+
+#[test]
+fn a_damaged_patch_store_is_refused_by_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let points = write(dir.path(), "grid.ply", &ascii_ply(&grid(200)));
+    let store = dir.path().join("grid.patches");
+    let (ok, stderr) = pointray(&["prep", points.to_str().unwrap(), "-o", store.to_str().unwrap()]);
+    assert!(ok, "prep of a good grid succeeds: {stderr}");
+    let good = std::fs::read(&store).unwrap();
+    let scene = write(
+        dir.path(),
+        "scene.toml",
+        b"[[lights]]\ntype = \"point\"\nposition = [0.0, 10.0, 10.0]\n\n[[objects]]\ntype = \"points\"\npath = \"grid.patches\"\n",
+    );
+    let image = dir.path().join("out.png");
+    let mut damaged = [(good.clone(), "checksum"), (good, "version")];
+    damaged[0].0[200] ^= 0x40;
+    damaged[1].0[8] = 99;
+    for (bytes, expected) in damaged {
+        std::fs::write(&store, bytes).unwrap();
+        let (ok, stderr) = pointray(&[
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            image.to_str().unwrap(),
+            "--backend",
+            "cpu",
+            "--width",
+            "16",
+            "--height",
+            "16",
+        ]);
+        assert!(!ok, "a damaged store ({expected}) must be refused");
+        assert!(!stderr.contains("panicked"), "render panicked: {stderr}");
+        assert!(stderr.contains("grid.patches"), "the error must name the store: {stderr}");
+        assert!(stderr.to_lowercase().contains(expected), "expected `{expected}` in: {stderr}");
+    }
+}
