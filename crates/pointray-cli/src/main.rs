@@ -24,6 +24,7 @@ enum Command {
     Devices(commands::devices::DevicesArgs),
     Fidelity(commands::fidelity::FidelityArgs),
     Bench(commands::bench::BenchArgs),
+    View(commands::view::ViewArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -36,6 +37,7 @@ fn main() -> std::process::ExitCode {
         Command::Devices(args) => commands::devices::run(args),
         Command::Fidelity(args) => commands::fidelity::run(args),
         Command::Bench(args) => commands::bench::run(args),
+        Command::View(args) => commands::view::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -6,3 +6,4 @@ pub mod fidelity;
 pub mod prep;
 pub mod render;
 pub mod sample;
+pub mod view;
