@@ -21,7 +21,7 @@ pub enum Backend {
 
 impl Backend {
     /// `auto` skips CPU Vulkan drivers (lavapipe): on a 2-core machine our CPU backend
-    /// renders the same scenes faster (bench/RESULTS.md, "CPU backend against lavapipe").
+    /// renders the same scenes faster (bench/CPU_VS_LAVAPIPE.md).
     pub fn open(choice: BackendChoice, device: &DeviceSelector) -> anyhow::Result<Self> {
         match choice {
             BackendChoice::Cpu => Ok(Backend::Cpu),
