@@ -34,7 +34,7 @@ pub struct ViewArgs {
     #[arg(long, default_value_t = true, action = clap::ArgAction::Set)]
     vsync: bool,
     /// Render this many frames along a turntable orbit, then exit.
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     frames: Option<u32>,
     /// Degrees the scripted orbit turns over all its frames.
     #[arg(long, default_value_t = 360.0, requires = "frames")]
