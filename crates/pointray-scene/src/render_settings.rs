@@ -1,12 +1,16 @@
 //! The settings of one render, shared by every backend.
 
 /// Which hits on a patch's quadratic count (SPEC.md §3, intersection step 3).
+///
+/// The disk test is the default: against the meshes it has fewer false surfaces, smaller depth
+/// and normal errors and a higher PSNR than the box test at every k, with no more holes
+/// (bench/FIDELITY.md), for 0–7% more frame time (bench/RESULTS.md, ablations).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AcceptanceTest {
     /// The hit point must lie inside the patch's box (the paper's test).
-    #[default]
     Box,
     /// The hit point must also lie over the patch's own disk, `u² + v² <= d_i²`.
+    #[default]
     Disk,
 }
 

@@ -31,7 +31,7 @@ pub struct FidelityArgs {
     #[arg(long, default_value_t = 9)]
     k: u32,
     /// Which hits on a patch count: inside its box (the paper) or also over its disk.
-    #[arg(long, value_enum, default_value_t = Acceptance::Box)]
+    #[arg(long, value_enum, default_value_t = Acceptance::Disk)]
     acceptance: Acceptance,
     /// Also write the report as JSON to this file.
     #[arg(long)]

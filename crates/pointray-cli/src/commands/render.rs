@@ -35,7 +35,7 @@ pub struct RenderArgs {
     #[arg(long)]
     no_shadows: bool,
     /// Which hits on a patch count: inside its box (the paper) or also over its disk.
-    #[arg(long, value_enum, default_value_t = Acceptance::Box)]
+    #[arg(long, value_enum, default_value_t = Acceptance::Disk)]
     acceptance: Acceptance,
     /// Per-patch data in split hot/cold buffers or one combined buffer (Vulkan only).
     #[arg(long, value_enum, default_value_t = Buffers::Split)]
