@@ -27,7 +27,7 @@ mod ray_counter;
 mod renderer;
 mod shaders;
 mod trace;
-mod validation;
+pub mod validation;
 
 pub use acceleration::BlasLayout;
 pub use device::{DeviceInfo, DeviceSelector, list_devices};

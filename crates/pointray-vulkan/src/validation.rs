@@ -1,12 +1,13 @@
 //! The Khronos validation layer and a debug-utils messenger that counts what it reports,
-//! so that tests can assert that a whole run produced no validation message.
+//! so that tests can assert that a whole run produced no validation message. Public so that
+//! other Vulkan instances of ours (the viewer's presentation context) count the same way.
 
 use std::ffi::{CStr, c_void};
 use std::sync::atomic::{AtomicU32, Ordering};
 
 use ash::vk;
 
-pub(crate) const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
+pub const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
 
 /// Whether validation was asked for through the environment (`POINTRAY_VALIDATION=1`).
 pub fn validation_requested_by_env() -> bool {
@@ -16,12 +17,12 @@ pub fn validation_requested_by_env() -> bool {
 /// Errors and warnings the layer reported. Boxed so that its address, handed to the
 /// driver as user data, stays put.
 #[derive(Debug, Default)]
-pub(crate) struct MessageCounter {
+pub struct MessageCounter {
     count: AtomicU32,
 }
 
 impl MessageCounter {
-    pub(crate) fn count(&self) -> u32 {
+    pub fn count(&self) -> u32 {
         self.count.load(Ordering::Relaxed)
     }
 }
@@ -45,7 +46,7 @@ unsafe extern "system" fn count_message(
 }
 
 /// The create-info of a messenger that counts warnings and errors into `counter`.
-pub(crate) fn messenger_info(counter: &MessageCounter) -> vk::DebugUtilsMessengerCreateInfoEXT<'_> {
+pub fn messenger_info(counter: &MessageCounter) -> vk::DebugUtilsMessengerCreateInfoEXT<'_> {
     vk::DebugUtilsMessengerCreateInfoEXT::default()
         .message_severity(
             vk::DebugUtilsMessageSeverityFlagsEXT::WARNING | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR,
@@ -60,7 +61,7 @@ pub(crate) fn messenger_info(counter: &MessageCounter) -> vk::DebugUtilsMessenge
 }
 
 /// Whether the loader can find the validation layer.
-pub(crate) fn layer_available(entry: &ash::Entry) -> bool {
+pub fn layer_available(entry: &ash::Entry) -> bool {
     // SAFETY: plain enumeration call on a loaded entry.
     let layers = unsafe { entry.enumerate_instance_layer_properties() }.unwrap_or_default();
     layers.iter().any(|l| l.layer_name_as_c_str().is_ok_and(|name| name == VALIDATION_LAYER))

@@ -7,8 +7,8 @@ use std::sync::Arc;
 use ash::vk;
 use raw_window_handle::RawDisplayHandle;
 
-use super::validation::{self, MessageCounter};
 use crate::error::ViewerError;
+use pointray_vulkan::validation::{self, MessageCounter};
 
 pub(crate) struct PresentInstance {
     pub(crate) entry: ash::Entry,

@@ -5,8 +5,7 @@ mod instance;
 mod presenter;
 mod staging;
 mod swapchain;
-mod validation;
 
+pub use pointray_vulkan::validation::MessageCounter;
 pub use presenter::{Presented, Presenter};
 pub(crate) use swapchain::ByteOrder;
-pub use validation::MessageCounter;

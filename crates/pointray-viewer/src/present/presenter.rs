@@ -8,8 +8,8 @@ use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use super::context::PresentContext;
 use super::staging::StagingBuffer;
 use super::swapchain::{ByteOrder, Swapchain};
-use super::validation::MessageCounter;
 use crate::error::ViewerError;
+use pointray_vulkan::validation::MessageCounter;
 
 pub struct Presenter {
     swapchain: Option<Swapchain>,
