@@ -1,5 +1,6 @@
 //! `pointray`: point clouds rendered as smooth surfaces by ray tracing.
 
+mod acceptance_arg;
 mod backend;
 mod commands;
 mod progress;

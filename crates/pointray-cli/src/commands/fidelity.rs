@@ -4,12 +4,13 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::Context;
-use clap::{Args, ValueEnum};
+use clap::Args;
 use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, measure_fidelity};
-use pointray_scene::{AcceptanceTest, Frame, RenderSettings, Scene};
+use pointray_scene::{Frame, RenderSettings, Scene};
 use pointray_surface::{PatchSet, PrepOptions, PrepParams, prep};
 use pointray_vulkan::DeviceSelector;
 
+use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendChoice};
 use crate::progress::PrepBar;
 
@@ -41,21 +42,6 @@ pub struct FidelityArgs {
     /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
     #[arg(long, default_value = "auto")]
     device: DeviceSelector,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum Acceptance {
-    Box,
-    Disk,
-}
-
-impl From<Acceptance> for AcceptanceTest {
-    fn from(acceptance: Acceptance) -> Self {
-        match acceptance {
-            Acceptance::Box => AcceptanceTest::Box,
-            Acceptance::Disk => AcceptanceTest::Disk,
-        }
-    }
 }
 
 /// The CLI's backend choice (CPU or Vulkan) as the fidelity crate's renderer.

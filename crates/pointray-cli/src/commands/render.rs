@@ -7,9 +7,10 @@ use anyhow::Context;
 use clap::{Args, ValueEnum};
 use pointray_scene::frame_output::{AovSelection, write_frame};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene};
-use pointray_scene::{AcceptanceTest, BufferLayout, RenderSettings};
+use pointray_scene::{BufferLayout, RenderSettings};
 use pointray_vulkan::DeviceSelector;
 
+use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendChoice};
 use crate::progress::PrepBar;
 
@@ -51,12 +52,6 @@ pub struct RenderArgs {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
-enum Acceptance {
-    Box,
-    Disk,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
 enum Buffers {
     Split,
     Combined,
@@ -89,10 +84,7 @@ fn apply_flags(args: &RenderArgs, mut settings: RenderSettings) -> RenderSetting
     settings.samples_per_pixel = args.spp.unwrap_or(settings.samples_per_pixel);
     settings.max_depth = args.max_depth.unwrap_or(settings.max_depth);
     settings.shadows &= !args.no_shadows;
-    settings.acceptance = match args.acceptance {
-        Acceptance::Box => AcceptanceTest::Box,
-        Acceptance::Disk => AcceptanceTest::Disk,
-    };
+    settings.acceptance = args.acceptance.into();
     settings.buffer_layout = match args.buffers {
         Buffers::Split => BufferLayout::Split,
         Buffers::Combined => BufferLayout::Combined,
