@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
+use crate::barrier::record_memory_barrier;
 use crate::buffer::{Buffer, addressable};
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
@@ -252,21 +253,15 @@ impl QueryPool {
         command: vk::CommandBuffer,
         structure: vk::AccelerationStructureKHR,
     ) {
-        let barrier = vk::MemoryBarrier::default()
-            .src_access_mask(vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR)
-            .dst_access_mask(vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR);
         let stage = vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR;
         // SAFETY: the caller records into a command buffer in the recording state.
         unsafe {
             context.device.cmd_reset_query_pool(command, self.handle, 0, 1);
-            context.device.cmd_pipeline_barrier(
+            record_memory_barrier(
+                &context.device,
                 command,
-                stage,
-                stage,
-                vk::DependencyFlags::empty(),
-                &[barrier],
-                &[],
-                &[],
+                (stage, vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR),
+                (stage, vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR),
             );
             context.acceleration.cmd_write_acceleration_structures_properties(
                 command,

@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use ash::vk;
 use pointray_scene::RenderSettings;
 
+use crate::barrier::record_memory_barrier;
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::prepared_scene::PreparedScene;
@@ -141,19 +142,16 @@ impl VulkanRenderer {
 /// # Safety
 /// `command` is recording.
 unsafe fn record_next_frame_barrier(device: &ash::Device, command: vk::CommandBuffer) {
-    let barrier = vk::MemoryBarrier::default()
-        .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-        .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE);
     // SAFETY: the caller's contract.
     unsafe {
-        device.cmd_pipeline_barrier(
+        record_memory_barrier(
+            device,
             command,
-            vk::PipelineStageFlags::TRANSFER,
-            vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR | vk::PipelineStageFlags::TRANSFER,
-            vk::DependencyFlags::empty(),
-            &[barrier],
-            &[],
-            &[],
+            (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE),
+            (
+                vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR | vk::PipelineStageFlags::TRANSFER,
+                vk::AccessFlags::TRANSFER_WRITE,
+            ),
         )
     };
 }

@@ -12,6 +12,7 @@
 //! ```
 
 mod acceleration;
+mod barrier;
 mod binding_table;
 mod buffer;
 mod context;

@@ -9,6 +9,7 @@ use glam::Vec3;
 use gpu_allocator::MemoryLocation;
 use pointray_scene::{Frame, RenderSettings};
 
+use crate::barrier::record_memory_barrier;
 use crate::binding_table::ShaderBindingTable;
 use crate::buffer::Buffer;
 use crate::context::GpuContext;
@@ -220,31 +221,19 @@ pub(crate) unsafe fn record_copy_out(
     let device = &context.device;
     // SAFETY: the caller's contract.
     unsafe {
-        let barrier = vk::MemoryBarrier::default()
-            .src_access_mask(vk::AccessFlags::SHADER_WRITE)
-            .dst_access_mask(vk::AccessFlags::TRANSFER_READ);
-        device.cmd_pipeline_barrier(
+        record_memory_barrier(
+            device,
             command,
-            vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR,
-            vk::PipelineStageFlags::TRANSFER,
-            vk::DependencyFlags::empty(),
-            &[barrier],
-            &[],
-            &[],
+            (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE),
+            (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ),
         );
         let region = vk::BufferCopy::default().size(resources.pixels.size);
         device.cmd_copy_buffer(command, resources.pixels.handle, resources.readback.handle, &[region]);
-        let to_host = vk::MemoryBarrier::default()
-            .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-            .dst_access_mask(vk::AccessFlags::HOST_READ);
-        device.cmd_pipeline_barrier(
+        record_memory_barrier(
+            device,
             command,
-            vk::PipelineStageFlags::TRANSFER,
-            vk::PipelineStageFlags::HOST,
-            vk::DependencyFlags::empty(),
-            &[to_host],
-            &[],
-            &[],
+            (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE),
+            (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ),
         );
     }
 }
