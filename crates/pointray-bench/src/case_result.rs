@@ -8,18 +8,23 @@ use crate::measure::Measurement;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Variant {
-    /// The point set with the default settings (the paper's layout and test).
+    /// The point set with our defaults: one geometry, split buffers, tight boxes, the disk
+    /// test, display output.
     Points,
     /// The model's triangle mesh in place of its points (the limit).
     Mesh,
+    /// The paper's configuration: cube boxes and the box test.
+    PaperConfiguration,
     /// Ablation: one BLAS geometry per patch box.
     GeometryPerAabb,
     /// Ablation: hot and cold records in one buffer.
     CombinedBuffers,
-    /// Ablation: tight boxes around each patch over its disk instead of cubes.
-    TightBoxes,
-    /// Ablation: the disk acceptance test on top of the box test.
-    DiskAcceptance,
+    /// Ablation: the paper's cubes instead of tight boxes.
+    CubeBoxes,
+    /// Ablation: the paper's box test instead of the disk test.
+    BoxAcceptance,
+    /// Ablation: every pixel's AOV record (48 bytes) copied out instead of its display colour.
+    AovOutput,
 }
 
 impl Variant {
@@ -27,10 +32,12 @@ impl Variant {
         match self {
             Self::Points => "points",
             Self::Mesh => "mesh",
+            Self::PaperConfiguration => "paper's configuration (cube boxes, box test)",
             Self::GeometryPerAabb => "one geometry per AABB",
             Self::CombinedBuffers => "combined buffers",
-            Self::TightBoxes => "tight boxes",
-            Self::DiskAcceptance => "disk acceptance",
+            Self::CubeBoxes => "cube boxes",
+            Self::BoxAcceptance => "box acceptance",
+            Self::AovOutput => "AOV output",
         }
     }
 }

@@ -13,8 +13,8 @@ pub fn markdown(report: &Report) -> String {
     let _ = writeln!(
         out,
         "Driver {}, Vulkan {}; {} warm-up frames, then {} timed frames per case. FPS = 1 / median GPU \
-         time of a whole frame (trace and copy-out, timestamps); rays counted on the GPU (primary, \
-         shadow and reflection).\n",
+         time of a whole frame (trace, then the copy of its sRGB8 display colour to host memory; \
+         timestamps); rays counted on the GPU (primary, shadow and reflection).\n",
         report.driver, report.vulkan_api, report.warmup_frames, report.timed_frames
     );
     frames_table(&mut out, report);
@@ -91,7 +91,8 @@ fn ablation_table(out: &mut String, report: &Report) {
     }
     let _ = writeln!(
         out,
-        "### Ablations (frame time against the default: one geometry, split buffers, cube boxes, box test)\n\n\
+        "### Ablations (frame time against the default: one geometry, split buffers, tight boxes, disk test, \
+         display output)\n\n\
          | model | size | variant | frame ms | variant / default |\n|---|---|---|---|---|"
     );
     for case in ablations {

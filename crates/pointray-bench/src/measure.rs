@@ -4,7 +4,7 @@
 use std::time::Duration;
 
 use pointray_scene::{RenderSettings, Scene};
-use pointray_vulkan::{BlasLayout, BuildReport, VulkanError, VulkanRenderer};
+use pointray_vulkan::{BlasLayout, BuildReport, PixelOutput, VulkanError, VulkanRenderer};
 
 use crate::stats::{median, p90};
 
@@ -34,13 +34,14 @@ pub fn measure(
     scene: &Scene,
     settings: &RenderSettings,
     layout: BlasLayout,
+    output: PixelOutput,
     frames: FrameCounts,
 ) -> Result<Measurement, VulkanError> {
     let prepared = renderer.prepare_with_layout(scene, layout)?;
     if frames.warmup > 0 {
-        renderer.trace_frames(&prepared, settings, frames.warmup)?;
+        renderer.trace_frames(&prepared, settings, frames.warmup, output)?;
     }
-    let times = renderer.trace_frames(&prepared, settings, frames.timed)?;
+    let times = renderer.trace_frames(&prepared, settings, frames.timed, output)?;
     let rays_per_frame = renderer.count_rays(&prepared, settings)?;
     Ok(Measurement {
         trace_median: median(&times.trace),

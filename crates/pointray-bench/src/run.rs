@@ -7,7 +7,7 @@ use std::sync::Arc;
 use pointray_scene::load::{LoadOptions, load_scene};
 use pointray_scene::{AcceptanceTest, BufferLayout, Geometry, RenderSettings, Scene};
 use pointray_surface::{BoxKind, NoProgress, PrepOptions, PrepParams};
-use pointray_vulkan::{BlasLayout, VulkanRenderer};
+use pointray_vulkan::{BlasLayout, PixelOutput, VulkanRenderer};
 
 use crate::case_result::{CaseLabel, CaseResult, Variant};
 use crate::data::ensure_cache_dir;
@@ -18,7 +18,7 @@ use crate::report::{Report, limit_rows};
 use crate::stand_in::stand_in_label;
 use crate::suite::{ModelSpec, Suite};
 
-/// The ablations that rebuild or re-prep per box (one geometry per AABB, tight boxes) only
+/// The ablations that rebuild or re-prep per box (one geometry per AABB, cube boxes) only
 /// run on models up to this many points, to keep a suite run short.
 pub const PER_BOX_ABLATION_MAX_POINTS: usize = 200_000;
 
@@ -75,8 +75,15 @@ pub fn run_scene_file(
     let (width, height) = options.size.unwrap_or((loaded.settings.width, loaded.settings.height));
     let settings = RenderSettings { width, height, ..loaded.settings };
     let name = path.display().to_string();
-    let measured = measure(renderer, &loaded.scene, &settings, BlasLayout::OneGeometry, options.frames)
-        .map_err(|source| BenchError::Vulkan { case: name.clone(), source })?;
+    let measured = measure(
+        renderer,
+        &loaded.scene,
+        &settings,
+        BlasLayout::OneGeometry,
+        PixelOutput::Display,
+        options.frames,
+    )
+    .map_err(|source| BenchError::Vulkan { case: name.clone(), source })?;
     let label = CaseLabel {
         model: &name,
         stand_in: None,
@@ -127,9 +134,7 @@ impl ModelRun<'_> {
             })?;
         let mesh = if self.options.limit { self.load(ModelGeometry::Mesh)? } else { None };
         for (index, &(width, height)) in sizes.iter().enumerate() {
-            // Suite rows reproduce the paper's method, box test included; the disk test (our
-            // default elsewhere) is one of the ablations.
-            let settings = RenderSettings { width, height, acceptance: AcceptanceTest::Box, ..file_settings };
+            let settings = RenderSettings { width, height, ..file_settings };
             self.time(&base, &settings, BlasLayout::OneGeometry, Variant::Points)?;
             if let Some((mesh_scene, _)) = &mesh {
                 self.time(mesh_scene, &settings, BlasLayout::OneGeometry, Variant::Mesh)?;
@@ -150,22 +155,24 @@ impl ModelRun<'_> {
     fn ablations(&mut self, base: &Scene, settings: &RenderSettings) -> Result<(), BenchError> {
         let combined = RenderSettings { buffer_layout: BufferLayout::Combined, ..*settings };
         self.time(base, &combined, BlasLayout::OneGeometry, Variant::CombinedBuffers)?;
-        let disk = RenderSettings { acceptance: AcceptanceTest::Disk, ..*settings };
-        self.time(base, &disk, BlasLayout::OneGeometry, Variant::DiskAcceptance)?;
+        let box_test = RenderSettings { acceptance: AcceptanceTest::Box, ..*settings };
+        self.time(base, &box_test, BlasLayout::OneGeometry, Variant::BoxAcceptance)?;
+        self.time(base, settings, BlasLayout::OneGeometry, Variant::AovOutput)?;
         if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
             return Ok(());
         }
         self.time(base, settings, BlasLayout::GeometryPerAabb, Variant::GeometryPerAabb)?;
-        let tight = self.with_tight_boxes(base)?;
-        self.time(&tight, settings, BlasLayout::OneGeometry, Variant::TightBoxes)
+        let cubes = self.with_boxes(base, BoxKind::Cube)?;
+        self.time(&cubes, settings, BlasLayout::OneGeometry, Variant::CubeBoxes)?;
+        self.time(&cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)
     }
 
-    /// The scene with the model re-prepped with tight boxes.
-    fn with_tight_boxes(&self, base: &Scene) -> Result<Scene, BenchError> {
+    /// The scene with the model re-prepped with `kind` boxes.
+    fn with_boxes(&self, base: &Scene, kind: BoxKind) -> Result<Scene, BenchError> {
         let points = model_points(self.model, &self.options.data, &self.options.cache)?;
         let cloud = pointray_io::formats::read_point_cloud(&points)?;
         let options = PrepOptions {
-            params: PrepParams { box_kind: BoxKind::Tight, ..PrepParams::default() },
+            params: PrepParams { box_kind: kind, ..PrepParams::default() },
             ..PrepOptions::default()
         };
         let (patches, _) = pointray_surface::prep(&cloud, &options, &NoProgress)
@@ -186,7 +193,8 @@ impl ModelRun<'_> {
     ) -> Result<(), BenchError> {
         let (width, height) = (settings.width, settings.height);
         let case = format!("{} {width}x{height} {}", self.model.name, variant.label());
-        let measured = measure(self.renderer, scene, settings, layout, self.options.frames)
+        let output = if variant == Variant::AovOutput { PixelOutput::Aovs } else { PixelOutput::Display };
+        let measured = measure(self.renderer, scene, settings, layout, output, self.options.frames)
             .map_err(|source| BenchError::Vulkan { case, source })?;
         let label = CaseLabel {
             model: &self.model.name,

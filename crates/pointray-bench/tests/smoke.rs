@@ -67,9 +67,11 @@ fn table1_bunny_runs_with_limit_and_ablations() {
             Variant::Points,
             Variant::Mesh,
             Variant::CombinedBuffers,
-            Variant::DiskAcceptance,
+            Variant::BoxAcceptance,
+            Variant::AovOutput,
             Variant::GeometryPerAabb,
-            Variant::TightBoxes
+            Variant::CubeBoxes,
+            Variant::PaperConfiguration
         ]
     );
     for case in &report.cases {

@@ -11,15 +11,9 @@ use image::codecs::openexr::OpenExrEncoder;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder, ImageResult};
 
-use crate::{IoError, write_atomically};
+pub use pointray_kernels::srgb_encode;
 
-/// Encodes a linear value with the sRGB transfer function (IEC 61966-2-1) to 8 bits, after
-/// clamping to [0, 1]. NaN becomes 0.
-pub fn srgb_encode(linear: f32) -> u8 {
-    let linear = if linear.is_nan() { 0.0 } else { linear.clamp(0.0, 1.0) };
-    let encoded = if linear <= 0.003_130_8 { 12.92 * linear } else { 1.055 * linear.powf(1.0 / 2.4) - 0.055 };
-    (encoded * 255.0).round() as u8
-}
+use crate::{IoError, write_atomically};
 
 /// An 8-bit sRGB PNG of linear RGB pixels.
 pub fn write_png_srgb(path: &Path, width: u32, height: u32, linear: &[Vec3]) -> Result<(), IoError> {
@@ -84,26 +78,4 @@ fn check_size(path: &Path, width: u32, height: u32, pixels: usize) -> Result<(),
         ));
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn srgb_encoding_matches_the_standard_curve() {
-        assert_eq!(srgb_encode(0.0), 0);
-        assert_eq!(srgb_encode(1.0), 255);
-        assert_eq!(srgb_encode(0.5), 188); // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354
-        assert_eq!(srgb_encode(0.002), 7); // linear segment: 12.92 * 0.002 * 255 = 6.59
-        assert_eq!(srgb_encode(0.2159), 128); // the inverse curve of 128/255
-    }
-
-    #[test]
-    fn out_of_range_and_nan_are_clamped() {
-        assert_eq!(srgb_encode(-3.0), 0);
-        assert_eq!(srgb_encode(7.0), 255);
-        assert_eq!(srgb_encode(f32::NAN), 0);
-        assert_eq!(srgb_encode(f32::INFINITY), 255);
-    }
 }

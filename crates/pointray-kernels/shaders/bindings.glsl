@@ -63,6 +63,12 @@ struct PixelRecord {
     uvec4 ids;           // instance, primitive
 };
 layout(set = 0, binding = 4, std430) writeonly buffer Pixels { PixelRecord pixels[]; };
+// The display output: one sRGB8 RGBA pixel each (srgb_encode_rgba8), what a window shows.
+layout(set = 0, binding = 5, std430) writeonly buffer DisplayPixels { uint display_pixels[]; };
+
+// Which of the two outputs a trace writes; the other is left untouched.
+const uint OUTPUT_AOVS = 0u;
+const uint OUTPUT_DISPLAY = 1u;
 
 const uint LAYOUT_SPLIT = 0u;
 const uint LAYOUT_COMBINED = 1u;
@@ -76,6 +82,7 @@ layout(push_constant) uniform TraceSettings {
     uint shadows;
     uint acceptance; // ACCEPTANCE_BOX or ACCEPTANCE_DISK of intersect_patch.glsl
     uint buffer_layout;
+    uint output_kind; // OUTPUT_AOVS or OUTPUT_DISPLAY
 } settings;
 
 PatchHot load_hot(ObjectRecord object, uint patch_index) {

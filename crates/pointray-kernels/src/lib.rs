@@ -15,6 +15,7 @@ pub mod phong;
 pub mod quadratic_roots;
 pub mod ray;
 pub mod self_clearance;
+pub mod srgb_encode;
 
 pub use background::background;
 pub use camera_ray::{PinholeCamera, camera_ray, sample_jitter};
@@ -26,3 +27,4 @@ pub use phong::{PhongSurface, phong};
 pub use quadratic_roots::{QuadraticRoots, quadratic_roots};
 pub use ray::Ray;
 pub use self_clearance::self_clearance;
+pub use srgb_encode::{srgb_encode, srgb_encode_rgba8};

@@ -73,6 +73,10 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
         "result = vec3(self_clearance(0.5));",
     ),
     (
+        "srgb_encode.glsl",
+        "result = vec3(float(srgb_encode(0.5)), float(srgb_encode_rgba8(vec3(1.0, 0.5, 0.0)) >> 24), 0.0);",
+    ),
+    (
         "background.glsl",
         "result = background(vec3(0.0, 1.0, 0.0), vec3(0.2, 0.4, 1.0), vec3(1.0));",
     ),

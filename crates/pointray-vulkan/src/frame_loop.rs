@@ -12,7 +12,8 @@ use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::prepared_scene::PreparedScene;
 use crate::renderer::VulkanRenderer;
-use crate::trace::{TraceResources, create_resources, record_copy_out, record_trace_rays, validate};
+use crate::trace::{record_copy_out, record_trace_rays, validate};
+use crate::trace_target::{PixelOutput, TargetBuffers, TraceTarget};
 
 /// Timestamps per frame: start, trace done, copy-out done.
 const STAMPS_PER_FRAME: u32 = 3;
@@ -69,13 +70,14 @@ impl Drop for TimestampPool {
 
 impl VulkanRenderer {
     /// Traces `frames` frames of `scene` back to back in one submission and returns each
-    /// frame's GPU times. The pixels are copied out every frame, as a viewer would, but not
-    /// converted on the host. Needs a queue with timestamps.
+    /// frame's GPU times. Each frame's `output` is copied to host-visible memory, as a viewer
+    /// would, but not converted on the host. Needs a queue with timestamps.
     pub fn trace_frames(
         &self,
         scene: &PreparedScene,
         settings: &RenderSettings,
         frames: u32,
+        output: PixelOutput,
     ) -> Result<FrameLoopTimes, VulkanError> {
         self.ensure_prepared_here(scene)?;
         validate(settings, &self.context)?;
@@ -88,11 +90,12 @@ impl VulkanRenderer {
         if frames == 0 {
             return Err(VulkanError::InvalidSettings("the frame loop needs at least one frame".into()));
         }
-        let resources = create_resources(&self.context, &self.pipeline, scene, settings)?;
+        let mut target = TraceTarget::new(output);
+        let buffers = target.bind(&self.context, &self.pipeline, scene, settings)?;
         let pool = TimestampPool::new(&self.context, frames * STAMPS_PER_FRAME)?;
         let started = Instant::now();
         self.context.submit_and_wait("tracing the frame loop", |command| {
-            self.record_frames(command, &resources, &pool, settings, frames)
+            self.record_frames(command, buffers, &pool, settings, frames)
         })?;
         let wall = started.elapsed();
         let ticks = pool.ticks()?;
@@ -110,7 +113,7 @@ impl VulkanRenderer {
     fn record_frames(
         &self,
         command: vk::CommandBuffer,
-        resources: &TraceResources,
+        target: &TargetBuffers,
         pool: &TimestampPool,
         settings: &RenderSettings,
         frames: u32,
@@ -119,16 +122,16 @@ impl VulkanRenderer {
         // A frame starts once everything before it is done (ALL_COMMANDS), so frames never
         // overlap in the timings; the trace ends when ray tracing has drained.
         let all = vk::PipelineStageFlags::ALL_COMMANDS;
-        // SAFETY: `command` is recording; the resources and the pool outlive the submission.
+        // SAFETY: `command` is recording; the target and the pool outlive the submission.
         unsafe {
             device.cmd_reset_query_pool(command, pool.handle, 0, pool.count);
             for frame in 0..frames {
                 let first = frame * STAMPS_PER_FRAME;
                 device.cmd_write_timestamp(command, all, pool.handle, first);
-                record_trace_rays(&self.context, command, &self.pipeline, &self.table, resources, settings);
+                record_trace_rays(&self.context, command, &self.pipeline, &self.table, target, settings);
                 let traced = vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR;
                 device.cmd_write_timestamp(command, traced, pool.handle, first + 1);
-                record_copy_out(&self.context, command, resources);
+                record_copy_out(&self.context, command, target);
                 device.cmd_write_timestamp(command, all, pool.handle, first + 2);
                 record_next_frame_barrier(device, command);
             }

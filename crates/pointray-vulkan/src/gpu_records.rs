@@ -5,6 +5,8 @@ use glam::Vec3;
 use pointray_kernels::{PatchCold, PatchHot};
 use pointray_scene::{AcceptanceTest, Background, BufferLayout, Camera, Light, Material, RenderSettings};
 
+use crate::trace_target::PixelOutput;
+
 /// Hot and cold data of one patch interleaved (`BufferLayout::Combined`); std430 pads it to 80.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -121,10 +123,11 @@ pub(crate) struct TraceSettings {
     shadows: u32,
     acceptance: u32,
     buffer_layout: u32,
+    output_kind: u32,
 }
 
-impl From<&RenderSettings> for TraceSettings {
-    fn from(settings: &RenderSettings) -> Self {
+impl TraceSettings {
+    pub(crate) fn new(settings: &RenderSettings, output: PixelOutput) -> Self {
         Self {
             width: settings.width,
             height: settings.height,
@@ -138,6 +141,10 @@ impl From<&RenderSettings> for TraceSettings {
             buffer_layout: match settings.buffer_layout {
                 BufferLayout::Split => 0,
                 BufferLayout::Combined => 1,
+            },
+            output_kind: match output {
+                PixelOutput::Aovs => 0,
+                PixelOutput::Display => 1,
             },
         }
     }

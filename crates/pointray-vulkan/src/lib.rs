@@ -28,6 +28,7 @@ mod ray_counter;
 mod renderer;
 mod shaders;
 mod trace;
+mod trace_target;
 pub mod validation;
 
 pub use acceleration::BlasLayout;
@@ -37,4 +38,5 @@ pub use frame_loop::FrameLoopTimes;
 pub use memory_report::BuildReport;
 pub use prepared_scene::PreparedScene;
 pub use renderer::{TraceTiming, VulkanRenderer};
+pub use trace_target::{PixelOutput, TraceTarget};
 pub use validation::validation_requested_by_env;

@@ -16,6 +16,7 @@ pub(crate) const BINDING_FRAME: u32 = 1;
 pub(crate) const BINDING_OBJECTS: u32 = 2;
 pub(crate) const BINDING_LIGHTS: u32 = 3;
 pub(crate) const BINDING_PIXELS: u32 = 4;
+pub(crate) const BINDING_DISPLAY_PIXELS: u32 = 5;
 
 /// Shader groups in pipeline order; the shader binding table follows it.
 pub(crate) const GROUP_RAYGEN: u32 = 0;
@@ -98,6 +99,7 @@ fn create_set_layout(device: &ash::Device) -> Result<vk::DescriptorSetLayout, Vu
         binding(BINDING_OBJECTS, vk::DescriptorType::STORAGE_BUFFER, all_ray_stages()),
         binding(BINDING_LIGHTS, vk::DescriptorType::STORAGE_BUFFER, raygen),
         binding(BINDING_PIXELS, vk::DescriptorType::STORAGE_BUFFER, raygen),
+        binding(BINDING_DISPLAY_PIXELS, vk::DescriptorType::STORAGE_BUFFER, raygen),
     ];
     let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
     // SAFETY: the device is alive.

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use ash::vk;
 use glam::{Affine3A, Vec4};
 use pointray_io::TriangleMesh;
-use pointray_scene::{Background, Camera, Geometry, Scene};
+use pointray_scene::{Background, Camera, Geometry, Light, Scene};
 use pointray_surface::PatchSet;
 
 use crate::acceleration::{
@@ -187,6 +187,31 @@ fn instance_bytes(instances: &[vk::AccelerationStructureInstanceKHR]) -> &[u8] {
     unsafe { std::slice::from_raw_parts(instances.as_ptr().cast::<u8>(), std::mem::size_of_val(instances)) }
 }
 
+/// The light records in host-visible memory, so that moving a light is a write, not a
+/// re-preparation.
+fn light_buffer(context: &Arc<GpuContext>, lights: &[Light]) -> Result<Buffer, VulkanError> {
+    let records: Vec<LightRecord> = lights.iter().map(LightRecord::from).collect();
+    // Storage buffers may not be empty: an empty list still gets one (unread) record.
+    let bytes = if records.is_empty() { vec![0u8; 32] } else { bytemuck::cast_slice(&records).to_vec() };
+    Buffer::host_with_data(context, "light records", &bytes, vk::BufferUsageFlags::STORAGE_BUFFER)
+}
+
+impl PreparedScene {
+    /// Replaces the scene's lights; the next trace shades with them. Geometry, and so every
+    /// acceleration structure, stays as it is.
+    pub fn set_lights(&mut self, lights: &[Light]) -> Result<(), VulkanError> {
+        let bytes = lights.len() * std::mem::size_of::<LightRecord>();
+        if lights.is_empty() || bytes as u64 > self.lights.size {
+            self.lights = light_buffer(&self.context, lights)?;
+        } else {
+            let records: Vec<LightRecord> = lights.iter().map(LightRecord::from).collect();
+            self.lights.write(bytemuck::cast_slice(&records));
+        }
+        self.light_count = lights.len() as u32;
+        Ok(())
+    }
+}
+
 /// Uploads `scene` and builds its acceleration structures.
 pub(crate) fn prepare(
     context: &Arc<GpuContext>,
@@ -219,19 +244,16 @@ pub(crate) fn prepare(
         Buffer::device_with_data(context, "TLAS instances", instance_bytes(&instances), build_input_usage())?;
     let tlas = build(context, &instance_input(instance_buffer.device_address(), instances.len() as u32))?;
     geometry.push(instance_buffer);
-    let lights: Vec<LightRecord> = scene.lights.iter().map(LightRecord::from).collect();
-    // Storage buffers may not be empty: an empty list still gets one (unread) record.
-    let light_bytes = if lights.is_empty() { vec![0u8; 32] } else { bytemuck::cast_slice(&lights).to_vec() };
     let record_bytes =
         if records.is_empty() { vec![0u8; 80] } else { bytemuck::cast_slice(&records).to_vec() };
     Ok(PreparedScene {
         context: context.clone(),
         camera: scene.camera,
         background: scene.background,
-        light_count: lights.len() as u32,
+        light_count: scene.lights.len() as u32,
         ray_epsilon: scene.ray_epsilon(),
         objects: Buffer::device_with_data(context, "object records", &record_bytes, storage_usage())?,
-        lights: Buffer::device_with_data(context, "light records", &light_bytes, storage_usage())?,
+        lights: light_buffer(context, &scene.lights)?,
         tlas,
         _bottom_levels: bottom_levels,
         _geometry: geometry,

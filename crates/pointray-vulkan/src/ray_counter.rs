@@ -10,21 +10,19 @@ use crate::pipeline::RayTracingPipeline;
 use crate::prepared_scene::PreparedScene;
 use crate::renderer::VulkanRenderer;
 use crate::shaders;
-use crate::trace::{create_resources, record, validate};
+use crate::trace::trace_into;
+use crate::trace_target::{PixelOutput, TraceTarget};
 
 impl VulkanRenderer {
     /// How many rays one frame of `scene` traces with `settings`, counted per pixel on the GPU
     /// and summed here. Builds the counting pipeline for this call only.
     pub fn count_rays(&self, scene: &PreparedScene, settings: &RenderSettings) -> Result<u64, VulkanError> {
         self.ensure_prepared_here(scene)?;
-        validate(settings, &self.context)?;
         let pipeline = RayTracingPipeline::with_raygen(&self.context, shaders::PRIMARY_COUNTING_RGEN)?;
         let table = ShaderBindingTable::new(&self.context, &pipeline)?;
-        let resources = create_resources(&self.context, &pipeline, scene, settings)?;
-        self.context.submit_and_wait("counting rays", |command| {
-            record(&self.context, command, &pipeline, &table, &resources, settings)
-        })?;
-        let pixels: Vec<PixelRecord> = bytemuck::pod_collect_to_vec(resources.readback.read());
+        let mut target = TraceTarget::new(PixelOutput::Aovs);
+        trace_into(&self.context, &pipeline, &table, scene, settings, &mut target)?;
+        let pixels: Vec<PixelRecord> = bytemuck::pod_collect_to_vec(target.read_back()?);
         Ok(pixels.iter().map(|pixel| u64::from(pixel.ids[2])).sum())
     }
 }

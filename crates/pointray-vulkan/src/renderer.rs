@@ -12,7 +12,8 @@ use crate::device::{DeviceInfo, DeviceSelector};
 use crate::error::VulkanError;
 use crate::pipeline::RayTracingPipeline;
 use crate::prepared_scene::{PreparedScene, prepare};
-use crate::trace::trace;
+use crate::trace::trace_into;
+use crate::trace_target::{PixelOutput, TraceTarget};
 use crate::validation::validation_requested_by_env;
 
 /// How long one trace took.
@@ -20,7 +21,7 @@ use crate::validation::validation_requested_by_env;
 pub struct TraceTiming {
     /// GPU time between timestamps around `vkCmdTraceRaysKHR`; `None` without timestamps.
     pub gpu: Option<Duration>,
-    /// Wall time of the whole call: per-trace setup, trace, read-back and conversion.
+    /// Wall time of the call: setup (allocation on a target's first use), trace and copy-out.
     pub wall: Duration,
 }
 
@@ -84,10 +85,24 @@ impl VulkanRenderer {
         scene: &PreparedScene,
         settings: &RenderSettings,
     ) -> Result<(Frame, TraceTiming), VulkanError> {
+        let mut target = TraceTarget::new(PixelOutput::Aovs);
+        let timing = self.trace_into(scene, settings, &mut target)?;
+        Ok((target.frame()?, timing))
+    }
+
+    /// Traces a prepared scene into a reusable target, from the scene's current camera and
+    /// lights; read the result with `TraceTarget::frame` or `TraceTarget::display_rgba8`.
+    /// The target keeps its GPU buffers between calls of the same image size.
+    pub fn trace_into(
+        &self,
+        scene: &PreparedScene,
+        settings: &RenderSettings,
+        target: &mut TraceTarget,
+    ) -> Result<TraceTiming, VulkanError> {
         self.ensure_prepared_here(scene)?;
         let start = Instant::now();
-        let (frame, gpu) = trace(&self.context, &self.pipeline, &self.table, scene, settings)?;
-        Ok((frame, TraceTiming { gpu, wall: start.elapsed() }))
+        let gpu = trace_into(&self.context, &self.pipeline, &self.table, scene, settings, target)?;
+        Ok(TraceTiming { gpu, wall: start.elapsed() })
     }
 
     /// Scenes hold GPU resources of the renderer that prepared them; no other may trace them.

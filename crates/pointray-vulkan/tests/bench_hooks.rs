@@ -5,6 +5,7 @@ mod common;
 
 use common::{assert_no_validation_messages, renderer, sphere_on_floor};
 use pointray_scene::RenderSettings;
+use pointray_vulkan::PixelOutput;
 
 fn small(width: u32, height: u32) -> RenderSettings {
     RenderSettings { width, height, ..RenderSettings::default() }
@@ -38,13 +39,16 @@ fn shadows_and_reflections_add_rays_within_their_bounds() {
 fn frame_loop_times_every_frame() {
     let Some(renderer) = renderer() else { return };
     let prepared = renderer.prepare(&sphere_on_floor(0.5, 1.0)).expect("prepares");
-    let times = renderer.trace_frames(&prepared, &small(32, 24), 4).expect("traces");
+    let times = renderer.trace_frames(&prepared, &small(32, 24), 4, PixelOutput::Display).expect("traces");
     assert_eq!((times.trace.len(), times.frame.len()), (4, 4));
     for (trace, frame) in times.trace.iter().zip(&times.frame) {
         assert!(!trace.is_zero() && frame >= trace, "trace {trace:?}, whole frame {frame:?}");
     }
     assert!(times.wall >= times.frame.iter().sum(), "the wall time covers the GPU time");
-    assert!(renderer.trace_frames(&prepared, &small(8, 8), 0).is_err(), "zero frames is an error");
+    assert!(
+        renderer.trace_frames(&prepared, &small(8, 8), 0, PixelOutput::Aovs).is_err(),
+        "zero frames is an error"
+    );
     assert_no_validation_messages(&renderer);
 }
 

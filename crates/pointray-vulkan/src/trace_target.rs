@@ -1,0 +1,282 @@
+//! What a trace writes into and reads back from: the frame uniforms, the output buffer, its
+//! host-visible copy and the descriptor set. A target lives across traces, so a viewer or a
+//! benchmark allocates once and re-allocates only when the image size changes.
+
+use std::sync::Arc;
+
+use ash::vk;
+use glam::Vec3;
+use gpu_allocator::MemoryLocation;
+use pointray_scene::{Frame, RenderSettings};
+
+use crate::buffer::Buffer;
+use crate::context::GpuContext;
+use crate::error::{VkContext, VulkanError};
+use crate::gpu_records::{FrameUniforms, PixelRecord};
+use crate::pipeline::{
+    BINDING_DISPLAY_PIXELS, BINDING_FRAME, BINDING_LIGHTS, BINDING_OBJECTS, BINDING_PIXELS, BINDING_TLAS,
+    RayTracingPipeline,
+};
+use crate::prepared_scene::PreparedScene;
+
+/// What a trace writes per pixel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PixelOutput {
+    /// Linear colour with the AOVs (normal, depth, ids): 48 bytes a pixel, for `Frame`s.
+    #[default]
+    Aovs,
+    /// sRGB8 RGBA colour only: 4 bytes a pixel, what a window shows.
+    Display,
+}
+
+impl PixelOutput {
+    pub(crate) fn bytes_per_pixel(self) -> u64 {
+        match self {
+            PixelOutput::Aovs => std::mem::size_of::<PixelRecord>() as u64,
+            PixelOutput::Display => 4,
+        }
+    }
+}
+
+/// Reusable output of traces at one size; see `VulkanRenderer::trace_into`.
+pub struct TraceTarget {
+    output: PixelOutput,
+    buffers: Option<TargetBuffers>,
+}
+
+/// The GPU side of a target, for one device and one image size.
+pub(crate) struct TargetBuffers {
+    context: Arc<GpuContext>,
+    pub(crate) output: PixelOutput,
+    width: u32,
+    height: u32,
+    uniforms: Buffer,
+    /// The output the shaders write (`output`'s records); the other binding gets `unused`.
+    pub(crate) written: Buffer,
+    unused: Buffer,
+    pub(crate) readback: Buffer,
+    descriptor_pool: vk::DescriptorPool,
+    pub(crate) set: vk::DescriptorSet,
+    pub(crate) timestamps: Option<vk::QueryPool>,
+}
+
+impl TraceTarget {
+    pub fn new(output: PixelOutput) -> Self {
+        Self { output, buffers: None }
+    }
+
+    pub fn output(&self) -> PixelOutput {
+        self.output
+    }
+
+    /// The last trace as a frame with its AOVs; an error for a display target or before any trace.
+    pub fn frame(&self) -> Result<Frame, VulkanError> {
+        match (&self.buffers, self.output) {
+            (Some(buffers), PixelOutput::Aovs) => {
+                let pixels: Vec<PixelRecord> = bytemuck::pod_collect_to_vec(buffers.readback.read());
+                Ok(frame_from_pixels(buffers.width, buffers.height, &pixels))
+            }
+            _ => Err(VulkanError::InvalidSettings("this target holds no traced frame with AOVs".into())),
+        }
+    }
+
+    /// The last trace's sRGB8 RGBA pixels, rows top to bottom; an error for an AOV target or
+    /// before any trace.
+    pub fn display_rgba8(&self) -> Result<&[u8], VulkanError> {
+        match (&self.buffers, self.output) {
+            (Some(_), PixelOutput::Display) => self.read_back(),
+            _ => Err(VulkanError::InvalidSettings("this target holds no traced display image".into())),
+        }
+    }
+
+    /// The raw bytes the last trace copied out.
+    pub(crate) fn read_back(&self) -> Result<&[u8], VulkanError> {
+        match &self.buffers {
+            Some(buffers) => Ok(buffers.readback.read()),
+            None => Err(VulkanError::InvalidSettings("nothing was traced into this target yet".into())),
+        }
+    }
+
+    /// The buffers for a trace of `scene` with `settings`, bound to it: made anew when the
+    /// device or the size changed. No submitted trace may still use this target.
+    pub(crate) fn bind(
+        &mut self,
+        context: &Arc<GpuContext>,
+        pipeline: &RayTracingPipeline,
+        scene: &PreparedScene,
+        settings: &RenderSettings,
+    ) -> Result<&TargetBuffers, VulkanError> {
+        let buffers = self.buffers_for(context, pipeline, settings.width, settings.height)?;
+        buffers.bind(scene);
+        Ok(buffers)
+    }
+
+    fn buffers_for(
+        &mut self,
+        context: &Arc<GpuContext>,
+        pipeline: &RayTracingPipeline,
+        width: u32,
+        height: u32,
+    ) -> Result<&mut TargetBuffers, VulkanError> {
+        let reusable = self
+            .buffers
+            .as_ref()
+            .is_some_and(|b| Arc::ptr_eq(&b.context, context) && (b.width, b.height) == (width, height));
+        if !reusable {
+            // The old buffers go first, so that a resize never holds both sizes at once.
+            self.buffers = None;
+            self.buffers = Some(TargetBuffers::new(context, pipeline, width, height, self.output)?);
+        }
+        Ok(self.buffers.as_mut().expect("made just above"))
+    }
+}
+
+impl TargetBuffers {
+    fn new(
+        context: &Arc<GpuContext>,
+        pipeline: &RayTracingPipeline,
+        width: u32,
+        height: u32,
+        output: PixelOutput,
+    ) -> Result<Self, VulkanError> {
+        let uniforms = Buffer::new(
+            context,
+            "frame uniforms",
+            std::mem::size_of::<FrameUniforms>() as u64,
+            vk::BufferUsageFlags::UNIFORM_BUFFER,
+            MemoryLocation::CpuToGpu,
+        )?;
+        let bytes = u64::from(width) * u64::from(height) * output.bytes_per_pixel();
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC;
+        let written = Buffer::new(context, "pixel output", bytes, usage, MemoryLocation::GpuOnly)?;
+        // Storage bindings may not be null; the output not written gets one small buffer.
+        let unused = Buffer::new(context, "unused pixel output", 64, usage, MemoryLocation::GpuOnly)?;
+        let readback = Buffer::new(
+            context,
+            "pixel read-back",
+            bytes,
+            vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuToCpu,
+        )?;
+        let (descriptor_pool, set) = allocate_set(context, pipeline)?;
+        let mut buffers = Self {
+            context: context.clone(),
+            output,
+            width,
+            height,
+            uniforms,
+            written,
+            unused,
+            readback,
+            descriptor_pool,
+            set,
+            timestamps: None,
+        };
+        if context.timestamp_period_ns.is_some() {
+            let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2);
+            // SAFETY: the device is alive; the pool is destroyed in Drop.
+            buffers.timestamps = Some(
+                unsafe { context.device.create_query_pool(&info, None) }
+                    .during("creating a timestamp pool")?,
+            );
+        }
+        Ok(buffers)
+    }
+
+    /// Points the descriptors at `scene` and writes its camera to the uniforms.
+    fn bind(&mut self, scene: &PreparedScene) {
+        let uniforms =
+            FrameUniforms::new(&scene.camera, &scene.background, scene.light_count, scene.ray_epsilon);
+        self.uniforms.write(bytemuck::bytes_of(&uniforms));
+        let (pixels, display) = match self.output {
+            PixelOutput::Aovs => (&self.written, &self.unused),
+            PixelOutput::Display => (&self.unused, &self.written),
+        };
+        let structures = [scene.tlas.handle];
+        let mut tlas =
+            vk::WriteDescriptorSetAccelerationStructureKHR::default().acceleration_structures(&structures);
+        let whole = |buffer: &Buffer| {
+            [vk::DescriptorBufferInfo::default().buffer(buffer.handle).range(vk::WHOLE_SIZE)]
+        };
+        let infos = [
+            whole(&self.uniforms),
+            whole(&scene.objects),
+            whole(&scene.lights),
+            whole(pixels),
+            whole(display),
+        ];
+        let write = |binding, ty| {
+            vk::WriteDescriptorSet::default().dst_set(self.set).dst_binding(binding).descriptor_type(ty)
+        };
+        let storage = vk::DescriptorType::STORAGE_BUFFER;
+        let writes = [
+            write(BINDING_TLAS, vk::DescriptorType::ACCELERATION_STRUCTURE_KHR)
+                .descriptor_count(1)
+                .push_next(&mut tlas),
+            write(BINDING_FRAME, vk::DescriptorType::UNIFORM_BUFFER).buffer_info(&infos[0]),
+            write(BINDING_OBJECTS, storage).buffer_info(&infos[1]),
+            write(BINDING_LIGHTS, storage).buffer_info(&infos[2]),
+            write(BINDING_PIXELS, storage).buffer_info(&infos[3]),
+            write(BINDING_DISPLAY_PIXELS, storage).buffer_info(&infos[4]),
+        ];
+        // SAFETY: every written resource is alive; the caller's contract says the set is idle.
+        unsafe { self.context.device.update_descriptor_sets(&writes, &[]) };
+    }
+}
+
+fn allocate_set(
+    context: &GpuContext,
+    pipeline: &RayTracingPipeline,
+) -> Result<(vk::DescriptorPool, vk::DescriptorSet), VulkanError> {
+    let sizes = [
+        vk::DescriptorPoolSize::default()
+            .ty(vk::DescriptorType::ACCELERATION_STRUCTURE_KHR)
+            .descriptor_count(1),
+        vk::DescriptorPoolSize::default().ty(vk::DescriptorType::UNIFORM_BUFFER).descriptor_count(1),
+        vk::DescriptorPoolSize::default().ty(vk::DescriptorType::STORAGE_BUFFER).descriptor_count(4),
+    ];
+    let pool_info = vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes);
+    let device = &context.device;
+    // SAFETY: the device is alive; the pool is destroyed with the target's buffers.
+    let pool =
+        unsafe { device.create_descriptor_pool(&pool_info, None) }.during("creating a descriptor pool")?;
+    let layouts = [pipeline.set_layout];
+    let allocate = vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts);
+    // SAFETY: the pool has room for exactly this set.
+    match unsafe { device.allocate_descriptor_sets(&allocate) }.during("allocating a descriptor set") {
+        Ok(sets) => Ok((pool, sets[0])),
+        Err(error) => {
+            // SAFETY: nothing uses the new pool.
+            unsafe { device.destroy_descriptor_pool(pool, None) };
+            Err(error)
+        }
+    }
+}
+
+impl Drop for TargetBuffers {
+    fn drop(&mut self) {
+        // SAFETY: every trace into this target was waited on before its call returned.
+        unsafe {
+            self.context.device.destroy_descriptor_pool(self.descriptor_pool, None);
+            if let Some(pool) = self.timestamps {
+                self.context.device.destroy_query_pool(pool, None);
+            }
+        }
+    }
+}
+
+fn frame_from_pixels(width: u32, height: u32, pixels: &[PixelRecord]) -> Frame {
+    let hit = |p: &PixelRecord| p.normal_depth[3] >= 0.0;
+    Frame {
+        width,
+        height,
+        color: pixels.iter().map(|p| Vec3::from_slice(&p.color[..3])).collect(),
+        depth: pixels.iter().map(|p| if hit(p) { p.normal_depth[3] } else { f32::INFINITY }).collect(),
+        normal: pixels
+            .iter()
+            .map(|p| if hit(p) { Vec3::from_slice(&p.normal_depth[..3]) } else { Vec3::ZERO })
+            .collect(),
+        instance_id: pixels.iter().map(|p| if hit(p) { p.ids[0] } else { Frame::MISS }).collect(),
+        primitive_id: pixels.iter().map(|p| if hit(p) { p.ids[1] } else { Frame::MISS }).collect(),
+    }
+}
