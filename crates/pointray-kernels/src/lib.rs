@@ -8,6 +8,7 @@
 pub mod background;
 pub mod camera_ray;
 pub mod face_forward;
+pub mod interpolate_color;
 pub mod intersect_patch;
 pub mod layout;
 pub mod patch_normal;
@@ -20,6 +21,7 @@ pub mod srgb_encode;
 pub use background::background;
 pub use camera_ray::{PinholeCamera, camera_ray, sample_jitter};
 pub use face_forward::face_forward;
+pub use interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
 pub use intersect_patch::{PatchAcceptance, PatchHit, intersect_patch};
 pub use layout::{Aabb, PatchCold, PatchHot};
 pub use patch_normal::patch_normal;
