@@ -2,12 +2,16 @@
 //! CWBVH over patch boxes or triangles) under a BVH over object instances. It follows the
 //! rendering contract of docs/ARCHITECTURE.md with the maths of `pointray-kernels`, the
 //! same functions the Vulkan shaders include, so both backends draw the same image.
+//!
+//! A `CpuRenderer` builds its BVHs once; its camera and lights can then be changed between
+//! frames (`set_camera`, `set_lights`) without rebuilding anything.
 
 mod instance;
 mod object_bvh;
 mod path;
 mod ray_counts;
 mod renderer;
+mod scene_updates;
 mod shading;
 mod top_level;
 mod triangle;

@@ -14,6 +14,8 @@ use crate::top_level::{SceneHit, TopLevel};
 /// cores, large enough that neighbouring rays share BVH nodes in cache.
 const TILE_SIZE: u32 = 16;
 
+/// The scene's BVHs, built once, and the scene itself, whose camera and lights may change
+/// between frames (`scene_updates.rs`).
 pub struct CpuRenderer {
     pub(crate) scene: Scene,
     pub(crate) top: TopLevel,
