@@ -1,6 +1,9 @@
-//! The per-patch shading record (SPEC.md §2.7): colour and intensity.
+//! What only shading reads per patch (SPEC.md §2.7): the cold record (colour and
+//! intensity) and the neighbours whose colours a hit blends (issue 7).
 
-use pointray_kernels::PatchCold;
+use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold};
+
+use crate::neighbors::Neighbors;
 
 /// `PatchCold` stores linear RGB, point files carry sRGB: decode each channel once.
 fn srgb_to_linear_table() -> [u8; 256] {
@@ -25,9 +28,37 @@ pub fn cold_records(colors: Option<&[[u8; 3]]>, intensities: Option<&[f32]>, cou
         .collect()
 }
 
+/// Each patch's `COLOR_NEIGHBORS` nearest neighbours, padded with `NO_NEIGHBOR` where the
+/// table is narrower; empty without colours, where blending would only repeat white (and the
+/// list would add a third to the patch set's memory).
+pub fn color_neighbor_table(neighbors: &Neighbors, has_colors: bool) -> Vec<u32> {
+    if !has_colors {
+        return Vec::new();
+    }
+    (0..neighbors.point_count())
+        .flat_map(|i| {
+            let row = neighbors.of(i);
+            (0..COLOR_NEIGHBORS).map(move |slot| row.get(slot).copied().unwrap_or(NO_NEIGHBOR))
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn colour_neighbours_are_the_nearest_padded_and_only_with_colours() {
+        let wide = Neighbors { k: 16, indices: (0..32).collect(), distances: vec![0.0; 32] };
+        let table = color_neighbor_table(&wide, true);
+        assert_eq!(table.len(), 2 * COLOR_NEIGHBORS);
+        assert_eq!(&table[COLOR_NEIGHBORS..], &(16..16 + COLOR_NEIGHBORS as u32).collect::<Vec<_>>()[..]);
+        let narrow = Neighbors { k: 3, indices: vec![4, 5, 6], distances: vec![0.0; 3] };
+        let padded = color_neighbor_table(&narrow, true);
+        assert_eq!(&padded[..4], &[4, 5, 6, NO_NEIGHBOR]);
+        assert!(padded[3..].iter().all(|&j| j == NO_NEIGHBOR));
+        assert!(color_neighbor_table(&wide, false).is_empty());
+    }
 
     #[test]
     fn colours_become_linear_and_absent_ones_white() {

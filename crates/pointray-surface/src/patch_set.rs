@@ -1,7 +1,7 @@
 //! The result of `prep`: one patch per (deduplicated) point, in Morton order.
 
 use glam::DVec3;
-use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 
 use crate::patch_bounds::BoxKind;
 
@@ -34,6 +34,10 @@ pub struct PatchSet {
     pub aabbs: Vec<Aabb>,
     pub hot: Vec<PatchHot>,
     pub cold: Vec<PatchCold>,
+    /// `COLOR_NEIGHBORS` patch indices per patch, nearest first, `NO_NEIGHBOR` in unused
+    /// slots: the points a hit's colour is blended from (`interpolate_color`). Empty when
+    /// the cloud has no colours, as there is nothing to blend.
+    pub color_neighbors: Vec<u32>,
 }
 
 impl PatchSet {
@@ -43,6 +47,11 @@ impl PatchSet {
 
     pub fn is_empty(&self) -> bool {
         self.hot.is_empty()
+    }
+
+    /// Patch `i`'s colour neighbours; empty when the set keeps none.
+    pub fn color_neighbors_of(&self, i: usize) -> &[u32] {
+        self.color_neighbors.get(i * COLOR_NEIGHBORS..(i + 1) * COLOR_NEIGHBORS).unwrap_or(&[])
     }
 
     /// The union of all patch boxes, in local coordinates.

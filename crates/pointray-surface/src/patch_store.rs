@@ -1,12 +1,12 @@
 //! The patch store: the versioned binary file that caches a `PatchSet`.
 //!
-//! All numbers are little-endian. Version 1 layout:
+//! All numbers are little-endian. Version 2 layout:
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRPATCH\0"` |
-//! | 8 | 4 | format version, u32 = 1 |
-//! | 12 | 4 | header size in bytes, u32 = 144 |
+//! | 8 | 4 | format version, u32 = 2 |
+//! | 12 | 4 | header size in bytes, u32 = 160 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
 //! | 24 | 4 | `k`, u32 |
 //! | 28 | 4 | `normal_k`, u32 |
@@ -14,11 +14,13 @@
 //! | 36 | 4 | duplicate tolerance (fraction of the bbox diagonal), f32 |
 //! | 40 | 24 | bounds of all boxes: min xyz, max xyz, f32 x 6 (local coordinates) |
 //! | 64 | 24 | offset, f64 x 3 (`input = local + offset`) |
-//! | 88 | 48 | section table: (byte offset u64, byte length u64) for aabbs, hot, cold |
-//! | 136 | 8 | reserved, zero |
-//! | 144 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
+//! | 88 | 64 | section table: (byte offset u64, byte length u64) for aabbs, hot, cold, neighbours |
+//! | 152 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
+//! | 156 | 4 | reserved, zero |
+//! | 160 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
 //! | 16-aligned | 64 n | hot: `PatchHot` (origin+d_i, t1+c0, n+c1, c2..c5; f32 x 16) |
 //! | 16-aligned | 8 n | cold: `PatchCold` (RGBA8 u32, intensity f32) |
+//! | 16-aligned | 4 m n | neighbours: `m` patch indices per patch (u32, `NO_NEIGHBOR` = unused) |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
 //!
 //! Gaps between sections (to the next multiple of 16) are zero. The record layouts are
@@ -31,13 +33,14 @@ use std::path::{Path, PathBuf};
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
-use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot};
 
 use crate::patch_bounds::BoxKind;
 use crate::patch_set::{PatchSet, PrepParams};
 
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
+const SECTION_COUNT: usize = 4;
 const HEADER_BYTES: usize = std::mem::size_of::<Header>();
 const CHECKSUM_BYTES: usize = 4;
 const SECTION_ALIGNMENT: usize = 16;
@@ -48,7 +51,9 @@ pub enum StoreError {
     Io { path: PathBuf, source: std::io::Error },
     #[error("{path}: not a pointray patch store (wrong magic)")]
     NotAPatchStore { path: PathBuf },
-    #[error("{path}: patch store version {found}, this build reads version {FORMAT_VERSION}")]
+    #[error(
+        "{path}: patch store version {found}, this build reads version {FORMAT_VERSION}: re-run `pointray prep`"
+    )]
     WrongVersion { path: PathBuf, found: u32 },
     #[error("{path}: truncated or wrong length: the header implies {expected} bytes, the file has {actual}")]
     WrongLength { path: PathBuf, expected: u64, actual: u64 },
@@ -56,6 +61,8 @@ pub enum StoreError {
     ChecksumMismatch { path: PathBuf },
     #[error("{path}: malformed patch store: {problem}")]
     Malformed { path: PathBuf, problem: String },
+    #[error("{path}: cannot store an inconsistent patch set: {problem}")]
+    InconsistentPatchSet { path: PathBuf, problem: String },
 }
 
 #[repr(C)]
@@ -79,21 +86,24 @@ struct Header {
     bounds_min: [f32; 3],
     bounds_max: [f32; 3],
     offset: [f64; 3],
-    sections: [Section; 3],
-    reserved: [u8; 8],
+    sections: [Section; SECTION_COUNT],
+    neighbor_slots: u32,
+    reserved: [u8; 4],
 }
 
-/// Where each section lies for `n` patches; the only layout version 1 allows.
+/// Where each section lies for `n` patches with `neighbor_slots` colour neighbours each;
+/// the only layout version 2 allows.
 struct Layout {
-    sections: [Section; 3],
+    sections: [Section; SECTION_COUNT],
     total_bytes: u64,
 }
 
 impl Layout {
-    fn for_count(n: u64) -> Option<Self> {
-        let strides = [size_of::<Aabb>(), size_of::<PatchHot>(), size_of::<PatchCold>()];
+    fn new(n: u64, neighbor_slots: u32) -> Option<Self> {
+        let neighbors_stride = size_of::<u32>() * neighbor_slots as usize;
+        let strides = [size_of::<Aabb>(), size_of::<PatchHot>(), size_of::<PatchCold>(), neighbors_stride];
         let mut cursor = HEADER_BYTES as u64;
-        let mut sections = [Section::zeroed(); 3];
+        let mut sections = [Section::zeroed(); SECTION_COUNT];
         for (section, stride) in sections.iter_mut().zip(strides) {
             cursor = cursor.checked_next_multiple_of(SECTION_ALIGNMENT as u64)?;
             let length = n.checked_mul(stride as u64)?;
@@ -109,16 +119,35 @@ impl Layout {
 pub fn write(path: &Path, patches: &PatchSet) -> Result<(), StoreError> {
     let io_error = |source| StoreError::Io { path: path.to_path_buf(), source };
     let directory = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let neighbor_slots = neighbor_slots(patches)
+        .map_err(|problem| StoreError::InconsistentPatchSet { path: path.to_path_buf(), problem })?;
     let temporary = tempfile::NamedTempFile::new_in(directory).map_err(io_error)?;
-    write_contents(temporary.as_file(), patches).map_err(io_error)?;
+    write_contents(temporary.as_file(), patches, neighbor_slots).map_err(io_error)?;
     temporary.persist(path).map_err(|e| io_error(e.error))?;
     Ok(())
 }
 
+/// How many colour neighbours each patch has (0 or `COLOR_NEIGHBORS`), or why the record
+/// counts do not agree.
+fn neighbor_slots(patches: &PatchSet) -> Result<u32, String> {
+    let n = patches.len();
+    let slots = if patches.color_neighbors.is_empty() { 0 } else { COLOR_NEIGHBORS };
+    let lengths = [patches.aabbs.len(), patches.cold.len(), patches.color_neighbors.len()];
+    if lengths != [n, n, n * slots] {
+        return Err(format!(
+            "{n} hot records, {} boxes, {} cold records and {} colour neighbours ({COLOR_NEIGHBORS} per patch wanted)",
+            patches.aabbs.len(),
+            patches.cold.len(),
+            patches.color_neighbors.len()
+        ));
+    }
+    Ok(slots as u32)
+}
+
 /// The header and the sections, then the checksum of both.
-fn write_contents(file: &File, patches: &PatchSet) -> std::io::Result<()> {
+fn write_contents(file: &File, patches: &PatchSet, neighbor_slots: u32) -> std::io::Result<()> {
     let mut writer = ChecksummedWriter::new(BufWriter::with_capacity(1 << 20, file));
-    write_body(&mut writer, patches)?;
+    write_body(&mut writer, patches, neighbor_slots)?;
     let checksum = writer.hasher.finalize();
     let mut inner = writer.inner;
     inner.write_all(&checksum.to_le_bytes())?;
@@ -126,13 +155,19 @@ fn write_contents(file: &File, patches: &PatchSet) -> std::io::Result<()> {
     file.sync_all()
 }
 
-fn write_body(writer: &mut ChecksummedWriter<impl Write>, patches: &PatchSet) -> std::io::Result<()> {
-    let layout = Layout::for_count(patches.len() as u64).expect("an in-memory patch set fits in u64 bytes");
-    writer.write_all(bytemuck::bytes_of(&header_for(patches, &layout)))?;
-    let bodies: [&[u8]; 3] = [
+fn write_body(
+    writer: &mut ChecksummedWriter<impl Write>,
+    patches: &PatchSet,
+    neighbor_slots: u32,
+) -> std::io::Result<()> {
+    let layout =
+        Layout::new(patches.len() as u64, neighbor_slots).expect("an in-memory patch set fits in u64 bytes");
+    writer.write_all(bytemuck::bytes_of(&header_for(patches, &layout, neighbor_slots)))?;
+    let bodies: [&[u8]; SECTION_COUNT] = [
         bytemuck::cast_slice(&patches.aabbs),
         bytemuck::cast_slice(&patches.hot),
         bytemuck::cast_slice(&patches.cold),
+        bytemuck::cast_slice(&patches.color_neighbors),
     ];
     let mut position = HEADER_BYTES as u64;
     for (section, body) in layout.sections.iter().zip(bodies) {
@@ -144,7 +179,7 @@ fn write_body(writer: &mut ChecksummedWriter<impl Write>, patches: &PatchSet) ->
     Ok(())
 }
 
-fn header_for(patches: &PatchSet, layout: &Layout) -> Header {
+fn header_for(patches: &PatchSet, layout: &Layout, neighbor_slots: u32) -> Header {
     let bounds = patches.bounds().unwrap_or_default();
     Header {
         magic: MAGIC,
@@ -159,7 +194,8 @@ fn header_for(patches: &PatchSet, layout: &Layout) -> Header {
         bounds_max: bounds.max,
         offset: patches.offset.to_array(),
         sections: layout.sections,
-        reserved: [0; 8],
+        neighbor_slots,
+        reserved: [0; 4],
     }
 }
 
@@ -187,7 +223,8 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let header = checked_header(path, &bytes)?;
     let malformed =
         |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
-    let layout = Layout::for_count(header.point_count).ok_or_else(|| malformed("point count overflows"))?;
+    let layout = Layout::new(header.point_count, header.neighbor_slots)
+        .ok_or_else(|| malformed("point count overflows"))?;
     if header.sections != layout.sections || header.header_bytes as usize != HEADER_BYTES {
         return Err(malformed("the section table does not match the point count"));
     }
@@ -207,7 +244,24 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
         aabbs: bytemuck::pod_collect_to_vec(section(0)),
         hot: bytemuck::pod_collect_to_vec(section(1)),
         cold: bytemuck::pod_collect_to_vec(section(2)),
+        color_neighbors: checked_neighbors(section(3), header.point_count)
+            .map_err(|problem| malformed(&problem))?,
     })
+}
+
+/// The neighbour section, once every entry is a patch index or `NO_NEIGHBOR`: the GPU reads
+/// the patches they name without bounds checks.
+fn checked_neighbors(bytes: &[u8], point_count: u64) -> Result<Vec<u32>, String> {
+    let neighbors: Vec<u32> = bytemuck::pod_collect_to_vec(bytes);
+    match neighbors.iter().position(|&j| j != NO_NEIGHBOR && u64::from(j) >= point_count) {
+        Some(bad) => Err(format!(
+            "colour neighbour {} of patch {} is {}, beyond the {point_count} patches",
+            bad % COLOR_NEIGHBORS,
+            bad / COLOR_NEIGHBORS,
+            neighbors[bad]
+        )),
+        None => Ok(neighbors),
+    }
 }
 
 /// The header, once magic, version, length and checksum have been verified.
@@ -227,7 +281,17 @@ fn checked_header(path: &Path, bytes: &[u8]) -> Result<Header, StoreError> {
         return Err(StoreError::WrongVersion { path: path_buf(), found });
     }
     let header: Header = bytemuck::pod_read_unaligned(bytes.get(..HEADER_BYTES).ok_or_else(too_short)?);
-    let expected = Layout::for_count(header.point_count).map_or(u64::MAX, |layout| layout.total_bytes);
+    if header.neighbor_slots != 0 && header.neighbor_slots as usize != COLOR_NEIGHBORS {
+        return Err(StoreError::Malformed {
+            path: path_buf(),
+            problem: format!(
+                "{} colour neighbours per patch; 0 or {COLOR_NEIGHBORS} allowed",
+                header.neighbor_slots
+            ),
+        });
+    }
+    let expected =
+        Layout::new(header.point_count, header.neighbor_slots).map_or(u64::MAX, |layout| layout.total_bytes);
     if expected != bytes.len() as u64 {
         return Err(StoreError::WrongLength { path: path_buf(), expected, actual: bytes.len() as u64 });
     }
@@ -243,14 +307,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn header_is_144_bytes_and_sections_are_aligned() {
-        assert_eq!(HEADER_BYTES, 144);
-        let layout = Layout::for_count(3).unwrap();
+    fn header_is_160_bytes_and_sections_are_aligned() {
+        assert_eq!(HEADER_BYTES, 160);
+        let layout = Layout::new(3, COLOR_NEIGHBORS as u32).unwrap();
         assert!(layout.sections.iter().all(|s| s.offset % 16 == 0));
-        assert_eq!(layout.sections[0], Section { offset: 144, length: 72 });
-        assert_eq!(layout.sections[1], Section { offset: 224, length: 192 });
-        assert_eq!(layout.sections[2], Section { offset: 416, length: 24 });
-        assert_eq!(layout.total_bytes, 444);
-        assert!(Layout::for_count(u64::MAX).is_none());
+        assert_eq!(layout.sections[0], Section { offset: 160, length: 72 });
+        assert_eq!(layout.sections[1], Section { offset: 240, length: 192 });
+        assert_eq!(layout.sections[2], Section { offset: 432, length: 24 });
+        assert_eq!(layout.sections[3], Section { offset: 464, length: 144 });
+        assert_eq!(layout.total_bytes, 612);
+        let without = Layout::new(3, 0).unwrap();
+        assert_eq!(without.sections[3], Section { offset: 464, length: 0 });
+        assert_eq!(without.total_bytes, 468);
+        assert!(Layout::new(u64::MAX, 0).is_none());
     }
 }

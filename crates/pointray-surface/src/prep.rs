@@ -7,7 +7,7 @@ use pointray_io::PointCloud;
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use rayon::prelude::*;
 
-use crate::cold_records::cold_records;
+use crate::cold_records::{cold_records, color_neighbor_table};
 use crate::duplicates::merge_duplicates;
 use crate::frame::TangentFrame;
 use crate::input_validation::{validate_params, validate_positions};
@@ -81,7 +81,9 @@ pub fn prep(
         .run(Stage::QuadraticFit, patches, || fit_patches(&points, &frames, &radii, &neighbors, k, progress));
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
-    let cold = clock.run(Stage::ColdRecords, patches, || gather_cold(cloud, &source));
+    let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
+        (gather_cold(cloud, &source), color_neighbor_table(&neighbors, cloud.colors.is_some()))
+    });
     let report = PrepReport {
         input_points: count,
         merged_duplicates: merge.merged_count,
@@ -92,7 +94,7 @@ pub fn prep(
         patch_sources: source,
         stage_times: clock.times,
     };
-    Ok((PatchSet { params, offset, aabbs, hot, cold }, report))
+    Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors }, report))
 }
 
 /// Times each stage and tells `progress` about it.

@@ -6,6 +6,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
+use pointray_kernels::COLOR_NEIGHBORS;
 use pointray_surface::patch_store::{self, StoreError};
 use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepOptions, PrepParams, prep};
 
@@ -37,13 +38,68 @@ fn round_trip_is_bit_identical() {
             let mut all: Vec<u8> = bytemuck::cast_slice(&p.aabbs).to_vec();
             all.extend_from_slice(bytemuck::cast_slice(&p.hot));
             all.extend_from_slice(bytemuck::cast_slice(&p.cold));
+            all.extend_from_slice(bytemuck::cast_slice(&p.color_neighbors));
             all
         };
         assert_eq!(bytes(&loaded), bytes(&patches));
         assert_eq!(loaded.len(), 3000);
+        assert_eq!(
+            loaded.color_neighbors.len(),
+            3000 * COLOR_NEIGHBORS,
+            "a coloured cloud keeps its neighbours"
+        );
     }
     let leftovers = std::fs::read_dir(directory.path()).unwrap().count();
     assert_eq!(leftovers, 1, "no temporary files left behind");
+}
+
+#[test]
+fn a_cloud_without_colours_stores_no_neighbours() {
+    let directory = tempfile::tempdir().unwrap();
+    let cloud = common::sphere(500, 1.0, DVec3::ZERO);
+    let patches = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap().0;
+    assert!(patches.color_neighbors.is_empty());
+    let coloured = sample_patches(BoxKind::Cube);
+    let neighbour_bytes = 4 * COLOR_NEIGHBORS as u64 * coloured.len() as u64;
+    let size = |p: &PatchSet| std::fs::metadata(written(directory.path(), p)).unwrap().len();
+    let plain = PatchSet { color_neighbors: Vec::new(), ..coloured.clone() };
+    assert_eq!(size(&coloured) - size(&plain), neighbour_bytes);
+    assert_eq!(patch_store::read(&written(directory.path(), &patches)).unwrap(), patches);
+}
+
+#[test]
+fn a_neighbour_list_of_the_wrong_length_is_not_written() {
+    let directory = tempfile::tempdir().unwrap();
+    let mut patches = sample_patches(BoxKind::Cube);
+    patches.color_neighbors.pop();
+    let path = directory.path().join("model.patches");
+    let error = patch_store::write(&path, &patches).unwrap_err();
+    assert!(matches!(error, StoreError::InconsistentPatchSet { .. }), "{error:?}");
+    assert!(!path.exists());
+}
+
+#[test]
+fn a_neighbour_beyond_the_patches_is_malformed() {
+    let directory = tempfile::tempdir().unwrap();
+    let patches = sample_patches(BoxKind::Cube);
+    let path = written(directory.path(), &patches);
+    let mut bytes = std::fs::read(&path).unwrap();
+    // The last neighbour entry sits just before the checksum; point it past the end and
+    // re-seal the file so that only the range check can catch it.
+    let last = bytes.len() - 8;
+    bytes[last..last + 4].copy_from_slice(&3000u32.to_le_bytes());
+    let body = bytes.len() - 4;
+    let checksum = crc32fast::hash(&bytes[..body]);
+    bytes[body..].copy_from_slice(&checksum.to_le_bytes());
+    std::fs::write(&path, bytes).unwrap();
+    let error = patch_store::read(&path).unwrap_err();
+    assert!(matches!(error, StoreError::Malformed { .. }), "{error:?}");
+    assert!(
+        error
+            .to_string()
+            .contains(&format!("colour neighbour {} of patch 2999 is 3000", COLOR_NEIGHBORS - 1)),
+        "{error}"
+    );
 }
 
 #[test]
@@ -66,10 +122,11 @@ fn damaged(damage: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, StoreError, tempfile:
 
 #[test]
 fn another_version_is_refused_by_name() {
-    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&2u32.to_le_bytes()));
-    assert!(matches!(error, StoreError::WrongVersion { found: 2, .. }), "{error:?}");
+    // Version 1 stores (before the colour neighbours) are refused with the way out.
+    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&1u32.to_le_bytes()));
+    assert!(matches!(error, StoreError::WrongVersion { found: 1, .. }), "{error:?}");
     let message = error.to_string();
-    assert!(message.contains("version 2, this build reads version 1"), "{message}");
+    assert!(message.contains("version 1, this build reads version 2: re-run `pointray prep`"), "{message}");
     assert!(message.contains(&path.display().to_string()), "{message}");
 }
 
