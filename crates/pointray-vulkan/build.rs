@@ -20,9 +20,11 @@ const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
 ];
 
 /// Entry points compiled a second time with a define, as `(source, define, output name)`:
-/// the benchmark's ray-counting ray generation.
-const VARIANTS: &[(&str, ShaderStage, &str, &str)] =
-    &[("primary.rgen", ShaderStage::RayGeneration, "COUNT_RAYS", "primary_counting.rgen")];
+/// the benchmark's ray-counting ray generation and the hit-reordering one.
+const VARIANTS: &[(&str, ShaderStage, &str, &str)] = &[
+    ("primary.rgen", ShaderStage::RayGeneration, "COUNT_RAYS", "primary_counting.rgen"),
+    ("primary.rgen", ShaderStage::RayGeneration, "REORDER_HITS", "primary_reordering.rgen"),
+];
 
 /// Resolves `#include "NAME"` against the shaders folder only.
 struct ShaderFolderIncludes {

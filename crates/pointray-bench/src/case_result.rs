@@ -25,6 +25,8 @@ pub enum Variant {
     BoxAcceptance,
     /// Ablation: every pixel's AOV record (48 bytes) copied out instead of its display colour.
     AovOutput,
+    /// Ablation: shader execution reordering of every path segment.
+    HitReordering,
 }
 
 impl Variant {
@@ -38,6 +40,7 @@ impl Variant {
             Self::CubeBoxes => "cube boxes",
             Self::BoxAcceptance => "box acceptance",
             Self::AovOutput => "AOV output",
+            Self::HitReordering => "hit reordering (SER)",
         }
     }
 }

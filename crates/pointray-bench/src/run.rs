@@ -7,12 +7,12 @@ use std::sync::Arc;
 use pointray_scene::load::{LoadOptions, load_scene};
 use pointray_scene::{AcceptanceTest, BufferLayout, Geometry, RenderSettings, Scene};
 use pointray_surface::{BoxKind, NoProgress, PrepOptions, PrepParams};
-use pointray_vulkan::{BlasLayout, PixelOutput, VulkanRenderer};
+use pointray_vulkan::{BlasLayout, PixelOutput, VulkanError, VulkanRenderer};
 
 use crate::case_result::{CaseLabel, CaseResult, Variant};
 use crate::data::ensure_cache_dir;
 use crate::error::BenchError;
-use crate::measure::{FrameCounts, measure};
+use crate::measure::{FrameCounts, Measurement, measure};
 use crate::model_scene::{ModelGeometry, load_model_scene, model_points};
 use crate::report::{Report, limit_rows};
 use crate::stand_in::stand_in_label;
@@ -32,6 +32,8 @@ pub struct BenchOptions<'a> {
     /// Time the mesh twin of each model (the limit).
     pub limit: bool,
     pub ablations: bool,
+    /// A renderer with shader execution reordering on the same device, for its ablation.
+    pub reordering: Option<&'a VulkanRenderer>,
     /// Only the models with these names (all when empty).
     pub models: Vec<String>,
     /// Called with each case as it completes.
@@ -158,6 +160,9 @@ impl ModelRun<'_> {
         let box_test = RenderSettings { acceptance: AcceptanceTest::Box, ..*settings };
         self.time(base, &box_test, BlasLayout::OneGeometry, Variant::BoxAcceptance)?;
         self.time(base, settings, BlasLayout::OneGeometry, Variant::AovOutput)?;
+        if let Some(reordering) = self.options.reordering {
+            self.time_on(reordering, base, settings, Variant::HitReordering)?;
+        }
         if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
             return Ok(());
         }
@@ -191,11 +196,34 @@ impl ModelRun<'_> {
         layout: BlasLayout,
         variant: Variant,
     ) -> Result<(), BenchError> {
+        let output = if variant == Variant::AovOutput { PixelOutput::Aovs } else { PixelOutput::Display };
+        let measured = measure(self.renderer, scene, settings, layout, output, self.options.frames);
+        self.record(scene, settings, variant, measured)
+    }
+
+    /// As `time` with the default layout and output, on another renderer.
+    fn time_on(
+        &mut self,
+        renderer: &VulkanRenderer,
+        scene: &Scene,
+        settings: &RenderSettings,
+        variant: Variant,
+    ) -> Result<(), BenchError> {
+        let layout = BlasLayout::OneGeometry;
+        let measured = measure(renderer, scene, settings, layout, PixelOutput::Display, self.options.frames);
+        self.record(scene, settings, variant, measured)
+    }
+
+    fn record(
+        &mut self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        variant: Variant,
+        measured: Result<Measurement, VulkanError>,
+    ) -> Result<(), BenchError> {
         let (width, height) = (settings.width, settings.height);
         let case = format!("{} {width}x{height} {}", self.model.name, variant.label());
-        let output = if variant == Variant::AovOutput { PixelOutput::Aovs } else { PixelOutput::Display };
-        let measured = measure(self.renderer, scene, settings, layout, output, self.options.frames)
-            .map_err(|source| BenchError::Vulkan { case, source })?;
+        let measured = measured.map_err(|source| BenchError::Vulkan { case, source })?;
         let label = CaseLabel {
             model: &self.model.name,
             stand_in: self.stand_in.clone(),

@@ -48,6 +48,7 @@ fn options<'a>(data: PathBuf, cache: &Path, size: Option<(u32, u32)>, ablations:
         size,
         limit: true,
         ablations,
+        reordering: None,
         models: vec!["Bunny".into()],
         on_case: &|_| {},
     }

@@ -42,7 +42,8 @@ impl GpuContext {
         let family = compute_queue_family(&instance.instance, physical).ok_or_else(|| {
             VulkanError::NoSuitableDevice("the chosen device lost its compute queue".into())
         })?;
-        let device = create_device(&instance.instance, physical, family)?;
+        let hit_reordering = infos[index].hit_reordering;
+        let device = create_device(&instance.instance, physical, family, hit_reordering)?;
         // SAFETY: queue 0 of `family` was requested at device creation.
         let queue = unsafe { device.get_device_queue(family, 0) };
         let allocator = Allocator::new(&AllocatorCreateDesc {
@@ -139,26 +140,37 @@ impl Drop for GpuContext {
     }
 }
 
+/// The device, with shader execution reordering enabled when `hit_reordering` (supported).
 fn create_device(
     instance: &ash::Instance,
     physical: vk::PhysicalDevice,
     family: u32,
+    hit_reordering: bool,
 ) -> Result<ash::Device, VulkanError> {
     let priorities = [1.0];
     let queues =
         [vk::DeviceQueueCreateInfo::default().queue_family_index(family).queue_priorities(&priorities)];
-    let extensions: Vec<*const std::ffi::c_char> = REQUIRED_EXTENSIONS.iter().map(|e| e.as_ptr()).collect();
+    let mut extensions: Vec<*const std::ffi::c_char> =
+        REQUIRED_EXTENSIONS.iter().map(|e| e.as_ptr()).collect();
+    if hit_reordering {
+        extensions.push(ash::nv::ray_tracing_invocation_reorder::NAME.as_ptr());
+    }
+    let mut reorder = vk::PhysicalDeviceRayTracingInvocationReorderFeaturesNV::default()
+        .ray_tracing_invocation_reorder(true);
     let mut vulkan12 = vk::PhysicalDeviceVulkan12Features::default().buffer_device_address(true);
     let mut acceleration =
         vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default().acceleration_structure(true);
     let mut ray_tracing =
         vk::PhysicalDeviceRayTracingPipelineFeaturesKHR::default().ray_tracing_pipeline(true);
-    let create_info = vk::DeviceCreateInfo::default()
+    let mut create_info = vk::DeviceCreateInfo::default()
         .queue_create_infos(&queues)
         .enabled_extension_names(&extensions)
         .push_next(&mut vulkan12)
         .push_next(&mut acceleration)
         .push_next(&mut ray_tracing);
+    if hit_reordering {
+        create_info = create_info.push_next(&mut reorder);
+    }
     // SAFETY: the chain and arrays outlive the call; the features were checked in `describe`.
     unsafe { instance.create_device(physical, &create_info, None) }.during("creating the logical device")
 }

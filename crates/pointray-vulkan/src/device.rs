@@ -54,6 +54,8 @@ pub struct DeviceInfo {
     pub driver: String,
     /// Why the device cannot be used; `None` when it can.
     pub rejection: Option<String>,
+    /// Whether it offers shader execution reordering (`VK_NV_ray_tracing_invocation_reorder`).
+    pub hit_reordering: bool,
 }
 
 impl std::fmt::Display for DeviceInfo {
@@ -113,7 +115,25 @@ pub(crate) fn describe(instance: &ash::Instance, device: vk::PhysicalDevice, ind
         api_version: version_text(base.api_version),
         driver: format!("{driver_name} {driver_info}").trim().to_owned(),
         rejection: rejection(instance, device, base.api_version).err(),
+        hit_reordering: supports_hit_reordering(instance, device),
     }
+}
+
+/// Whether `device` has the extension and the feature of shader execution reordering.
+pub(crate) fn supports_hit_reordering(instance: &ash::Instance, device: vk::PhysicalDevice) -> bool {
+    // SAFETY: `device` came from this instance.
+    let extensions = unsafe { instance.enumerate_device_extension_properties(device) }.unwrap_or_default();
+    let named = |e: &vk::ExtensionProperties| {
+        e.extension_name_as_c_str().is_ok_and(|n| n == ash::nv::ray_tracing_invocation_reorder::NAME)
+    };
+    if !extensions.iter().any(named) {
+        return false;
+    }
+    let mut reorder = vk::PhysicalDeviceRayTracingInvocationReorderFeaturesNV::default();
+    let mut features = vk::PhysicalDeviceFeatures2::default().push_next(&mut reorder);
+    // SAFETY: `device` came from this instance; the chain outlives the call.
+    unsafe { instance.get_physical_device_features2(device, &mut features) };
+    reorder.ray_tracing_invocation_reorder == vk::TRUE
 }
 
 /// Ok when the device has everything the renderer uses, else the first thing it lacks.
@@ -207,6 +227,7 @@ mod tests {
             api_version: "1.3.0".into(),
             driver: String::new(),
             rejection: rejection.map(Into::into),
+            hit_reordering: false,
         }
     }
 

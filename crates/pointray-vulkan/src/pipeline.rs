@@ -36,11 +36,7 @@ pub(crate) struct RayTracingPipeline {
 }
 
 impl RayTracingPipeline {
-    pub(crate) fn new(context: &Arc<GpuContext>) -> Result<Self, VulkanError> {
-        Self::with_raygen(context, shaders::PRIMARY_RGEN)
-    }
-
-    /// The pipeline with another ray generation shader (the ray-counting variant).
+    /// The pipeline with one of the ray generation shaders of `shaders.rs`.
     pub(crate) fn with_raygen(context: &Arc<GpuContext>, raygen: &[u8]) -> Result<Self, VulkanError> {
         let device = &context.device;
         let set_layout = create_set_layout(device)?;

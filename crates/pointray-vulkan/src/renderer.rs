@@ -12,6 +12,7 @@ use crate::device::{DeviceInfo, DeviceSelector};
 use crate::error::VulkanError;
 use crate::pipeline::RayTracingPipeline;
 use crate::prepared_scene::{PreparedScene, prepare};
+use crate::shaders;
 use crate::trace::trace_into;
 use crate::trace_target::{PixelOutput, TraceTarget};
 use crate::validation::validation_requested_by_env;
@@ -41,10 +42,27 @@ impl VulkanRenderer {
 
     /// A renderer with the Khronos validation layer on or off.
     pub fn with_validation(selector: DeviceSelector, validation: bool) -> Result<Self, VulkanError> {
+        Self::with_raygen(&Arc::new(GpuContext::new(&selector, validation)?), shaders::PRIMARY_RGEN)
+    }
+
+    /// A renderer that traces every path segment with shader execution reordering
+    /// (`VK_NV_ray_tracing_invocation_reorder`): the same pictures, for comparing speed. An
+    /// error on devices without it.
+    pub fn with_hit_reordering(selector: DeviceSelector, validation: bool) -> Result<Self, VulkanError> {
         let context = Arc::new(GpuContext::new(&selector, validation)?);
-        let pipeline = RayTracingPipeline::new(&context)?;
-        let table = ShaderBindingTable::new(&context, &pipeline)?;
-        Ok(Self { table, pipeline, context })
+        if !context.info.hit_reordering {
+            return Err(VulkanError::InvalidSettings(format!(
+                "{} does not offer shader execution reordering (VK_NV_ray_tracing_invocation_reorder)",
+                context.info.name
+            )));
+        }
+        Self::with_raygen(&context, shaders::PRIMARY_REORDERING_RGEN)
+    }
+
+    fn with_raygen(context: &Arc<GpuContext>, raygen: &[u8]) -> Result<Self, VulkanError> {
+        let pipeline = RayTracingPipeline::with_raygen(context, raygen)?;
+        let table = ShaderBindingTable::new(context, &pipeline)?;
+        Ok(Self { table, pipeline, context: context.clone() })
     }
 
     pub fn device_name(&self) -> &str {

@@ -9,6 +9,8 @@ macro_rules! spirv {
 pub(crate) const PRIMARY_RGEN: &[u8] = spirv!("primary.rgen");
 /// `primary.rgen` with `COUNT_RAYS`: each pixel's traced rays land in its `ids.z`.
 pub(crate) const PRIMARY_COUNTING_RGEN: &[u8] = spirv!("primary_counting.rgen");
+/// `primary.rgen` with `REORDER_HITS`: shader execution reordering of every path segment.
+pub(crate) const PRIMARY_REORDERING_RGEN: &[u8] = spirv!("primary_reordering.rgen");
 pub(crate) const BACKGROUND_RMISS: &[u8] = spirv!("background.rmiss");
 pub(crate) const SHADOW_RMISS: &[u8] = spirv!("shadow.rmiss");
 pub(crate) const PATCH_RINT: &[u8] = spirv!("patch.rint");

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::Args;
 use pointray_bench::{BenchOptions, CaseResult, FrameCounts, Suite, run_scene_file, run_suite};
-use pointray_vulkan::{DeviceSelector, VulkanRenderer};
+use pointray_vulkan::{DeviceSelector, VulkanRenderer, validation_requested_by_env};
 
 /// Time frames with GPU timestamps: FPS, frame and trace times, rays/s, build costs.
 #[derive(Args)]
@@ -67,6 +67,10 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     anyhow::ensure!(args.frames > 0, "--frames must be at least 1");
     let renderer = VulkanRenderer::new(args.device.clone()).context("opening the Vulkan backend")?;
     println!("device: {}", renderer.device_info());
+    let reordering = (args.ablations && renderer.device_info().hit_reordering)
+        .then(|| VulkanRenderer::with_hit_reordering(args.device.clone(), validation_requested_by_env()))
+        .transpose()
+        .context("opening a second renderer with hit reordering")?;
     let options = BenchOptions {
         data: args.data.clone().unwrap_or_else(pointray_bench::data::default_data_dir),
         cache: args.cache.clone(),
@@ -74,6 +78,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         size: args.width.zip(args.height),
         limit: !args.no_limit,
         ablations: args.ablations,
+        reordering: reordering.as_ref(),
         models: args.models.clone(),
         on_case: &print_case,
     };
