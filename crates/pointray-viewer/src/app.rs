@@ -23,6 +23,7 @@ use crate::orbit::orbit_camera;
 use crate::pixels::frame_bytes;
 use crate::present::{MessageCounter, Presenter};
 use crate::refinement::{Pass, Refinement};
+use crate::render_times::RenderTimes;
 use crate::screenshots;
 use crate::view_state::ViewState;
 use crate::{Script, ViewerOptions};
@@ -32,6 +33,7 @@ struct ScriptRun {
     script: Script,
     start: Camera,
     next_frame: u32,
+    render_times: RenderTimes,
 }
 
 #[derive(Default)]
@@ -67,6 +69,7 @@ impl App {
             script,
             start: view.scene.camera,
             next_frame: 0,
+            render_times: RenderTimes::default(),
         });
         Self {
             presenter: None,
@@ -150,7 +153,9 @@ impl App {
         let index = run.next_frame;
         self.view.scene.camera = orbit_camera(&run.start, index, run.script.frames, run.script.arc_degrees);
         run.next_frame += 1;
+        let started = Instant::now();
         let frame = self.source.render(&self.view.scene, &self.view.settings)?;
+        run.render_times.record(started.elapsed());
         if let Some(dir) = &run.script.sequence {
             screenshots::save(&frame, &screenshots::sequence_path(dir, index))?;
         }
@@ -200,6 +205,9 @@ impl App {
         }
         if let (Some(path), Some(frame)) = (&run.script.screenshot, &self.shown) {
             screenshots::save(frame, path)?;
+        }
+        if let Some(summary) = run.render_times.summary() {
+            println!("{summary}");
         }
         event_loop.exit();
         Ok(())

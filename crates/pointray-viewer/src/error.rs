@@ -18,7 +18,9 @@ pub enum ViewerError {
     Screenshot { path: PathBuf, source: Box<pointray_scene::SceneError> },
     #[error("creating the sequence folder {path}: {source}")]
     SequenceDir { path: PathBuf, source: std::io::Error },
-    #[error("the Vulkan validation layer reported {0} message(s) (printed above)")]
+    #[error(
+        "the Vulkan validation layer reported {0} message(s) during the run or at teardown (printed above)"
+    )]
     Validation(u32),
 }
 

@@ -1,8 +1,8 @@
 //! Where frames come from: the Vulkan ray tracer (scene prepared once, camera changed per
-//! frame) or the CPU renderer.
+//! frame) or the CPU renderer (BVHs built once, camera and lights set per frame).
 
 use pointray_cpu::CpuRenderer;
-use pointray_scene::{Camera, Frame, Light, RenderSettings, Scene};
+use pointray_scene::{Frame, Light, RenderSettings, Scene};
 use pointray_vulkan::{DeviceSelector, PreparedScene, VulkanRenderer};
 
 use crate::error::ViewerError;
@@ -25,10 +25,8 @@ pub(crate) enum FrameSource {
         lights: Vec<Light>,
         renderer: Box<VulkanRenderer>,
     },
-    /// `CpuRenderer` keeps its own copy of the scene with no way to change the camera or the
-    /// lights, so it is rebuilt (its BVHs too) when either changes: a workaround, since the
-    /// CPU crate is not ours to extend. The camera and lights it was built with are kept.
-    Cpu { renderer: Box<CpuRenderer>, camera: Camera, lights: Vec<Light> },
+    /// Its BVHs are built once; each frame only sets the camera and the lights.
+    Cpu(Box<CpuRenderer>),
 }
 
 impl FrameSource {
@@ -51,40 +49,32 @@ impl FrameSource {
                 let prepared = Box::new(renderer.prepare(scene)?);
                 Ok(Self::Vulkan { prepared, lights: scene.lights.clone(), renderer: Box::new(renderer) })
             }
-            None => Ok(Self::cpu(scene)),
-        }
-    }
-
-    fn cpu(scene: &Scene) -> Self {
-        Self::Cpu {
-            renderer: Box::new(CpuRenderer::new(scene)),
-            camera: scene.camera,
-            lights: scene.lights.clone(),
+            None => Ok(Self::Cpu(Box::new(CpuRenderer::new(scene)))),
         }
     }
 
     pub(crate) fn describe(&self) -> String {
         match self {
             Self::Vulkan { renderer, .. } => format!("vulkan ({})", renderer.device_name()),
-            Self::Cpu { .. } => "cpu".into(),
+            Self::Cpu(_) => "cpu".into(),
         }
     }
 
     pub(crate) fn is_cpu(&self) -> bool {
-        matches!(self, Self::Cpu { .. })
+        matches!(self, Self::Cpu(_))
     }
 
     pub(crate) fn vulkan_device_name(&self) -> Option<&str> {
         match self {
             Self::Vulkan { renderer, .. } => Some(renderer.device_name()),
-            Self::Cpu { .. } => None,
+            Self::Cpu(_) => None,
         }
     }
 
     pub(crate) fn validation_messages(&self) -> u32 {
         match self {
             Self::Vulkan { renderer, .. } => renderer.validation_messages(),
-            Self::Cpu { .. } => 0,
+            Self::Cpu(_) => 0,
         }
     }
 
@@ -101,11 +91,10 @@ impl FrameSource {
                 prepared.camera = scene.camera;
                 Ok(renderer.trace(prepared, settings)?)
             }
-            Self::Cpu { renderer, camera, lights } => {
-                if *camera != scene.camera || *lights != scene.lights {
-                    *self = Self::cpu(scene);
-                    return self.render(scene, settings);
-                }
+            Self::Cpu(renderer) => {
+                // Neither is in a BVH, so setting them every frame costs nothing.
+                renderer.set_camera(scene.camera);
+                renderer.set_lights(scene.lights.clone());
                 Ok(renderer.render(settings))
             }
         }

@@ -19,7 +19,9 @@ mod orbit;
 mod pixels;
 mod present;
 mod refinement;
+mod render_times;
 mod screenshots;
+mod teardown_messages;
 mod view_state;
 
 use std::path::PathBuf;
@@ -36,6 +38,7 @@ pub use orbit::orbit_camera;
 
 use app::App;
 use frame_source::FrameSource;
+use teardown_messages::count_validation_messages;
 use view_state::ViewState;
 
 /// A scripted run: `frames` frames along a turntable orbit, then exit.
@@ -93,14 +96,15 @@ pub fn run_viewer(
     let mut app = App::new(source, ViewState::new(scene, settings), options);
     let looped = event_loop.run_app(&mut app);
     app.close_window();
-    let renderer_messages = app.source.validation_messages();
-    let presenter_messages = app.presenter_messages.as_ref().map_or(0, |c| c.count());
+    let presenter_messages = app.presenter_messages.as_ref().map_or(0, |counter| counter.count());
+    // Moved out (App has no `Drop`) to be dropped where its teardown's messages are counted.
+    let messages = presenter_messages + renderer_messages_through_teardown(app.source);
     if let Some(error) = app.error.take() {
         return Err(error);
     }
     looped.map_err(|e| ViewerError::Window(e.to_string()))?;
-    if renderer_messages + presenter_messages > 0 {
-        return Err(ViewerError::Validation(renderer_messages + presenter_messages));
+    if messages > 0 {
+        return Err(ViewerError::Validation(messages));
     }
     Ok(ViewerSummary {
         backend,
@@ -108,6 +112,13 @@ pub fn run_viewer(
         final_camera: app.view.scene.camera,
         settings: app.view.settings,
     })
+}
+
+/// The renderer's validation messages: those of the run, then those its drop reports
+/// (leaked objects). The presenter's are counted apart: its counter outlives its instance.
+fn renderer_messages_through_teardown(source: FrameSource) -> u32 {
+    let during_run = source.validation_messages();
+    during_run + count_validation_messages(|| drop(source))
 }
 
 /// On X11 and Wayland the loop may run off the main thread, so tests can open a window.

@@ -3,10 +3,9 @@
 //! validation layer, saves a screenshot, and the screenshot is the image the renderers make
 //! from the final camera.
 
-use std::path::Path;
-use std::process::{Child, Command, Stdio};
-use std::time::Duration;
+mod common;
 
+use common::{display, missing, psnr, read_png};
 use pointray_scene::{AovSelection, Frame, LoadOptions, RenderSettings, load_demo, write_frame};
 use pointray_viewer::{RenderBackend, Script, ViewerError, ViewerOptions, orbit_camera, run_viewer};
 use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer};
@@ -14,63 +13,6 @@ use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer};
 const FRAMES: u32 = 30;
 const ARC_DEGREES: f32 = 360.0;
 const MIN_PSNR_DB: f64 = 35.0;
-
-fn in_ci() -> bool {
-    std::env::var("CI").is_ok_and(|v| v == "true")
-}
-
-/// Skips (with a note) outside CI; fails in CI.
-fn missing(what: &str) {
-    assert!(!in_ci(), "CI=true but {what}");
-    eprintln!("note: skipping, {what}");
-}
-
-/// An Xvfb server started for this test, killed (by its own pid) when dropped.
-struct VirtualDisplay(Child);
-
-impl Drop for VirtualDisplay {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-/// Uses `DISPLAY` when set; otherwise starts Xvfb on a display numbered after this process.
-fn display() -> Result<Option<VirtualDisplay>, String> {
-    if std::env::var_os("DISPLAY").is_some() {
-        return Ok(None);
-    }
-    let name = format!(":{}", 99 + std::process::id() % 400);
-    let child = Command::new("Xvfb")
-        .args([name.as_str(), "-screen", "0", "640x480x24", "-nolisten", "tcp"])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .map_err(|e| format!("Xvfb cannot be started ({e}); run scripts/install-system-deps.sh"))?;
-    let server = VirtualDisplay(child);
-    let socket = format!("/tmp/.X11-unix/X{}", &name[1..]);
-    for _ in 0..100 {
-        if Path::new(&socket).exists() {
-            // SAFETY: set before any thread of this test binary reads the environment (this
-            // binary has one test, and the viewer starts after this).
-            unsafe { std::env::set_var("DISPLAY", &name) };
-            return Ok(Some(server));
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    Err(format!("Xvfb did not open {socket}"))
-}
-
-fn read_png(path: &Path) -> image::RgbImage {
-    image::open(path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display())).to_rgb8()
-}
-
-fn psnr(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
-    assert_eq!(a.dimensions(), b.dimensions(), "image sizes differ");
-    let squared: f64 = a.as_raw().iter().zip(b.as_raw()).map(|(&x, &y)| (x as f64 - y as f64).powi(2)).sum();
-    let mse = squared / a.as_raw().len() as f64;
-    if mse == 0.0 { f64::INFINITY } else { 10.0 * (255.0f64 * 255.0 / mse).log10() }
-}
 
 fn covered_objects(frame: &Frame) -> usize {
     let mut ids: Vec<u32> = frame.instance_id.iter().copied().filter(|&id| id != Frame::MISS).collect();

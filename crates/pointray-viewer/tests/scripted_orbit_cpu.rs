@@ -1,0 +1,59 @@
+//! The viewer with the CPU backend: its renderer is built once and only its camera moves
+//! along the 30-frame orbit, yet the last frame is exactly the image a renderer built afresh
+//! for the final camera draws. The window's presentation runs under the validation layer.
+
+mod common;
+
+use common::{display, missing, psnr, read_png};
+use pointray_scene::{AovSelection, LoadOptions, RenderSettings, load_demo, write_frame};
+use pointray_viewer::{RenderBackend, Script, ViewerError, ViewerOptions, orbit_camera, run_viewer};
+use pointray_vulkan::DeviceSelector;
+
+const FRAMES: u32 = 30;
+const ARC_DEGREES: f32 = 270.0;
+
+#[test]
+fn cpu_scripted_orbit_ends_on_a_fresh_renderers_image() {
+    let _display = match display() {
+        Ok(display) => display,
+        Err(problem) => return missing(&problem),
+    };
+    let loaded = load_demo(&LoadOptions::default()).expect("the demo scene loads");
+    let settings = RenderSettings { width: 96, height: 72, samples_per_pixel: 2, ..loaded.settings };
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let screenshot = dir.path().join("viewer.png");
+    let options = ViewerOptions {
+        backend: RenderBackend::Cpu,
+        device: DeviceSelector::Auto,
+        vsync: false,
+        validation: true,
+        script: Some(Script {
+            frames: FRAMES,
+            arc_degrees: ARC_DEGREES,
+            screenshot: Some(screenshot.clone()),
+            sequence: None,
+        }),
+    };
+    let summary = match run_viewer(loaded.scene.clone(), settings, options) {
+        Ok(summary) => summary,
+        Err(error @ ViewerError::PresentSetup(_)) => return missing(&format!("no presentation: {error}")),
+        Err(error) => panic!("the viewer failed: {error}"),
+    };
+    assert_eq!(summary.backend, "cpu");
+    assert_eq!(summary.frames_presented, FRAMES as u64, "every scripted frame is presented");
+    let final_camera = orbit_camera(&loaded.scene.camera, FRAMES - 1, FRAMES, ARC_DEGREES);
+    assert_eq!(summary.final_camera, final_camera);
+
+    let mut final_scene = loaded.scene.clone();
+    final_scene.camera = final_camera;
+    let fresh = pointray_cpu::render(&final_scene, &settings);
+    let fresh_path = dir.path().join("fresh.png");
+    write_frame(&fresh, &fresh_path, &AovSelection::default()).expect("the fresh render is written");
+    let start = pointray_cpu::render(&loaded.scene, &settings);
+    let start_path = dir.path().join("start.png");
+    write_frame(&start, &start_path, &AovSelection::default()).expect("the first view is written");
+
+    let shot = read_png(&screenshot);
+    assert!(psnr(&shot, &read_png(&start_path)) < 40.0, "the orbit changed the view");
+    assert_eq!(shot, read_png(&fresh_path), "the viewer's last frame differs from a fresh render");
+}
