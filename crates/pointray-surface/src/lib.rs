@@ -1,6 +1,7 @@
 //! From a point set to MLS quadratic patches (SPEC.md §2): the offline half of pointray.
 
 pub mod cold_records;
+pub mod density_radius;
 pub mod duplicates;
 pub mod frame;
 pub mod input_validation;
@@ -8,6 +9,7 @@ pub mod morton;
 pub mod neighbors;
 pub mod normals;
 pub mod orientation;
+pub mod outlier_removal;
 pub mod patch_bounds;
 pub mod patch_set;
 pub mod patch_store;
@@ -18,9 +20,12 @@ pub mod prep_report;
 pub mod quadratic_fit;
 pub mod sampling;
 pub mod support_radius;
+pub mod uneven_sampling;
 pub mod wendland;
 
+pub use density_radius::RadiusMode;
 pub use frame::TangentFrame;
+pub use outlier_removal::OutlierFilter;
 pub use patch_bounds::BoxKind;
 pub use patch_set::{PatchSet, PrepParams};
 pub use prep::{PrepOptions, prep};

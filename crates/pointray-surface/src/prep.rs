@@ -8,6 +8,7 @@ use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
+use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii};
 use crate::duplicates::merge_duplicates;
 use crate::frame::TangentFrame;
 use crate::input_validation::{validate_params, validate_positions};
@@ -15,6 +16,7 @@ use crate::morton::morton_order;
 use crate::neighbors::{Neighbors, k_nearest};
 use crate::normals::pca_normals;
 use crate::orientation::{orient_consistently, orient_toward};
+use crate::outlier_removal::OutlierFilter;
 use crate::patch_bounds::patch_box;
 use crate::patch_set::{PatchSet, PrepParams};
 use crate::prep_error::PrepError;
@@ -38,6 +40,10 @@ pub struct PrepOptions {
     /// Orient normals toward this point (input coordinates); overrides the cloud's own
     /// sensor position.
     pub sensor: Option<DVec3>,
+    /// Drop statistical outliers before fitting; `None` keeps every point.
+    pub remove_outliers: Option<OutlierFilter>,
+    /// How the support radius `d_i` is chosen.
+    pub radius_mode: RadiusMode,
 }
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
@@ -61,10 +67,17 @@ pub fn prep(
     if merge.kept.len() < k + 1 {
         return Err(PrepError::TooFewDistinctPoints { found: merge.kept.len(), k });
     }
+    let distinct = merge.kept.len();
+    let kept = match &options.remove_outliers {
+        Some(filter) => clock
+            .run(Stage::OutlierRemoval, merge.kept.len(), || keep_inliers(filter, &sorted, &merge.kept, k))?,
+        None => merge.kept,
+    };
+    let removed_outliers = distinct - kept.len();
     // `source[i]` is the input index of patch `i`: every per-point attribute is gathered
     // through it once.
-    let source = gather(&order, &merge.kept);
-    let points = gather(&sorted, &merge.kept);
+    let source = gather(&order, &kept);
+    let points = gather(&sorted, &kept);
     drop(sorted);
     let patches = points.len();
     let neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
@@ -75,8 +88,9 @@ pub fn prep(
     });
     let frames: Vec<TangentFrame> = clock
         .run(Stage::Frames, patches, || normals.par_iter().map(|&n| TangentFrame::from_normal(n)).collect());
-    let (radii, radius_fallbacks) =
-        clock.run(Stage::SupportRadii, patches, || support_radii(&points, &normals, &neighbors, k));
+    let (radii, radius_fallbacks, radius_adjustments) = clock.run(Stage::SupportRadii, patches, || {
+        support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode)
+    });
     let (hot, fits) = clock
         .run(Stage::QuadraticFit, patches, || fit_patches(&points, &frames, &radii, &neighbors, k, progress));
     let aabbs: Vec<Aabb> =
@@ -87,10 +101,13 @@ pub fn prep(
     let report = PrepReport {
         input_points: count,
         merged_duplicates: merge.merged_count,
+        removed_outliers,
         patches,
         replaced_input_normals,
         fits,
         radius_fallbacks,
+        radius_adjustments,
+        offset,
         patch_sources: source,
         stage_times: clock.times,
     };
@@ -195,7 +212,44 @@ fn orient(
     }
 }
 
+/// The statistical outlier filter over the merged points `kept` (indices into `sorted`);
+/// an error when too few points would remain for `k` neighbours.
+fn keep_inliers(
+    filter: &OutlierFilter,
+    sorted: &[Vec3],
+    kept: &[u32],
+    k: usize,
+) -> Result<Vec<u32>, PrepError> {
+    filter.validate()?;
+    let inliers = filter.inliers(&gather(sorted, kept));
+    let survivors: Vec<u32> =
+        kept.iter().zip(inliers).filter(|(_, inlier)| *inlier).map(|(&i, _)| i).collect();
+    if survivors.len() < k + 1 {
+        return Err(PrepError::TooFewDistinctPoints { found: survivors.len(), k });
+    }
+    Ok(survivors)
+}
+
+/// The paper's radii (SPEC.md §2.3), then, in adaptive mode, their density correction.
 fn support_radii(
+    points: &[Vec3],
+    normals: &[Vec3],
+    frames: &[TangentFrame],
+    neighbors: &Neighbors,
+    k: usize,
+    mode: RadiusMode,
+) -> (Vec<f32>, RadiusFallbacks, RadiusAdjustments) {
+    let (paper, fallbacks) = paper_radii(points, normals, neighbors, k);
+    match mode {
+        RadiusMode::Paper => (paper, fallbacks, RadiusAdjustments::default()),
+        RadiusMode::Adaptive => {
+            let (adaptive, adjustments) = adaptive_radii(frames, points, neighbors, k, &paper);
+            (adaptive, fallbacks, adjustments)
+        }
+    }
+}
+
+fn paper_radii(
     points: &[Vec3],
     normals: &[Vec3],
     neighbors: &Neighbors,

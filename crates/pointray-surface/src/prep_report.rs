@@ -3,6 +3,9 @@
 use std::fmt;
 use std::time::Duration;
 
+use glam::DVec3;
+
+use crate::density_radius::RadiusAdjustments;
 use crate::prep_progress::Stage;
 
 /// How many patches ended with each fit model (SPEC.md §2.6).
@@ -26,11 +29,17 @@ pub struct RadiusFallbacks {
 pub struct PrepReport {
     pub input_points: usize,
     pub merged_duplicates: usize,
+    /// Points dropped by the statistical outlier filter (0 when it did not run).
+    pub removed_outliers: usize,
     pub patches: usize,
     /// Input normals that were zero or not finite and were replaced by PCA normals.
     pub replaced_input_normals: usize,
     pub fits: FitCounts,
     pub radius_fallbacks: RadiusFallbacks,
+    /// How the adaptive radius mode changed the paper's radii (all 0 in paper mode).
+    pub radius_adjustments: RadiusAdjustments,
+    /// The recentring offset (`input = local + offset`), also stored in the patch store.
+    pub offset: DVec3,
     /// For each patch, the index of the input point it was made from (patches are in
     /// Morton order, and merged duplicates have no patch of their own).
     pub patch_sources: Vec<u32>,
@@ -48,13 +57,21 @@ impl fmt::Display for PrepReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(
             f,
-            "{} points in, {} duplicates merged, {} patches",
-            self.input_points, self.merged_duplicates, self.patches
+            "{} points in, {} duplicates merged, {} outliers removed, {} patches",
+            self.input_points, self.merged_duplicates, self.removed_outliers, self.patches
         )?;
+        // f64's Display is the shortest text that parses back to the same number: the
+        // printed offset is exactly the stored one.
+        let DVec3 { x, y, z } = self.offset;
+        writeln!(f, "recentring offset (input = local + offset): {x}, {y}, {z}")?;
         let FitCounts { quadratic, plane, flat } = self.fits;
         writeln!(f, "fits: {quadratic} quadratic, {plane} plane, {flat} flat")?;
         let RadiusFallbacks { distance, spacing } = self.radius_fallbacks;
         writeln!(f, "support radius fallbacks: {distance} to |v|, {spacing} to the spacing")?;
+        let RadiusAdjustments { widened, capped, raised } = self.radius_adjustments;
+        if widened + capped + raised > 0 {
+            writeln!(f, "adaptive radii: {widened} widened to their cell, {capped} capped, {raised} raised")?;
+        }
         if self.replaced_input_normals > 0 {
             writeln!(f, "input normals replaced: {}", self.replaced_input_normals)?;
         }

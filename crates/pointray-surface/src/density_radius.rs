@@ -1,0 +1,189 @@
+//! Support radii that adapt to the local density (issue 7, "Robustness on real density").
+//!
+//! The paper's `d_i` (SPEC.md §2.3) reaches the farthest of the `k` nearest neighbours.
+//! On real scans that fails two ways. Where the neighbours all lie on one side of `p_i` or
+//! along one scan line, the disk does not reach across the gap beside it, and the surface
+//! tears. Where a point is isolated, its neighbours are far and its box is huge.
+//!
+//! The adaptive radius keeps the paper's radius and corrects it twice:
+//! 1. **Coverage.** The disks cover the surface when each point's disk covers the part of
+//!    the tangent plane closer to it than to any neighbour: its Voronoi cell. `d_i` grows
+//!    to the cell's farthest corner (times a small margin for the patches' curvature).
+//! 2. **Band.** `d_i` is then held within a factor `BAND` of the median paper radius of
+//!    `p_i` and its `k` neighbours, so that neither a wide-open cell (a true border, a scan
+//!    line whose neighbour lines are out of reach) nor an isolated point grows far beyond
+//!    what the neighbourhood's spacing supports.
+
+use glam::Vec2;
+use rayon::prelude::*;
+
+use crate::frame::TangentFrame;
+use crate::neighbors::Neighbors;
+
+/// How `prep` chooses each patch's support radius `d_i`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RadiusMode {
+    /// SPEC.md §2.3: the tangential distance to the farthest of the `k` neighbours.
+    #[default]
+    Paper,
+    /// The paper's radius widened to cover the point's Voronoi cell and held to a band
+    /// around the neighbourhood's median.
+    Adaptive,
+}
+
+/// `d_i` lies within `[median / BAND, median * BAND]` of the neighbourhood's paper radii.
+pub const BAND: f32 = 2.0;
+
+/// The disk reaches this much past the Voronoi cell, as neighbouring patches bend away
+/// from the tangent plane and meet a little beyond it.
+pub const COVERAGE_MARGIN: f32 = 1.1;
+
+/// How many adaptive radii differ from the paper's, and why.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RadiusAdjustments {
+    /// Grown to cover the Voronoi cell.
+    pub widened: usize,
+    /// Held down to the top of the band.
+    pub capped: usize,
+    /// Raised to the bottom of the band.
+    pub raised: usize,
+}
+
+/// The adaptive radii from the paper's `paper` radii. The first `k` entries of each
+/// neighbour row are the fit's neighbours (the band); all of the row's entries shape the
+/// Voronoi cell.
+pub fn adaptive_radii(
+    frames: &[TangentFrame],
+    points: &[glam::Vec3],
+    neighbors: &Neighbors,
+    k: usize,
+    paper: &[f32],
+) -> (Vec<f32>, RadiusAdjustments) {
+    let outcomes: Vec<(f32, Option<Adjustment>)> = (0..points.len())
+        .into_par_iter()
+        .map(|i| {
+            let median = band_median(paper, i, &neighbors.of(i)[..k]);
+            let cap = BAND * median;
+            let offsets = neighbors.of(i).iter().map(|&j| {
+                let local = frames[i].to_local(points[j as usize] - points[i]);
+                Vec2::new(local.x, local.y)
+            });
+            let covering = COVERAGE_MARGIN * voronoi_cell_reach(offsets, cap);
+            adjust(paper[i], covering, median)
+        })
+        .collect();
+    let count = |wanted| outcomes.par_iter().filter(|(_, adjustment)| *adjustment == Some(wanted)).count();
+    let adjustments = RadiusAdjustments {
+        widened: count(Adjustment::Widened),
+        capped: count(Adjustment::Capped),
+        raised: count(Adjustment::Raised),
+    };
+    (outcomes.into_iter().map(|(radius, _)| radius).collect(), adjustments)
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Adjustment {
+    Widened,
+    Capped,
+    Raised,
+}
+
+/// The paper's radius, widened to `covering`, then held in the band around `median`.
+fn adjust(paper: f32, covering: f32, median: f32) -> (f32, Option<Adjustment>) {
+    let (low, high) = (median / BAND, median * BAND);
+    let wanted = paper.max(covering);
+    if wanted > high {
+        (high, Some(Adjustment::Capped))
+    } else if wanted < low {
+        (low, Some(Adjustment::Raised))
+    } else if wanted > paper {
+        (wanted, Some(Adjustment::Widened))
+    } else {
+        (paper, None)
+    }
+}
+
+/// The median of the paper radii of point `i` and its fit neighbours.
+fn band_median(paper: &[f32], i: usize, fit_neighbors: &[u32]) -> f32 {
+    let mut radii: Vec<f32> =
+        std::iter::once(paper[i]).chain(fit_neighbors.iter().map(|&j| paper[j as usize])).collect();
+    let middle = radii.len() / 2;
+    *radii.select_nth_unstable_by(middle, f32::total_cmp).1
+}
+
+/// The distance from the origin to the farthest corner of its Voronoi cell among the
+/// `neighbors` (tangent-plane offsets), with the cell cut to the square of half-size
+/// `limit`: a cell left open on one side reaches `limit` there.
+pub fn voronoi_cell_reach(neighbors: impl Iterator<Item = Vec2>, limit: f32) -> f32 {
+    let mut cell = vec![
+        Vec2::new(-limit, -limit),
+        Vec2::new(limit, -limit),
+        Vec2::new(limit, limit),
+        Vec2::new(-limit, limit),
+    ];
+    for q in neighbors {
+        let half_distance_squared = 0.5 * q.length_squared();
+        // A coincident neighbour cuts nothing: the origin would lie on its bisector.
+        if half_distance_squared > 0.0 {
+            cell = clip_to_half_plane(&cell, q, half_distance_squared);
+        }
+    }
+    cell.iter().map(|corner| corner.length()).fold(0.0, f32::max)
+}
+
+/// Sutherland-Hodgman: the part of convex polygon `polygon` where `x·q <= bound`, the
+/// side of the bisector between the origin and `q` that holds the origin.
+fn clip_to_half_plane(polygon: &[Vec2], q: Vec2, bound: f32) -> Vec<Vec2> {
+    let mut clipped = Vec::with_capacity(polygon.len() + 1);
+    for (index, &current) in polygon.iter().enumerate() {
+        let next = polygon[(index + 1) % polygon.len()];
+        let (current_side, next_side) = (current.dot(q) - bound, next.dot(q) - bound);
+        if current_side <= 0.0 {
+            clipped.push(current);
+        }
+        if (current_side < 0.0 && next_side > 0.0) || (current_side > 0.0 && next_side < 0.0) {
+            let t = current_side / (current_side - next_side);
+            clipped.push(current + t * (next - current));
+        }
+    }
+    clipped
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_square_grid_cell_reaches_its_corners() {
+        let grid = [Vec2::X, -Vec2::X, Vec2::Y, -Vec2::Y, Vec2::ONE, -Vec2::ONE];
+        let reach = voronoi_cell_reach(grid.into_iter(), 100.0);
+        assert!((reach - 0.5f32.hypot(0.5)).abs() < 1e-6, "{reach}");
+    }
+
+    #[test]
+    fn a_cell_open_on_one_side_reaches_the_limit() {
+        let one_side = [Vec2::X, Vec2::new(1.0, 1.0), Vec2::new(1.0, -1.0)];
+        let reach = voronoi_cell_reach(one_side.into_iter(), 10.0);
+        assert!((reach - 10.0 * 2f32.sqrt()).abs() < 1e-4, "{reach}");
+    }
+
+    #[test]
+    fn coincident_neighbours_cut_nothing() {
+        assert_eq!(voronoi_cell_reach([Vec2::ZERO].into_iter(), 1.0), 2f32.sqrt());
+    }
+
+    #[test]
+    fn adjustments_keep_the_band() {
+        assert_eq!(adjust(1.0, 0.5, 1.0), (1.0, None));
+        assert_eq!(adjust(1.0, 1.5, 1.0), (1.5, Some(Adjustment::Widened)));
+        assert_eq!(adjust(1.0, 9.0, 1.0), (BAND, Some(Adjustment::Capped)));
+        assert_eq!(adjust(9.0, 0.0, 1.0), (BAND, Some(Adjustment::Capped)));
+        assert_eq!(adjust(0.1, 0.0, 1.0), (1.0 / BAND, Some(Adjustment::Raised)));
+    }
+
+    #[test]
+    fn the_band_median_includes_the_point() {
+        let paper = [5.0, 1.0, 2.0, 3.0];
+        assert_eq!(band_median(&paper, 0, &[1, 2, 3]), 3.0);
+    }
+}
