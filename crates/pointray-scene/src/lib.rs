@@ -10,6 +10,7 @@ pub mod frame;
 pub mod frame_output;
 mod framing;
 pub mod ground;
+pub mod intensity_ramp;
 pub mod light;
 pub mod load;
 pub mod material;

@@ -10,6 +10,7 @@ use pointray_surface::prep_progress::{NoProgress, PrepProgress};
 
 use crate::error::{InvalidValue, SceneError};
 use crate::ground::GroundPlacement;
+use crate::intensity_ramp::IntensityRamp;
 use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::point_sets::{self, PointSetOrigin};
 use crate::procedural;
@@ -97,8 +98,9 @@ fn load_object(
     let key = object_key(index, spec);
     let transform =
         spec.transform.to_affine().map_err(|e| e.within(&format!("{key}.transform")).in_file(&file.path))?;
-    let material =
-        spec.material.to_material().map_err(|e| e.within(&format!("{key}.material")).in_file(&file.path))?;
+    let in_material = |e: InvalidValue| e.within(&format!("{key}.material")).in_file(&file.path);
+    let material = spec.material.to_material().map_err(in_material)?;
+    let ramp = spec.material.intensity_ramp().map_err(in_material)?;
     let (geometry, origin, default_name): LoadedGeometry = match &spec.shape {
         ShapeSpec::Mesh { path } => {
             let path = existing_file(file, &key, path)?;
@@ -126,6 +128,14 @@ fn load_object(
             (Geometry::Mesh(Arc::new(mesh)), None, "ground".to_string())
         }
     };
+    let geometry = match ramp {
+        Some(ramp) => colored_by_intensity(geometry, &ramp).map_err(|problem| SceneError::Invalid {
+            path: file.path.clone(),
+            key: format!("{key}.material.color_source"),
+            problem: format!("{}: {problem}", described_source(file, spec)),
+        })?,
+        None => geometry,
+    };
     let transform = match &geometry {
         // prep recentred the points (`input = local + offset`); put them back where they were.
         Geometry::Patches(patches) => transform * Affine3A::from_translation(patches.offset.as_vec3()),
@@ -133,6 +143,29 @@ fn load_object(
     };
     let name = spec.name.clone().unwrap_or(default_name);
     Ok((SceneObject { name, transform, material, geometry }, origin))
+}
+
+/// `color_source = "intensity"`: the ramp's colours go into the patches' cold records, where
+/// both renderers already read point colours.
+fn colored_by_intensity(geometry: Geometry, ramp: &IntensityRamp) -> Result<Geometry, &'static str> {
+    let Geometry::Patches(mut patches) = geometry else {
+        return Err("a mesh has no intensities; `color_source = \"intensity\"` applies to point sets");
+    };
+    // The readers report an all-zero intensity field as absent, and prep stores 0 for absent.
+    if patches.cold.iter().all(|record| record.intensity == 0.0) {
+        return Err("the points have no intensity, which `color_source = \"intensity\"` needs; \
+                    use \"points\" or \"fixed\"");
+    }
+    ramp.recolor(&mut Arc::make_mut(&mut patches).cold);
+    Ok(Geometry::Patches(patches))
+}
+
+/// The object's points file, or its type when it has none: for messages.
+fn described_source(file: &SceneFile, spec: &ObjectSpec) -> String {
+    match &spec.shape {
+        ShapeSpec::Points { path, .. } | ShapeSpec::Mesh { path } => file.resolve(path).display().to_string(),
+        shape => format!("a {} object", shape.type_name()),
+    }
 }
 
 /// The parts `load_object` needs: geometry, where its patches came from, a default name.

@@ -14,7 +14,9 @@ pub struct Material {
     pub shininess: f32,
     /// 0 = no reflection, 1 = a mirror.
     pub reflectivity: f32,
-    /// Take the diffuse colour from the patch's cold record instead of `diffuse`.
+    /// Take the diffuse colour from the patch's cold record instead of `diffuse`: the
+    /// file's colours, or, with `color_source = "intensity"`, the ramp's colours that
+    /// loading wrote there.
     pub use_point_colors: bool,
 }
 

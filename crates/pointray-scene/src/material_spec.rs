@@ -8,14 +8,45 @@
 //! specular = 0.3
 //! shininess = 32.0
 //! reflectivity = 0.5          # 0 = none, 1 = a mirror
-//! use_point_colors = false
+//! color_source = "fixed"      # "fixed" (diffuse), "points" (the file's RGB) or "intensity"
+//! ramp = "viridis"            # for "intensity": "grey", "viridis", or evenly spaced
+//!                             # linear RGB stops, e.g. [[0, 0, 0.2], [1, 1, 0.8]]
+//! intensity_range = [0.0, 1.0] # for "intensity": the intensities the ramp spans
 //! ```
+//!
+//! `use_point_colors = true` (older scenes) means `color_source = "points"`, and `false`
+//! means `"fixed"`; a material gives one key or the other, not both.
 
 use serde::Deserialize;
 
 use crate::Material;
 use crate::checks;
 use crate::error::InvalidValue;
+use crate::intensity_ramp::{IntensityRamp, RAMP_NAMES};
+
+/// Where a point set's diffuse colour comes from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ColorSource {
+    /// The material's `diffuse`.
+    #[default]
+    Fixed,
+    /// The points file's own colours.
+    Points,
+    /// The points' intensities through the `ramp`.
+    Intensity,
+}
+
+/// A named ramp or a list of colour stops.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum RampSpec {
+    Named(String),
+    Stops(Vec<[f32; 3]>),
+}
+
+/// Without a `ramp`, intensities are shown in grey: no colour that the scan does not have.
+const DEFAULT_RAMP: &str = "grey";
 
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -26,6 +57,9 @@ pub struct MaterialSpec {
     pub shininess: Option<f32>,
     pub reflectivity: Option<f32>,
     pub use_point_colors: Option<bool>,
+    pub color_source: Option<ColorSource>,
+    pub ramp: Option<RampSpec>,
+    pub intensity_range: Option<[f32; 2]>,
 }
 
 impl MaterialSpec {
@@ -43,7 +77,53 @@ impl MaterialSpec {
                 "reflectivity",
                 self.reflectivity.unwrap_or(default.reflectivity),
             )?,
-            use_point_colors: self.use_point_colors.unwrap_or(default.use_point_colors),
+            use_point_colors: self.color_source()? != ColorSource::Fixed,
         })
+    }
+
+    /// `color_source`, or what the older `use_point_colors` says.
+    pub(crate) fn color_source(&self) -> Result<ColorSource, InvalidValue> {
+        match (self.color_source, self.use_point_colors) {
+            (Some(_), Some(_)) => Err(InvalidValue::new(
+                "use_point_colors",
+                "give either `color_source` or the older `use_point_colors`, not both",
+            )),
+            (Some(source), None) => Ok(source),
+            (None, Some(true)) => Ok(ColorSource::Points),
+            (None, Some(false) | None) => Ok(ColorSource::Fixed),
+        }
+    }
+
+    /// The ramp that colours the points by intensity; `None` unless `color_source` is
+    /// `"intensity"`. `ramp` and `intensity_range` are refused with any other source.
+    pub(crate) fn intensity_ramp(&self) -> Result<Option<IntensityRamp>, InvalidValue> {
+        if self.color_source()? != ColorSource::Intensity {
+            if let Some(key) =
+                [("ramp", self.ramp.is_some()), ("intensity_range", self.intensity_range.is_some())]
+                    .into_iter()
+                    .find_map(|(key, given)| given.then_some(key))
+            {
+                return Err(InvalidValue::new(key, "applies only with `color_source = \"intensity\"`"));
+            }
+            return Ok(None);
+        }
+        let ramp = match &self.ramp {
+            None => IntensityRamp::named(DEFAULT_RAMP).unwrap_or_else(|| unreachable!("a built-in ramp")),
+            Some(RampSpec::Named(name)) => IntensityRamp::named(name).ok_or_else(|| {
+                InvalidValue::new(
+                    "ramp",
+                    format!("unknown ramp `{name}`; the named ramps are {RAMP_NAMES:?}"),
+                )
+            })?,
+            Some(RampSpec::Stops(stops)) => {
+                let colors =
+                    stops.iter().map(|&stop| checks::color("ramp", stop)).collect::<Result<_, _>>()?;
+                IntensityRamp::from_stops(colors)?
+            }
+        };
+        match self.intensity_range {
+            Some([low, high]) => Ok(Some(ramp.over(low, high)?)),
+            None => Ok(Some(ramp)),
+        }
     }
 }
