@@ -2,6 +2,7 @@
 
 mod acceptance_arg;
 mod backend;
+mod boxes_arg;
 mod commands;
 mod progress;
 

@@ -12,6 +12,7 @@ use pointray_vulkan::DeviceSelector;
 
 use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendChoice};
+use crate::boxes_arg::Boxes;
 use crate::progress::PrepBar;
 
 /// Render the points' patches and the mesh from cameras around the model and report holes,
@@ -34,6 +35,9 @@ pub struct FidelityArgs {
     /// Which hits on a patch count: inside its box (the paper) or also over its disk.
     #[arg(long, value_enum, default_value_t = Acceptance::Disk)]
     acceptance: Acceptance,
+    /// The box around each patch.
+    #[arg(long, value_enum, default_value_t = Boxes::Cube)]
+    boxes: Boxes,
     /// Also write the report as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
@@ -64,7 +68,10 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     }
     let options = FidelityOptions::around(args.views, args.size, args.acceptance.into())?;
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
-    let patches = prep_points(&args.points, args.k)?;
+    let patches = prep_points(
+        &args.points,
+        PrepParams { k: args.k, box_kind: args.boxes.into(), ..PrepParams::default() },
+    )?;
     let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);
     println!("backend: {}", backend.name());
     let mut report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &backend)
@@ -79,9 +86,9 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn prep_points(path: &Path, k: u32) -> anyhow::Result<PatchSet> {
+fn prep_points(path: &Path, params: PrepParams) -> anyhow::Result<PatchSet> {
     let cloud = pointray_io::formats::read_point_cloud(path)?;
-    let options = PrepOptions { params: PrepParams { k, ..PrepParams::default() }, ..PrepOptions::default() };
+    let options = PrepOptions { params, ..PrepOptions::default() };
     let (patches, _) = prep(&cloud, &options, &PrepBar::default())
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     Ok(patches)

@@ -4,8 +4,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::DVec3;
-use pointray_surface::{BoxKind, PrepOptions, PrepParams, prep};
+use pointray_surface::{PrepOptions, PrepParams, prep};
 
+use crate::boxes_arg::Boxes;
 use crate::progress::PrepBar;
 
 /// Fit an MLS quadratic patch to every point and write the patch store.
@@ -32,21 +33,6 @@ pub struct PrepArgs {
     /// around the patch over its disk.
     #[arg(long, value_enum, default_value_t = Boxes::Cube)]
     boxes: Boxes,
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum Boxes {
-    Cube,
-    Tight,
-}
-
-impl From<Boxes> for BoxKind {
-    fn from(boxes: Boxes) -> Self {
-        match boxes {
-            Boxes::Cube => BoxKind::Cube,
-            Boxes::Tight => BoxKind::Tight,
-        }
-    }
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {
