@@ -3,7 +3,8 @@
 //! when the path goes on).
 
 use glam::Vec3;
-use pointray_kernels::{Ray, background, face_forward, patch_normal, self_clearance};
+use pointray_kernels::interpolate_color::color_from_rgba8;
+use pointray_kernels::{Ray, background, face_forward, interpolate_color, patch_normal, self_clearance};
 use pointray_scene::{Background, Frame, Geometry, RenderSettings};
 
 use crate::object_bvh::triangle_corners;
@@ -67,7 +68,7 @@ impl CpuRenderer {
                 position,
                 normal,
                 to_viewer: -ray.direction,
-                base_color: self.base_color(&hit),
+                base_color: self.base_color(&hit, &ray),
                 clearance: self.clearance(&hit),
             };
             let local = self.shade(&point, &object.material, settings, counts);
@@ -108,9 +109,9 @@ impl CpuRenderer {
         }
     }
 
-    /// The material's diffuse colour, or the point's colour where the material asks for it
-    /// (white for meshes, which have none).
-    fn base_color(&self, hit: &SceneHit) -> Vec3 {
+    /// The material's diffuse colour, or where the material asks for point colours, the
+    /// point colours interpolated at the hit (white for meshes, which have none).
+    fn base_color(&self, hit: &SceneHit, ray: &Ray) -> Vec3 {
         let instance = &self.top.instances[hit.instance];
         let material = &self.scene.objects[instance.object_index as usize].material;
         if !material.use_point_colors {
@@ -118,7 +119,10 @@ impl CpuRenderer {
         }
         match instance.blas.geometry() {
             Geometry::Patches(patches) => {
-                patches.cold.get(hit.primitive as usize).map_or(Vec3::ONE, |c| c.color())
+                // In object space, where the patches are; `t` is the same there.
+                let position = instance.to_object(ray).at(hit.t);
+                let (hot, cold, neighbors) = (&patches.hot, &patches.cold, &patches.color_neighbors);
+                color_from_rgba8(interpolate_color(position, hit.primitive, hot, cold, neighbors))
             }
             Geometry::Mesh(_) => Vec3::ONE,
         }

@@ -8,7 +8,7 @@
 
 const uint COLOR_NEIGHBORS = 12u;
 const uint NO_NEIGHBOR = 0xffffffffu;
-const float COLOR_SUPPORT_SCALE = 0.6;
+const float COLOR_SUPPORT_SCALE = 0.75;
 const uint COLOR_WALK_SCANS = 3u;
 
 // theta(r) = (1 - r)^4 (4r + 1) of r = distance / (COLOR_SUPPORT_SCALE d_j), 0 from r = 1 on.

@@ -29,8 +29,9 @@ pub fn cold_records(colors: Option<&[[u8; 3]]>, intensities: Option<&[f32]>, cou
 }
 
 /// Each patch's `COLOR_NEIGHBORS` nearest neighbours, padded with `NO_NEIGHBOR` where the
-/// table is narrower; empty without colours, where blending would only repeat white (and the
-/// list would add a third to the patch set's memory).
+/// table is narrower; empty for points with no colour (nor intensity to colour them by),
+/// where blending would only repeat white and the list would add half to the patch set's
+/// memory (48 bytes a patch beside 96).
 pub fn color_neighbor_table(neighbors: &Neighbors, has_colors: bool) -> Vec<u32> {
     if !has_colors {
         return Vec::new();

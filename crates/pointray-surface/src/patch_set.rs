@@ -36,7 +36,7 @@ pub struct PatchSet {
     pub cold: Vec<PatchCold>,
     /// `COLOR_NEIGHBORS` patch indices per patch, nearest first, `NO_NEIGHBOR` in unused
     /// slots: the points a hit's colour is blended from (`interpolate_color`). Empty when
-    /// the cloud has no colours, as there is nothing to blend.
+    /// the cloud has neither colours nor intensities, as there is nothing to blend.
     pub color_neighbors: Vec<u32>,
 }
 

@@ -96,7 +96,7 @@ pub fn prep(
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
     let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
-        (gather_cold(cloud, &source), color_neighbor_table(&neighbors, cloud.colors.is_some()))
+        (gather_cold(cloud, &source), color_neighbor_table(&neighbors, has_point_colors(cloud)))
     });
     let report = PrepReport {
         input_points: count,
@@ -317,6 +317,12 @@ fn fit_one(
         indices.iter().zip(distances).map(|(&j, &r)| (frame.to_local(points[j as usize] - origin), r));
     let h = WENDLAND_SCALE * distances[k - 1];
     fit_patch(std::iter::once((Vec3::ZERO, 0.0)).chain(samples), h, radius)
+}
+
+/// Whether the points carry a colour to blend: their own, or one that a material's
+/// intensity ramp makes at load.
+fn has_point_colors(cloud: &PointCloud) -> bool {
+    cloud.colors.is_some() || cloud.intensities.is_some()
 }
 
 fn gather_cold(cloud: &PointCloud, source: &[u32]) -> Vec<PatchCold> {

@@ -54,11 +54,15 @@ fn round_trip_is_bit_identical() {
 }
 
 #[test]
-fn a_cloud_without_colours_stores_no_neighbours() {
+fn a_cloud_without_colours_or_intensities_stores_no_neighbours() {
     let directory = tempfile::tempdir().unwrap();
-    let cloud = common::sphere(500, 1.0, DVec3::ZERO);
+    let mut cloud = common::sphere(500, 1.0, DVec3::ZERO);
     let patches = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap().0;
     assert!(patches.color_neighbors.is_empty());
+    // Intensities alone keep them: an intensity ramp colours the points at load.
+    cloud.intensities = Some(vec![0.5; 500]);
+    let ramped = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap().0;
+    assert_eq!(ramped.color_neighbors.len(), 500 * COLOR_NEIGHBORS);
     let coloured = sample_patches(BoxKind::Cube);
     let neighbour_bytes = 4 * COLOR_NEIGHBORS as u64 * coloured.len() as u64;
     let size = |p: &PatchSet| std::fs::metadata(written(directory.path(), p)).unwrap().len();
