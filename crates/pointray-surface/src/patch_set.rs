@@ -21,7 +21,7 @@ pub struct PrepParams {
 
 impl Default for PrepParams {
     fn default() -> Self {
-        Self { k: 9, normal_k: 16, box_kind: BoxKind::Cube, duplicate_tolerance: 1e-6 }
+        Self { k: 9, normal_k: 16, box_kind: BoxKind::Tight, duplicate_tolerance: 1e-6 }
     }
 }
 

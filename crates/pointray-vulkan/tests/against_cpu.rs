@@ -5,10 +5,11 @@
 mod common;
 
 use common::{
-    assert_no_validation_messages, data_file, model_on_floor, prepped_points, renderer, settings,
+    assert_no_validation_messages, data_file, model_on_floor, prepped_points_with_boxes, renderer, settings,
     sphere_on_floor,
 };
 use pointray_scene::{AcceptanceTest, Frame, Geometry, Material, RenderSettings, Scene, demo_scene};
+use pointray_surface::BoxKind;
 
 struct Agreement {
     mask: f64,
@@ -73,20 +74,26 @@ fn a_reflective_floor_under_a_sphere_matches() {
     assert_backends_agree("sphere on a mirror-ish floor", &sphere_on_floor(0.5, 1.0), &settings(128));
 }
 
+/// The paper's pair (cube boxes, box test) and ours (tight boxes, disk test). The box test
+/// with tight boxes is left out: a hit inside the cube but outside the tight box is found
+/// only by rays that also enter the tight box, so there the backends may legitimately differ.
 #[test]
 fn the_bunny_on_a_floor_matches_with_both_acceptance_tests() {
     let Some(path) = data_file("points/bunny.ply") else { return };
-    let bunny = prepped_points("bunny", &path, Material { reflectivity: 0.0, ..Material::default() });
-    let Geometry::Patches(patches) = &bunny.geometry else { unreachable!("prepped points are patches") };
-    let bounds = patches.bounds().expect("the bunny has patches");
-    let offset = patches.offset.as_vec3();
-    let world = pointray_kernels::Aabb::new(
-        glam::Vec3::from(bounds.min) + offset,
-        glam::Vec3::from(bounds.max) + offset,
-    );
-    let scene = model_on_floor(bunny, world, 0.4);
-    for acceptance in [AcceptanceTest::Box, AcceptanceTest::Disk] {
+    for (acceptance, box_kind) in
+        [(AcceptanceTest::Box, BoxKind::Cube), (AcceptanceTest::Disk, BoxKind::Tight)]
+    {
+        let material = Material { reflectivity: 0.0, ..Material::default() };
+        let bunny = prepped_points_with_boxes("bunny", &path, material, box_kind);
+        let Geometry::Patches(patches) = &bunny.geometry else { unreachable!("prepped points are patches") };
+        let bounds = patches.bounds().expect("the bunny has patches");
+        let offset = patches.offset.as_vec3();
+        let world = pointray_kernels::Aabb::new(
+            glam::Vec3::from(bounds.min) + offset,
+            glam::Vec3::from(bounds.max) + offset,
+        );
+        let scene = model_on_floor(bunny, world, 0.4);
         let settings = RenderSettings { acceptance, ..settings(160) };
-        assert_backends_agree(&format!("bunny, {acceptance:?} test"), &scene, &settings);
+        assert_backends_agree(&format!("bunny, {acceptance:?} test, {box_kind:?} boxes"), &scene, &settings);
     }
 }

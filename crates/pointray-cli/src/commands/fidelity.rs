@@ -36,7 +36,7 @@ pub struct FidelityArgs {
     #[arg(long, value_enum, default_value_t = Acceptance::Disk)]
     acceptance: Acceptance,
     /// The box around each patch.
-    #[arg(long, value_enum, default_value_t = Boxes::Cube)]
+    #[arg(long, value_enum, default_value_t = Boxes::Tight)]
     boxes: Boxes,
     /// Also write the report as JSON to this file.
     #[arg(long)]

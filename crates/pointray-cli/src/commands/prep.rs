@@ -31,7 +31,7 @@ pub struct PrepArgs {
     sensor: Option<DVec3>,
     /// The box around each patch: the paper's cube of half-size d_i, or a tight box
     /// around the patch over its disk.
-    #[arg(long, value_enum, default_value_t = Boxes::Cube)]
+    #[arg(long, value_enum, default_value_t = Boxes::Tight)]
     boxes: Boxes,
 }
 

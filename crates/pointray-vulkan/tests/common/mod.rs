@@ -12,7 +12,7 @@ use pointray_kernels::{Aabb, PatchCold, PatchHot, PinholeCamera, camera_ray};
 use pointray_scene::{
     Background, Camera, Frame, Geometry, Light, Material, RenderSettings, Scene, SceneObject,
 };
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, prep};
+use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepOptions, PrepParams, prep};
 use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer};
 
 fn in_ci() -> bool {
@@ -156,8 +156,20 @@ pub fn mean_luminance(frame: &Frame, select: impl Fn(usize) -> bool) -> f32 {
 
 /// A points file prepped into patches, placed back where its input was (prep recentres).
 pub fn prepped_points(name: &str, path: &std::path::Path, material: Material) -> SceneObject {
+    prepped_points_with_boxes(name, path, material, BoxKind::default())
+}
+
+/// As `prepped_points`, with `box_kind` boxes.
+pub fn prepped_points_with_boxes(
+    name: &str,
+    path: &std::path::Path,
+    material: Material,
+    box_kind: BoxKind,
+) -> SceneObject {
     let cloud = read_point_cloud(path).unwrap_or_else(|e| panic!("{} does not load: {e}", path.display()));
-    let (patches, _) = prep(&cloud, &PrepOptions::default(), &NoProgress).expect("prep succeeds");
+    let options =
+        PrepOptions { params: PrepParams { box_kind, ..PrepParams::default() }, ..PrepOptions::default() };
+    let (patches, _) = prep(&cloud, &options, &NoProgress).expect("prep succeeds");
     SceneObject {
         name: name.into(),
         transform: Affine3A::from_translation(patches.offset.as_vec3()),
