@@ -12,7 +12,7 @@ pub enum BoxKind {
     /// The cube of half-size `d_i` around `p_i`, as in the paper.
     Cube,
     /// The box around the patch surface `w = f(u, v)` over the disk `u² + v² <= d_i²`: the
-    /// default, since every hit the disk test accepts lies inside it (the pictures equal the
+    /// default, since every hit the disk test accepts lies inside it (the same hits as the
     /// cube's, bench/FIDELITY.md) and rays test fewer boxes (bench/RESULTS.md).
     #[default]
     Tight,
