@@ -11,7 +11,7 @@ use pointray_surface::prep_progress::{NoProgress, PrepProgress};
 use crate::error::{InvalidValue, SceneError};
 use crate::ground::GroundPlacement;
 use crate::intensity_ramp::IntensityRamp;
-use crate::object_spec::{ObjectSpec, ShapeSpec};
+use crate::object_spec::{ObjectSpec, OutlierSpec, RadiusSpec, ShapeSpec};
 use crate::point_sets::{self, PointSetOrigin};
 use crate::procedural;
 use crate::scene_file::SceneFile;
@@ -108,9 +108,14 @@ fn load_object(
                 .map_err(|source| SceneError::Input { scene: file.path.clone(), key: key.clone(), source })?;
             (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
         }
-        ShapeSpec::Points { path, k, normal_k } => {
+        ShapeSpec::Points { path, k, normal_k, radius, remove_outliers } => {
             let path = existing_file(file, &key, path)?;
-            let request = point_sets::PrepRequest { k: *k, normal_k: *normal_k };
+            let request = point_sets::PrepRequest {
+                k: *k,
+                normal_k: *normal_k,
+                radius: radius.map(RadiusSpec::mode),
+                remove_outliers: remove_outliers.map(OutlierSpec::filter),
+            };
             let (patches, origin) = point_sets::load_points_file(&path, &request, options)
                 .map_err(|e| e.in_scene(&file.path, &key))?;
             (Geometry::Patches(Arc::new(patches)), Some(origin), file_stem(&path))

@@ -7,6 +7,8 @@
 //! path = "../../shared/data/points/bunny.ply"
 //! k = 9                    # optional prep overrides
 //! normal_k = 16
+//! radius = "adaptive"      # support radius: "paper" or "adaptive" (to the local density)
+//! remove_outliers = { neighbors = 8, sigmas = 2.0 }  # drop statistical outliers first
 //!
 //! [[objects]]
 //! type = "mesh"            # PLY or OBJ
@@ -56,6 +58,8 @@ pub enum ShapeSpec {
         path: PathBuf,
         k: Option<u32>,
         normal_k: Option<u32>,
+        radius: Option<RadiusSpec>,
+        remove_outliers: Option<OutlierSpec>,
     },
     Mesh {
         path: PathBuf,
@@ -81,6 +85,38 @@ pub enum ShapeSpec {
     },
 }
 
+/// `radius` of a points object: how prep picks each patch's support radius.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RadiusSpec {
+    Paper,
+    Adaptive,
+}
+
+/// `remove_outliers` of a points object: drop points whose mean distance to their
+/// `neighbors` nearest is more than `sigmas` standard deviations above the mean.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutlierSpec {
+    pub neighbors: u32,
+    pub sigmas: f32,
+}
+
+impl RadiusSpec {
+    pub fn mode(self) -> pointray_surface::RadiusMode {
+        match self {
+            Self::Paper => pointray_surface::RadiusMode::Paper,
+            Self::Adaptive => pointray_surface::RadiusMode::Adaptive,
+        }
+    }
+}
+
+impl OutlierSpec {
+    pub fn filter(self) -> pointray_surface::OutlierFilter {
+        pointray_surface::OutlierFilter { neighbors: self.neighbors, sigmas: self.sigmas }
+    }
+}
+
 impl ShapeSpec {
     /// The `type` string as written in the scene file.
     pub fn type_name(&self) -> &'static str {
@@ -98,13 +134,17 @@ impl ShapeSpec {
     /// Range checks that need no file.
     pub(crate) fn check(&self) -> Result<(), InvalidValue> {
         match self {
-            Self::Points { path, k, normal_k } => {
+            Self::Points { path, k, normal_k, remove_outliers, .. } => {
                 if path.as_os_str().is_empty() {
                     return Err(InvalidValue::new("path", "must not be empty"));
                 }
                 // Fewer neighbours than this cannot fit the six quadratic coefficients.
                 k.map(|k| checks::at_least("k", k, 5)).transpose()?;
                 normal_k.map(|k| checks::at_least("normal_k", k, 3)).transpose()?;
+                if let Some(OutlierSpec { neighbors, sigmas }) = remove_outliers {
+                    checks::at_least("remove_outliers.neighbors", *neighbors, 1)?;
+                    checks::non_negative("remove_outliers.sigmas", *sigmas)?;
+                }
             }
             Self::Mesh { path } if path.as_os_str().is_empty() => {
                 return Err(InvalidValue::new("path", "must not be empty"));

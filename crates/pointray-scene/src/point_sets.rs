@@ -12,16 +12,18 @@ use std::path::{Path, PathBuf};
 
 use pointray_io::PointCloud;
 use pointray_surface::patch_store::{self, StoreError};
-use pointray_surface::{PatchSet, PrepError, PrepOptions, prep};
+use pointray_surface::{OutlierFilter, PatchSet, PrepError, PrepOptions, RadiusMode, prep};
 
 use crate::error::SceneError;
 use crate::load::LoadOptions;
 
-/// The file's prep settings; `None` keeps `PrepParams::default()`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// The file's prep settings; `None` keeps `PrepOptions::default()`'s.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PrepRequest {
     pub k: Option<u32>,
     pub normal_k: Option<u32>,
+    pub radius: Option<RadiusMode>,
+    pub remove_outliers: Option<OutlierFilter>,
 }
 
 /// Where a point set's patches came from.
@@ -61,7 +63,7 @@ impl PointSetError {
                 path: scene,
                 key,
                 problem: format!(
-                    "{}: is a patch store, already prepped: `k` and `normal_k` apply only to points files",
+                    "{}: is a patch store, already prepped: `k`, `normal_k`, `radius` and `remove_outliers` apply only to points files",
                     file.display()
                 ),
             },
@@ -130,6 +132,8 @@ impl PrepRequest {
         let mut options = PrepOptions::default();
         options.params.k = self.k.unwrap_or(options.params.k);
         options.params.normal_k = self.normal_k.unwrap_or(options.params.normal_k);
+        options.radius_mode = self.radius.unwrap_or(options.radius_mode);
+        options.remove_outliers = self.remove_outliers;
         options
     }
 }

@@ -174,7 +174,13 @@ impl SceneFile {
             background: None,
             objects: vec![
                 object(
-                    ShapeSpec::Points { path: points.to_path_buf(), k: None, normal_k: None },
+                    ShapeSpec::Points {
+                        path: points.to_path_buf(),
+                        k: None,
+                        normal_k: None,
+                        radius: None,
+                        remove_outliers: None,
+                    },
                     MaterialSpec::default(),
                 ),
                 object(ShapeSpec::Ground { auto: true, height: None, size: None }, floor),

@@ -103,7 +103,13 @@ fn a_full_scene_parses_into_the_expected_values() {
     );
     assert_eq!(
         file.objects[0].shape,
-        ShapeSpec::Points { path: "models/a.ply".into(), k: Some(12), normal_k: None }
+        ShapeSpec::Points {
+            path: "models/a.ply".into(),
+            k: Some(12),
+            normal_k: None,
+            radius: None,
+            remove_outliers: None
+        }
     );
     assert_eq!(file.objects[0].material.use_point_colors, Some(true));
     assert_eq!(file.resolve(Path::new("models/a.ply")), Path::new("test/models/a.ply"));

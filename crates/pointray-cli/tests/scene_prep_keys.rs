@@ -1,0 +1,55 @@
+//! The scene file's `radius` and `remove_outliers` keys on a points object reach prep.
+
+use std::path::{Path, PathBuf};
+
+use pointray_scene::{Geometry, LoadOptions, load_scene};
+
+/// A 30x30 plane and 5 points far above it.
+fn write_plane_with_outliers(dir: &Path) -> PathBuf {
+    let mut positions: Vec<glam::DVec3> =
+        (0..900).map(|i| glam::DVec3::new((i % 30) as f64 * 0.1, (i / 30) as f64 * 0.1, 0.0)).collect();
+    positions.extend((0..5).map(|i| glam::DVec3::new(0.5 * i as f64, 1.0, 3.0 + i as f64)));
+    let path = dir.join("plane.ply");
+    pointray_io::formats::ply::write_point_cloud(&path, &pointray_io::PointCloud::from_positions(positions)).unwrap();
+    path
+}
+
+fn write_scene(dir: &Path, keys: &str) -> PathBuf {
+    let points = write_plane_with_outliers(dir);
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, format!("[[objects]]\ntype = \"points\"\npath = \"{}\"\n{keys}\n", points.display())).unwrap();
+    path
+}
+
+fn patch_radii(scene: &Path) -> Vec<f32> {
+    let loaded = load_scene(scene, &LoadOptions::default()).unwrap();
+    let Geometry::Patches(patches) = &loaded.scene.objects[0].geometry else { panic!("a point set") };
+    patches.hot.iter().map(|hot| hot.radius()).collect()
+}
+
+#[test]
+fn outliers_are_removed_and_the_radius_mode_applies() {
+    let dir = tempfile::tempdir().unwrap();
+    let default = patch_radii(&write_scene(dir.path(), ""));
+    assert_eq!(default.len(), 905);
+    let filtered = patch_radii(&write_scene(dir.path(), "remove_outliers = { neighbors = 8, sigmas = 2.0 }"));
+    assert_eq!(filtered.len(), 900);
+    assert_eq!(patch_radii(&write_scene(dir.path(), "radius = \"paper\"")), default, "paper is the default");
+    let adaptive = patch_radii(&write_scene(dir.path(), "radius = \"adaptive\""));
+    assert_eq!(adaptive.len(), 905);
+    assert!(adaptive.iter().zip(&default).any(|(a, d)| a != d), "`radius = \"adaptive\"` changed no radius");
+}
+
+#[test]
+fn bad_keys_are_refused_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    for (keys, expected) in [
+        ("remove_outliers = { neighbors = 0, sigmas = 2.0 }", "remove_outliers.neighbors"),
+        ("remove_outliers = { neighbors = 8, sigmas = -1.0 }", "remove_outliers.sigmas"),
+        ("remove_outliers = { neighbors = 8 }", "sigmas"),
+        ("radius = \"huge\"", "unknown variant"),
+    ] {
+        let error = load_scene(&write_scene(dir.path(), keys), &LoadOptions::default()).unwrap_err().to_string();
+        assert!(error.contains(expected) && error.contains("scene.toml"), "{keys}: {error}");
+    }
+}
