@@ -7,6 +7,7 @@
 #extension GL_EXT_buffer_reference : require
 
 #include "layout.glsl"
+#include "patch_buffers.glsl"
 
 // Hot and cold records together, for BufferLayout::Combined (std430 pads it to 80 bytes).
 struct PatchCombined {
@@ -14,8 +15,6 @@ struct PatchCombined {
     PatchCold cold;
 };
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HotPatches { PatchHot records[]; };
-layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer ColdPatches { PatchCold records[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CombinedPatches { PatchCombined records[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MeshVertices { vec4 positions[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer MeshIndices { uint indices[]; };
@@ -28,8 +27,7 @@ struct ObjectRecord {
     CombinedPatches combined;
     MeshVertices vertices;
     MeshIndices indices;
-    uint pad0;
-    uint pad1;
+    ColorNeighbors color_neighbors;         // 0 where the points have no colours (interpolate_color.glsl)
     vec4 diffuse_ambient;                   // rgb = diffuse colour, a = ambient
     vec4 specular_shininess_reflect_colors; // x = specular, y = shininess, z = reflectivity, w = use point colours
 };
@@ -90,13 +88,6 @@ PatchHot load_hot(ObjectRecord object, uint patch_index) {
         return object.combined.records[patch_index].hot;
     }
     return object.hot.records[patch_index];
-}
-
-PatchCold load_cold(ObjectRecord object, uint patch_index) {
-    if (settings.buffer_layout == LAYOUT_COMBINED) {
-        return object.combined.records[patch_index].cold;
-    }
-    return object.cold.records[patch_index];
 }
 
 #endif

@@ -1,15 +1,29 @@
 #version 460
-// Hit group 0, closest hit: the patch's gradient normal and the point's colour.
+// Hit group 0, closest hit: the patch's gradient normal and the point colours interpolated
+// at the hit.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
 
 #include "bindings.glsl"
 #include "payload.glsl"
 #include "patch_normal.glsl"
+#include "interpolate_color.glsl"
 #include "self_clearance.glsl"
 
 layout(location = HIT_PAYLOAD_LOCATION) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec2 hit_uv;
+
+// The point colours interpolated at the hit, where the material uses them (white otherwise,
+// which ray generation does not read). Blending reads the split hot and cold buffers, which
+// every patch object has whatever the buffer layout.
+uint hit_color(ObjectRecord object, uint patch_index) {
+    if (object.specular_shininess_reflect_colors.w == 0.0) {
+        return 0xffffffffu;
+    }
+    // In object space, where the patches are; t is the same there.
+    vec3 position = gl_ObjectRayOriginEXT + gl_HitTEXT * gl_ObjectRayDirectionEXT;
+    return interpolate_color(position, patch_index, object.hot, object.cold, object.color_neighbors);
+}
 
 void main() {
     ObjectRecord object = objects[gl_InstanceCustomIndexEXT];
@@ -21,7 +35,7 @@ void main() {
     payload.t = gl_HitTEXT;
     payload.instance = gl_InstanceCustomIndexEXT;
     payload.primitive = patch_index;
-    payload.color_rgba8 = load_cold(object, patch_index).color_rgba8;
+    payload.color_rgba8 = hit_color(object, patch_index);
     // World lengths from the inverse transform's first column, as the CPU renderer does.
     float world_scale = 1.0 / length(gl_WorldToObjectEXT[0]);
     payload.clearance = self_clearance(patch_record.origin_radius.w * world_scale);

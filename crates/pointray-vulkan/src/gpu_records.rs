@@ -31,7 +31,8 @@ pub(crate) struct ObjectRecord {
     pub(crate) combined: u64,
     pub(crate) vertices: u64,
     pub(crate) indices: u64,
-    pub(crate) pad: u64,
+    /// `COLOR_NEIGHBORS` patch indices per patch; 0 where the points have no colours.
+    pub(crate) color_neighbors: u64,
     pub(crate) diffuse_ambient: [f32; 4],
     pub(crate) specular_shininess_reflect_colors: [f32; 4],
 }

@@ -6,6 +6,7 @@ use std::sync::Arc;
 use ash::vk;
 use glam::{Affine3A, Vec4};
 use pointray_io::TriangleMesh;
+use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR};
 use pointray_scene::{Background, Camera, Geometry, Light, Scene};
 use pointray_surface::PatchSet;
 
@@ -69,6 +70,7 @@ fn prepare_patches(
             patches.aabbs.len()
         )));
     }
+    check_color_neighbors(patches)?;
     let combined: Vec<PatchCombined> =
         patches.hot.iter().zip(&patches.cold).map(|(&hot, &cold)| PatchCombined::new(hot, cold)).collect();
     let aabbs = Buffer::device_with_data(
@@ -95,6 +97,18 @@ fn prepare_patches(
         bytemuck::cast_slice(&combined),
         storage_usage(),
     )?;
+    // Only coloured clouds carry neighbour lists; the others keep address 0, which the
+    // closest-hit shader never dereferences.
+    let color_neighbors = (!patches.color_neighbors.is_empty())
+        .then(|| {
+            Buffer::device_with_data(
+                context,
+                "colour neighbour lists",
+                bytemuck::cast_slice(&patches.color_neighbors),
+                storage_usage(),
+            )
+        })
+        .transpose()?;
     let blas = (count > 0)
         .then(|| build(context, &aabb_input(aabbs.device_address(), count as u32, layout)))
         .transpose()?
@@ -103,9 +117,31 @@ fn prepare_patches(
         hot: hot.device_address(),
         cold: cold.device_address(),
         combined: combined.device_address(),
+        color_neighbors: color_neighbors.as_ref().map_or(0, Buffer::device_address),
         ..ObjectRecord::default()
     };
-    Ok(PreparedObject { record, blas, buffers: vec![aabbs, hot, cold, combined] })
+    let buffers = [aabbs, hot, cold, combined].into_iter().chain(color_neighbors).collect();
+    Ok(PreparedObject { record, blas, buffers })
+}
+
+/// The shader follows neighbour indices without bounds checks: each list must have its
+/// `COLOR_NEIGHBORS` slots and name only patches of its set.
+fn check_color_neighbors(patches: &PatchSet) -> Result<(), VulkanError> {
+    let (count, neighbors) = (patches.len(), &patches.color_neighbors);
+    if !neighbors.is_empty() && neighbors.len() != count * COLOR_NEIGHBORS {
+        return Err(VulkanError::InvalidScene(format!(
+            "a patch set has {} colour neighbour entries for {count} patches; {COLOR_NEIGHBORS} per patch wanted",
+            neighbors.len()
+        )));
+    }
+    match neighbors.iter().position(|&j| j != NO_NEIGHBOR && j as usize >= count) {
+        Some(bad) => Err(VulkanError::InvalidScene(format!(
+            "patch {} names colour neighbour {}, but the set has {count} patches",
+            bad / COLOR_NEIGHBORS,
+            neighbors[bad]
+        ))),
+        None => Ok(()),
+    }
 }
 
 fn prepare_mesh(context: &Arc<GpuContext>, mesh: &TriangleMesh) -> Result<PreparedObject, VulkanError> {
