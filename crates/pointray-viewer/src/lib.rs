@@ -58,8 +58,8 @@ pub struct ViewerOptions {
     pub backend: RenderBackend,
     pub device: DeviceSelector,
     pub vsync: bool,
-    /// The Khronos validation layer on the presenter and the renderer (their messages fail
-    /// the run).
+    /// The Khronos validation layer on the presenter and the renderer: any message, during
+    /// the run or at teardown (leaked objects), fails the run with `ViewerError::Validation`.
     pub validation: bool,
     /// `None`: interactive until the window is closed.
     pub script: Option<Script>,
