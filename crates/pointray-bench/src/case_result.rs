@@ -27,6 +27,8 @@ pub enum Variant {
     AovOutput,
     /// Ablation: shader execution reordering of every path segment.
     HitReordering,
+    /// Ablation: k = 6 neighbours instead of 9, so smaller, less overlapping patches.
+    SixNeighbours,
 }
 
 impl Variant {
@@ -41,6 +43,7 @@ impl Variant {
             Self::BoxAcceptance => "box acceptance",
             Self::AovOutput => "AOV output",
             Self::HitReordering => "hit reordering (SER)",
+            Self::SixNeighbours => "k = 6 neighbours",
         }
     }
 }

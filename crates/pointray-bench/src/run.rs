@@ -167,19 +167,18 @@ impl ModelRun<'_> {
             return Ok(());
         }
         self.time(base, settings, BlasLayout::GeometryPerAabb, Variant::GeometryPerAabb)?;
-        let cubes = self.with_boxes(base, BoxKind::Cube)?;
+        let cubes = self.reprepped(base, PrepParams { box_kind: BoxKind::Cube, ..PrepParams::default() })?;
         self.time(&cubes, settings, BlasLayout::OneGeometry, Variant::CubeBoxes)?;
-        self.time(&cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)
+        self.time(&cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)?;
+        let six = self.reprepped(base, PrepParams { k: 6, ..PrepParams::default() })?;
+        self.time(&six, settings, BlasLayout::OneGeometry, Variant::SixNeighbours)
     }
 
-    /// The scene with the model re-prepped with `kind` boxes.
-    fn with_boxes(&self, base: &Scene, kind: BoxKind) -> Result<Scene, BenchError> {
+    /// The scene with the model re-prepped with `params`.
+    fn reprepped(&self, base: &Scene, params: PrepParams) -> Result<Scene, BenchError> {
         let points = model_points(self.model, &self.options.data, &self.options.cache)?;
         let cloud = pointray_io::formats::read_point_cloud(&points)?;
-        let options = PrepOptions {
-            params: PrepParams { box_kind: kind, ..PrepParams::default() },
-            ..PrepOptions::default()
-        };
+        let options = PrepOptions { params, ..PrepOptions::default() };
         let (patches, _) = pointray_surface::prep(&cloud, &options, &NoProgress)
             .map_err(|source| BenchError::Prep { case: self.model.name.clone(), source })?;
         let mut scene = base.clone();

@@ -72,7 +72,8 @@ fn table1_bunny_runs_with_limit_and_ablations() {
             Variant::AovOutput,
             Variant::GeometryPerAabb,
             Variant::CubeBoxes,
-            Variant::PaperConfiguration
+            Variant::PaperConfiguration,
+            Variant::SixNeighbours
         ]
     );
     for case in &report.cases {

@@ -66,9 +66,13 @@ impl std::fmt::Display for DeviceInfo {
             self.index, self.name, self.device_type, self.api_version, self.driver
         )?;
         match &self.rejection {
-            Some(reason) => write!(f, ": unusable, {reason}"),
-            None => write!(f, ": usable"),
+            Some(reason) => write!(f, ": unusable, {reason}")?,
+            None => write!(f, ": usable")?,
         }
+        if self.hit_reordering {
+            write!(f, ", with hit reordering")?;
+        }
+        Ok(())
     }
 }
 
