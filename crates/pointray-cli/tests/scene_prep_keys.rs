@@ -10,14 +10,19 @@ fn write_plane_with_outliers(dir: &Path) -> PathBuf {
         (0..900).map(|i| glam::DVec3::new((i % 30) as f64 * 0.1, (i / 30) as f64 * 0.1, 0.0)).collect();
     positions.extend((0..5).map(|i| glam::DVec3::new(0.5 * i as f64, 1.0, 3.0 + i as f64)));
     let path = dir.join("plane.ply");
-    pointray_io::formats::ply::write_point_cloud(&path, &pointray_io::PointCloud::from_positions(positions)).unwrap();
+    pointray_io::formats::ply::write_point_cloud(&path, &pointray_io::PointCloud::from_positions(positions))
+        .unwrap();
     path
 }
 
 fn write_scene(dir: &Path, keys: &str) -> PathBuf {
     let points = write_plane_with_outliers(dir);
     let path = dir.join("scene.toml");
-    std::fs::write(&path, format!("[[objects]]\ntype = \"points\"\npath = \"{}\"\n{keys}\n", points.display())).unwrap();
+    std::fs::write(
+        &path,
+        format!("[[objects]]\ntype = \"points\"\npath = \"{}\"\n{keys}\n", points.display()),
+    )
+    .unwrap();
     path
 }
 
@@ -49,7 +54,8 @@ fn bad_keys_are_refused_by_name() {
         ("remove_outliers = { neighbors = 8 }", "sigmas"),
         ("radius = \"huge\"", "unknown variant"),
     ] {
-        let error = load_scene(&write_scene(dir.path(), keys), &LoadOptions::default()).unwrap_err().to_string();
+        let error =
+            load_scene(&write_scene(dir.path(), keys), &LoadOptions::default()).unwrap_err().to_string();
         assert!(error.contains(expected) && error.contains("scene.toml"), "{keys}: {error}");
     }
 }

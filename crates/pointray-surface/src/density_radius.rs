@@ -6,12 +6,16 @@
 //! tears. Where a point is isolated, its neighbours are far and its box is huge.
 //!
 //! The adaptive radius keeps the paper's radius and corrects it twice:
-//! 1. **Coverage.** The disks cover the surface when each point's disk covers the part of
-//!    the tangent plane closer to it than to any neighbour: its Voronoi cell. `d_i` grows
-//!    to the cell's farthest corner (times a small margin for the patches' curvature).
+//! 1. **Coverage.** The disks cover the surface when every point of each point's Voronoi
+//!    cell (the part of its tangent plane closer to it than to any neighbour) lies in some
+//!    disk. Where part of `p_i`'s cell lies in neither its own disk nor a neighbour's,
+//!    `d_i` grows to reach the farthest such part. On evenly sampled surfaces the paper's
+//!    disks overlap so much that this seldom happens; it is the gaps beside one-sided
+//!    neighbourhoods and between scan lines that it fills.
+//!    A cell left open on one side (a true border, a scan line whose neighbour lines are
+//!    out of reach) is cut at the farthest neighbour the table holds.
 //! 2. **Band.** `d_i` is then held within a factor `BAND` of the median paper radius of
-//!    `p_i` and its `k` neighbours, so that neither a wide-open cell (a true border, a scan
-//!    line whose neighbour lines are out of reach) nor an isolated point grows far beyond
+//!    `p_i` and its `k` neighbours, so that an isolated point does not grow far beyond
 //!    what the neighbourhood's spacing supports.
 
 use glam::Vec2;
@@ -32,16 +36,16 @@ pub enum RadiusMode {
 }
 
 /// `d_i` lies within `[median / BAND, median * BAND]` of the neighbourhood's paper radii.
-pub const BAND: f32 = 2.0;
-
-/// The disk reaches this much past the Voronoi cell, as neighbouring patches bend away
-/// from the tangent plane and meet a little beyond it.
-pub const COVERAGE_MARGIN: f32 = 1.1;
+/// Measured on scan-line samples of the bunny and horse (bench/FIDELITY.md): a band of 1.5
+/// kept a third to a half of the paper's holes; 3 without the cut of open cells at the
+/// farthest neighbour closed them all but tripled the false surface; 3 with the cut gave
+/// the best balance of those tried.
+pub const BAND: f32 = 3.0;
 
 /// How many adaptive radii differ from the paper's, and why.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RadiusAdjustments {
-    /// Grown to cover the Voronoi cell.
+    /// Grown to cover the part of the Voronoi cell that no other disk covers.
     pub widened: usize,
     /// Held down to the top of the band.
     pub capped: usize,
@@ -51,7 +55,7 @@ pub struct RadiusAdjustments {
 
 /// The adaptive radii from the paper's `paper` radii. The first `k` entries of each
 /// neighbour row are the fit's neighbours (the band); all of the row's entries shape the
-/// Voronoi cell.
+/// Voronoi cell and may cover it.
 pub fn adaptive_radii(
     frames: &[TangentFrame],
     points: &[glam::Vec3],
@@ -63,13 +67,19 @@ pub fn adaptive_radii(
         .into_par_iter()
         .map(|i| {
             let median = band_median(paper, i, &neighbors.of(i)[..k]);
-            let cap = BAND * median;
-            let offsets = neighbors.of(i).iter().map(|&j| {
-                let local = frames[i].to_local(points[j as usize] - points[i]);
-                Vec2::new(local.x, local.y)
-            });
-            let covering = COVERAGE_MARGIN * voronoi_cell_reach(offsets, cap);
-            adjust(paper[i], covering, median)
+            let disks: Vec<(Vec2, f32)> = neighbors
+                .of(i)
+                .iter()
+                .map(|&j| {
+                    let local = frames[i].to_local(points[j as usize] - points[i]);
+                    (Vec2::new(local.x, local.y), paper[j as usize])
+                })
+                .collect();
+            // Past the farthest neighbour the table knows nothing of the surface, so an
+            // open cell is cut there (and at the band's top).
+            let known = neighbors.distances_of(i).last().copied().unwrap_or(0.0);
+            let cell = voronoi_cell(disks.iter().map(|&(centre, _)| centre), known.min(BAND * median));
+            adjust(paper[i], uncovered_reach(&cell, paper[i], &disks), median)
         })
         .collect();
     let count = |wanted| outcomes.par_iter().filter(|(_, adjustment)| *adjustment == Some(wanted)).count();
@@ -111,10 +121,24 @@ fn band_median(paper: &[f32], i: usize, fit_neighbors: &[u32]) -> f32 {
     *radii.select_nth_unstable_by(middle, f32::total_cmp).1
 }
 
-/// The distance from the origin to the farthest corner of its Voronoi cell among the
-/// `neighbors` (tangent-plane offsets), with the cell cut to the square of half-size
-/// `limit`: a cell left open on one side reaches `limit` there.
-pub fn voronoi_cell_reach(neighbors: impl Iterator<Item = Vec2>, limit: f32) -> f32 {
+/// How far from the origin the cell `cell` reaches outside the origin's own disk of
+/// `radius` and every disk of `disks` (centre, radius), judged at its corners and the
+/// middles of its edges; 0 when all of those are covered.
+pub fn uncovered_reach(cell: &[Vec2], radius: f32, disks: &[(Vec2, f32)]) -> f32 {
+    let edge_middles = cell.iter().zip(cell.iter().cycle().skip(1)).map(|(&a, &b)| 0.5 * (a + b));
+    cell.iter()
+        .copied()
+        .chain(edge_middles)
+        .filter(|probe| probe.length() > radius)
+        .filter(|probe| !disks.iter().any(|&(centre, r)| centre.distance(*probe) <= r))
+        .map(Vec2::length)
+        .fold(0.0, f32::max)
+}
+
+/// The origin's Voronoi cell among the `neighbors` (tangent-plane offsets) as a convex
+/// polygon, cut to the square of half-size `limit`: a cell left open on one side reaches
+/// `limit` there.
+pub fn voronoi_cell(neighbors: impl Iterator<Item = Vec2>, limit: f32) -> Vec<Vec2> {
     let mut cell = vec![
         Vec2::new(-limit, -limit),
         Vec2::new(limit, -limit),
@@ -128,7 +152,7 @@ pub fn voronoi_cell_reach(neighbors: impl Iterator<Item = Vec2>, limit: f32) -> 
             cell = clip_to_half_plane(&cell, q, half_distance_squared);
         }
     }
-    cell.iter().map(|corner| corner.length()).fold(0.0, f32::max)
+    cell
 }
 
 /// Sutherland-Hodgman: the part of convex polygon `polygon` where `x·q <= bound`, the
@@ -153,23 +177,47 @@ fn clip_to_half_plane(polygon: &[Vec2], q: Vec2, bound: f32) -> Vec<Vec2> {
 mod tests {
     use super::*;
 
+    fn farthest_corner(cell: &[Vec2]) -> f32 {
+        cell.iter().map(|corner| corner.length()).fold(0.0, f32::max)
+    }
+
+    const GRID: [Vec2; 8] = [
+        Vec2::X,
+        Vec2::NEG_X,
+        Vec2::Y,
+        Vec2::NEG_Y,
+        Vec2::ONE,
+        Vec2::NEG_ONE,
+        Vec2::new(1.0, -1.0),
+        Vec2::new(-1.0, 1.0),
+    ];
+
     #[test]
-    fn a_square_grid_cell_reaches_its_corners() {
-        let grid = [Vec2::X, -Vec2::X, Vec2::Y, -Vec2::Y, Vec2::ONE, -Vec2::ONE];
-        let reach = voronoi_cell_reach(grid.into_iter(), 100.0);
+    fn a_square_grid_cell_is_the_unit_square() {
+        let reach = farthest_corner(&voronoi_cell(GRID.into_iter(), 100.0));
         assert!((reach - 0.5f32.hypot(0.5)).abs() < 1e-6, "{reach}");
     }
 
     #[test]
     fn a_cell_open_on_one_side_reaches_the_limit() {
         let one_side = [Vec2::X, Vec2::new(1.0, 1.0), Vec2::new(1.0, -1.0)];
-        let reach = voronoi_cell_reach(one_side.into_iter(), 10.0);
+        let reach = farthest_corner(&voronoi_cell(one_side.into_iter(), 10.0));
         assert!((reach - 10.0 * 2f32.sqrt()).abs() < 1e-4, "{reach}");
     }
 
     #[test]
     fn coincident_neighbours_cut_nothing() {
-        assert_eq!(voronoi_cell_reach([Vec2::ZERO].into_iter(), 1.0), 2f32.sqrt());
+        assert_eq!(farthest_corner(&voronoi_cell([Vec2::ZERO].into_iter(), 1.0)), 2f32.sqrt());
+    }
+
+    #[test]
+    fn a_cell_covered_by_the_neighbours_disks_needs_no_reach() {
+        let cell = voronoi_cell(GRID.into_iter(), 100.0);
+        let wide: Vec<(Vec2, f32)> = GRID.iter().map(|&centre| (centre, 1.5)).collect();
+        assert_eq!(uncovered_reach(&cell, 0.1, &wide), 0.0);
+        let tiny: Vec<(Vec2, f32)> = GRID.iter().map(|&centre| (centre, 0.1)).collect();
+        assert!((uncovered_reach(&cell, 0.1, &tiny) - 0.5f32.hypot(0.5)).abs() < 1e-6);
+        assert_eq!(uncovered_reach(&cell, 1.0, &tiny), 0.0, "its own disk covers it");
     }
 
     #[test]

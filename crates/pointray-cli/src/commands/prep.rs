@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::DVec3;
-use pointray_surface::{PrepOptions, PrepParams, prep};
+use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, RadiusMode, prep};
 
 use crate::boxes_arg::Boxes;
 use crate::progress::PrepBar;
@@ -33,6 +33,31 @@ pub struct PrepArgs {
     /// around the patch over its disk.
     #[arg(long, value_enum, default_value_t = Boxes::Tight)]
     boxes: Boxes,
+    /// Drop statistical outliers first, `K,N`: points whose mean distance to their K
+    /// nearest neighbours is more than N standard deviations above the mean (e.g. `8,2`).
+    #[arg(long, value_name = "K,N", value_parser = parse_outlier_filter)]
+    remove_outliers: Option<OutlierFilter>,
+    /// The support radius: the paper's (farthest of the k neighbours), or adapted to the
+    /// local density (each disk grown over the part of its point's Voronoi cell that no
+    /// other disk covers, held to a band around the neighbourhood's median): fewer holes
+    /// on scan-line data, more false surface (bench/FIDELITY.md).
+    #[arg(long, value_enum, default_value_t = Radius::Paper)]
+    radius: Radius,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Radius {
+    Paper,
+    Adaptive,
+}
+
+impl From<Radius> for RadiusMode {
+    fn from(radius: Radius) -> Self {
+        match radius {
+            Radius::Paper => RadiusMode::Paper,
+            Radius::Adaptive => RadiusMode::Adaptive,
+        }
+    }
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {
@@ -44,13 +69,19 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         box_kind: args.boxes.into(),
         ..PrepParams::default()
     };
-    let options = PrepOptions { params, recompute_normals: args.recompute_normals, sensor: args.sensor };
+    let options = PrepOptions {
+        params,
+        recompute_normals: args.recompute_normals,
+        sensor: args.sensor,
+        remove_outliers: args.remove_outliers,
+        radius_mode: args.radius.into(),
+    };
     let bar = PrepBar::default();
     let (patches, report) =
         prep(&cloud, &options, &bar).map_err(|e| anyhow::anyhow!("{}: {e}", args.points.display()))?;
     pointray_surface::patch_store::write(&args.output, &patches)?;
     println!("{report}");
-    println!("wrote {} patches to {}", patches.len(), args.output.display());
+    println!("wrote {} patches to {} (offset stored in its header)", patches.len(), args.output.display());
     Ok(())
 }
 
@@ -64,4 +95,15 @@ pub fn parse_point(text: &str) -> Result<DVec3, String> {
         [x, y, z] => Ok(DVec3::new(x, y, z)),
         _ => Err(format!("expected x,y,z, got `{text}`")),
     }
+}
+
+/// Parses `K,N` for `--remove-outliers`.
+fn parse_outlier_filter(text: &str) -> Result<OutlierFilter, String> {
+    let (neighbors, sigmas) = text.split_once(',').ok_or_else(|| format!("expected K,N, got `{text}`"))?;
+    let filter = OutlierFilter {
+        neighbors: neighbors.trim().parse().map_err(|e| format!("K `{neighbors}`: {e}"))?,
+        sigmas: sigmas.trim().parse().map_err(|e| format!("N `{sigmas}`: {e}"))?,
+    };
+    filter.validate().map_err(|e| e.to_string())?;
+    Ok(filter)
 }
