@@ -42,7 +42,10 @@ impl GpuContext {
         let family = compute_queue_family(&instance.instance, physical).ok_or_else(|| {
             VulkanError::NoSuitableDevice("the chosen device lost its compute queue".into())
         })?;
-        let hit_reordering = infos[index].hit_reordering;
+        // POINTRAY_HIT_REORDERING=off leaves the extension out of the device (the benchmark
+        // measures what merely enabling it does to the driver).
+        let hit_reordering =
+            infos[index].hit_reordering && std::env::var("POINTRAY_HIT_REORDERING").as_deref() != Ok("off");
         let device = create_device(&instance.instance, physical, family, hit_reordering)?;
         // SAFETY: queue 0 of `family` was requested at device creation.
         let queue = unsafe { device.get_device_queue(family, 0) };
@@ -64,7 +67,8 @@ impl GpuContext {
         let (ray_tracing_properties, scratch_alignment, timestamp_period_ns) =
             limits(&instance.instance, physical, family);
         Ok(Self {
-            info: infos[index].clone(),
+            // What the device was created with: reordering only if it was enabled.
+            info: DeviceInfo { hit_reordering, ..infos[index].clone() },
             acceleration: ash::khr::acceleration_structure::Device::new(&instance.instance, &device),
             ray_tracing: ash::khr::ray_tracing_pipeline::Device::new(&instance.instance, &device),
             device,
