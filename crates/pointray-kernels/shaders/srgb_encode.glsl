@@ -15,4 +15,9 @@ uint srgb_encode_rgba8(vec3 linear) {
     return srgb_encode(linear.r) | (srgb_encode(linear.g) << 8) | (srgb_encode(linear.b) << 16) | (0xffu << 24);
 }
 
+// The same pixel with blue in the low byte, for B8G8R8A8 swapchain images.
+uint srgb_encode_bgra8(vec3 linear) {
+    return srgb_encode_rgba8(linear.bgr);
+}
+
 #endif

@@ -18,6 +18,12 @@ pub fn srgb_encode_rgba8(linear: Vec3) -> u32 {
     r | (g << 8) | (b << 16) | (0xff << 24)
 }
 
+/// The same pixel with blue in the low byte (the byte order of a B8G8R8A8 image, the
+/// swapchain format many window systems offer).
+pub fn srgb_encode_bgra8(linear: Vec3) -> u32 {
+    srgb_encode_rgba8(Vec3::new(linear.z, linear.y, linear.x))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -43,5 +49,11 @@ mod tests {
     fn rgba8_packs_red_in_the_low_byte_and_is_opaque() {
         let packed = srgb_encode_rgba8(Vec3::new(1.0, 0.5, 0.0));
         assert_eq!(packed.to_le_bytes(), [255, 188, 0, 255]);
+    }
+
+    #[test]
+    fn bgra8_packs_blue_in_the_low_byte_and_is_opaque() {
+        let packed = srgb_encode_bgra8(Vec3::new(1.0, 0.5, 0.0));
+        assert_eq!(packed.to_le_bytes(), [0, 188, 255, 255]);
     }
 }

@@ -6,6 +6,7 @@ use std::sync::Mutex;
 
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use raw_window_handle::RawDisplayHandle;
 
 use crate::device::{
     DeviceInfo, DeviceSelector, REQUIRED_EXTENSIONS, compute_queue_family, describe, select,
@@ -15,8 +16,10 @@ use crate::instance::{Instance, create_instance};
 
 pub(crate) struct GpuContext {
     pub(crate) info: DeviceInfo,
+    pub(crate) physical: vk::PhysicalDevice,
     pub(crate) device: ash::Device,
     pub(crate) queue: vk::Queue,
+    pub(crate) queue_family: u32,
     pub(crate) acceleration: ash::khr::acceleration_structure::Device,
     pub(crate) ray_tracing: ash::khr::ray_tracing_pipeline::Device,
     pub(crate) ray_tracing_properties: vk::PhysicalDeviceRayTracingPipelinePropertiesKHR<'static>,
@@ -30,8 +33,14 @@ pub(crate) struct GpuContext {
 }
 
 impl GpuContext {
-    pub(crate) fn new(selector: &DeviceSelector, validation: bool) -> Result<Self, VulkanError> {
-        let instance = create_instance(validation)?;
+    /// With `display`, the instance can make surfaces for that window system's windows and
+    /// the device has `VK_KHR_swapchain`.
+    pub(crate) fn new(
+        selector: &DeviceSelector,
+        validation: bool,
+        display: Option<RawDisplayHandle>,
+    ) -> Result<Self, VulkanError> {
+        let instance = create_instance(validation, display)?;
         // SAFETY: the instance is alive.
         let physicals =
             unsafe { instance.instance.enumerate_physical_devices() }.during("enumerating devices")?;
@@ -46,7 +55,13 @@ impl GpuContext {
         // measures what merely enabling it does to the driver).
         let hit_reordering =
             infos[index].hit_reordering && std::env::var("POINTRAY_HIT_REORDERING").as_deref() != Ok("off");
-        let device = create_device(&instance.instance, physical, family, hit_reordering)?;
+        if instance.presents && !has_swapchain(&instance.instance, physical) {
+            return Err(VulkanError::NoSuitableDevice(format!(
+                "{} cannot present to windows: it lacks VK_KHR_swapchain",
+                infos[index].name
+            )));
+        }
+        let device = create_device(&instance.instance, physical, family, hit_reordering, instance.presents)?;
         // SAFETY: queue 0 of `family` was requested at device creation.
         let queue = unsafe { device.get_device_queue(family, 0) };
         let allocator = Allocator::new(&AllocatorCreateDesc {
@@ -71,8 +86,10 @@ impl GpuContext {
             info: DeviceInfo { hit_reordering, ..infos[index].clone() },
             acceleration: ash::khr::acceleration_structure::Device::new(&instance.instance, &device),
             ray_tracing: ash::khr::ray_tracing_pipeline::Device::new(&instance.instance, &device),
+            physical,
             device,
             queue,
+            queue_family: family,
             ray_tracing_properties,
             scratch_alignment,
             timestamp_period_ns,
@@ -129,6 +146,10 @@ impl GpuContext {
     pub(crate) fn validation_messages(&self) -> u32 {
         self.instance.validation_messages()
     }
+
+    pub(crate) fn message_counter(&self) -> std::sync::Arc<crate::validation::MessageCounter> {
+        self.instance.message_counter()
+    }
 }
 
 impl Drop for GpuContext {
@@ -144,12 +165,21 @@ impl Drop for GpuContext {
     }
 }
 
-/// The device, with shader execution reordering enabled when `hit_reordering` (supported).
+/// Whether `physical` offers `VK_KHR_swapchain`.
+fn has_swapchain(instance: &ash::Instance, physical: vk::PhysicalDevice) -> bool {
+    // SAFETY: `physical` came from this instance.
+    let extensions = unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
+    extensions.iter().any(|e| e.extension_name_as_c_str().is_ok_and(|n| n == ash::khr::swapchain::NAME))
+}
+
+/// The device, with shader execution reordering enabled when `hit_reordering` (supported)
+/// and the swapchain extension when `presents`.
 fn create_device(
     instance: &ash::Instance,
     physical: vk::PhysicalDevice,
     family: u32,
     hit_reordering: bool,
+    presents: bool,
 ) -> Result<ash::Device, VulkanError> {
     let priorities = [1.0];
     let queues =
@@ -158,6 +188,9 @@ fn create_device(
         REQUIRED_EXTENSIONS.iter().map(|e| e.as_ptr()).collect();
     if hit_reordering {
         extensions.push(ash::nv::ray_tracing_invocation_reorder::NAME.as_ptr());
+    }
+    if presents {
+        extensions.push(ash::khr::swapchain::NAME.as_ptr());
     }
     let mut reorder = vk::PhysicalDeviceRayTracingInvocationReorderFeaturesNV::default()
         .ray_tracing_invocation_reorder(true);

@@ -78,7 +78,7 @@ impl std::fmt::Display for DeviceInfo {
 
 /// Every device the Vulkan loader finds, with the reason each unusable one is rejected.
 pub fn list_devices() -> Result<Vec<DeviceInfo>, VulkanError> {
-    let instance = create_instance(false)?;
+    let instance = create_instance(false, None)?;
     // SAFETY: the instance is alive for this call.
     let devices = unsafe { instance.instance.enumerate_physical_devices() }.during("enumerating devices")?;
     Ok(devices

@@ -146,6 +146,7 @@ impl TraceSettings {
             output_kind: match output {
                 PixelOutput::Aovs => 0,
                 PixelOutput::Display => 1,
+                PixelOutput::DisplayBgra => 2,
             },
         }
     }

@@ -27,9 +27,11 @@ mod prepared_scene;
 mod ray_counter;
 mod renderer;
 mod shaders;
+mod swapchain;
 mod trace;
 mod trace_target;
 pub mod validation;
+mod window_target;
 
 pub use acceleration::BlasLayout;
 pub use device::{DeviceInfo, DeviceSelector, list_devices};
@@ -39,4 +41,5 @@ pub use memory_report::BuildReport;
 pub use prepared_scene::PreparedScene;
 pub use renderer::{TraceTiming, VulkanRenderer};
 pub use trace_target::{PixelOutput, TraceTarget};
-pub use validation::validation_requested_by_env;
+pub use validation::{MessageCounter, validation_requested_by_env};
+pub use window_target::{DisplayImage, Presented, ReadBack, WindowTarget};

@@ -4,6 +4,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use pointray_scene::{Frame, RenderSettings, Scene};
+use raw_window_handle::RawDisplayHandle;
 
 use crate::acceleration::BlasLayout;
 use crate::binding_table::ShaderBindingTable;
@@ -15,7 +16,7 @@ use crate::prepared_scene::{PreparedScene, prepare};
 use crate::shaders;
 use crate::trace::trace_into;
 use crate::trace_target::{PixelOutput, TraceTarget};
-use crate::validation::validation_requested_by_env;
+use crate::validation::{MessageCounter, validation_requested_by_env};
 
 /// How long one trace took.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,14 +43,26 @@ impl VulkanRenderer {
 
     /// A renderer with the Khronos validation layer on or off.
     pub fn with_validation(selector: DeviceSelector, validation: bool) -> Result<Self, VulkanError> {
-        Self::with_raygen(&Arc::new(GpuContext::new(&selector, validation)?), shaders::PRIMARY_RGEN)
+        Self::with_raygen(&Arc::new(GpuContext::new(&selector, validation, None)?), shaders::PRIMARY_RGEN)
+    }
+
+    /// A renderer that can also present to windows of `display`'s window system: its
+    /// instance has the surface extensions and its device `VK_KHR_swapchain` (an error naming
+    /// the device when it has none). Present with a `WindowTarget`.
+    pub fn for_window(
+        selector: DeviceSelector,
+        validation: bool,
+        display: RawDisplayHandle,
+    ) -> Result<Self, VulkanError> {
+        let context = GpuContext::new(&selector, validation, Some(display))?;
+        Self::with_raygen(&Arc::new(context), shaders::PRIMARY_RGEN)
     }
 
     /// A renderer that traces every path segment with shader execution reordering
     /// (`VK_NV_ray_tracing_invocation_reorder`): the same pictures, for comparing speed. An
     /// error on devices without it.
     pub fn with_hit_reordering(selector: DeviceSelector, validation: bool) -> Result<Self, VulkanError> {
-        let context = Arc::new(GpuContext::new(&selector, validation)?);
+        let context = Arc::new(GpuContext::new(&selector, validation, None)?);
         if !context.info.hit_reordering {
             return Err(VulkanError::InvalidSettings(format!(
                 "{} does not offer shader execution reordering (VK_NV_ray_tracing_invocation_reorder)",
@@ -76,6 +89,12 @@ impl VulkanRenderer {
     /// Warnings and errors the validation layer has reported so far (0 when it is off).
     pub fn validation_messages(&self) -> u32 {
         self.context.validation_messages()
+    }
+
+    /// The counter behind `validation_messages`; it keeps counting through the renderer's
+    /// drop, so that objects leaked at teardown (reported by the layer then) can be counted.
+    pub fn message_counter(&self) -> Arc<MessageCounter> {
+        self.context.message_counter()
     }
 
     /// Uploads `scene` and builds its acceleration structures (one geometry per point set).

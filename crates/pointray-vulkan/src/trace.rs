@@ -104,7 +104,18 @@ pub(crate) unsafe fn record_copy_out(
     command: vk::CommandBuffer,
     target: &TargetBuffers,
 ) {
-    let device = &context.device;
+    // SAFETY: the caller's contract.
+    unsafe {
+        record_trace_done_barrier(&context.device, command);
+        record_read_back(&context.device, command, target);
+    }
+}
+
+/// Makes the trace's pixel writes visible to transfers that copy them.
+///
+/// # Safety
+/// `command` is recording.
+pub(crate) unsafe fn record_trace_done_barrier(device: &ash::Device, command: vk::CommandBuffer) {
     // SAFETY: the caller's contract.
     unsafe {
         record_memory_barrier(
@@ -112,7 +123,22 @@ pub(crate) unsafe fn record_copy_out(
             command,
             (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE),
             (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ),
-        );
+        )
+    };
+}
+
+/// Copies the traced pixels to the read-back buffer and makes them visible to the host.
+///
+/// # Safety
+/// `command` is recording, after `record_trace_done_barrier`; the resources outlive the
+/// submission.
+pub(crate) unsafe fn record_read_back(
+    device: &ash::Device,
+    command: vk::CommandBuffer,
+    target: &TargetBuffers,
+) {
+    // SAFETY: the caller's contract.
+    unsafe {
         let region = vk::BufferCopy::default().size(target.written.size);
         device.cmd_copy_buffer(command, target.written.handle, target.readback.handle, &[region]);
         record_memory_barrier(

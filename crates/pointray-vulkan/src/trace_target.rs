@@ -27,13 +27,15 @@ pub enum PixelOutput {
     Aovs,
     /// sRGB8 RGBA colour only: 4 bytes a pixel, what a window shows.
     Display,
+    /// As `Display` with blue in the low byte: what a B8G8R8A8 swapchain image holds.
+    DisplayBgra,
 }
 
 impl PixelOutput {
     pub(crate) fn bytes_per_pixel(self) -> u64 {
         match self {
             PixelOutput::Aovs => std::mem::size_of::<PixelRecord>() as u64,
-            PixelOutput::Display => 4,
+            PixelOutput::Display | PixelOutput::DisplayBgra => 4,
         }
     }
 }
@@ -80,8 +82,8 @@ impl TraceTarget {
         }
     }
 
-    /// The last trace's sRGB8 RGBA pixels, rows top to bottom; an error for an AOV target or
-    /// before any trace.
+    /// The last trace's sRGB8 RGBA pixels, rows top to bottom; an error for an AOV or BGRA
+    /// target or before any trace.
     pub fn display_rgba8(&self) -> Result<&[u8], VulkanError> {
         match (&self.buffers, self.output) {
             (Some(_), PixelOutput::Display) => self.read_back(),
@@ -190,7 +192,7 @@ impl TargetBuffers {
         self.uniforms.write(bytemuck::bytes_of(&uniforms));
         let (pixels, display) = match self.output {
             PixelOutput::Aovs => (&self.written, &self.unused),
-            PixelOutput::Display => (&self.unused, &self.written),
+            PixelOutput::Display | PixelOutput::DisplayBgra => (&self.unused, &self.written),
         };
         let structures = [scene.tlas.handle];
         let mut tlas =

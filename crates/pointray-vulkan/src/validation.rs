@@ -14,8 +14,8 @@ pub fn validation_requested_by_env() -> bool {
     std::env::var("POINTRAY_VALIDATION").is_ok_and(|v| v == "1")
 }
 
-/// Errors and warnings the layer reported. Boxed so that its address, handed to the
-/// driver as user data, stays put.
+/// Errors and warnings the layer reported. Kept behind an `Arc` (or a `Box`) so that its
+/// address, handed to the driver as user data, stays put.
 #[derive(Debug, Default)]
 pub struct MessageCounter {
     count: AtomicU32,

@@ -1,0 +1,184 @@
+//! A window's swapchain: images that traced display pixels are copied into, recreated when
+//! the window changes size or the surface reports it out of date.
+
+use ash::vk;
+
+use crate::context::GpuContext;
+use crate::error::{VkContext, VulkanError};
+use crate::trace_target::PixelOutput;
+
+/// A window surface and the loaders its swapchain calls go through.
+pub(crate) struct Surface {
+    pub(crate) handle: vk::SurfaceKHR,
+    pub(crate) surface_fn: ash::khr::surface::Instance,
+    pub(crate) swapchain_fn: ash::khr::swapchain::Device,
+}
+
+pub(crate) struct Swapchain {
+    pub(crate) handle: vk::SwapchainKHR,
+    pub(crate) images: Vec<vk::Image>,
+    pub(crate) extent: vk::Extent2D,
+    /// What the ray generation shader writes so that a plain copy fills an image.
+    pub(crate) output: PixelOutput,
+    /// One per image: signalled when the frame for that image is done, waited on by present.
+    /// Per image because a present's semaphore may be reused only once its image comes back.
+    pub(crate) rendered: Vec<vk::Semaphore>,
+}
+
+impl Swapchain {
+    /// `window_size` is used when the surface leaves the extent to the application.
+    pub(crate) fn new(
+        context: &GpuContext,
+        surface: &Surface,
+        window_size: (u32, u32),
+        vsync: bool,
+    ) -> Result<Self, VulkanError> {
+        let (physical, surface_fn) = (context.physical, &surface.surface_fn);
+        // SAFETY: plain queries on the live surface.
+        let (capabilities, formats, modes) = unsafe {
+            (
+                surface_fn
+                    .get_physical_device_surface_capabilities(physical, surface.handle)
+                    .during("querying the surface's capabilities")?,
+                surface_fn
+                    .get_physical_device_surface_formats(physical, surface.handle)
+                    .during("querying the surface's formats")?,
+                surface_fn
+                    .get_physical_device_surface_present_modes(physical, surface.handle)
+                    .during("querying the surface's present modes")?,
+            )
+        };
+        if !capabilities.supported_usage_flags.contains(vk::ImageUsageFlags::TRANSFER_DST) {
+            return Err(VulkanError::NoSuitableDevice(format!(
+                "the window's images on {} cannot be copied into (no TRANSFER_DST usage)",
+                context.info.name
+            )));
+        }
+        let (format, output) = pick_format(&formats).ok_or_else(|| {
+            VulkanError::NoSuitableDevice(format!(
+                "{} offers no 8-bit RGBA/BGRA format for this window: {formats:?}",
+                context.info.name
+            ))
+        })?;
+        let extent = pick_extent(&capabilities, window_size);
+        let image_count = match capabilities.max_image_count {
+            0 => capabilities.min_image_count + 1,
+            max => (capabilities.min_image_count + 1).min(max),
+        };
+        let info = vk::SwapchainCreateInfoKHR::default()
+            .surface(surface.handle)
+            .min_image_count(image_count)
+            .image_format(format.format)
+            .image_color_space(format.color_space)
+            .image_extent(extent)
+            .image_array_layers(1)
+            .image_usage(vk::ImageUsageFlags::TRANSFER_DST)
+            .image_sharing_mode(vk::SharingMode::EXCLUSIVE)
+            .pre_transform(capabilities.current_transform)
+            .composite_alpha(pick_composite_alpha(capabilities.supported_composite_alpha))
+            .present_mode(pick_present_mode(&modes, vsync))
+            .clipped(true);
+        // SAFETY: `info` refers to the live surface; the caller destroyed any previous swapchain.
+        let handle =
+            unsafe { surface.swapchain_fn.create_swapchain(&info, None) }.during("creating the swapchain")?;
+        let mut swapchain = Self { handle, images: Vec::new(), extent, output, rendered: Vec::new() };
+        if let Err(error) = swapchain.fill(context, surface) {
+            swapchain.destroy(context, surface);
+            return Err(error);
+        }
+        Ok(swapchain)
+    }
+
+    fn fill(&mut self, context: &GpuContext, surface: &Surface) -> Result<(), VulkanError> {
+        // SAFETY: the swapchain is live.
+        self.images = unsafe { surface.swapchain_fn.get_swapchain_images(self.handle) }
+            .during("listing the swapchain's images")?;
+        for _ in &self.images {
+            // SAFETY: plain creation on the live device.
+            let semaphore =
+                unsafe { context.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }
+                    .during("creating a present semaphore")?;
+            self.rendered.push(semaphore);
+        }
+        Ok(())
+    }
+
+    /// The caller makes sure that nothing in flight uses the swapchain (device idle).
+    pub(crate) fn destroy(&mut self, context: &GpuContext, surface: &Surface) {
+        // SAFETY: nothing in flight uses these objects.
+        unsafe {
+            for semaphore in self.rendered.drain(..) {
+                context.device.destroy_semaphore(semaphore, None);
+            }
+            surface.swapchain_fn.destroy_swapchain(self.handle, None);
+        }
+        self.images.clear();
+    }
+}
+
+/// 8-bit RGBA or BGRA, UNORM first: the shader writes sRGB-encoded bytes and a copy converts
+/// nothing, so the presentation engine must take the bytes as they are.
+fn pick_format(formats: &[vk::SurfaceFormatKHR]) -> Option<(vk::SurfaceFormatKHR, PixelOutput)> {
+    let preference = [
+        (vk::Format::R8G8B8A8_UNORM, PixelOutput::Display),
+        (vk::Format::B8G8R8A8_UNORM, PixelOutput::DisplayBgra),
+        (vk::Format::R8G8B8A8_SRGB, PixelOutput::Display),
+        (vk::Format::B8G8R8A8_SRGB, PixelOutput::DisplayBgra),
+    ];
+    preference.into_iter().find_map(|(wanted, output)| {
+        formats.iter().find(|f| f.format == wanted).map(|&format| (format, output))
+    })
+}
+
+fn pick_extent(capabilities: &vk::SurfaceCapabilitiesKHR, (width, height): (u32, u32)) -> vk::Extent2D {
+    if capabilities.current_extent.width != u32::MAX {
+        return capabilities.current_extent;
+    }
+    let (min, max) = (capabilities.min_image_extent, capabilities.max_image_extent);
+    vk::Extent2D { width: width.clamp(min.width, max.width), height: height.clamp(min.height, max.height) }
+}
+
+fn pick_composite_alpha(supported: vk::CompositeAlphaFlagsKHR) -> vk::CompositeAlphaFlagsKHR {
+    [
+        vk::CompositeAlphaFlagsKHR::OPAQUE,
+        vk::CompositeAlphaFlagsKHR::INHERIT,
+        vk::CompositeAlphaFlagsKHR::PRE_MULTIPLIED,
+    ]
+    .into_iter()
+    .find(|&mode| supported.contains(mode))
+    .unwrap_or(vk::CompositeAlphaFlagsKHR::POST_MULTIPLIED)
+}
+
+/// FIFO waits for the display (vsync, always supported); without vsync, mailbox or immediate.
+fn pick_present_mode(modes: &[vk::PresentModeKHR], vsync: bool) -> vk::PresentModeKHR {
+    let unsynced = [vk::PresentModeKHR::MAILBOX, vk::PresentModeKHR::IMMEDIATE];
+    let chosen = unsynced.into_iter().find(|mode| modes.contains(mode));
+    if vsync { vk::PresentModeKHR::FIFO } else { chosen.unwrap_or(vk::PresentModeKHR::FIFO) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn format(format: vk::Format) -> vk::SurfaceFormatKHR {
+        vk::SurfaceFormatKHR { format, color_space: vk::ColorSpaceKHR::SRGB_NONLINEAR }
+    }
+
+    #[test]
+    fn unorm_formats_come_first_and_bgra_asks_for_the_swizzle() {
+        let offered = [format(vk::Format::B8G8R8A8_SRGB), format(vk::Format::B8G8R8A8_UNORM)];
+        let (chosen, output) = pick_format(&offered).expect("a format");
+        assert_eq!((chosen.format, output), (vk::Format::B8G8R8A8_UNORM, PixelOutput::DisplayBgra));
+        let offered = [format(vk::Format::B8G8R8A8_UNORM), format(vk::Format::R8G8B8A8_UNORM)];
+        assert_eq!(pick_format(&offered).map(|(_, o)| o), Some(PixelOutput::Display));
+        assert!(pick_format(&[format(vk::Format::R16G16B16A16_SFLOAT)]).is_none());
+    }
+
+    #[test]
+    fn vsync_off_prefers_mailbox_then_immediate() {
+        let modes = [vk::PresentModeKHR::FIFO, vk::PresentModeKHR::IMMEDIATE];
+        assert_eq!(pick_present_mode(&modes, true), vk::PresentModeKHR::FIFO);
+        assert_eq!(pick_present_mode(&modes, false), vk::PresentModeKHR::IMMEDIATE);
+        assert_eq!(pick_present_mode(&[vk::PresentModeKHR::FIFO], false), vk::PresentModeKHR::FIFO);
+    }
+}
