@@ -1,8 +1,7 @@
-//! The window and its frame loop (winit): input to camera and toggles, render, present,
-//! title statistics, and the scripted turntable.
+//! The window and its frame loop (winit): input to camera and toggles, draw (render and
+//! present, see `frame_source`), title statistics, and the scripted turntable.
 
 use std::collections::HashSet;
-use std::sync::Arc;
 use std::time::Instant;
 
 use glam::{Vec2, Vec3};
@@ -17,11 +16,9 @@ use winit::window::{Window, WindowId};
 
 use crate::controls::{self, Action};
 use crate::error::ViewerError;
-use crate::frame_source::FrameSource;
+use crate::frame_source::{Drawn, FrameSource, Presentation};
 use crate::frame_stats::FrameStats;
 use crate::orbit::orbit_camera;
-use crate::pixels::frame_bytes;
-use crate::present::{MessageCounter, Presenter};
 use crate::refinement::{Pass, Refinement};
 use crate::render_times::RenderTimes;
 use crate::screenshots;
@@ -44,17 +41,19 @@ struct Mouse {
 }
 
 pub(crate) struct App {
-    // Before the window: the swapchain must go while the window still exists.
-    presenter: Option<Presenter>,
-    window: Option<Window>,
-    pub(crate) presenter_messages: Option<Arc<MessageCounter>>,
+    /// Draws into `window`; `close_window` ends its presentation before the window goes.
     pub(crate) source: FrameSource,
+    window: Option<Window>,
     pub(crate) view: ViewState,
     options: ViewerOptions,
     script: Option<ScriptRun>,
     refinement: Refinement,
     stats: FrameStats,
+    /// The frame on screen, when it is on the host (always on the host path; on the direct
+    /// path only frames read back for a screenshot).
     shown: Option<Frame>,
+    /// The settings of the last full pass, to draw it again for a screenshot.
+    last_pass: Option<RenderSettings>,
     mouse: Mouse,
     held: HashSet<KeyCode>,
     last_tick: Instant,
@@ -72,9 +71,7 @@ impl App {
             render_times: RenderTimes::default(),
         });
         Self {
-            presenter: None,
             window: None,
-            presenter_messages: None,
             refinement: Refinement::new(view.settings.samples_per_pixel, now),
             stats: FrameStats::new(now),
             source,
@@ -82,6 +79,7 @@ impl App {
             options,
             script,
             shown: None,
+            last_pass: None,
             mouse: Mouse::default(),
             held: HashSet::new(),
             last_tick: now,
@@ -92,7 +90,7 @@ impl App {
 
     /// Tears the presentation down before the window it draws into.
     pub(crate) fn close_window(&mut self) {
-        self.presenter = None;
+        self.source.close_window();
         self.window = None;
     }
 
@@ -108,33 +106,37 @@ impl App {
         let display = window.display_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
         let handle = window.window_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
         let inner = window.inner_size();
-        let presenter = Presenter::new(
-            display,
-            handle,
-            (inner.width, inner.height),
-            self.options.vsync,
-            self.options.validation,
-            self.source.vulkan_device_name(),
-        )?;
-        self.presenter_messages = Some(presenter.message_counter());
-        self.presenter = Some(presenter);
+        let size = (inner.width, inner.height);
+        self.source.attach_window(display, handle, size, self.options.vsync, self.options.validation)?;
         self.window = Some(window);
         Ok(())
     }
 
     fn redraw(&mut self) -> Result<(), ViewerError> {
         let started = Instant::now();
-        let frame = match &mut self.script {
+        let drawn = match &mut self.script {
             Some(_) => Some(self.scripted_frame()?),
             None => self.interactive_frame(started)?,
         };
-        if let Some(frame) = frame {
-            self.shown = Some(frame);
-        }
-        self.present_shown()?;
+        let shown = match drawn {
+            Some(Drawn { shown, frame }) => {
+                self.shown = frame;
+                shown
+            }
+            // Nothing new: the host path shows its frame again (the window may have changed).
+            None => match &self.shown {
+                Some(frame) => self.source.show_again(frame)?,
+                None => false,
+            },
+        };
+        self.frames_presented += u64::from(shown);
         if let Some((fps, mean)) = self.stats.record(Instant::now(), started.elapsed()) {
+            let path = match self.source.presentation() {
+                Presentation::Direct => "direct",
+                Presentation::HostCopy => "host copy",
+            };
             let title = format!(
-                "pointray view: {fps:.1} fps, {:.1} ms/frame, {} spp, {}",
+                "pointray view: {fps:.1} fps, {:.1} ms/frame, {} spp, {}, {path}",
                 mean.as_secs_f64() * 1e3,
                 self.view.settings.samples_per_pixel,
                 self.source.describe()
@@ -147,22 +149,25 @@ impl App {
     }
 
     /// Frame `i` of the turntable, at the settings' size and samples, so that it is the
-    /// image `pointray render` makes from that camera.
-    fn scripted_frame(&mut self) -> Result<Frame, ViewerError> {
+    /// image `pointray render` makes from that camera. Frames to be saved are kept.
+    fn scripted_frame(&mut self) -> Result<Drawn, ViewerError> {
         let run = self.script.as_mut().expect("scripted");
         let index = run.next_frame;
         self.view.scene.camera = orbit_camera(&run.start, index, run.script.frames, run.script.arc_degrees);
         run.next_frame += 1;
+        let last = run.next_frame == run.script.frames;
+        let keep = run.script.sequence.is_some() || (last && run.script.screenshot.is_some());
         let started = Instant::now();
-        let frame = self.source.render(&self.view.scene, &self.view.settings)?;
+        let drawn = self.source.draw(&self.view.scene, &self.view.settings, keep)?;
+        let run = self.script.as_mut().expect("scripted");
         run.render_times.record(started.elapsed());
-        if let Some(dir) = &run.script.sequence {
-            screenshots::save(&frame, &screenshots::sequence_path(dir, index))?;
+        if let (Some(dir), Some(frame)) = (&run.script.sequence, &drawn.frame) {
+            screenshots::save(frame, &screenshots::sequence_path(dir, index))?;
         }
-        Ok(frame)
+        Ok(drawn)
     }
 
-    fn interactive_frame(&mut self, now: Instant) -> Result<Option<Frame>, ViewerError> {
+    fn interactive_frame(&mut self, now: Instant) -> Result<Option<Drawn>, ViewerError> {
         let step = controls::fly_direction(&self.held);
         let seconds = now.duration_since(self.last_tick).as_secs_f32().min(0.1);
         self.last_tick = now;
@@ -173,7 +178,10 @@ impl App {
         self.view.sync_camera();
         let Some(pass) = self.refinement.next(now, self.source.is_cpu()) else { return Ok(None) };
         let settings = self.pass_settings(pass);
-        Ok(Some(self.source.render(&self.view.scene, &settings)?))
+        if pass.divisor == 1 {
+            self.last_pass = Some(settings);
+        }
+        Ok(Some(self.source.draw(&self.view.scene, &settings, false)?))
     }
 
     /// The window's size (divided for previews) and the pass's samples.
@@ -185,16 +193,6 @@ impl App {
             samples_per_pixel: pass.samples_per_pixel,
             ..self.view.settings
         }
-    }
-
-    fn present_shown(&mut self) -> Result<(), ViewerError> {
-        let (Some(presenter), Some(frame)) = (&mut self.presenter, &self.shown) else { return Ok(()) };
-        let Some((extent, order)) = presenter.target()? else { return Ok(()) };
-        let bytes = frame_bytes(frame, extent.width, extent.height, order);
-        if presenter.present(&bytes)? == crate::present::Presented::Shown {
-            self.frames_presented += 1;
-        }
-        Ok(())
     }
 
     /// After the last scripted frame: the screenshot, then the end of the loop.
@@ -227,9 +225,8 @@ impl App {
             Some(Action::Quit) => event_loop.exit(),
             Some(Action::Screenshot) => self.save_screenshot()?,
             Some(Action::ToggleVsync) => {
-                if let Some(presenter) = &mut self.presenter {
-                    presenter.set_vsync(!presenter.vsync());
-                    println!("vsync {}", if presenter.vsync() { "on" } else { "off" });
+                if let Some(vsync) = self.source.toggle_vsync() {
+                    println!("vsync {}", if vsync { "on" } else { "off" });
                 }
             }
             Some(action) if self.view.apply(action) => self.refinement.restart(Instant::now()),
@@ -238,7 +235,15 @@ impl App {
         Ok(())
     }
 
-    fn save_screenshot(&self) -> Result<(), ViewerError> {
+    /// Saves what is on screen; the direct path draws the last full pass again, read back.
+    fn save_screenshot(&mut self) -> Result<(), ViewerError> {
+        if self.source.presentation() == Presentation::Direct
+            && let Some(settings) = self.last_pass
+        {
+            let drawn = self.source.draw(&self.view.scene, &settings, true)?;
+            self.frames_presented += u64::from(drawn.shown);
+            self.shown = drawn.frame;
+        }
         let Some(frame) = &self.shown else { return Ok(()) };
         let path = screenshots::next_screenshot_path(std::path::Path::new("."));
         screenshots::save(frame, &path)?;
@@ -268,9 +273,7 @@ impl App {
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => {
-                if let Some(presenter) = &mut self.presenter {
-                    presenter.resize(size.width, size.height);
-                }
+                self.source.resize(size.width, size.height);
                 self.refinement.restart(Instant::now());
             }
             WindowEvent::KeyboardInput { event, .. } => self.key(event_loop, &event)?,

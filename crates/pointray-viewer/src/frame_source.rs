@@ -1,11 +1,21 @@
-//! Where frames come from: the Vulkan ray tracer or the CPU renderer. Either builds its
-//! acceleration structures once; each frame only sets the camera and the lights.
+//! Where frames come from and how they reach the window: the Vulkan ray tracer traces
+//! straight into the window's swapchain on its own device (`WindowTarget`, the direct path);
+//! the CPU renderer's frames are copied from host memory (`present::Presenter`, the host
+//! path). Either builds its acceleration structures once; each frame only sets the camera and
+//! the lights.
 
 use pointray_cpu::CpuRenderer;
 use pointray_scene::{Frame, Light, RenderSettings, Scene};
-use pointray_vulkan::{DeviceSelector, PixelOutput, PreparedScene, TraceTarget, VulkanRenderer};
+use pointray_vulkan::{
+    DeviceSelector, MessageCounter, PreparedScene, ReadBack, VulkanRenderer, WindowTarget,
+};
+use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
+use std::sync::Arc;
 
+use crate::display_frame::frame_from_display;
 use crate::error::ViewerError;
+use crate::pixels::frame_bytes;
+use crate::present::{Presented, Presenter};
 
 /// Which renderer draws the frames; as `pointray render --backend`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -18,27 +28,52 @@ pub enum RenderBackend {
     Cpu,
 }
 
+/// How frames reach the window.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Presentation {
+    /// Traced into a device-local buffer and copied into the swapchain image on the
+    /// renderer's own device: no host round trip.
+    Direct,
+    /// Rendered into host memory, then uploaded and copied into the swapchain image.
+    HostCopy,
+}
+
+/// What one drawn frame left on screen.
+pub(crate) struct Drawn {
+    pub(crate) shown: bool,
+    /// The frame as shown: always on the host path, when asked for on the direct path.
+    pub(crate) frame: Option<Frame>,
+}
+
 pub(crate) enum FrameSource {
     Vulkan {
-        // Before the renderer: their GPU objects go first.
-        /// Kept across frames, so its buffers are allocated again only when the size changes.
-        target: Box<TraceTarget>,
+        // Before the scene and the renderer: their GPU objects go first.
+        window: Option<Box<WindowTarget>>,
         prepared: Box<PreparedScene>,
         /// The lights `prepared` shades with.
         lights: Vec<Light>,
         renderer: Box<VulkanRenderer>,
     },
-    Cpu(Box<CpuRenderer>),
+    Cpu {
+        // Before the window it draws into is closed (`close_window`).
+        presenter: Option<Box<Presenter>>,
+        renderer: Box<CpuRenderer>,
+    },
 }
 
 impl FrameSource {
+    /// With `display`, a Vulkan renderer can present to that window system's windows.
     pub(crate) fn open(
         choice: RenderBackend,
         device: &DeviceSelector,
         validation: bool,
         scene: &Scene,
+        display: Option<RawDisplayHandle>,
     ) -> Result<Self, ViewerError> {
-        let open = || VulkanRenderer::with_validation(device.clone(), validation);
+        let open = || match display {
+            Some(display) => VulkanRenderer::for_window(device.clone(), validation, display),
+            None => VulkanRenderer::with_validation(device.clone(), validation),
+        };
         let renderer = match choice {
             RenderBackend::Cpu => None,
             RenderBackend::Vulkan => Some(open()?),
@@ -48,61 +83,163 @@ impl FrameSource {
         };
         match renderer {
             Some(renderer) => Ok(Self::Vulkan {
-                target: Box::new(TraceTarget::new(PixelOutput::Aovs)),
+                window: None,
                 prepared: Box::new(renderer.prepare(scene)?),
                 lights: scene.lights.clone(),
                 renderer: Box::new(renderer),
             }),
-            None => Ok(Self::Cpu(Box::new(CpuRenderer::new(scene)))),
+            None => Ok(Self::Cpu { presenter: None, renderer: Box::new(CpuRenderer::new(scene)) }),
         }
     }
 
     pub(crate) fn describe(&self) -> String {
         match self {
             Self::Vulkan { renderer, .. } => format!("vulkan ({})", renderer.device_name()),
-            Self::Cpu(_) => "cpu".into(),
+            Self::Cpu { .. } => "cpu".into(),
+        }
+    }
+
+    pub(crate) fn presentation(&self) -> Presentation {
+        match self {
+            Self::Vulkan { .. } => Presentation::Direct,
+            Self::Cpu { .. } => Presentation::HostCopy,
         }
     }
 
     pub(crate) fn is_cpu(&self) -> bool {
-        matches!(self, Self::Cpu(_))
+        matches!(self, Self::Cpu { .. })
     }
 
-    pub(crate) fn vulkan_device_name(&self) -> Option<&str> {
+    /// The renderer's validation counter; it keeps counting through the renderer's drop.
+    pub(crate) fn message_counter(&self) -> Option<Arc<MessageCounter>> {
         match self {
-            Self::Vulkan { renderer, .. } => Some(renderer.device_name()),
-            Self::Cpu(_) => None,
+            Self::Vulkan { renderer, .. } => Some(renderer.message_counter()),
+            Self::Cpu { .. } => None,
         }
     }
 
-    pub(crate) fn validation_messages(&self) -> u32 {
+    /// Starts presenting to `window` (which outlives it until `close_window`).
+    pub(crate) fn attach_window(
+        &mut self,
+        display: RawDisplayHandle,
+        window: RawWindowHandle,
+        size: (u32, u32),
+        vsync: bool,
+        validation: bool,
+    ) -> Result<(), ViewerError> {
         match self {
-            Self::Vulkan { renderer, .. } => renderer.validation_messages(),
-            Self::Cpu(_) => 0,
+            Self::Vulkan { window: target, renderer, .. } => {
+                *target = Some(Box::new(WindowTarget::new(renderer, display, window, size, vsync)?));
+            }
+            Self::Cpu { presenter, .. } => {
+                *presenter = Some(Box::new(Presenter::new(display, window, size, vsync, validation)?));
+            }
+        }
+        Ok(())
+    }
+
+    /// The host presenter's own validation counter (the direct path has none of its own).
+    pub(crate) fn presenter_messages(&self) -> Option<Arc<MessageCounter>> {
+        match self {
+            Self::Cpu { presenter: Some(presenter), .. } => Some(presenter.message_counter()),
+            _ => None,
         }
     }
 
-    /// Renders `scene` (its camera and lights as they are now) with `settings`.
-    pub(crate) fn render(&mut self, scene: &Scene, settings: &RenderSettings) -> Result<Frame, ViewerError> {
+    /// Tears the presentation down while the window still exists.
+    pub(crate) fn close_window(&mut self) {
         match self {
-            // Neither the camera nor the lights are in an acceleration structure: changing
-            // them rebuilds nothing.
-            Self::Vulkan { target, prepared, lights, renderer } => {
+            Self::Vulkan { window, .. } => *window = None,
+            Self::Cpu { presenter, .. } => *presenter = None,
+        }
+    }
+
+    pub(crate) fn resize(&mut self, width: u32, height: u32) {
+        match self {
+            Self::Vulkan { window: Some(window), .. } => window.resize(width, height),
+            Self::Cpu { presenter: Some(presenter), .. } => presenter.resize(width, height),
+            _ => {}
+        }
+    }
+
+    /// Flips vsync; the new state, `None` before the window opened.
+    pub(crate) fn toggle_vsync(&mut self) -> Option<bool> {
+        match self {
+            Self::Vulkan { window: Some(window), .. } => {
+                window.set_vsync(!window.vsync());
+                Some(window.vsync())
+            }
+            Self::Cpu { presenter: Some(presenter), .. } => {
+                presenter.set_vsync(!presenter.vsync());
+                Some(presenter.vsync())
+            }
+            _ => None,
+        }
+    }
+
+    /// Draws `scene` (its camera and lights as they are now) with `settings` into the window;
+    /// `keep` also returns the frame on the direct path (screenshots).
+    pub(crate) fn draw(
+        &mut self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        keep: bool,
+    ) -> Result<Drawn, ViewerError> {
+        self.update_scene(scene)?;
+        match self {
+            Self::Vulkan { window: Some(window), prepared, renderer, .. } => {
+                let read_back = if keep { ReadBack::Keep } else { ReadBack::No };
+                let presented = window.present(renderer, prepared, settings, read_back)?;
+                let shown = presented == pointray_vulkan::Presented::Shown;
+                let frame =
+                    if keep && shown { Some(frame_from_display(&window.shown_rgba8()?)) } else { None };
+                Ok(Drawn { shown, frame })
+            }
+            Self::Vulkan { window: None, .. } => Ok(Drawn { shown: false, frame: None }),
+            Self::Cpu { presenter, renderer } => {
+                let frame = renderer.render(settings);
+                let shown = match presenter {
+                    Some(presenter) => show_on_host(presenter, &frame)?,
+                    None => false,
+                };
+                Ok(Drawn { shown, frame: Some(frame) })
+            }
+        }
+    }
+
+    /// Shows an already rendered frame again (the host path re-presents after a resize).
+    pub(crate) fn show_again(&mut self, frame: &Frame) -> Result<bool, ViewerError> {
+        match self {
+            Self::Cpu { presenter: Some(presenter), .. } => show_on_host(presenter, frame),
+            _ => Ok(false),
+        }
+    }
+
+    /// Sets the camera and the lights. Neither is in an acceleration structure: changing
+    /// them rebuilds nothing.
+    fn update_scene(&mut self, scene: &Scene) -> Result<(), ViewerError> {
+        match self {
+            Self::Vulkan { prepared, lights, .. } => {
                 prepared.camera = scene.camera;
                 if *lights != scene.lights {
                     prepared.set_lights(&scene.lights)?;
                     lights.clone_from(&scene.lights);
                 }
-                renderer.trace_into(prepared, settings, target)?;
-                Ok(target.frame()?)
             }
-            Self::Cpu(renderer) => {
+            Self::Cpu { renderer, .. } => {
                 renderer.set_camera(scene.camera);
                 renderer.set_lights(scene.lights.clone());
-                Ok(renderer.render(settings))
             }
         }
+        Ok(())
     }
+}
+
+/// The host path: the frame's bytes, scaled to the swapchain, uploaded and presented.
+fn show_on_host(presenter: &mut Presenter, frame: &Frame) -> Result<bool, ViewerError> {
+    let Some((extent, order)) = presenter.target()? else { return Ok(false) };
+    let bytes = frame_bytes(frame, extent.width, extent.height, order);
+    Ok(presenter.present(&bytes)? == Presented::Shown)
 }
 
 #[cfg(test)]
@@ -135,6 +272,18 @@ mod tests {
         }
     }
 
+    /// The source's renderer with its scene updated to `scene`, into host memory (the
+    /// windowless twin of `draw`).
+    fn render(source: &mut FrameSource, scene: &Scene, settings: &RenderSettings) -> Frame {
+        source.update_scene(scene).expect("the scene updates");
+        match source {
+            FrameSource::Vulkan { prepared, renderer, .. } => {
+                renderer.trace(prepared, settings).expect("traces")
+            }
+            FrameSource::Cpu { renderer, .. } => renderer.render(settings),
+        }
+    }
+
     /// A source built for one view, then moved, draws what a source built for the new view
     /// draws: the camera and the lights reach every kind of ray without a rebuild.
     #[test]
@@ -143,27 +292,29 @@ mod tests {
         let settings = RenderSettings { width: 64, height: 48, ..loaded.settings };
         let moved = moved(&loaded.scene);
         for backend in [RenderBackend::Cpu, RenderBackend::Vulkan] {
-            let mut source = match FrameSource::open(backend, &DeviceSelector::Auto, true, &loaded.scene) {
-                Ok(source) => source,
-                Err(
-                    error @ ViewerError::Renderer(
-                        VulkanError::NoSuitableDevice(_)
-                        | VulkanError::LoaderMissing(_)
-                        | VulkanError::ValidationLayerMissing,
-                    ),
-                ) => {
-                    assert!(!std::env::var("CI").is_ok_and(|v| v == "true"), "CI=true but {error}");
-                    eprintln!("note: skipping {backend:?}, {error}");
-                    continue;
-                }
-                Err(error) => panic!("{backend:?} does not open: {error}"),
-            };
-            let first = source.render(&loaded.scene, &settings).expect("the first view renders");
-            let after = source.render(&moved, &settings).expect("the moved view renders");
+            let mut source =
+                match FrameSource::open(backend, &DeviceSelector::Auto, true, &loaded.scene, None) {
+                    Ok(source) => source,
+                    Err(
+                        error @ ViewerError::Renderer(
+                            VulkanError::NoSuitableDevice(_)
+                            | VulkanError::LoaderMissing(_)
+                            | VulkanError::ValidationLayerMissing,
+                        ),
+                    ) => {
+                        assert!(!std::env::var("CI").is_ok_and(|v| v == "true"), "CI=true but {error}");
+                        eprintln!("note: skipping {backend:?}, {error}");
+                        continue;
+                    }
+                    Err(error) => panic!("{backend:?} does not open: {error}"),
+                };
+            let first = render(&mut source, &loaded.scene, &settings);
+            let after = render(&mut source, &moved, &settings);
             assert_ne!(first.color, after.color, "{backend:?}: the view did not change");
             let fresh = fresh_render(backend, &moved, &settings);
             assert!(after.color == fresh.color, "{backend:?}: the moved view differs from a fresh render");
-            assert_eq!(source.validation_messages(), 0, "validation messages (printed above)");
+            let messages = source.message_counter().map_or(0, |counter| counter.count());
+            assert_eq!(messages, 0, "validation messages (printed above)");
         }
     }
 }

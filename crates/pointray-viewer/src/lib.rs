@@ -1,17 +1,22 @@
 //! `pointray view`: an interactive window on a scene (issue 6).
 //!
-//! Every frame is rendered by the chosen backend (the Vulkan ray tracer, or the CPU renderer)
-//! into host memory, as both renderers return their `Frame` there, and then shown through the
-//! viewer's own Vulkan swapchain: the pixels are written to a staging buffer and copied into
-//! the swapchain image (`present`). The renderer's device is preferred for presentation.
+//! With the Vulkan backend every frame goes straight from the ray-tracing pipeline to the
+//! window, on one device (`Presentation::Direct`): the renderer is made for the window
+//! (`VulkanRenderer::for_window`) and its `WindowTarget` traces the display output into a
+//! device-local buffer and copies it into the swapchain image. The CPU renderer's frames are
+//! in host memory; they are uploaded to the viewer's own swapchain (`present`,
+//! `Presentation::HostCopy`).
 //!
-//! While the view is still, the image is refined progressively (`refinement`); with the CPU
-//! backend, moving views are previewed at reduced resolution. A scripted turntable
+//! While the view is still, the image is refined progressively (`refinement`): each pass
+//! renders the whole image again with twice the samples, on the GPU for the direct path (the
+//! shader averages the samples; nothing is accumulated on the host). With the CPU backend,
+//! moving views are previewed at reduced resolution. A scripted turntable
 //! (`Script`) renders a fixed number of frames along an orbit, for tests and videos.
 
 mod app;
 mod camera_rig;
 mod controls;
+mod display_frame;
 mod error;
 mod frame_source;
 mod frame_stats;
@@ -21,24 +26,24 @@ mod present;
 mod refinement;
 mod render_times;
 mod screenshots;
-mod teardown_messages;
 mod view_state;
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use pointray_scene::{Camera, RenderSettings, Scene};
-use pointray_vulkan::DeviceSelector;
+use pointray_vulkan::{DeviceSelector, MessageCounter};
 use winit::event_loop::EventLoop;
+use winit::raw_window_handle::HasDisplayHandle;
 
 pub use camera_rig::CameraRig;
 pub use controls::KEY_HELP;
 pub use error::ViewerError;
-pub use frame_source::RenderBackend;
+pub use frame_source::{Presentation, RenderBackend};
 pub use orbit::orbit_camera;
 
 use app::App;
 use frame_source::FrameSource;
-use teardown_messages::count_validation_messages;
 use view_state::ViewState;
 
 /// A scripted run: `frames` frames along a turntable orbit, then exit.
@@ -69,6 +74,8 @@ pub struct ViewerOptions {
 #[derive(Clone, Debug)]
 pub struct ViewerSummary {
     pub backend: String,
+    /// How the frames reached the window.
+    pub presentation: Presentation,
     pub frames_presented: u64,
     /// The camera of the last frame.
     pub final_camera: Camera,
@@ -86,20 +93,26 @@ pub fn run_viewer(
         std::fs::create_dir_all(dir)
             .map_err(|source| ViewerError::SequenceDir { path: dir.clone(), source })?;
     }
-    let source = FrameSource::open(options.backend, &options.device, options.validation, &scene)?;
+    let event_loop = event_loop()?;
+    let display = event_loop.display_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
+    let source =
+        FrameSource::open(options.backend, &options.device, options.validation, &scene, Some(display))?;
     let backend = source.describe();
-    println!("backend: {backend}");
+    let presentation = source.presentation();
+    println!("backend: {backend}, presentation: {presentation:?}");
     if options.script.is_none() {
         println!("{KEY_HELP}");
     }
-    let event_loop = event_loop()?;
+    // Kept past the renderer's drop: objects leaked at teardown are reported then.
+    let renderer_messages = source.message_counter();
     let mut app = App::new(source, ViewState::new(scene, settings), options);
     let looped = event_loop.run_app(&mut app);
+    let presenter_messages = app.source.presenter_messages();
     app.close_window();
-    let presenter_messages = app.presenter_messages.as_ref().map_or(0, |counter| counter.count());
-    // Moved out (App has no `Drop`) to be dropped where its teardown's messages are counted.
-    let messages = presenter_messages + renderer_messages_through_teardown(app.source);
-    if let Some(error) = app.error.take() {
+    let App { source, error, frames_presented, view, .. } = app;
+    drop(source);
+    let messages = messages_of(renderer_messages) + messages_of(presenter_messages);
+    if let Some(error) = error {
         return Err(error);
     }
     looped.map_err(|e| ViewerError::Window(e.to_string()))?;
@@ -108,17 +121,15 @@ pub fn run_viewer(
     }
     Ok(ViewerSummary {
         backend,
-        frames_presented: app.frames_presented,
-        final_camera: app.view.scene.camera,
-        settings: app.view.settings,
+        presentation,
+        frames_presented,
+        final_camera: view.scene.camera,
+        settings: view.settings,
     })
 }
 
-/// The renderer's validation messages: those of the run, then those its drop reports
-/// (leaked objects). The presenter's are counted apart: its counter outlives its instance.
-fn renderer_messages_through_teardown(source: FrameSource) -> u32 {
-    let during_run = source.validation_messages();
-    during_run + count_validation_messages(|| drop(source))
+fn messages_of(counter: Option<Arc<MessageCounter>>) -> u32 {
+    counter.map_or(0, |counter| counter.count())
 }
 
 /// On X11 and Wayland the loop may run off the main thread, so tests can open a window.

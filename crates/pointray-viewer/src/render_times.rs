@@ -1,6 +1,7 @@
-//! How long the renderer took for each frame of a scripted run (the render alone, without
-//! presentation), printed when the run ends: `--frames` runs are how the backends' frame
-//! times are measured from the command line.
+//! How long each frame of a scripted run took to draw, printed when the run ends: the render
+//! and its presentation (on the direct path one submission; a frame's GPU work may finish in
+//! the next frame's wait, as one frame is in flight). `--frames` runs are how the backends'
+//! frame times are measured from the command line.
 
 use std::time::Duration;
 
@@ -14,7 +15,7 @@ impl RenderTimes {
         self.times.push(time);
     }
 
-    /// `render time over N frames: median, mean, min and max in ms`; `None` before any frame.
+    /// `frame time over N frames: median, mean, min and max in ms`; `None` before any frame.
     pub(crate) fn summary(&self) -> Option<String> {
         let mut sorted = self.times.clone();
         sorted.sort_unstable();
@@ -25,7 +26,7 @@ impl RenderTimes {
         let mean = sorted.iter().sum::<Duration>() / count as u32;
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         Some(format!(
-            "render time over {count} frames: median {:.2} ms, mean {:.2} ms, min {:.2} ms, max {:.2} ms",
+            "frame time (render + present) over {count} frames: median {:.2} ms, mean {:.2} ms, min {:.2} ms, max {:.2} ms",
             ms(median),
             ms(mean),
             ms(*first),
@@ -51,7 +52,7 @@ mod tests {
         }
         assert_eq!(
             times.summary().unwrap(),
-            "render time over 4 frames: median 25.00 ms, mean 25.00 ms, min 10.00 ms, max 40.00 ms"
+            "frame time (render + present) over 4 frames: median 25.00 ms, mean 25.00 ms, min 10.00 ms, max 40.00 ms"
         );
         times.record(Duration::from_millis(1));
         assert!(times.summary().unwrap().contains("over 5 frames: median 20.00 ms, mean 20.20 ms"));

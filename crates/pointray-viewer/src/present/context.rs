@@ -1,9 +1,10 @@
 //! The presentation context: the window's surface and a device and queue that can copy into
 //! it and present it.
 //!
-//! It has its own instance because the renderer (another crate) creates one without surface
-//! extensions and reads each frame back to the host; the viewer copies those host pixels into
-//! the swapchain (see `presenter.rs`).
+//! For the CPU backend's frames, which are in host memory: it has its own instance and any
+//! device that can present (the CPU backend is the fallback for machines whose GPU cannot
+//! ray trace, so pointray-vulkan's renderer, and its `WindowTarget`, may not exist there).
+//! The viewer copies the host pixels into the swapchain (see `presenter.rs`).
 
 use ash::vk;
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
@@ -24,13 +25,10 @@ pub(crate) struct PresentContext {
 }
 
 impl PresentContext {
-    /// `preferred_device` names the renderer's device, so that both use the same GPU when it
-    /// can present.
     pub(crate) fn new(
         display: RawDisplayHandle,
         window: RawWindowHandle,
         validation: bool,
-        preferred_device: Option<&str>,
     ) -> Result<Self, ViewerError> {
         let instance = PresentInstance::new(display, validation)?;
         let surface_fn = ash::khr::surface::Instance::new(&instance.entry, &instance.instance);
@@ -38,7 +36,7 @@ impl PresentContext {
         let surface =
             unsafe { ash_window::create_surface(&instance.entry, &instance.instance, display, window, None) }
                 .map_err(ViewerError::vk("vkCreate*SurfaceKHR"))?;
-        let opened = open_device(&instance.instance, &surface_fn, surface, preferred_device);
+        let opened = open_device(&instance.instance, &surface_fn, surface);
         let (physical, queue_family, device) = match opened {
             Ok(opened) => opened,
             Err(error) => {
@@ -72,23 +70,16 @@ impl Drop for PresentContext {
     }
 }
 
-/// The first device (the preferred one first) with a queue family that does graphics or
-/// transfer and can present to `surface`, and the swapchain extension.
+/// The first device with a queue family that does graphics or transfer and can present to
+/// `surface`, and the swapchain extension.
 fn open_device(
     instance: &ash::Instance,
     surface_fn: &ash::khr::surface::Instance,
     surface: vk::SurfaceKHR,
-    preferred: Option<&str>,
 ) -> Result<(vk::PhysicalDevice, u32, ash::Device), ViewerError> {
     // SAFETY: plain enumeration on a live instance.
-    let mut devices = unsafe { instance.enumerate_physical_devices() }
+    let devices = unsafe { instance.enumerate_physical_devices() }
         .map_err(ViewerError::vk("vkEnumeratePhysicalDevices"))?;
-    let name_of = |device: vk::PhysicalDevice| {
-        // SAFETY: plain query on an enumerated device.
-        let properties = unsafe { instance.get_physical_device_properties(device) };
-        properties.device_name_as_c_str().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default()
-    };
-    devices.sort_by_key(|&device| Some(name_of(device).as_str()) != preferred);
     let (physical, family) = devices
         .iter()
         .find_map(|&device| presenting_family(instance, surface_fn, surface, device).map(|f| (device, f)))

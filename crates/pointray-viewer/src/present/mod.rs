@@ -1,4 +1,6 @@
-//! Presentation: a Vulkan swapchain on the window, fed with the host pixels of each frame.
+//! Host-path presentation (the CPU backend): a Vulkan swapchain on the window, fed with the
+//! host pixels of each frame. The Vulkan backend presents with pointray-vulkan's
+//! `WindowTarget` instead.
 
 mod context;
 mod instance;
@@ -6,6 +8,5 @@ mod presenter;
 mod staging;
 mod swapchain;
 
-pub use pointray_vulkan::validation::MessageCounter;
 pub use presenter::{Presented, Presenter};
 pub(crate) use swapchain::ByteOrder;

@@ -1,6 +1,6 @@
 //! Shows host pixels in the window: each frame is written into a host-visible staging buffer,
 //! copied into the acquired swapchain image with `vkCmdCopyBufferToImage`, and presented.
-//! One frame is in flight at a time; the renderer reads its frame back to the host anyway.
+//! One frame is in flight at a time; the CPU renderer's frames are on the host anyway.
 
 use ash::vk;
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
@@ -40,9 +40,8 @@ impl Presenter {
         window_size: (u32, u32),
         vsync: bool,
         validation: bool,
-        preferred_device: Option<&str>,
     ) -> Result<Self, ViewerError> {
-        let context = PresentContext::new(display, window, validation, preferred_device)?;
+        let context = PresentContext::new(display, window, validation)?;
         let swapchain_fn = ash::khr::swapchain::Device::new(&context.instance.instance, &context.device);
         // A copy of the function table: `context` moves into the presenter below.
         let device = context.device.clone();
