@@ -29,6 +29,8 @@ pub enum Variant {
     HitReordering,
     /// Ablation: k = 6 neighbours instead of 9, so smaller, less overlapping patches.
     SixNeighbours,
+    /// Ablation: patches reaching 0.7 of the paper's support radius (`PrepParams::disk_scale`).
+    SmallerDisks,
 }
 
 impl Variant {
@@ -44,6 +46,7 @@ impl Variant {
             Self::AovOutput => "AOV output",
             Self::HitReordering => "hit reordering (SER)",
             Self::SixNeighbours => "k = 6 neighbours",
+            Self::SmallerDisks => "disk scale 0.7",
         }
     }
 }

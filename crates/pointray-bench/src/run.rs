@@ -171,7 +171,9 @@ impl ModelRun<'_> {
         self.time(&cubes, settings, BlasLayout::OneGeometry, Variant::CubeBoxes)?;
         self.time(&cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)?;
         let six = self.reprepped(base, PrepParams { k: 6, ..PrepParams::default() })?;
-        self.time(&six, settings, BlasLayout::OneGeometry, Variant::SixNeighbours)
+        self.time(&six, settings, BlasLayout::OneGeometry, Variant::SixNeighbours)?;
+        let smaller = self.reprepped(base, PrepParams { disk_scale: 0.7, ..PrepParams::default() })?;
+        self.time(&smaller, settings, BlasLayout::OneGeometry, Variant::SmallerDisks)
     }
 
     /// The scene with the model re-prepped with `params`.

@@ -73,7 +73,8 @@ fn table1_bunny_runs_with_limit_and_ablations() {
             Variant::GeometryPerAabb,
             Variant::CubeBoxes,
             Variant::PaperConfiguration,
-            Variant::SixNeighbours
+            Variant::SixNeighbours,
+            Variant::SmallerDisks
         ]
     );
     for case in &report.cases {

@@ -14,6 +14,9 @@ const MIN_NEIGHBOURS: u32 = 3;
 /// after recentring to f32 (24-bit mantissa) their offsets from the line are noise.
 const COLLINEAR_TOLERANCE: f64 = 1e-6;
 
+/// Beyond this, patches reach past twice their farthest neighbour: no longer local.
+const MAX_DISK_SCALE: f32 = 2.0;
+
 pub fn validate_params(params: &PrepParams) -> Result<(), PrepError> {
     let invalid = |problem: String| Err(PrepError::InvalidSettings { problem });
     if params.k < MIN_NEIGHBOURS || params.normal_k < MIN_NEIGHBOURS {
@@ -27,6 +30,9 @@ pub fn validate_params(params: &PrepParams) -> Result<(), PrepError> {
             "duplicate tolerance {} must be finite and >= 0",
             params.duplicate_tolerance
         ));
+    }
+    if !(params.disk_scale > 0.0 && params.disk_scale <= MAX_DISK_SCALE) {
+        return invalid(format!("disk scale {} must be in (0, {MAX_DISK_SCALE}]", params.disk_scale));
     }
     Ok(())
 }

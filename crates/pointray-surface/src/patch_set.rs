@@ -17,11 +17,15 @@ pub struct PrepParams {
     /// Points closer than this fraction of the bounding-box diagonal are merged as
     /// duplicates; 1e-6 is about ten f32 ulps of the recentred coordinates.
     pub duplicate_tolerance: f32,
+    /// How far each patch reaches, as a fraction of the paper's `d_i` (SPEC.md §2.3): the
+    /// stored radius, and so the disk, the box and the self-clearance, is `disk_scale d_i`.
+    /// The fit still uses the whole neighbourhood. 1 is the paper.
+    pub disk_scale: f32,
 }
 
 impl Default for PrepParams {
     fn default() -> Self {
-        Self { k: 9, normal_k: 16, box_kind: BoxKind::Tight, duplicate_tolerance: 1e-6 }
+        Self { k: 9, normal_k: 16, box_kind: BoxKind::Tight, duplicate_tolerance: 1e-6, disk_scale: 1.0 }
     }
 }
 

@@ -91,8 +91,9 @@ pub fn prep(
     let (radii, radius_fallbacks, radius_adjustments) = clock.run(Stage::SupportRadii, patches, || {
         support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode)
     });
-    let (hot, fits) = clock
-        .run(Stage::QuadraticFit, patches, || fit_patches(&points, &frames, &radii, &neighbors, k, progress));
+    let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
+        fit_patches(&points, &frames, &radii, &neighbors, k, params.disk_scale, progress)
+    });
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
     let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
@@ -278,6 +279,7 @@ fn fit_patches(
     radii: &[f32],
     neighbors: &Neighbors,
     k: usize,
+    disk_scale: f32,
     progress: &dyn PrepProgress,
 ) -> (Vec<PatchHot>, FitCounts) {
     let (hot, kinds): (Vec<PatchHot>, Vec<FitKind>) = (0..points.len())
@@ -289,7 +291,7 @@ fn fit_patches(
             }
             let fit = fit_one(points, &frames[i], radii[i], neighbors, k, i);
             let frame = &frames[i];
-            (PatchHot::new(points[i], frame.t1, frame.n, fit.coefficients, radii[i]), fit.kind)
+            (PatchHot::new(points[i], frame.t1, frame.n, fit.coefficients, radii[i] * disk_scale), fit.kind)
         })
         .unzip();
     let count = |wanted| kinds.par_iter().filter(|&&kind| kind == wanted).count();

@@ -38,6 +38,9 @@ pub struct FidelityArgs {
     /// The box around each patch.
     #[arg(long, value_enum, default_value_t = Boxes::Tight)]
     boxes: Boxes,
+    /// How far each patch reaches, as a fraction of the paper's support radius.
+    #[arg(long, default_value_t = PrepParams::default().disk_scale)]
+    disk_scale: f32,
     /// Also write the report as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
@@ -70,7 +73,12 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
     let patches = prep_points(
         &args.points,
-        PrepParams { k: args.k, box_kind: args.boxes.into(), ..PrepParams::default() },
+        PrepParams {
+            k: args.k,
+            box_kind: args.boxes.into(),
+            disk_scale: args.disk_scale,
+            ..PrepParams::default()
+        },
     )?;
     let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);
     println!("backend: {}", backend.name());

@@ -33,6 +33,10 @@ pub struct PrepArgs {
     /// around the patch over its disk.
     #[arg(long, value_enum, default_value_t = Boxes::Tight)]
     boxes: Boxes,
+    /// How far each patch reaches, as a fraction of the paper's support radius d_i (the fit
+    /// still uses all k neighbours).
+    #[arg(long, default_value_t = PrepParams::default().disk_scale)]
+    disk_scale: f32,
     /// Drop statistical outliers first, `K,N`: points whose mean distance to their K
     /// nearest neighbours is more than N standard deviations above the mean (e.g. `8,2`).
     #[arg(long, value_name = "K,N", value_parser = parse_outlier_filter)]
@@ -67,6 +71,7 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         k: args.k,
         normal_k: args.normal_k,
         box_kind: args.boxes.into(),
+        disk_scale: args.disk_scale,
         ..PrepParams::default()
     };
     let options = PrepOptions {
