@@ -1,13 +1,16 @@
 //! The viewer opens a real window (Xvfb when there is no display), renders a 30-frame
 //! scripted orbit of the procedural demo with the Vulkan backend (lavapipe here) under the
-//! validation layer, saves a screenshot, and the screenshot is the image the renderers make
-//! from the final camera.
+//! validation layer, tracing straight into the swapchain on the renderer's device, saves a
+//! screenshot (read back from the display buffer), and the screenshot is the image the
+//! renderers make from the final camera.
 
 mod common;
 
 use common::{display, missing, psnr, read_png};
 use pointray_scene::{AovSelection, Frame, LoadOptions, RenderSettings, load_demo, write_frame};
-use pointray_viewer::{RenderBackend, Script, ViewerError, ViewerOptions, orbit_camera, run_viewer};
+use pointray_viewer::{
+    Presentation, RenderBackend, Script, ViewerError, ViewerOptions, orbit_camera, run_viewer,
+};
 use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer};
 
 const FRAMES: u32 = 30;
@@ -54,6 +57,7 @@ fn scripted_orbit_screenshot_matches_the_renderer() {
         ) => return missing(&format!("no usable Vulkan device: {error}")),
         Err(error) => panic!("the viewer failed: {error}"),
     };
+    assert_eq!(summary.presentation, Presentation::Direct, "Vulkan frames skip the host");
     assert_eq!(summary.frames_presented, FRAMES as u64, "every scripted frame is presented");
     let expected_camera = orbit_camera(&loaded.scene.camera, FRAMES - 1, FRAMES, ARC_DEGREES);
     assert_eq!(summary.final_camera, expected_camera);

@@ -6,7 +6,9 @@ mod common;
 
 use common::{display, missing, psnr, read_png};
 use pointray_scene::{AovSelection, LoadOptions, RenderSettings, load_demo, write_frame};
-use pointray_viewer::{RenderBackend, Script, ViewerError, ViewerOptions, orbit_camera, run_viewer};
+use pointray_viewer::{
+    Presentation, RenderBackend, Script, ViewerError, ViewerOptions, orbit_camera, run_viewer,
+};
 use pointray_vulkan::DeviceSelector;
 
 const FRAMES: u32 = 30;
@@ -40,6 +42,7 @@ fn cpu_scripted_orbit_ends_on_a_fresh_renderers_image() {
         Err(error) => panic!("the viewer failed: {error}"),
     };
     assert_eq!(summary.backend, "cpu");
+    assert_eq!(summary.presentation, Presentation::HostCopy, "CPU frames are in host memory");
     assert_eq!(summary.frames_presented, FRAMES as u64, "every scripted frame is presented");
     let final_camera = orbit_camera(&loaded.scene.camera, FRAMES - 1, FRAMES, ARC_DEGREES);
     assert_eq!(summary.final_camera, final_camera);

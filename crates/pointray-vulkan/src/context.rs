@@ -230,3 +230,33 @@ fn limits(instance: &ash::Instance, physical: vk::PhysicalDevice, family: u32) -
     ray_tracing.p_next = std::ptr::null_mut();
     (ray_tracing, scratch.max(1), has_timestamps.then_some(period))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A semaphore left alive when the context goes: the layer reports the leak during
+    /// `vkDestroyDevice`, after every owner is gone, and the shared counter still counts it.
+    #[test]
+    fn the_message_counter_counts_leaks_reported_at_teardown() {
+        let context = match GpuContext::new(&DeviceSelector::Auto, true, None) {
+            Ok(context) => context,
+            Err(
+                error @ (VulkanError::NoSuitableDevice(_)
+                | VulkanError::LoaderMissing(_)
+                | VulkanError::ValidationLayerMissing),
+            ) => {
+                assert!(!std::env::var("CI").is_ok_and(|v| v == "true"), "CI=true but {error}");
+                return eprintln!("note: skipping, {error}");
+            }
+            Err(error) => panic!("the context does not open: {error}"),
+        };
+        let counter = context.message_counter();
+        // SAFETY: a plain creation on the live device; leaking it is the point of the test.
+        unsafe { context.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }
+            .expect("a semaphore");
+        assert_eq!(counter.count(), 0, "messages before the teardown (printed above)");
+        drop(context);
+        assert!(counter.count() >= 1, "the leaked semaphore was not reported at teardown");
+    }
+}
