@@ -18,8 +18,8 @@ use crate::report::{Report, limit_rows};
 use crate::stand_in::stand_in_label;
 use crate::suite::{ModelSpec, Suite};
 
-/// The ablations that rebuild or re-prep per box (one geometry per AABB, cube boxes) only
-/// run on models up to this many points, to keep a suite run short.
+/// The ablations that rebuild per box or re-prep (one geometry per AABB, cube boxes, k = 6)
+/// only run on models up to this many points, to keep a suite run short.
 pub const PER_BOX_ABLATION_MAX_POINTS: usize = 200_000;
 
 pub struct BenchOptions<'a> {
@@ -163,6 +163,8 @@ impl ModelRun<'_> {
         if let Some(reordering) = self.options.reordering {
             self.time_on(reordering, base, settings, Variant::HitReordering)?;
         }
+        let smaller = self.reprepped(base, PrepParams { disk_scale: 0.7, ..PrepParams::default() })?;
+        self.time(&smaller, settings, BlasLayout::OneGeometry, Variant::SmallerDisks)?;
         if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
             return Ok(());
         }
@@ -171,9 +173,7 @@ impl ModelRun<'_> {
         self.time(&cubes, settings, BlasLayout::OneGeometry, Variant::CubeBoxes)?;
         self.time(&cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)?;
         let six = self.reprepped(base, PrepParams { k: 6, ..PrepParams::default() })?;
-        self.time(&six, settings, BlasLayout::OneGeometry, Variant::SixNeighbours)?;
-        let smaller = self.reprepped(base, PrepParams { disk_scale: 0.7, ..PrepParams::default() })?;
-        self.time(&smaller, settings, BlasLayout::OneGeometry, Variant::SmallerDisks)
+        self.time(&six, settings, BlasLayout::OneGeometry, Variant::SixNeighbours)
     }
 
     /// The scene with the model re-prepped with `params`.

@@ -70,11 +70,11 @@ fn table1_bunny_runs_with_limit_and_ablations() {
             Variant::CombinedBuffers,
             Variant::BoxAcceptance,
             Variant::AovOutput,
+            Variant::SmallerDisks,
             Variant::GeometryPerAabb,
             Variant::CubeBoxes,
             Variant::PaperConfiguration,
-            Variant::SixNeighbours,
-            Variant::SmallerDisks
+            Variant::SixNeighbours
         ]
     );
     for case in &report.cases {
