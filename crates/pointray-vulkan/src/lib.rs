@@ -27,6 +27,7 @@ mod prepared_scene;
 mod ray_counter;
 mod renderer;
 mod shaders;
+pub mod surface_choice;
 mod swapchain;
 mod trace;
 mod trace_target;

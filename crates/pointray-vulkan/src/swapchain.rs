@@ -5,6 +5,7 @@ use ash::vk;
 
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
+use crate::surface_choice::{pick_composite_alpha, pick_extent, pick_format, pick_present_mode};
 use crate::trace_target::PixelOutput;
 
 /// A window surface and the loaders its swapchain calls go through.
@@ -26,13 +27,14 @@ pub(crate) struct Swapchain {
 }
 
 impl Swapchain {
-    /// `window_size` is used when the surface leaves the extent to the application.
+    /// `window_size` is used when the surface leaves the extent to the application; `None`
+    /// while the window has no area (minimised).
     pub(crate) fn new(
         context: &GpuContext,
         surface: &Surface,
         window_size: (u32, u32),
         vsync: bool,
-    ) -> Result<Self, VulkanError> {
+    ) -> Result<Option<Self>, VulkanError> {
         let (physical, surface_fn) = (context.physical, &surface.surface_fn);
         // SAFETY: plain queries on the live surface.
         let (capabilities, formats, modes) = unsafe {
@@ -61,6 +63,9 @@ impl Swapchain {
             ))
         })?;
         let extent = pick_extent(&capabilities, window_size);
+        if extent.width == 0 || extent.height == 0 {
+            return Ok(None);
+        }
         let image_count = match capabilities.max_image_count {
             0 => capabilities.min_image_count + 1,
             max => (capabilities.min_image_count + 1).min(max),
@@ -86,7 +91,7 @@ impl Swapchain {
             swapchain.destroy(context, surface);
             return Err(error);
         }
-        Ok(swapchain)
+        Ok(Some(swapchain))
     }
 
     fn fill(&mut self, context: &GpuContext, surface: &Surface) -> Result<(), VulkanError> {
@@ -113,72 +118,5 @@ impl Swapchain {
             surface.swapchain_fn.destroy_swapchain(self.handle, None);
         }
         self.images.clear();
-    }
-}
-
-/// 8-bit RGBA or BGRA, UNORM first: the shader writes sRGB-encoded bytes and a copy converts
-/// nothing, so the presentation engine must take the bytes as they are.
-fn pick_format(formats: &[vk::SurfaceFormatKHR]) -> Option<(vk::SurfaceFormatKHR, PixelOutput)> {
-    let preference = [
-        (vk::Format::R8G8B8A8_UNORM, PixelOutput::Display),
-        (vk::Format::B8G8R8A8_UNORM, PixelOutput::DisplayBgra),
-        (vk::Format::R8G8B8A8_SRGB, PixelOutput::Display),
-        (vk::Format::B8G8R8A8_SRGB, PixelOutput::DisplayBgra),
-    ];
-    preference.into_iter().find_map(|(wanted, output)| {
-        formats.iter().find(|f| f.format == wanted).map(|&format| (format, output))
-    })
-}
-
-fn pick_extent(capabilities: &vk::SurfaceCapabilitiesKHR, (width, height): (u32, u32)) -> vk::Extent2D {
-    if capabilities.current_extent.width != u32::MAX {
-        return capabilities.current_extent;
-    }
-    let (min, max) = (capabilities.min_image_extent, capabilities.max_image_extent);
-    vk::Extent2D { width: width.clamp(min.width, max.width), height: height.clamp(min.height, max.height) }
-}
-
-fn pick_composite_alpha(supported: vk::CompositeAlphaFlagsKHR) -> vk::CompositeAlphaFlagsKHR {
-    [
-        vk::CompositeAlphaFlagsKHR::OPAQUE,
-        vk::CompositeAlphaFlagsKHR::INHERIT,
-        vk::CompositeAlphaFlagsKHR::PRE_MULTIPLIED,
-    ]
-    .into_iter()
-    .find(|&mode| supported.contains(mode))
-    .unwrap_or(vk::CompositeAlphaFlagsKHR::POST_MULTIPLIED)
-}
-
-/// FIFO waits for the display (vsync, always supported); without vsync, mailbox or immediate.
-fn pick_present_mode(modes: &[vk::PresentModeKHR], vsync: bool) -> vk::PresentModeKHR {
-    let unsynced = [vk::PresentModeKHR::MAILBOX, vk::PresentModeKHR::IMMEDIATE];
-    let chosen = unsynced.into_iter().find(|mode| modes.contains(mode));
-    if vsync { vk::PresentModeKHR::FIFO } else { chosen.unwrap_or(vk::PresentModeKHR::FIFO) }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn format(format: vk::Format) -> vk::SurfaceFormatKHR {
-        vk::SurfaceFormatKHR { format, color_space: vk::ColorSpaceKHR::SRGB_NONLINEAR }
-    }
-
-    #[test]
-    fn unorm_formats_come_first_and_bgra_asks_for_the_swizzle() {
-        let offered = [format(vk::Format::B8G8R8A8_SRGB), format(vk::Format::B8G8R8A8_UNORM)];
-        let (chosen, output) = pick_format(&offered).expect("a format");
-        assert_eq!((chosen.format, output), (vk::Format::B8G8R8A8_UNORM, PixelOutput::DisplayBgra));
-        let offered = [format(vk::Format::B8G8R8A8_UNORM), format(vk::Format::R8G8B8A8_UNORM)];
-        assert_eq!(pick_format(&offered).map(|(_, o)| o), Some(PixelOutput::Display));
-        assert!(pick_format(&[format(vk::Format::R16G16B16A16_SFLOAT)]).is_none());
-    }
-
-    #[test]
-    fn vsync_off_prefers_mailbox_then_immediate() {
-        let modes = [vk::PresentModeKHR::FIFO, vk::PresentModeKHR::IMMEDIATE];
-        assert_eq!(pick_present_mode(&modes, true), vk::PresentModeKHR::FIFO);
-        assert_eq!(pick_present_mode(&modes, false), vk::PresentModeKHR::IMMEDIATE);
-        assert_eq!(pick_present_mode(&[vk::PresentModeKHR::FIFO], false), vk::PresentModeKHR::FIFO);
     }
 }

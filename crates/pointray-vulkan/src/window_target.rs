@@ -260,8 +260,7 @@ impl WindowTarget {
             old.destroy(&self.context, &self.surface);
         }
         if self.window_size.0 > 0 && self.window_size.1 > 0 {
-            self.swapchain =
-                Some(Swapchain::new(&self.context, &self.surface, self.window_size, self.vsync)?);
+            self.swapchain = Swapchain::new(&self.context, &self.surface, self.window_size, self.vsync)?;
         }
         self.stale = false;
         Ok(())

@@ -210,8 +210,7 @@ impl Presenter {
             old.destroy(&self.context.device, &self.swapchain_fn);
         }
         if self.window_size.0 > 0 && self.window_size.1 > 0 {
-            self.swapchain =
-                Some(Swapchain::new(&self.context, &self.swapchain_fn, self.window_size, self.vsync)?);
+            self.swapchain = Swapchain::new(&self.context, &self.swapchain_fn, self.window_size, self.vsync)?;
         }
         self.stale = false;
         Ok(())

@@ -3,6 +3,9 @@
 
 use ash::vk;
 
+use pointray_vulkan::PixelOutput;
+use pointray_vulkan::surface_choice::{self, pick_composite_alpha, pick_extent, pick_present_mode};
+
 use super::context::PresentContext;
 use crate::error::ViewerError;
 
@@ -24,13 +27,14 @@ pub(crate) struct Swapchain {
 }
 
 impl Swapchain {
-    /// `window_size` is used when the surface leaves the extent to the application.
+    /// `window_size` is used when the surface leaves the extent to the application; `None`
+    /// while the window has no area (minimised).
     pub(crate) fn new(
         context: &PresentContext,
         swapchain_fn: &ash::khr::swapchain::Device,
         window_size: (u32, u32),
         vsync: bool,
-    ) -> Result<Self, ViewerError> {
+    ) -> Result<Option<Self>, ViewerError> {
         let (physical, surface, surface_fn) = (context.physical, context.surface, &context.surface_fn);
         // SAFETY: plain queries on the live surface.
         let (capabilities, formats, modes) = unsafe {
@@ -51,6 +55,9 @@ impl Swapchain {
         }
         let (format, byte_order) = pick_format(&formats)?;
         let extent = pick_extent(&capabilities, window_size);
+        if extent.width == 0 || extent.height == 0 {
+            return Ok(None);
+        }
         let image_count = match capabilities.max_image_count {
             0 => capabilities.min_image_count + 1,
             max => (capabilities.min_image_count + 1).min(max),
@@ -77,7 +84,7 @@ impl Swapchain {
             swapchain.destroy(&context.device, swapchain_fn);
             return Err(error);
         }
-        Ok(swapchain)
+        Ok(Some(swapchain))
     }
 
     fn fill(
@@ -111,41 +118,14 @@ impl Swapchain {
     }
 }
 
-/// 8-bit BGRA or RGBA. The host writes sRGB-encoded bytes, and a copy does no conversion, so
-/// either the UNORM or the SRGB variant shows them right.
+/// The format `pointray_vulkan::surface_choice` picks, as a byte order for the host's bytes.
 fn pick_format(formats: &[vk::SurfaceFormatKHR]) -> Result<(vk::SurfaceFormatKHR, ByteOrder), ViewerError> {
-    let order = |format: vk::Format| match format {
-        vk::Format::B8G8R8A8_UNORM | vk::Format::B8G8R8A8_SRGB => Some(ByteOrder::Bgra),
-        vk::Format::R8G8B8A8_UNORM | vk::Format::R8G8B8A8_SRGB => Some(ByteOrder::Rgba),
-        _ => None,
-    };
-    formats.iter().find_map(|f| order(f.format).map(|o| (*f, o))).ok_or_else(|| {
+    let (format, output) = surface_choice::pick_format(formats).ok_or_else(|| {
         ViewerError::PresentSetup(format!("no 8-bit RGBA/BGRA surface format among {formats:?}"))
-    })
-}
-
-fn pick_extent(capabilities: &vk::SurfaceCapabilitiesKHR, (width, height): (u32, u32)) -> vk::Extent2D {
-    if capabilities.current_extent.width != u32::MAX {
-        return capabilities.current_extent;
-    }
-    let (min, max) = (capabilities.min_image_extent, capabilities.max_image_extent);
-    vk::Extent2D { width: width.clamp(min.width, max.width), height: height.clamp(min.height, max.height) }
-}
-
-fn pick_composite_alpha(supported: vk::CompositeAlphaFlagsKHR) -> vk::CompositeAlphaFlagsKHR {
-    [
-        vk::CompositeAlphaFlagsKHR::OPAQUE,
-        vk::CompositeAlphaFlagsKHR::INHERIT,
-        vk::CompositeAlphaFlagsKHR::PRE_MULTIPLIED,
-    ]
-    .into_iter()
-    .find(|&mode| supported.contains(mode))
-    .unwrap_or(vk::CompositeAlphaFlagsKHR::POST_MULTIPLIED)
-}
-
-/// FIFO waits for the display (vsync, always supported); without vsync, mailbox or immediate.
-fn pick_present_mode(modes: &[vk::PresentModeKHR], vsync: bool) -> vk::PresentModeKHR {
-    let unsynced = [vk::PresentModeKHR::MAILBOX, vk::PresentModeKHR::IMMEDIATE];
-    let chosen = unsynced.into_iter().find(|mode| modes.contains(mode));
-    if vsync { vk::PresentModeKHR::FIFO } else { chosen.unwrap_or(vk::PresentModeKHR::FIFO) }
+    })?;
+    let order = match output {
+        PixelOutput::DisplayBgra => ByteOrder::Bgra,
+        PixelOutput::Display | PixelOutput::Aovs => ByteOrder::Rgba,
+    };
+    Ok((format, order))
 }
