@@ -1,6 +1,7 @@
-//! The measurement behind `bench/FIDELITY.md`, "Radius modes on uneven density": the paper's
-//! support radius against the adaptive one, on mesh samples thinned by a tenfold density
-//! gradient and into scan lines, compared with the mesh by `pointray-fidelity`.
+//! The measurement behind `bench/FIDELITY.md`, "Radius modes on uneven density" and "Disk
+//! scale": the paper's support radius against the adaptive one, each at disk scale 1 and 0.7,
+//! on mesh samples thinned by a tenfold density gradient and into scan lines, compared with
+//! the mesh by `pointray-fidelity`.
 //!
 //! `pointray fidelity` preps with the default radius and has no radius flag (its file belongs
 //! to another engineer), so this drives the same library calls. It takes minutes, so it is
@@ -22,6 +23,7 @@ use pointray_surface::{NoProgress, PrepOptions, RadiusMode, prep};
 
 const MODELS: [&str; 3] = ["bunny", "horse", "dragon_res2"];
 const SAMPLES: usize = 40_000;
+const DISK_SCALES: [f32; 2] = [1.0, 0.7];
 const SAMPLINGS: [(&str, Unevenness); 3] = [
     ("uniform", Unevenness::Gradient { ratio: 1.0 }),
     ("gradient 10x", Unevenness::Gradient { ratio: 10.0 }),
@@ -38,18 +40,26 @@ fn measure(
     cloud: &PointCloud,
     mesh: &Arc<pointray_io::TriangleMesh>,
     mode: RadiusMode,
+    disk_scale: f32,
     size: u32,
 ) -> FidelityMetrics {
-    let options = PrepOptions { radius_mode: mode, ..PrepOptions::default() };
+    let mut options = PrepOptions { radius_mode: mode, ..PrepOptions::default() };
+    options.params.disk_scale = disk_scale;
     let (patches, _) = prep(cloud, &options, &NoProgress).expect("the samples prep");
     let fidelity = FidelityOptions::around(6, size, AcceptanceTest::Disk).unwrap();
     measure_fidelity(Arc::new(patches), mesh.clone(), &fidelity, &CpuFrameRenderer).unwrap().overall
 }
 
-fn row(model: &str, sampling: &str, points: usize, mode: RadiusMode, m: &FidelityMetrics) -> String {
+fn row(
+    model: &str,
+    sampling: &str,
+    points: usize,
+    (mode, scale): (RadiusMode, f32),
+    m: &FidelityMetrics,
+) -> String {
     let f = |value: Option<f64>, scale: f64| value.map_or("-".into(), |v| format!("{:.4}", v * scale));
     format!(
-        "| {model} | {sampling} | {points} | {mode:?} | {} | {} | {} | {} | {} | {} | {} | {} |",
+        "| {model} | {sampling} | {points} | {mode:?} | {scale} | {} | {} | {} | {} | {} | {} | {} | {} |",
         f(m.hole_rate.map(|r| r * m.mesh_pixels as f64), 1.0).trim_end_matches(".0000"),
         f(m.hole_rate, 100.0),
         f(m.false_surface_rate, 100.0),
@@ -66,9 +76,9 @@ fn row(model: &str, sampling: &str, points: usize, mode: RadiusMode, m: &Fidelit
 fn radius_modes_on_uneven_density() {
     let size = std::env::var("POINTRAY_FIDELITY_SIZE").ok().and_then(|s| s.parse().ok()).unwrap_or(512);
     println!(
-        "| model | sampling | points | radius | hole px | hole % | false surface % | depth mean | depth p99 | normal mean ° | normal p95 ° | PSNR dB |"
+        "| model | sampling | points | radius | disk scale | hole px | hole % | false surface % | depth mean | depth p99 | normal mean ° | normal p95 ° | PSNR dB |"
     );
-    println!("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for model in MODELS {
         let path = data_root().join(format!("meshes/{model}.ply"));
         if !path.is_file() {
@@ -80,8 +90,10 @@ fn radius_modes_on_uneven_density() {
         for (sampling, unevenness) in SAMPLINGS {
             let cloud = sample_mesh_unevenly(&mesh, SAMPLES, 1, unevenness);
             for mode in [RadiusMode::Paper, RadiusMode::Adaptive] {
-                let metrics = measure(&cloud, &mesh, mode, size);
-                println!("{}", row(model, sampling, cloud.len(), mode, &metrics));
+                for scale in DISK_SCALES {
+                    let metrics = measure(&cloud, &mesh, mode, scale, size);
+                    println!("{}", row(model, sampling, cloud.len(), (mode, scale), &metrics));
+                }
             }
         }
     }
