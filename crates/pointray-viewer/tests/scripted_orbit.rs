@@ -34,6 +34,7 @@ fn scripted_orbit_screenshot_matches_the_renderer() {
     let settings = RenderSettings { width: 96, height: 72, samples_per_pixel: 1, ..loaded.settings };
     let dir = tempfile::tempdir().expect("a temporary folder");
     let screenshot = dir.path().join("viewer.png");
+    let sequence = dir.path().join("sequence");
     let options = ViewerOptions {
         backend: RenderBackend::Vulkan,
         device: DeviceSelector::Auto,
@@ -43,7 +44,7 @@ fn scripted_orbit_screenshot_matches_the_renderer() {
             frames: FRAMES,
             arc_degrees: ARC_DEGREES,
             screenshot: Some(screenshot.clone()),
-            sequence: None,
+            sequence: Some(sequence.clone()),
         }),
     };
     let summary = match run_viewer(loaded.scene.clone(), settings, options) {
@@ -81,6 +82,11 @@ fn scripted_orbit_screenshot_matches_the_renderer() {
     write_frame(&cpu_reference, &cpu_path, &AovSelection::default()).expect("the CPU reference is written");
 
     let shot = read_png(&screenshot);
+    // Every frame was read back for the sequence; the last is the screenshot.
+    let saved = std::fs::read_dir(&sequence).expect("the sequence folder").count();
+    assert_eq!(saved, FRAMES as usize, "one sequence image per frame");
+    let last = read_png(&sequence.join(format!("frame-{:05}.png", FRAMES - 1)));
+    assert!(last == shot, "the last sequence frame differs from the screenshot");
     for (name, path) in [("vulkan", &reference_path), ("cpu", &cpu_path)] {
         let quality = psnr(&shot, &read_png(path));
         eprintln!("screenshot vs {name} render: PSNR {quality:.2} dB");
