@@ -101,7 +101,12 @@ impl App {
 
     fn open_window(&mut self, event_loop: &ActiveEventLoop) -> Result<(), ViewerError> {
         let size = PhysicalSize::new(self.view.settings.width, self.view.settings.height);
-        let attributes = Window::default_attributes().with_title("pointray view").with_inner_size(size);
+        // A scripted run's frames are traced at the window's size (the direct path): it keeps
+        // the settings' size, so that they are the images `pointray render` makes.
+        let attributes = Window::default_attributes()
+            .with_title("pointray view")
+            .with_inner_size(size)
+            .with_resizable(self.script.is_none());
         let window = event_loop.create_window(attributes).map_err(|e| ViewerError::Window(e.to_string()))?;
         let display = window.display_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
         let handle = window.window_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
