@@ -7,7 +7,8 @@ use glam::DVec3;
 use pointray_surface::{NoProgress, PatchSet, PrepError, PrepOptions, PrepParams, prep};
 
 fn prepped(cloud: &pointray_io::PointCloud, disk_scale: f32) -> Result<PatchSet, PrepError> {
-    let options = PrepOptions { params: PrepParams { disk_scale, ..PrepParams::default() }, ..PrepOptions::default() };
+    let options =
+        PrepOptions { params: PrepParams { disk_scale, ..PrepParams::default() }, ..PrepOptions::default() };
     prep(cloud, &options, &NoProgress).map(|(patches, _)| patches)
 }
 
