@@ -5,6 +5,7 @@ mod backend;
 mod boxes_arg;
 mod commands;
 mod progress;
+mod radius_arg;
 
 use clap::{Parser, Subcommand};
 

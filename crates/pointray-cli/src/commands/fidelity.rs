@@ -14,6 +14,7 @@ use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendChoice};
 use crate::boxes_arg::Boxes;
 use crate::progress::PrepBar;
+use crate::radius_arg::Radius;
 
 /// Render the points' patches and the mesh from cameras around the model and report holes,
 /// false surfaces, depth and normal error and PSNR, as a table (and JSON with `--json`).
@@ -38,6 +39,9 @@ pub struct FidelityArgs {
     /// The box around each patch.
     #[arg(long, value_enum, default_value_t = Boxes::Tight)]
     boxes: Boxes,
+    /// The support radius: the paper's, or adapted to the local density.
+    #[arg(long, value_enum, default_value_t = Radius::Paper)]
+    radius: Radius,
     /// How far each patch reaches, as a fraction of the paper's support radius.
     #[arg(long, default_value_t = PrepParams::default().disk_scale)]
     disk_scale: f32,
@@ -73,11 +77,15 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
     let patches = prep_points(
         &args.points,
-        PrepParams {
-            k: args.k,
-            box_kind: args.boxes.into(),
-            disk_scale: args.disk_scale,
-            ..PrepParams::default()
+        PrepOptions {
+            params: PrepParams {
+                k: args.k,
+                box_kind: args.boxes.into(),
+                disk_scale: args.disk_scale,
+                ..PrepParams::default()
+            },
+            radius_mode: args.radius.into(),
+            ..PrepOptions::default()
         },
     )?;
     let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);
@@ -94,9 +102,8 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn prep_points(path: &Path, params: PrepParams) -> anyhow::Result<PatchSet> {
+fn prep_points(path: &Path, options: PrepOptions) -> anyhow::Result<PatchSet> {
     let cloud = pointray_io::formats::read_point_cloud(path)?;
-    let options = PrepOptions { params, ..PrepOptions::default() };
     let (patches, _) = prep(&cloud, &options, &PrepBar::default())
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     Ok(patches)

@@ -4,10 +4,11 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::DVec3;
-use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, RadiusMode, prep};
+use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, prep};
 
 use crate::boxes_arg::Boxes;
 use crate::progress::PrepBar;
+use crate::radius_arg::Radius;
 
 /// Fit an MLS quadratic patch to every point and write the patch store.
 #[derive(Args)]
@@ -47,21 +48,6 @@ pub struct PrepArgs {
     /// on scan-line data, more false surface (bench/FIDELITY.md).
     #[arg(long, value_enum, default_value_t = Radius::Paper)]
     radius: Radius,
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum Radius {
-    Paper,
-    Adaptive,
-}
-
-impl From<Radius> for RadiusMode {
-    fn from(radius: Radius) -> Self {
-        match radius {
-            Radius::Paper => RadiusMode::Paper,
-            Radius::Adaptive => RadiusMode::Adaptive,
-        }
-    }
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {

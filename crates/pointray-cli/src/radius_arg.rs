@@ -1,0 +1,21 @@
+//! The `--radius` flag, shared by the commands that prep points.
+
+use clap::ValueEnum;
+use pointray_surface::RadiusMode;
+
+/// The support radius: the paper's (farthest of the k neighbours), or adapted to the local
+/// density.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Radius {
+    Paper,
+    Adaptive,
+}
+
+impl From<Radius> for RadiusMode {
+    fn from(radius: Radius) -> Self {
+        match radius {
+            Radius::Paper => RadiusMode::Paper,
+            Radius::Adaptive => RadiusMode::Adaptive,
+        }
+    }
+}
