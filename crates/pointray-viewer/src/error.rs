@@ -28,4 +28,25 @@ impl ViewerError {
     pub(crate) fn vk(what: &'static str) -> impl FnOnce(vk::Result) -> Self {
         move |result| Self::Present { what, result }
     }
+
+    /// A failure of the host-copy presenter's swapchain (pointray-vulkan's `Swapchain` on the
+    /// presenter's own device) as a presentation error, not a renderer's: a failed call keeps
+    /// its result; an unsuitable surface is a setup problem.
+    pub(crate) fn from_swapchain(error: pointray_vulkan::VulkanError) -> Self {
+        use pointray_vulkan::VulkanError;
+        match error {
+            VulkanError::NoSuitableDevice(problem) => Self::PresentSetup(problem),
+            VulkanError::Call { during, result } => Self::Present { what: during, result },
+            VulkanError::DeviceLost(during) => {
+                Self::Present { what: during, result: vk::Result::ERROR_DEVICE_LOST }
+            }
+            VulkanError::OutOfMemory { kind: "host", during } => {
+                Self::Present { what: during, result: vk::Result::ERROR_OUT_OF_HOST_MEMORY }
+            }
+            VulkanError::OutOfMemory { during, .. } => {
+                Self::Present { what: during, result: vk::Result::ERROR_OUT_OF_DEVICE_MEMORY }
+            }
+            other => Self::PresentSetup(other.to_string()),
+        }
+    }
 }

@@ -6,11 +6,9 @@
 
 mod common;
 
-use common::{display, missing, psnr, read_png};
-use pointray_scene::{AovSelection, Frame, LoadOptions, RenderSettings, load_demo, write_frame};
-use pointray_viewer::{
-    Presentation, RenderBackend, Script, ViewerError, ViewerOptions, orbit_camera, run_viewer,
-};
+use common::{Orbit, missing, psnr, read_png, scripted_run};
+use pointray_scene::{AovSelection, Frame, write_frame};
+use pointray_viewer::{Presentation, RenderBackend, ViewerError, orbit_camera, run_viewer};
 use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer};
 
 const FRAMES: u32 = 30;
@@ -26,28 +24,11 @@ fn covered_objects(frame: &Frame) -> usize {
 
 #[test]
 fn scripted_orbit_screenshot_matches_the_renderer() {
-    let _display = match display() {
-        Ok(display) => display,
-        Err(problem) => return missing(&problem),
-    };
-    let loaded = load_demo(&LoadOptions::default()).expect("the demo scene loads");
-    let settings = RenderSettings { width: 96, height: 72, samples_per_pixel: 1, ..loaded.settings };
-    let dir = tempfile::tempdir().expect("a temporary folder");
-    let screenshot = dir.path().join("viewer.png");
-    let sequence = dir.path().join("sequence");
-    let options = ViewerOptions {
-        backend: RenderBackend::Vulkan,
-        device: DeviceSelector::Auto,
-        vsync: false,
-        validation: true,
-        script: Some(Script {
-            frames: FRAMES,
-            arc_degrees: ARC_DEGREES,
-            screenshot: Some(screenshot.clone()),
-            sequence: Some(sequence.clone()),
-        }),
-    };
-    let summary = match run_viewer(loaded.scene.clone(), settings, options) {
+    let orbit = Orbit { frames: FRAMES, arc_degrees: ARC_DEGREES, keep_sequence: true };
+    let Some(run) = scripted_run(RenderBackend::Vulkan, 1, orbit) else { return };
+    let (loaded, settings, dir, screenshot) = (&run.demo.loaded, run.settings, &run.dir, &run.screenshot);
+    let sequence = run.sequence.as_deref().expect("the run keeps its sequence");
+    let summary = match run_viewer(loaded.scene.clone(), settings, run.options) {
         Ok(summary) => summary,
         Err(
             error @ ViewerError::Renderer(
@@ -81,9 +62,9 @@ fn scripted_orbit_screenshot_matches_the_renderer() {
     let cpu_path = dir.path().join("cpu.png");
     write_frame(&cpu_reference, &cpu_path, &AovSelection::default()).expect("the CPU reference is written");
 
-    let shot = read_png(&screenshot);
+    let shot = read_png(screenshot);
     // Every frame was read back for the sequence; the last is the screenshot.
-    let saved = std::fs::read_dir(&sequence).expect("the sequence folder").count();
+    let saved = std::fs::read_dir(sequence).expect("the sequence folder").count();
     assert_eq!(saved, FRAMES as usize, "one sequence image per frame");
     let last = read_png(&sequence.join(format!("frame-{:05}.png", FRAMES - 1)));
     assert!(last == shot, "the last sequence frame differs from the screenshot");

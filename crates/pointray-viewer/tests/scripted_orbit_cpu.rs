@@ -2,41 +2,23 @@
 //! along the 30-frame orbit, yet the last frame is exactly the image a renderer built afresh
 //! for the final camera draws. The window's presentation runs under the validation layer.
 
+// Only some of the shared helpers are used here.
+#[allow(dead_code)]
 mod common;
 
-use common::{display, missing, psnr, read_png};
-use pointray_scene::{AovSelection, LoadOptions, RenderSettings, load_demo, write_frame};
-use pointray_viewer::{
-    Presentation, RenderBackend, Script, ViewerError, ViewerOptions, orbit_camera, run_viewer,
-};
-use pointray_vulkan::DeviceSelector;
+use common::{Orbit, missing, psnr, read_png, scripted_run};
+use pointray_scene::{AovSelection, write_frame};
+use pointray_viewer::{Presentation, RenderBackend, ViewerError, orbit_camera, run_viewer};
 
 const FRAMES: u32 = 30;
 const ARC_DEGREES: f32 = 270.0;
 
 #[test]
 fn cpu_scripted_orbit_ends_on_a_fresh_renderers_image() {
-    let _display = match display() {
-        Ok(display) => display,
-        Err(problem) => return missing(&problem),
-    };
-    let loaded = load_demo(&LoadOptions::default()).expect("the demo scene loads");
-    let settings = RenderSettings { width: 96, height: 72, samples_per_pixel: 2, ..loaded.settings };
-    let dir = tempfile::tempdir().expect("a temporary folder");
-    let screenshot = dir.path().join("viewer.png");
-    let options = ViewerOptions {
-        backend: RenderBackend::Cpu,
-        device: DeviceSelector::Auto,
-        vsync: false,
-        validation: true,
-        script: Some(Script {
-            frames: FRAMES,
-            arc_degrees: ARC_DEGREES,
-            screenshot: Some(screenshot.clone()),
-            sequence: None,
-        }),
-    };
-    let summary = match run_viewer(loaded.scene.clone(), settings, options) {
+    let orbit = Orbit { frames: FRAMES, arc_degrees: ARC_DEGREES, keep_sequence: false };
+    let Some(run) = scripted_run(RenderBackend::Cpu, 2, orbit) else { return };
+    let (loaded, settings, dir, screenshot) = (&run.demo.loaded, run.settings, &run.dir, &run.screenshot);
+    let summary = match run_viewer(loaded.scene.clone(), settings, run.options) {
         Ok(summary) => summary,
         Err(error @ ViewerError::PresentSetup(_)) => return missing(&format!("no presentation: {error}")),
         Err(error) => panic!("the viewer failed: {error}"),
@@ -56,7 +38,7 @@ fn cpu_scripted_orbit_ends_on_a_fresh_renderers_image() {
     let start_path = dir.path().join("start.png");
     write_frame(&start, &start_path, &AovSelection::default()).expect("the first view is written");
 
-    let shot = read_png(&screenshot);
+    let shot = read_png(screenshot);
     assert!(psnr(&shot, &read_png(&start_path)) < 40.0, "the orbit changed the view");
     assert_eq!(shot, read_png(&fresh_path), "the viewer's last frame differs from a fresh render");
 }

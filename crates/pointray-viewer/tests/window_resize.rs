@@ -9,8 +9,8 @@ mod common;
 
 use std::time::{Duration, Instant};
 
-use common::{display, missing};
-use pointray_scene::{LoadOptions, RenderSettings, Scene, load_demo};
+use common::{demo_on_display, missing};
+use pointray_scene::{RenderSettings, Scene};
 use pointray_vulkan::{
     DeviceSelector, DisplayImage, PixelOutput, PreparedScene, Presented, ReadBack, TraceTarget, VulkanError,
     VulkanRenderer, WindowTarget,
@@ -159,12 +159,8 @@ impl ApplicationHandler for ResizeRun {
 
 #[test]
 fn window_target_follows_a_resized_window() {
-    let _display = match display() {
-        Ok(display) => display,
-        Err(problem) => return missing(&problem),
-    };
-    let loaded = load_demo(&LoadOptions::default()).expect("the demo scene loads");
-    let settings = RenderSettings { samples_per_pixel: 1, ..loaded.settings };
+    let Some(demo) = demo_on_display() else { return };
+    let settings = RenderSettings { samples_per_pixel: 1, ..demo.loaded.settings };
     let mut builder = EventLoop::builder();
     {
         use winit::platform::x11::EventLoopBuilderExtX11;
@@ -172,7 +168,7 @@ fn window_target_follows_a_resized_window() {
     }
     let event_loop = builder.build().expect("an event loop");
     let mut run = ResizeRun {
-        scene: loaded.scene,
+        scene: demo.loaded.scene,
         settings,
         open: None,
         resize_asked: None,

@@ -1,6 +1,6 @@
 //! How a window's swapchain is set up from what its surface offers: format, size,
-//! composition and present mode. Public so that the viewer's host-copy presenter (for frames
-//! from the CPU renderer) chooses as the `WindowTarget` does.
+//! composition and present mode, for every `Swapchain` (the `WindowTarget`'s and the
+//! viewer's host-copy presenter's).
 
 use ash::vk;
 

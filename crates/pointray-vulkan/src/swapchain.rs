@@ -1,65 +1,77 @@
-//! A window's swapchain: images that traced display pixels are copied into, recreated when
-//! the window changes size or the surface reports it out of date.
+//! A window's swapchain: images that display pixels are copied into, recreated when the
+//! window changes size or the surface reports it out of date.
+//!
+//! Built from raw handles rather than the renderer's context, so that a presenter with its own
+//! device (the viewer's host-copy path, for machines whose GPU cannot ray trace) shares it.
 
 use ash::vk;
 
-use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::surface_choice::{pick_composite_alpha, pick_extent, pick_format, pick_present_mode};
 use crate::trace_target::PixelOutput;
 
-/// A window surface and the loaders its swapchain calls go through.
-pub(crate) struct Surface {
-    pub(crate) handle: vk::SurfaceKHR,
-    pub(crate) surface_fn: ash::khr::surface::Instance,
-    pub(crate) swapchain_fn: ash::khr::swapchain::Device,
+/// The device, surface and loaders a swapchain is made with and destroyed with.
+#[derive(Clone, Copy)]
+pub struct SwapchainDevice<'a> {
+    pub device: &'a ash::Device,
+    pub physical: vk::PhysicalDevice,
+    pub surface: vk::SurfaceKHR,
+    pub surface_fn: &'a ash::khr::surface::Instance,
+    pub swapchain_fn: &'a ash::khr::swapchain::Device,
+    /// Names the device in errors.
+    pub device_name: &'a str,
 }
 
-pub(crate) struct Swapchain {
-    pub(crate) handle: vk::SwapchainKHR,
-    pub(crate) images: Vec<vk::Image>,
-    pub(crate) extent: vk::Extent2D,
-    /// What the ray generation shader writes so that a plain copy fills an image.
-    pub(crate) output: PixelOutput,
+/// A swapchain whose images are filled by copies (`TRANSFER_DST`), with one present
+/// semaphore per image. Not destroyed on drop: call `destroy` with the same device.
+pub struct Swapchain {
+    handle: vk::SwapchainKHR,
+    images: Vec<vk::Image>,
+    extent: vk::Extent2D,
+    output: PixelOutput,
     /// One per image: signalled when the frame for that image is done, waited on by present.
     /// Per image because a present's semaphore may be reused only once its image comes back.
-    pub(crate) rendered: Vec<vk::Semaphore>,
+    rendered: Vec<vk::Semaphore>,
 }
 
 impl Swapchain {
     /// `window_size` is used when the surface leaves the extent to the application; `None`
     /// while the window has no area (minimised).
-    pub(crate) fn new(
-        context: &GpuContext,
-        surface: &Surface,
+    ///
+    /// # Safety
+    /// Every handle in `on` is live and they belong together (the loaders were made from the
+    /// device's instance and device, the surface from that instance); the surface has no
+    /// other swapchain.
+    pub unsafe fn new(
+        on: SwapchainDevice<'_>,
         window_size: (u32, u32),
         vsync: bool,
     ) -> Result<Option<Self>, VulkanError> {
-        let (physical, surface_fn) = (context.physical, &surface.surface_fn);
-        // SAFETY: plain queries on the live surface.
+        let (physical, surface, surface_fn) = (on.physical, on.surface, on.surface_fn);
+        // SAFETY: plain queries on the live surface (the caller's contract).
         let (capabilities, formats, modes) = unsafe {
             (
                 surface_fn
-                    .get_physical_device_surface_capabilities(physical, surface.handle)
+                    .get_physical_device_surface_capabilities(physical, surface)
                     .during("querying the surface's capabilities")?,
                 surface_fn
-                    .get_physical_device_surface_formats(physical, surface.handle)
+                    .get_physical_device_surface_formats(physical, surface)
                     .during("querying the surface's formats")?,
                 surface_fn
-                    .get_physical_device_surface_present_modes(physical, surface.handle)
+                    .get_physical_device_surface_present_modes(physical, surface)
                     .during("querying the surface's present modes")?,
             )
         };
         if !capabilities.supported_usage_flags.contains(vk::ImageUsageFlags::TRANSFER_DST) {
             return Err(VulkanError::NoSuitableDevice(format!(
                 "the window's images on {} cannot be copied into (no TRANSFER_DST usage)",
-                context.info.name
+                on.device_name
             )));
         }
         let (format, output) = pick_format(&formats).ok_or_else(|| {
             VulkanError::NoSuitableDevice(format!(
                 "{} offers no 8-bit RGBA/BGRA format for this window: {formats:?}",
-                context.info.name
+                on.device_name
             ))
         })?;
         let extent = pick_extent(&capabilities, window_size);
@@ -71,7 +83,7 @@ impl Swapchain {
             max => (capabilities.min_image_count + 1).min(max),
         };
         let info = vk::SwapchainCreateInfoKHR::default()
-            .surface(surface.handle)
+            .surface(surface)
             .min_image_count(image_count)
             .image_format(format.format)
             .image_color_space(format.color_space)
@@ -83,40 +95,119 @@ impl Swapchain {
             .composite_alpha(pick_composite_alpha(capabilities.supported_composite_alpha))
             .present_mode(pick_present_mode(&modes, vsync))
             .clipped(true);
-        // SAFETY: `info` refers to the live surface; the caller destroyed any previous swapchain.
+        // SAFETY: `info` refers to the live surface, which has no other swapchain.
         let handle =
-            unsafe { surface.swapchain_fn.create_swapchain(&info, None) }.during("creating the swapchain")?;
+            unsafe { on.swapchain_fn.create_swapchain(&info, None) }.during("creating the swapchain")?;
         let mut swapchain = Self { handle, images: Vec::new(), extent, output, rendered: Vec::new() };
-        if let Err(error) = swapchain.fill(context, surface) {
-            swapchain.destroy(context, surface);
+        if let Err(error) = swapchain.fill(on) {
+            // SAFETY: nothing was submitted with the new swapchain yet.
+            unsafe { swapchain.destroy(on) };
             return Err(error);
         }
         Ok(Some(swapchain))
     }
 
-    fn fill(&mut self, context: &GpuContext, surface: &Surface) -> Result<(), VulkanError> {
+    fn fill(&mut self, on: SwapchainDevice<'_>) -> Result<(), VulkanError> {
         // SAFETY: the swapchain is live.
-        self.images = unsafe { surface.swapchain_fn.get_swapchain_images(self.handle) }
+        self.images = unsafe { on.swapchain_fn.get_swapchain_images(self.handle) }
             .during("listing the swapchain's images")?;
         for _ in &self.images {
             // SAFETY: plain creation on the live device.
-            let semaphore =
-                unsafe { context.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }
-                    .during("creating a present semaphore")?;
+            let semaphore = unsafe { on.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }
+                .during("creating a present semaphore")?;
             self.rendered.push(semaphore);
         }
         Ok(())
     }
 
-    /// The caller makes sure that nothing in flight uses the swapchain (device idle).
-    pub(crate) fn destroy(&mut self, context: &GpuContext, surface: &Surface) {
-        // SAFETY: nothing in flight uses these objects.
+    /// # Safety
+    /// `on` is what the swapchain was made with, and nothing in flight uses the swapchain or
+    /// its semaphores (the device is idle).
+    pub unsafe fn destroy(&mut self, on: SwapchainDevice<'_>) {
+        // SAFETY: the caller's contract.
         unsafe {
             for semaphore in self.rendered.drain(..) {
-                context.device.destroy_semaphore(semaphore, None);
+                on.device.destroy_semaphore(semaphore, None);
             }
-            surface.swapchain_fn.destroy_swapchain(self.handle, None);
+            on.swapchain_fn.destroy_swapchain(self.handle, None);
         }
         self.images.clear();
+    }
+
+    pub fn handle(&self) -> vk::SwapchainKHR {
+        self.handle
+    }
+
+    pub fn extent(&self) -> vk::Extent2D {
+        self.extent
+    }
+
+    /// The display output whose bytes a plain copy puts into an image in the right order.
+    pub fn output(&self) -> PixelOutput {
+        self.output
+    }
+
+    /// The image `index` (from `vkAcquireNextImageKHR`) names.
+    pub fn image(&self, index: u32) -> vk::Image {
+        self.images[index as usize]
+    }
+
+    /// The semaphore that the frame for image `index` signals and its present waits on.
+    pub fn rendered(&self, index: u32) -> vk::Semaphore {
+        self.rendered[index as usize]
+    }
+}
+
+/// Undefined to transfer-destination, the copy of the tightly packed pixels, then to
+/// present-source.
+///
+/// # Safety
+/// `command` is recording on `device`; the buffer holds `extent`'s pixels, tightly packed in
+/// the image's format; the image is a swapchain image of `extent` acquired for this frame; both
+/// outlive the submission.
+pub unsafe fn record_copy_to_present_image(
+    device: &ash::Device,
+    command: vk::CommandBuffer,
+    buffer: vk::Buffer,
+    image: vk::Image,
+    extent: vk::Extent2D,
+) {
+    let range = vk::ImageSubresourceRange::default()
+        .aspect_mask(vk::ImageAspectFlags::COLOR)
+        .level_count(1)
+        .layer_count(1);
+    let to_transfer = vk::ImageMemoryBarrier::default()
+        .src_access_mask(vk::AccessFlags::empty())
+        .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+        .old_layout(vk::ImageLayout::UNDEFINED)
+        .new_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
+        .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .image(image)
+        .subresource_range(range);
+    let to_present = to_transfer
+        .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+        .dst_access_mask(vk::AccessFlags::empty())
+        .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
+        .new_layout(vk::ImageLayout::PRESENT_SRC_KHR);
+    let region = vk::BufferImageCopy::default()
+        .image_subresource(
+            vk::ImageSubresourceLayers::default().aspect_mask(vk::ImageAspectFlags::COLOR).layer_count(1),
+        )
+        .image_extent(vk::Extent3D { width: extent.width, height: extent.height, depth: 1 });
+    let none = vk::DependencyFlags::empty();
+    let transfer = vk::PipelineStageFlags::TRANSFER;
+    // SAFETY: the caller's contract.
+    unsafe {
+        device.cmd_pipeline_barrier(command, transfer, transfer, none, &[], &[], &[to_transfer]);
+        device.cmd_copy_buffer_to_image(
+            command,
+            buffer,
+            image,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            &[region],
+        );
+        let end = vk::PipelineStageFlags::BOTTOM_OF_PIPE;
+        device.cmd_pipeline_barrier(command, transfer, end, none, &[], &[], &[to_present]);
     }
 }

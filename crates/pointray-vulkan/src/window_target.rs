@@ -13,9 +13,30 @@ use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::prepared_scene::PreparedScene;
 use crate::renderer::VulkanRenderer;
-use crate::swapchain::{Surface, Swapchain};
+use crate::swapchain::{Swapchain, SwapchainDevice, record_copy_to_present_image};
 use crate::trace::{record_read_back, record_trace_done_barrier, record_trace_rays, validate};
 use crate::trace_target::{PixelOutput, TargetBuffers, TraceTarget};
+
+/// A window surface and the loaders its swapchain calls go through.
+struct Surface {
+    handle: vk::SurfaceKHR,
+    surface_fn: ash::khr::surface::Instance,
+    swapchain_fn: ash::khr::swapchain::Device,
+}
+
+impl Surface {
+    /// What the swapchain on this surface is made with: the renderer's device.
+    fn swapchain_device<'a>(&'a self, context: &'a GpuContext) -> SwapchainDevice<'a> {
+        SwapchainDevice {
+            device: &context.device,
+            physical: context.physical,
+            surface: self.handle,
+            surface_fn: &self.surface_fn,
+            swapchain_fn: &self.swapchain_fn,
+            device_name: &context.info.name,
+        }
+    }
+}
 
 /// What `WindowTarget::present` did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -139,7 +160,7 @@ impl WindowTarget {
     /// The size frames are traced at (the swapchain's); `None` while the window has no area.
     pub fn extent(&mut self) -> Result<Option<(u32, u32)>, VulkanError> {
         self.ensure_swapchain()?;
-        Ok(self.swapchain.as_ref().map(|s| (s.extent.width, s.extent.height)))
+        Ok(self.swapchain.as_ref().map(|s| (s.extent().width, s.extent().height)))
     }
 
     /// Traces `scene` with `settings` at the swapchain's size (the settings' own size is
@@ -158,13 +179,13 @@ impl WindowTarget {
         self.wait_for_last_frame()?;
         self.ensure_swapchain()?;
         let Some(swapchain) = &self.swapchain else { return Ok(Presented::Skipped) };
-        let (extent, output) = (swapchain.extent, swapchain.output);
+        let (extent, output) = (swapchain.extent(), swapchain.output());
         let settings = RenderSettings { width: extent.width, height: extent.height, ..*settings };
         validate(&settings, &self.context)?;
         // SAFETY: the fence wait above: no earlier frame still waits on `acquired`.
         let acquired = unsafe {
             self.surface.swapchain_fn.acquire_next_image(
-                swapchain.handle,
+                swapchain.handle(),
                 u64::MAX,
                 self.acquired,
                 vk::Fence::null(),
@@ -206,8 +227,7 @@ impl WindowTarget {
 
     fn present_image(&mut self, index: u32) -> Result<Presented, VulkanError> {
         let swapchain = self.swapchain.as_ref().expect("a frame was just submitted to it");
-        let (swapchains, indices, waits) =
-            ([swapchain.handle], [index], [swapchain.rendered[index as usize]]);
+        let (swapchains, indices, waits) = ([swapchain.handle()], [index], [swapchain.rendered(index)]);
         let info = vk::PresentInfoKHR::default()
             .wait_semaphores(&waits)
             .swapchains(&swapchains)
@@ -236,10 +256,11 @@ impl WindowTarget {
         };
         self.wait_for_last_frame()?;
         let mut rgba8 = self.target.read_back()?.to_vec();
-        if swapchain.output == PixelOutput::DisplayBgra {
+        if swapchain.output() == PixelOutput::DisplayBgra {
             rgba8.chunks_exact_mut(4).for_each(|pixel| pixel.swap(0, 2));
         }
-        Ok(DisplayImage { width: swapchain.extent.width, height: swapchain.extent.height, rgba8 })
+        let extent = swapchain.extent();
+        Ok(DisplayImage { width: extent.width, height: extent.height, rgba8 })
     }
 
     fn wait_for_last_frame(&self) -> Result<(), VulkanError> {
@@ -256,11 +277,15 @@ impl WindowTarget {
         // SAFETY: the device is live; waiting makes every swapchain object idle.
         unsafe { self.context.device.device_wait_idle() }.during("waiting before a swapchain rebuild")?;
         self.kept = false;
+        let on = self.surface.swapchain_device(&self.context);
         if let Some(mut old) = self.swapchain.take() {
-            old.destroy(&self.context, &self.surface);
+            // SAFETY: made with `on`; the device is idle.
+            unsafe { old.destroy(on) };
         }
         if self.window_size.0 > 0 && self.window_size.1 > 0 {
-            self.swapchain = Swapchain::new(&self.context, &self.surface, self.window_size, self.vsync)?;
+            // SAFETY: the renderer's live device and this target's surface and loaders; the old
+            // swapchain was destroyed above.
+            self.swapchain = unsafe { Swapchain::new(on, self.window_size, self.vsync) }?;
         }
         self.stale = false;
         Ok(())
@@ -273,7 +298,7 @@ impl Drop for WindowTarget {
         unsafe {
             let _ = self.context.device.device_wait_idle();
             if let Some(mut swapchain) = self.swapchain.take() {
-                swapchain.destroy(&self.context, &self.surface);
+                swapchain.destroy(self.surface.swapchain_device(&self.context));
             }
             let device = &self.context.device;
             device.destroy_fence(self.in_flight, None);
@@ -333,7 +358,7 @@ fn submit_frame(
 ) -> Result<(), VulkanError> {
     let device = &context.device;
     let command = frame.commands;
-    let image = frame.swapchain.images[frame.index as usize];
+    let image = frame.swapchain.image(frame.index);
     // SAFETY: the fence wait in `present` made the command buffer idle; it is re-recorded
     // whole; every resource it uses lives until the fence signals.
     unsafe {
@@ -352,70 +377,19 @@ fn submit_frame(
             frame.settings,
         );
         record_trace_done_barrier(device, command);
-        record_copy_to_image(device, command, frame.buffers.written.handle, image, frame.swapchain.extent);
+        let (written, extent) = (frame.buffers.written.handle, frame.swapchain.extent());
+        record_copy_to_present_image(device, command, written, image, extent);
         if frame.read_back == ReadBack::Keep {
             record_read_back(device, command, frame.buffers);
         }
         device.end_command_buffer(command).during("recording a window frame")?;
         let (waits, stages) = ([frame.acquired], [vk::PipelineStageFlags::TRANSFER]);
-        let (commands, signals) = ([command], [frame.swapchain.rendered[frame.index as usize]]);
+        let (commands, signals) = ([command], [frame.swapchain.rendered(frame.index)]);
         let submit = vk::SubmitInfo::default()
             .wait_semaphores(&waits)
             .wait_dst_stage_mask(&stages)
             .command_buffers(&commands)
             .signal_semaphores(&signals);
         device.queue_submit(context.queue, &[submit], frame.in_flight).during("submitting a window frame")
-    }
-}
-
-/// Undefined to transfer-destination, the copy of the tightly packed pixels, then to
-/// present-source.
-///
-/// # Safety
-/// `command` is recording; the buffer holds `extent`'s pixels; both outlive the submission.
-unsafe fn record_copy_to_image(
-    device: &ash::Device,
-    command: vk::CommandBuffer,
-    buffer: vk::Buffer,
-    image: vk::Image,
-    extent: vk::Extent2D,
-) {
-    let range = vk::ImageSubresourceRange::default()
-        .aspect_mask(vk::ImageAspectFlags::COLOR)
-        .level_count(1)
-        .layer_count(1);
-    let to_transfer = vk::ImageMemoryBarrier::default()
-        .src_access_mask(vk::AccessFlags::empty())
-        .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-        .old_layout(vk::ImageLayout::UNDEFINED)
-        .new_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-        .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-        .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-        .image(image)
-        .subresource_range(range);
-    let to_present = to_transfer
-        .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-        .dst_access_mask(vk::AccessFlags::empty())
-        .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-        .new_layout(vk::ImageLayout::PRESENT_SRC_KHR);
-    let region = vk::BufferImageCopy::default()
-        .image_subresource(
-            vk::ImageSubresourceLayers::default().aspect_mask(vk::ImageAspectFlags::COLOR).layer_count(1),
-        )
-        .image_extent(vk::Extent3D { width: extent.width, height: extent.height, depth: 1 });
-    let none = vk::DependencyFlags::empty();
-    let transfer = vk::PipelineStageFlags::TRANSFER;
-    // SAFETY: the caller's contract.
-    unsafe {
-        device.cmd_pipeline_barrier(command, transfer, transfer, none, &[], &[], &[to_transfer]);
-        device.cmd_copy_buffer_to_image(
-            command,
-            buffer,
-            image,
-            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-            &[region],
-        );
-        let end = vk::PipelineStageFlags::BOTTOM_OF_PIPE;
-        device.cmd_pipeline_barrier(command, transfer, end, none, &[], &[], &[to_present]);
     }
 }

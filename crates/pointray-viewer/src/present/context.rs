@@ -7,6 +7,7 @@
 //! The viewer copies the host pixels into the swapchain (see `presenter.rs`).
 
 use ash::vk;
+use pointray_vulkan::SwapchainDevice;
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 
 use super::instance::PresentInstance;
@@ -20,6 +21,9 @@ pub(crate) struct PresentContext {
     pub(crate) memory: vk::PhysicalDeviceMemoryProperties,
     pub(crate) surface: vk::SurfaceKHR,
     pub(crate) surface_fn: ash::khr::surface::Instance,
+    pub(crate) swapchain_fn: ash::khr::swapchain::Device,
+    /// Names the device in errors.
+    device_name: String,
     // Last: dropped after the device and surface made from it.
     pub(crate) instance: PresentInstance,
 }
@@ -47,9 +51,41 @@ impl PresentContext {
         };
         // SAFETY: queue 0 of the family was requested at device creation.
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
-        // SAFETY: plain query on a live physical device.
-        let memory = unsafe { instance.instance.get_physical_device_memory_properties(physical) };
-        Ok(Self { device, queue, physical, queue_family, memory, surface, surface_fn, instance })
+        // SAFETY: plain queries on a live physical device.
+        let (memory, properties) = unsafe {
+            (
+                instance.instance.get_physical_device_memory_properties(physical),
+                instance.instance.get_physical_device_properties(physical),
+            )
+        };
+        let device_name = properties
+            .device_name_as_c_str()
+            .map_or_else(|_| "the presenting device".to_owned(), |name| name.to_string_lossy().into_owned());
+        let swapchain_fn = ash::khr::swapchain::Device::new(&instance.instance, &device);
+        Ok(Self {
+            device,
+            queue,
+            physical,
+            queue_family,
+            memory,
+            surface,
+            surface_fn,
+            swapchain_fn,
+            device_name,
+            instance,
+        })
+    }
+
+    /// What the window's swapchain is made with: this context's device and surface.
+    pub(crate) fn swapchain_device(&self) -> SwapchainDevice<'_> {
+        SwapchainDevice {
+            device: &self.device,
+            physical: self.physical,
+            surface: self.surface,
+            surface_fn: &self.surface_fn,
+            swapchain_fn: &self.swapchain_fn,
+            device_name: &self.device_name,
+        }
     }
 
     /// A memory type with all of `flags` among those `bits` allows.

@@ -2,11 +2,11 @@
 //! host pixels of each frame. The Vulkan backend presents with pointray-vulkan's
 //! `WindowTarget` instead.
 
+mod byte_order;
 mod context;
 mod instance;
 mod presenter;
 mod staging;
-mod swapchain;
 
+pub(crate) use byte_order::ByteOrder;
 pub use presenter::{Presented, Presenter};
-pub(crate) use swapchain::ByteOrder;

@@ -5,11 +5,12 @@
 use ash::vk;
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 
+use super::ByteOrder;
 use super::context::PresentContext;
 use super::staging::StagingBuffer;
-use super::swapchain::{ByteOrder, Swapchain};
 use crate::error::ViewerError;
 use pointray_vulkan::validation::MessageCounter;
+use pointray_vulkan::{Swapchain, record_copy_to_present_image};
 
 pub struct Presenter {
     swapchain: Option<Swapchain>,
@@ -18,7 +19,6 @@ pub struct Presenter {
     commands: vk::CommandBuffer,
     acquired: vk::Semaphore,
     in_flight: vk::Fence,
-    swapchain_fn: ash::khr::swapchain::Device,
     window_size: (u32, u32),
     vsync: bool,
     stale: bool,
@@ -42,7 +42,6 @@ impl Presenter {
         validation: bool,
     ) -> Result<Self, ViewerError> {
         let context = PresentContext::new(display, window, validation)?;
-        let swapchain_fn = ash::khr::swapchain::Device::new(&context.instance.instance, &context.device);
         // A copy of the function table: `context` moves into the presenter below.
         let device = context.device.clone();
         let pool_info = vk::CommandPoolCreateInfo::default()
@@ -57,7 +56,6 @@ impl Presenter {
             commands: vk::CommandBuffer::null(),
             acquired: vk::Semaphore::null(),
             in_flight: vk::Fence::null(),
-            swapchain_fn,
             window_size,
             vsync,
             stale: true,
@@ -102,7 +100,7 @@ impl Presenter {
     /// The size `present` wants its pixels in (after `prepare`), and their byte order.
     pub fn target(&mut self) -> Result<Option<(vk::Extent2D, ByteOrder)>, ViewerError> {
         self.ensure_swapchain()?;
-        Ok(self.swapchain.as_ref().map(|s| (s.extent, s.byte_order)))
+        Ok(self.swapchain.as_ref().map(|s| (s.extent(), ByteOrder::from(s.output()))))
     }
 
     /// Validation messages of the presentation context; still counting during teardown.
@@ -114,13 +112,14 @@ impl Presenter {
     pub fn present(&mut self, pixels: &[u8]) -> Result<Presented, ViewerError> {
         self.ensure_swapchain()?;
         let Some(swapchain) = &self.swapchain else { return Ok(Presented::Skipped) };
-        let expected = swapchain.extent.width as usize * swapchain.extent.height as usize * 4;
+        let extent = swapchain.extent();
+        let expected = extent.width as usize * extent.height as usize * 4;
         if pixels.len() != expected {
             return Err(ViewerError::PresentSetup(format!(
                 "a frame of {} bytes does not fit the {}x{} swapchain",
                 pixels.len(),
-                swapchain.extent.width,
-                swapchain.extent.height
+                extent.width,
+                extent.height
             )));
         }
         let device = &self.context.device;
@@ -130,7 +129,8 @@ impl Presenter {
             .map_err(ViewerError::vk("vkWaitForFences"))?;
         // SAFETY: the semaphore is unsignalled (its last wait completed with the fence).
         let acquired = unsafe {
-            self.swapchain_fn.acquire_next_image(swapchain.handle, u64::MAX, self.acquired, vk::Fence::null())
+            let swapchain_fn = &self.context.swapchain_fn;
+            swapchain_fn.acquire_next_image(swapchain.handle(), u64::MAX, self.acquired, vk::Fence::null())
         };
         let index = match acquired {
             Ok((index, _suboptimal)) => index,
@@ -154,14 +154,13 @@ impl Presenter {
         self.staging = Some(staging);
         let swapchain = self.swapchain.as_ref().expect("checked above");
         self.submit_copy(swapchain, buffer, index)?;
-        let (swapchains, indices, waits) =
-            ([swapchain.handle], [index], [swapchain.copy_done[index as usize]]);
+        let (swapchains, indices, waits) = ([swapchain.handle()], [index], [swapchain.rendered(index)]);
         let info = vk::PresentInfoKHR::default()
             .wait_semaphores(&waits)
             .swapchains(&swapchains)
             .image_indices(&indices);
         // SAFETY: the image was acquired and its copy submitted, signalling `waits`.
-        match unsafe { self.swapchain_fn.queue_present(self.context.queue, &info) } {
+        match unsafe { self.context.swapchain_fn.queue_present(self.context.queue, &info) } {
             Ok(false) => Ok(Presented::Shown),
             Ok(true) | Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => {
                 self.stale = true;
@@ -173,7 +172,7 @@ impl Presenter {
 
     fn submit_copy(&self, swapchain: &Swapchain, buffer: vk::Buffer, index: u32) -> Result<(), ViewerError> {
         let device = &self.context.device;
-        let image = swapchain.images[index as usize];
+        let image = swapchain.image(index);
         // SAFETY: the fence wait above made the command buffer idle; it is re-recorded whole.
         unsafe {
             device.reset_fences(&[self.in_flight]).map_err(ViewerError::vk("vkResetFences"))?;
@@ -185,10 +184,10 @@ impl Presenter {
             device
                 .begin_command_buffer(self.commands, &begin)
                 .map_err(ViewerError::vk("vkBeginCommandBuffer"))?;
-            record_copy(device, self.commands, buffer, image, swapchain.extent);
+            record_copy_to_present_image(device, self.commands, buffer, image, swapchain.extent());
             device.end_command_buffer(self.commands).map_err(ViewerError::vk("vkEndCommandBuffer"))?;
             let (waits, stages) = ([self.acquired], [vk::PipelineStageFlags::TRANSFER]);
-            let (commands, signals) = ([self.commands], [swapchain.copy_done[index as usize]]);
+            let (commands, signals) = ([self.commands], [swapchain.rendered(index)]);
             let submit = vk::SubmitInfo::default()
                 .wait_semaphores(&waits)
                 .wait_dst_stage_mask(&stages)
@@ -206,11 +205,16 @@ impl Presenter {
             return Ok(());
         }
         self.wait_idle()?;
+        let on = self.context.swapchain_device();
         if let Some(mut old) = self.swapchain.take() {
-            old.destroy(&self.context.device, &self.swapchain_fn);
+            // SAFETY: made with `on`; the device is idle.
+            unsafe { old.destroy(on) };
         }
         if self.window_size.0 > 0 && self.window_size.1 > 0 {
-            self.swapchain = Swapchain::new(&self.context, &self.swapchain_fn, self.window_size, self.vsync)?;
+            // SAFETY: the context's live device, surface and loaders; the old swapchain was
+            // destroyed above.
+            let made = unsafe { Swapchain::new(on, self.window_size, self.vsync) };
+            self.swapchain = made.map_err(ViewerError::from_swapchain)?;
         }
         self.stale = false;
         Ok(())
@@ -222,75 +226,14 @@ impl Presenter {
     }
 }
 
-/// Undefined to transfer-destination, the copy, then to present-source.
-unsafe fn record_copy(
-    device: &ash::Device,
-    commands: vk::CommandBuffer,
-    buffer: vk::Buffer,
-    image: vk::Image,
-    extent: vk::Extent2D,
-) {
-    let range = vk::ImageSubresourceRange::default()
-        .aspect_mask(vk::ImageAspectFlags::COLOR)
-        .level_count(1)
-        .layer_count(1);
-    let to_transfer = vk::ImageMemoryBarrier::default()
-        .src_access_mask(vk::AccessFlags::empty())
-        .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-        .old_layout(vk::ImageLayout::UNDEFINED)
-        .new_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-        .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-        .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-        .image(image)
-        .subresource_range(range);
-    let to_present = to_transfer
-        .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-        .dst_access_mask(vk::AccessFlags::empty())
-        .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-        .new_layout(vk::ImageLayout::PRESENT_SRC_KHR);
-    let region = vk::BufferImageCopy::default()
-        .image_subresource(
-            vk::ImageSubresourceLayers::default().aspect_mask(vk::ImageAspectFlags::COLOR).layer_count(1),
-        )
-        .image_extent(vk::Extent3D { width: extent.width, height: extent.height, depth: 1 });
-    let none = vk::DependencyFlags::empty();
-    // SAFETY (caller): `commands` is recording; buffer and image are live and big enough.
-    unsafe {
-        device.cmd_pipeline_barrier(
-            commands,
-            vk::PipelineStageFlags::TRANSFER,
-            vk::PipelineStageFlags::TRANSFER,
-            none,
-            &[],
-            &[],
-            &[to_transfer],
-        );
-        device.cmd_copy_buffer_to_image(
-            commands,
-            buffer,
-            image,
-            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-            &[region],
-        );
-        device.cmd_pipeline_barrier(
-            commands,
-            vk::PipelineStageFlags::TRANSFER,
-            vk::PipelineStageFlags::BOTTOM_OF_PIPE,
-            none,
-            &[],
-            &[],
-            &[to_present],
-        );
-    }
-}
-
 impl Drop for Presenter {
     fn drop(&mut self) {
         // Best effort: if the device is lost there is nothing left to wait for.
         let _ = self.wait_idle();
         let device = &self.context.device;
         if let Some(mut swapchain) = self.swapchain.take() {
-            swapchain.destroy(device, &self.swapchain_fn);
+            // SAFETY: made with the context's device and surface; the device is idle (or lost).
+            unsafe { swapchain.destroy(self.context.swapchain_device()) };
         }
         if let Some(mut staging) = self.staging.take() {
             staging.destroy(device);

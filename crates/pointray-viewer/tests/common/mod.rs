@@ -1,10 +1,14 @@
-//! What the viewer's window tests share: a virtual display, skipping outside CI, and image
-//! comparison. Each test binary is its own process, as winit's event loop may be created
+//! What the viewer's window tests share: a virtual display, skipping outside CI, the set-up
+//! of a scripted run, and image comparison. Each test binary is its own process, as winit's event loop may be created
 //! once per process.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
+
+use pointray_scene::{LoadOptions, LoadedScene, RenderSettings, load_demo};
+use pointray_viewer::{RenderBackend, Script, ViewerOptions};
+use pointray_vulkan::DeviceSelector;
 
 pub fn in_ci() -> bool {
     std::env::var("CI").is_ok_and(|v| v == "true")
@@ -50,6 +54,65 @@ pub fn display() -> Result<Option<VirtualDisplay>, String> {
         std::thread::sleep(Duration::from_millis(50));
     }
     Err(format!("Xvfb did not open {socket}"))
+}
+
+/// The demo scene, with a display for the test's windows kept open while this lives.
+pub struct DemoOnDisplay {
+    pub loaded: LoadedScene,
+    _display: Option<VirtualDisplay>,
+}
+
+/// `None`, after the note `missing` prints, when no display can be had (outside CI).
+pub fn demo_on_display() -> Option<DemoOnDisplay> {
+    let display = match display() {
+        Ok(display) => display,
+        Err(problem) => {
+            missing(&problem);
+            return None;
+        }
+    };
+    let loaded = load_demo(&LoadOptions::default()).expect("the demo scene loads");
+    Some(DemoOnDisplay { loaded, _display: display })
+}
+
+/// A scripted orbit of the demo at 96x72 under the validation layer, without vsync, saving its
+/// last frame as `screenshot` (and every frame under `sequence`, when asked) in `dir`.
+pub struct ScriptedRun {
+    pub settings: RenderSettings,
+    pub options: ViewerOptions,
+    pub screenshot: PathBuf,
+    pub sequence: Option<PathBuf>,
+    pub dir: tempfile::TempDir,
+    pub demo: DemoOnDisplay,
+}
+
+/// The orbit the script follows, and whether every frame is saved.
+pub struct Orbit {
+    pub frames: u32,
+    pub arc_degrees: f32,
+    pub keep_sequence: bool,
+}
+
+/// `None` when the test is skipped for want of a display (see `demo_on_display`).
+pub fn scripted_run(backend: RenderBackend, samples_per_pixel: u32, orbit: Orbit) -> Option<ScriptedRun> {
+    let demo = demo_on_display()?;
+    let settings = RenderSettings { width: 96, height: 72, samples_per_pixel, ..demo.loaded.settings };
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let screenshot = dir.path().join("viewer.png");
+    let sequence = orbit.keep_sequence.then(|| dir.path().join("sequence"));
+    let options = ViewerOptions {
+        backend,
+        device: DeviceSelector::Auto,
+        vsync: false,
+        validation: true,
+        script: Some(Script {
+            frames: orbit.frames,
+            arc_degrees: orbit.arc_degrees,
+            screenshot: Some(screenshot.clone()),
+            sequence: sequence.clone(),
+        }),
+    };
+    Some(ScriptedRun { settings, options, screenshot, sequence, dir, demo })
 }
 
 pub fn read_png(path: &Path) -> image::RgbImage {
