@@ -15,7 +15,7 @@ use std::sync::Arc;
 use crate::display_frame::frame_from_display;
 use crate::error::ViewerError;
 use crate::pixels::frame_bytes;
-use crate::present::{Presented, Presenter};
+use crate::present::Presenter;
 
 /// Which renderer draws the frames; as `pointray render --backend`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -157,7 +157,7 @@ impl FrameSource {
     pub(crate) fn resize(&mut self, width: u32, height: u32) {
         match self {
             Self::Vulkan { window: Some(window), .. } => window.resize(width, height),
-            Self::Cpu { presenter: Some(presenter), .. } => presenter.resize(width, height),
+            Self::Cpu { presenter: Some(presenter), .. } => presenter.frames().resize(width, height),
             _ => {}
         }
     }
@@ -170,8 +170,9 @@ impl FrameSource {
                 Some(window.vsync())
             }
             Self::Cpu { presenter: Some(presenter), .. } => {
-                presenter.set_vsync(!presenter.vsync());
-                Some(presenter.vsync())
+                let frames = presenter.frames();
+                frames.set_vsync(!frames.vsync());
+                Some(frames.vsync())
             }
             _ => None,
         }
@@ -239,7 +240,7 @@ impl FrameSource {
 fn show_on_host(presenter: &mut Presenter, frame: &Frame) -> Result<bool, ViewerError> {
     let Some((extent, order)) = presenter.target()? else { return Ok(false) };
     let bytes = frame_bytes(frame, extent.width, extent.height, order);
-    Ok(presenter.present(&bytes)? == Presented::Shown)
+    Ok(presenter.present(&bytes)? == pointray_vulkan::Presented::Shown)
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ pub(crate) struct PresentContext {
     pub(crate) memory: vk::PhysicalDeviceMemoryProperties,
     pub(crate) surface: vk::SurfaceKHR,
     pub(crate) surface_fn: ash::khr::surface::Instance,
-    pub(crate) swapchain_fn: ash::khr::swapchain::Device,
+    swapchain_fn: ash::khr::swapchain::Device,
     /// Names the device in errors.
     device_name: String,
     // Last: dropped after the device and surface made from it.
@@ -76,15 +76,17 @@ impl PresentContext {
         })
     }
 
-    /// What the window's swapchain is made with: this context's device and surface.
-    pub(crate) fn swapchain_device(&self) -> SwapchainDevice<'_> {
+    /// What the window's frames are presented with: this context's device, queue and surface.
+    pub(crate) fn swapchain_device(&self) -> SwapchainDevice {
         SwapchainDevice {
-            device: &self.device,
+            device: self.device.clone(),
             physical: self.physical,
+            queue: self.queue,
+            queue_family: self.queue_family,
             surface: self.surface,
-            surface_fn: &self.surface_fn,
-            swapchain_fn: &self.swapchain_fn,
-            device_name: &self.device_name,
+            surface_fn: self.surface_fn.clone(),
+            swapchain_fn: self.swapchain_fn.clone(),
+            device_name: self.device_name.clone(),
         }
     }
 

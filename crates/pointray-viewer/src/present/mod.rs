@@ -9,4 +9,4 @@ mod presenter;
 mod staging;
 
 pub(crate) use byte_order::ByteOrder;
-pub use presenter::{Presented, Presenter};
+pub use presenter::Presenter;
