@@ -12,8 +12,9 @@ use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::prepared_scene::PreparedScene;
+use crate::present_loop::{PresentLoop, Presented};
 use crate::renderer::VulkanRenderer;
-use crate::swapchain::{PresentLoop, Presented, SwapchainDevice, record_copy_to_present_image};
+use crate::swapchain::{SwapchainDevice, record_copy_to_present_image};
 use crate::trace::{record_read_back, record_trace_done_barrier, record_trace_rays, validate};
 use crate::trace_target::{PixelOutput, TargetBuffers, TraceTarget};
 
