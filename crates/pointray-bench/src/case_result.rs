@@ -31,6 +31,8 @@ pub enum Variant {
     SixNeighbours,
     /// Ablation: patches reaching 0.7 of the paper's support radius (`PrepParams::disk_scale`).
     SmallerDisks,
+    /// Ablation: radii that just cover each point's Voronoi cell (`RadiusMode::Cell`).
+    CellRadius,
 }
 
 impl Variant {
@@ -47,6 +49,7 @@ impl Variant {
             Self::HitReordering => "hit reordering (SER)",
             Self::SixNeighbours => "k = 6 neighbours",
             Self::SmallerDisks => "disk scale 0.7",
+            Self::CellRadius => "cell radius",
         }
     }
 }

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use pointray_scene::load::{LoadOptions, load_scene};
 use pointray_scene::{AcceptanceTest, BufferLayout, Geometry, RenderSettings, Scene};
-use pointray_surface::{BoxKind, NoProgress, PrepOptions, PrepParams};
+use pointray_surface::{BoxKind, NoProgress, PrepOptions, PrepParams, RadiusMode};
 use pointray_vulkan::{BlasLayout, PixelOutput, VulkanError, VulkanRenderer};
 
 use crate::case_result::{CaseLabel, CaseResult, Variant};
@@ -163,24 +163,28 @@ impl ModelRun<'_> {
         if let Some(reordering) = self.options.reordering {
             self.time_on(reordering, base, settings, Variant::HitReordering)?;
         }
-        let smaller = self.reprepped(base, PrepParams { disk_scale: 0.7, ..PrepParams::default() })?;
+        let smaller =
+            self.reprepped(base, with_params(PrepParams { disk_scale: 0.7, ..PrepParams::default() }))?;
         self.time(&smaller, settings, BlasLayout::OneGeometry, Variant::SmallerDisks)?;
+        let cells =
+            self.reprepped(base, PrepOptions { radius_mode: RadiusMode::Cell, ..PrepOptions::default() })?;
+        self.time(&cells, settings, BlasLayout::OneGeometry, Variant::CellRadius)?;
         if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
             return Ok(());
         }
         self.time(base, settings, BlasLayout::GeometryPerAabb, Variant::GeometryPerAabb)?;
-        let cubes = self.reprepped(base, PrepParams { box_kind: BoxKind::Cube, ..PrepParams::default() })?;
+        let cubes = self
+            .reprepped(base, with_params(PrepParams { box_kind: BoxKind::Cube, ..PrepParams::default() }))?;
         self.time(&cubes, settings, BlasLayout::OneGeometry, Variant::CubeBoxes)?;
         self.time(&cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)?;
-        let six = self.reprepped(base, PrepParams { k: 6, ..PrepParams::default() })?;
+        let six = self.reprepped(base, with_params(PrepParams { k: 6, ..PrepParams::default() }))?;
         self.time(&six, settings, BlasLayout::OneGeometry, Variant::SixNeighbours)
     }
 
-    /// The scene with the model re-prepped with `params`.
-    fn reprepped(&self, base: &Scene, params: PrepParams) -> Result<Scene, BenchError> {
+    /// The scene with the model re-prepped with `options`.
+    fn reprepped(&self, base: &Scene, options: PrepOptions) -> Result<Scene, BenchError> {
         let points = model_points(self.model, &self.options.data, &self.options.cache)?;
         let cloud = pointray_io::formats::read_point_cloud(&points)?;
-        let options = PrepOptions { params, ..PrepOptions::default() };
         let (patches, _) = pointray_surface::prep(&cloud, &options, &NoProgress)
             .map_err(|source| BenchError::Prep { case: self.model.name.clone(), source })?;
         let mut scene = base.clone();
@@ -237,4 +241,8 @@ impl ModelRun<'_> {
         self.cases.push(result);
         Ok(())
     }
+}
+
+fn with_params(params: PrepParams) -> PrepOptions {
+    PrepOptions { params, ..PrepOptions::default() }
 }

@@ -9,6 +9,8 @@ use pointray_surface::RadiusMode;
 pub enum Radius {
     Paper,
     Adaptive,
+    /// Just what covers each point's Voronoi cell: less overlap, fewer patches per ray.
+    Cell,
 }
 
 impl From<Radius> for RadiusMode {
@@ -16,6 +18,7 @@ impl From<Radius> for RadiusMode {
         match radius {
             Radius::Paper => RadiusMode::Paper,
             Radius::Adaptive => RadiusMode::Adaptive,
+            Radius::Cell => RadiusMode::Cell,
         }
     }
 }

@@ -89,7 +89,7 @@ fn radius_modes_on_uneven_density() {
         let mesh = Arc::new(pointray_io::formats::read_triangle_mesh(&path).unwrap());
         for (sampling, unevenness) in SAMPLINGS {
             let cloud = sample_mesh_unevenly(&mesh, SAMPLES, 1, unevenness);
-            for mode in [RadiusMode::Paper, RadiusMode::Adaptive] {
+            for mode in [RadiusMode::Paper, RadiusMode::Adaptive, RadiusMode::Cell] {
                 for scale in DISK_SCALES {
                     let metrics = measure(&cloud, &mesh, mode, scale, size);
                     println!("{}", row(model, sampling, cloud.len(), (mode, scale), &metrics));

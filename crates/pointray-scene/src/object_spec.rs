@@ -7,7 +7,7 @@
 //! path = "../../shared/data/points/bunny.ply"
 //! k = 9                    # optional prep overrides
 //! normal_k = 16
-//! radius = "adaptive"      # support radius: "paper" or "adaptive" (to the local density)
+//! radius = "adaptive"      # support radius: "paper", "adaptive" (to the local density) or "cell"
 //! remove_outliers = { neighbors = 8, sigmas = 2.0 }  # drop statistical outliers first
 //!
 //! [[objects]]
@@ -91,6 +91,7 @@ pub enum ShapeSpec {
 pub enum RadiusSpec {
     Paper,
     Adaptive,
+    Cell,
 }
 
 /// `remove_outliers` of a points object: drop points whose mean distance to their
@@ -107,6 +108,7 @@ impl RadiusSpec {
         match self {
             Self::Paper => pointray_surface::RadiusMode::Paper,
             Self::Adaptive => pointray_surface::RadiusMode::Adaptive,
+            Self::Cell => pointray_surface::RadiusMode::Cell,
         }
     }
 }

@@ -17,6 +17,11 @@
 //! 2. **Band.** `d_i` is then held within a factor `BAND` of the median paper radius of
 //!    `p_i` and its `k` neighbours, so that an isolated point does not grow far beyond
 //!    what the neighbourhood's spacing supports.
+//!
+//! The cell radius goes the other way: `d_i` is just what covers the point's own Voronoi
+//! cell (its farthest corner, with a margin), whatever the paper's radius. The cells tile
+//! the surface, so the disks still cover it, but each surface point lies under a patch or
+//! two instead of about `k`: rays test fewer patches, and fewer wrong ones.
 
 use glam::Vec2;
 use rayon::prelude::*;
@@ -33,7 +38,14 @@ pub enum RadiusMode {
     /// The paper's radius widened to cover the point's Voronoi cell and held to a band
     /// around the neighbourhood's median.
     Adaptive,
+    /// Just what covers the point's Voronoi cell, `CELL_MARGIN` times its farthest corner,
+    /// and never more than the paper's radius.
+    Cell,
 }
+
+/// The cell radius is this multiple of the cell's farthest corner: neighbouring patches lie
+/// in slightly different tangent planes, so each disk reaches a little past its cell.
+pub const CELL_MARGIN: f32 = 1.15;
 
 /// `d_i` lies within `[median / BAND, median * BAND]` of the neighbourhood's paper radii.
 /// Measured on scan-line samples of the bunny and horse (bench/FIDELITY.md): a band of 1.5
@@ -66,20 +78,8 @@ pub fn adaptive_radii(
     let outcomes: Vec<(f32, Option<Adjustment>)> = (0..points.len())
         .into_par_iter()
         .map(|i| {
-            let median = band_median(paper, i, &neighbors.of(i)[..k]);
-            let disks: Vec<(Vec2, f32)> = neighbors
-                .of(i)
-                .iter()
-                .map(|&j| {
-                    let local = frames[i].to_local(points[j as usize] - points[i]);
-                    (Vec2::new(local.x, local.y), paper[j as usize])
-                })
-                .collect();
-            // Past the farthest neighbour the table knows nothing of the surface, so an
-            // open cell is cut there (and at the band's top).
-            let known = neighbors.distances_of(i).last().copied().unwrap_or(0.0);
-            let cell = voronoi_cell(disks.iter().map(|&(centre, _)| centre), known.min(BAND * median));
-            adjust(paper[i], uncovered_reach(&cell, paper[i], &disks), median)
+            let around = Surroundings::of(i, frames, points, neighbors, k, paper);
+            adjust(paper[i], uncovered_reach(&around.cell, paper[i], &around.disks), around.median)
         })
         .collect();
     let count = |wanted| outcomes.par_iter().filter(|(_, adjustment)| *adjustment == Some(wanted)).count();
@@ -89,6 +89,60 @@ pub fn adaptive_radii(
         raised: count(Adjustment::Raised),
     };
     (outcomes.into_iter().map(|(radius, _)| radius).collect(), adjustments)
+}
+
+/// The cell radii (`RadiusMode::Cell`): `CELL_MARGIN` times each point's farthest Voronoi
+/// corner, the cell cut as for the adaptive radius, held to at most the paper's radius (an
+/// open cell, at a border or between scan lines, would otherwise grow false surface).
+pub fn cell_radii(
+    frames: &[TangentFrame],
+    points: &[glam::Vec3],
+    neighbors: &Neighbors,
+    k: usize,
+    paper: &[f32],
+) -> Vec<f32> {
+    (0..points.len())
+        .into_par_iter()
+        .map(|i| {
+            let around = Surroundings::of(i, frames, points, neighbors, k, paper);
+            let reach = CELL_MARGIN * around.cell.iter().map(|corner| corner.length()).fold(0.0, f32::max);
+            reach.min(paper[i])
+        })
+        .collect()
+}
+
+/// A point's neighbours in its tangent plane (with their paper radii), its Voronoi cell
+/// among them, and the band's median.
+struct Surroundings {
+    disks: Vec<(Vec2, f32)>,
+    cell: Vec<Vec2>,
+    median: f32,
+}
+
+impl Surroundings {
+    fn of(
+        i: usize,
+        frames: &[TangentFrame],
+        points: &[glam::Vec3],
+        neighbors: &Neighbors,
+        k: usize,
+        paper: &[f32],
+    ) -> Self {
+        let median = band_median(paper, i, &neighbors.of(i)[..k]);
+        let disks: Vec<(Vec2, f32)> = neighbors
+            .of(i)
+            .iter()
+            .map(|&j| {
+                let local = frames[i].to_local(points[j as usize] - points[i]);
+                (Vec2::new(local.x, local.y), paper[j as usize])
+            })
+            .collect();
+        // Past the farthest neighbour the table knows nothing of the surface, so an open
+        // cell is cut there (and at the band's top).
+        let known = neighbors.distances_of(i).last().copied().unwrap_or(0.0);
+        let cell = voronoi_cell(disks.iter().map(|&(centre, _)| centre), known.min(BAND * median));
+        Self { disks, cell, median }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -227,6 +281,21 @@ mod tests {
         assert_eq!(adjust(1.0, 9.0, 1.0), (BAND, Some(Adjustment::Capped)));
         assert_eq!(adjust(9.0, 0.0, 1.0), (BAND, Some(Adjustment::Capped)));
         assert_eq!(adjust(0.1, 0.0, 1.0), (1.0 / BAND, Some(Adjustment::Raised)));
+    }
+
+    #[test]
+    fn the_cell_radius_reaches_the_cells_corner_and_never_past_the_papers() {
+        let points: Vec<glam::Vec3> =
+            (0..9).map(|i| glam::Vec3::new((i % 3) as f32, (i / 3) as f32, 0.0)).collect();
+        let frames = vec![TangentFrame::from_normal(glam::Vec3::Z); points.len()];
+        let neighbors = crate::neighbors::k_nearest(&points, 8);
+        let paper = vec![2.0; points.len()];
+        let radii = cell_radii(&frames, &points, &neighbors, 8, &paper);
+        let centre = 4;
+        assert!((radii[centre] - CELL_MARGIN * 0.5f32.hypot(0.5)).abs() < 1e-5, "{}", radii[centre]);
+        assert!(radii.iter().all(|&r| r <= 2.0), "{radii:?}");
+        let tight = cell_radii(&frames, &points, &neighbors, 8, &vec![0.3; points.len()]);
+        assert!(tight.iter().all(|&r| r == 0.3), "{tight:?}");
     }
 
     #[test]

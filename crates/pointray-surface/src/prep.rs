@@ -8,7 +8,7 @@ use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
-use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii};
+use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii, cell_radii};
 use crate::duplicates::merge_duplicates;
 use crate::frame::TangentFrame;
 use crate::input_validation::{validate_params, validate_positions};
@@ -246,6 +246,9 @@ fn support_radii(
         RadiusMode::Adaptive => {
             let (adaptive, adjustments) = adaptive_radii(frames, points, neighbors, k, &paper);
             (adaptive, fallbacks, adjustments)
+        }
+        RadiusMode::Cell => {
+            (cell_radii(frames, points, neighbors, k, &paper), fallbacks, RadiusAdjustments::default())
         }
     }
 }
