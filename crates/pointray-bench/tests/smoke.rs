@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use pointray_bench::{BenchOptions, FrameCounts, Suite, Variant, run_suite};
-use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer};
+use pointray_vulkan::{DeviceSelector, VulkanRenderer};
 
 fn in_ci() -> bool {
     std::env::var("CI").is_ok_and(|v| v == "true")
@@ -14,11 +14,7 @@ fn in_ci() -> bool {
 fn renderer() -> Option<VulkanRenderer> {
     match VulkanRenderer::with_validation(DeviceSelector::Auto, true) {
         Ok(renderer) => Some(renderer),
-        Err(
-            error @ (VulkanError::NoSuitableDevice(_)
-            | VulkanError::LoaderMissing(_)
-            | VulkanError::ValidationLayerMissing),
-        ) => {
+        Err(error) if error.is_no_device() => {
             assert!(!in_ci(), "CI=true but no usable Vulkan device: {error}");
             eprintln!("note: skipping, no usable Vulkan device: {error}");
             None

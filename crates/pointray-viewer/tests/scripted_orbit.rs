@@ -9,7 +9,7 @@ mod common;
 use common::{Orbit, missing, psnr, read_png, scripted_run};
 use pointray_scene::{AovSelection, Frame, write_frame};
 use pointray_viewer::{Presentation, RenderBackend, ViewerError, orbit_camera, run_viewer};
-use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer};
+use pointray_vulkan::{DeviceSelector, VulkanRenderer};
 
 const FRAMES: u32 = 30;
 const ARC_DEGREES: f32 = 360.0;
@@ -30,13 +30,9 @@ fn scripted_orbit_screenshot_matches_the_renderer() {
     let sequence = run.sequence.as_deref().expect("the run keeps its sequence");
     let summary = match run_viewer(loaded.scene.clone(), settings, run.options) {
         Ok(summary) => summary,
-        Err(
-            error @ ViewerError::Renderer(
-                VulkanError::NoSuitableDevice(_)
-                | VulkanError::LoaderMissing(_)
-                | VulkanError::ValidationLayerMissing,
-            ),
-        ) => return missing(&format!("no usable Vulkan device: {error}")),
+        Err(ViewerError::Renderer(error)) if error.is_no_device() => {
+            return missing(&format!("no usable Vulkan device: {error}"));
+        }
         Err(error) => panic!("the viewer failed: {error}"),
     };
     assert_eq!(summary.presentation, Presentation::Direct, "Vulkan frames skip the host");

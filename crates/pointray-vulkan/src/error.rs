@@ -29,6 +29,13 @@ pub enum VulkanError {
 }
 
 impl VulkanError {
+    /// Whether the machine has no usable Vulkan device for us: no loader, no validation layer
+    /// when one was asked for, or no device that can ray trace. Callers fall back (or, in
+    /// tests outside CI, skip) on these; every other error is a real failure.
+    pub fn is_no_device(&self) -> bool {
+        matches!(self, Self::LoaderMissing(_) | Self::ValidationLayerMissing | Self::NoSuitableDevice(_))
+    }
+
     /// Classifies a failed Vulkan call so that device loss and exhaustion read clearly.
     pub(crate) fn from_vk(during: &'static str, result: vk::Result) -> Self {
         match result {
@@ -55,5 +62,19 @@ pub(crate) trait VkContext<T> {
 impl<T> VkContext<T> for Result<T, vk::Result> {
     fn during(self, stage: &'static str) -> Result<T, VulkanError> {
         self.map_err(|result| VulkanError::from_vk(stage, result))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_a_missing_loader_layer_or_device_means_no_device() {
+        assert!(VulkanError::ValidationLayerMissing.is_no_device());
+        assert!(VulkanError::NoSuitableDevice("none".into()).is_no_device());
+        assert!(!VulkanError::DeviceLost("tracing").is_no_device());
+        assert!(!VulkanError::InvalidSettings("zero width".into()).is_no_device());
+        assert!(!VulkanError::from_vk("tracing", vk::Result::ERROR_INITIALIZATION_FAILED).is_no_device());
     }
 }
