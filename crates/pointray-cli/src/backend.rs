@@ -1,7 +1,7 @@
 //! Choosing the renderer: a ray-tracing GPU when there is one, else the CPU backend.
 
 use anyhow::Context;
-use clap::ValueEnum;
+use clap::{Args, ValueEnum};
 use pointray_scene::{Frame, RenderSettings, Scene};
 use pointray_vulkan::{DeviceSelector, VulkanRenderer};
 
@@ -12,6 +12,17 @@ pub enum BackendChoice {
     Auto,
     Vulkan,
     Cpu,
+}
+
+/// The `--backend` and `--device` flags of the commands that render on either backend and
+/// default to `auto`.
+#[derive(Args)]
+pub struct BackendArgs {
+    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
+    pub backend: BackendChoice,
+    /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
+    #[arg(long, default_value = "auto")]
+    pub device: DeviceSelector,
 }
 
 pub enum Backend {

@@ -8,10 +8,9 @@ use clap::{Args, ValueEnum};
 use pointray_scene::frame_output::{AovSelection, write_frame};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene};
 use pointray_scene::{BufferLayout, RenderSettings};
-use pointray_vulkan::DeviceSelector;
 
 use crate::acceptance_arg::Acceptance;
-use crate::backend::{Backend, BackendChoice};
+use crate::backend::{Backend, BackendArgs};
 use crate::progress::PrepBar;
 
 /// Render a scene (TOML) to PNG (8-bit sRGB) or EXR (linear float).
@@ -41,11 +40,8 @@ pub struct RenderArgs {
     /// Per-patch data in split hot/cold buffers or one combined buffer (Vulkan only).
     #[arg(long, value_enum, default_value_t = Buffers::Split)]
     buffers: Buffers,
-    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
-    backend: BackendChoice,
-    /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
-    #[arg(long, default_value = "auto")]
-    device: DeviceSelector,
+    #[command(flatten)]
+    backend: BackendArgs,
     /// Also write depth, normal, instance id, primitive id and hit mask next to the image.
     #[arg(long)]
     aovs: bool,
@@ -64,7 +60,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar };
     let LoadedScene { scene, settings, .. } = load_scene(&args.scene, &options)?;
     let settings = apply_flags(&args, settings);
-    let backend = Backend::open(args.backend, &args.device)?;
+    let backend = Backend::open(args.backend.backend, &args.backend.device)?;
     println!("backend: {}", backend.describe());
     let started = Instant::now();
     let frame = backend.render(&scene, &settings)?;

@@ -7,9 +7,9 @@ use clap::Args;
 use pointray_scene::SceneFile;
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
 use pointray_viewer::{RenderBackend, Script, ViewerOptions, run_viewer};
-use pointray_vulkan::{DeviceSelector, validation_requested_by_env};
+use pointray_vulkan::validation_requested_by_env;
 
-use crate::backend::BackendChoice;
+use crate::backend::{BackendArgs, BackendChoice};
 use crate::progress::PrepBar;
 
 /// Open a window on a scene (TOML) or a points file, and fly around it.
@@ -25,11 +25,8 @@ pub struct ViewArgs {
     /// Samples per pixel of the first pass (more accumulate while the view is still).
     #[arg(long)]
     spp: Option<u32>,
-    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
-    backend: BackendChoice,
-    /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
-    #[arg(long, default_value = "auto")]
-    device: DeviceSelector,
+    #[command(flatten)]
+    backend: BackendArgs,
     /// Wait for the display between frames (FIFO presentation); `V` toggles it.
     #[arg(long, default_value_t = true, action = clap::ArgAction::Set)]
     vsync: bool,
@@ -58,14 +55,14 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
         screenshot: args.screenshot.clone(),
         sequence: args.sequence.clone(),
     });
-    let backend = match args.backend {
+    let backend = match args.backend.backend {
         BackendChoice::Auto => RenderBackend::Auto,
         BackendChoice::Vulkan => RenderBackend::Vulkan,
         BackendChoice::Cpu => RenderBackend::Cpu,
     };
     let options = ViewerOptions {
         backend,
-        device: args.device,
+        device: args.backend.device,
         vsync: args.vsync,
         validation: validation_requested_by_env(),
         script,
