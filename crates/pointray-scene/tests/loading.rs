@@ -18,6 +18,11 @@ fn write_scene(dir: &Path, text: &str) -> std::path::PathBuf {
     path
 }
 
+/// `tet.ply` in `dir`: the tetrahedron on `corners`.
+fn write_tetrahedron(dir: &Path, corners: [Vec3; 4]) {
+    pointray_io::formats::ply::write_triangle_mesh(&dir.join("tet.ply"), &tetrahedron(corners)).unwrap();
+}
+
 fn world_points(scene: &Scene, object: usize) -> Vec<Vec3> {
     let object = &scene.objects[object];
     object.geometry.local_points().map(|p| object.transform.transform_point3(p)).collect()
@@ -49,8 +54,7 @@ fn a_malformed_input_file_is_an_error_naming_it() {
 fn transforms_scale_then_rotate_then_translate() {
     let dir = tempfile::tempdir().unwrap();
     let corners = [Vec3::X, Vec3::Y, Vec3::Z, Vec3::ZERO];
-    pointray_io::formats::ply::write_triangle_mesh(&dir.path().join("tet.ply"), &tetrahedron(corners))
-        .unwrap();
+    write_tetrahedron(dir.path(), corners);
     let scene = write_scene(
         dir.path(),
         r#"
@@ -129,8 +133,7 @@ fn an_auto_ground_sits_at_the_lowest_point_and_spans_the_scene() {
         Vec3::new(2.0, 0.0, 2.0),
         Vec3::new(2.0, 2.0, 1.0),
     ];
-    pointray_io::formats::ply::write_triangle_mesh(&dir.path().join("tet.ply"), &tetrahedron(corners))
-        .unwrap();
+    write_tetrahedron(dir.path(), corners);
     let scene = write_scene(
         dir.path(),
         r#"
@@ -168,8 +171,7 @@ fn an_auto_ground_sits_at_the_lowest_point_and_spans_the_scene() {
 fn scene_bounds_and_ray_epsilon_cover_every_object() {
     let dir = tempfile::tempdir().unwrap();
     let corners = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
-    pointray_io::formats::ply::write_triangle_mesh(&dir.path().join("tet.ply"), &tetrahedron(corners))
-        .unwrap();
+    write_tetrahedron(dir.path(), corners);
     let scene = write_scene(
         dir.path(),
         "[[objects]]\ntype = \"mesh\"\npath = \"tet.ply\"\n[[objects]]\ntype = \"mesh\"\npath = \"tet.ply\"\n\
@@ -191,8 +193,7 @@ fn without_a_camera_the_objects_are_framed() {
         Vec3::new(0.0, 3.0, 0.0),
         Vec3::new(0.0, 0.0, 1.0),
     ];
-    pointray_io::formats::ply::write_triangle_mesh(&dir.path().join("tet.ply"), &tetrahedron(corners))
-        .unwrap();
+    write_tetrahedron(dir.path(), corners);
     let scene = write_scene(
         dir.path(),
         "[render]\nwidth = 200\nheight = 400\n[[objects]]\ntype = \"mesh\"\npath = \"tet.ply\"\n\
