@@ -21,7 +21,8 @@
 //! | orientation | 382 (2.6 M points/s) | 831 (1.2 M points/s) |
 //! | total | 1801 (the 3 totals: 1906, 1850, 1801) | 3969 |
 
-#[path = "../tests/normals_support/mod.rs"]
+#[allow(dead_code)] // the example needs only a few of the tests' helpers
+#[path = "../tests/integration/normals_support/mod.rs"]
 mod normals_support;
 
 use std::path::PathBuf;

@@ -5,7 +5,8 @@
 //! `first_light --data DIR --out DIR [--reference DIR] [--frames N]`
 //! (`DIR` of `--data` holds `points/bunny.ply` and `meshes/bunny.ply`.)
 
-#[path = "../tests/common/mod.rs"]
+#[allow(dead_code)] // the example needs only a few of the tests' helpers
+#[path = "../tests/integration/common/mod.rs"]
 mod common;
 
 use std::path::{Path, PathBuf};

@@ -1,0 +1,9 @@
+//! The cli crate's integration tests, in one binary so that CI links it once.
+
+mod autzen_scene;
+mod bad_input;
+mod geo_offset;
+mod intensity_material;
+mod prep_robustness_flags;
+mod radius_fidelity;
+mod scene_prep_keys;

@@ -1,0 +1,38 @@
+//! Broken objects are left out of the render instead of crashing it.
+
+use crate::common;
+
+use common::*;
+use glam::{Affine3A, Vec3};
+use pointray_cpu::render;
+use pointray_io::TriangleMesh;
+use pointray_scene::{Frame, RenderSettings};
+
+fn settings() -> RenderSettings {
+    RenderSettings { width: 16, height: 16, ..RenderSettings::default() }
+}
+
+#[test]
+fn broken_objects_are_left_out_and_good_ones_still_render() {
+    let flattened = patches_object("flat", plane_patches(1.0, 5), Affine3A::from_scale(Vec3::ZERO), matte());
+    let dangling = mesh_object(
+        "dangling",
+        TriangleMesh { positions: vec![Vec3::ZERO; 2], triangles: vec![[0, 1, 7]] },
+        matte(),
+    );
+    let empty = patches_object("empty", patch_set(vec![]), Affine3A::IDENTITY, matte());
+    let floor = mesh_object("floor", floor_mesh(10.0), matte());
+    let scene =
+        scene(camera(Vec3::new(0.0, 3.0, 3.0), Vec3::ZERO), vec![], vec![flattened, dangling, empty, floor]);
+    let frame = render(&scene, &settings());
+    assert!(frame.instance_id.iter().all(|&id| id == 3 || id == Frame::MISS));
+    assert!(frame.instance_id.contains(&3), "the floor should still be visible");
+}
+
+#[test]
+fn an_empty_scene_is_all_background() {
+    let scene = scene(camera(Vec3::new(0.0, 3.0, 3.0), Vec3::ZERO), vec![], vec![]);
+    let frame = render(&scene, &settings());
+    assert!(frame.color.iter().all(|&c| c == BACKGROUND));
+    assert!(frame.depth.iter().all(|d| d.is_infinite()));
+}

@@ -1,0 +1,8 @@
+//! The cpu crate's integration tests, in one binary so that CI links it once.
+
+mod bad_input;
+mod camera_and_light_updates;
+mod common;
+mod plane_and_sphere;
+mod point_colors;
+mod shadows_and_reflections;

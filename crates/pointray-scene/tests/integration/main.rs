@@ -1,0 +1,8 @@
+//! The scene crate's integration tests, in one binary so that CI links it once.
+
+mod common;
+mod frame_output;
+mod loading;
+mod point_set_cache;
+mod procedural;
+mod scene_file_parsing;

@@ -1,0 +1,54 @@
+//! The Stanford bunny (issue 2, "The bunny"): finite patches, positive radii, and
+//! oriented normals that agree with the mesh's.
+
+use crate::common;
+
+use glam::Vec3;
+use pointray_io::TriangleMesh;
+use pointray_io::formats::ply;
+use pointray_surface::{NoProgress, PrepOptions, prep};
+
+/// Area-weighted vertex normals: the sum of the unnormalised normals of the faces around
+/// each vertex (zero for vertices no face uses).
+fn area_weighted_vertex_normals(mesh: &TriangleMesh) -> Vec<Vec3> {
+    let mut normals = vec![Vec3::ZERO; mesh.positions.len()];
+    for (t, triangle) in mesh.triangles.iter().enumerate() {
+        let face = mesh.face_normal(t);
+        for &v in triangle {
+            normals[v as usize] += face;
+        }
+    }
+    normals
+}
+
+#[test]
+fn bunny_patches_are_finite_and_normals_agree_with_the_mesh() {
+    let (Some(points), Some(mesh)) =
+        (common::data_file("points/bunny.ply"), common::data_file("meshes/bunny.ply"))
+    else {
+        return;
+    };
+    let cloud = ply::read_point_cloud(&points).expect("the bunny points read");
+    let mesh = ply::read_triangle_mesh(&mesh).expect("the bunny mesh reads");
+    let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoProgress).expect("the bunny preps");
+    for (i, patch) in patches.hot.iter().enumerate() {
+        assert!(patch.coefficients().iter().all(|c| c.is_finite()), "patch {i}: {patch:?}");
+        assert!(patch.radius() > 0.0 && patch.radius().is_finite(), "patch {i}: {patch:?}");
+    }
+    let mesh_normals = area_weighted_vertex_normals(&mesh);
+    let (mut agree, mut compared) = (0usize, 0usize);
+    for (patch, &source) in patches.hot.iter().zip(&report.patch_sources) {
+        let reference = mesh_normals[source as usize];
+        if reference.length_squared() > 0.0 {
+            compared += 1;
+            agree += usize::from(patch.normal().dot(reference) > 0.0);
+        }
+    }
+    let best = agree.max(compared - agree) as f64 / compared as f64;
+    println!(
+        "{agree} of {compared} normals agree with the mesh ({:.3}% after the best global flip)",
+        100.0 * best
+    );
+    assert!(compared > 34_000, "only {compared} patches have a mesh normal");
+    assert!(best >= 0.99, "only {:.3}% agree", 100.0 * best);
+}

@@ -1,0 +1,16 @@
+//! The surface crate's integration tests, in one binary so that CI links it once.
+
+mod analytic_surfaces;
+mod bunny;
+mod color_interpolation;
+mod common;
+mod density_adaptive_radii;
+mod disk_scale;
+mod normals_analytic;
+mod normals_duplicates;
+mod normals_scans;
+mod normals_support;
+mod outlier_removal;
+mod patch_store_files;
+mod prep_attributes;
+mod prep_bad_input;

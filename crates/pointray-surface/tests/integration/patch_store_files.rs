@@ -1,0 +1,167 @@
+//! The patch store: bit-identical round trips and a distinct error for each kind of
+//! damage (issue 2, "Bad input" and "Round trip").
+
+use crate::common;
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use pointray_kernels::COLOR_NEIGHBORS;
+use pointray_surface::patch_store::{self, StoreError};
+use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepOptions, PrepParams, prep};
+
+fn sample_patches(box_kind: BoxKind) -> PatchSet {
+    let mut cloud = common::sphere(3000, 1.5, DVec3::new(1e5, 2e5, -3.0));
+    cloud.colors = Some((0..3000).map(|i| [(i % 256) as u8, 7, 200]).collect());
+    cloud.intensities = Some((0..3000).map(|i| i as f32 / 3000.0).collect());
+    let options =
+        PrepOptions { params: PrepParams { box_kind, ..PrepParams::default() }, ..Default::default() };
+    prep(&cloud, &options, &NoProgress).expect("a sphere preps").0
+}
+
+fn written(directory: &Path, patches: &PatchSet) -> PathBuf {
+    let path = directory.join("model.patches");
+    patch_store::write(&path, patches).expect("writing to a temporary directory");
+    path
+}
+
+#[test]
+fn round_trip_is_bit_identical() {
+    let directory = tempfile::tempdir().unwrap();
+    for box_kind in [BoxKind::Cube, BoxKind::Tight] {
+        let patches = sample_patches(box_kind);
+        let path = written(directory.path(), &patches);
+        let loaded = patch_store::read(&path).expect("reading what was written");
+        assert_eq!(loaded.params, patches.params);
+        assert_eq!(loaded.offset.to_array().map(f64::to_bits), patches.offset.to_array().map(f64::to_bits));
+        let bytes = |p: &PatchSet| {
+            let mut all: Vec<u8> = bytemuck::cast_slice(&p.aabbs).to_vec();
+            all.extend_from_slice(bytemuck::cast_slice(&p.hot));
+            all.extend_from_slice(bytemuck::cast_slice(&p.cold));
+            all.extend_from_slice(bytemuck::cast_slice(&p.color_neighbors));
+            all
+        };
+        assert_eq!(bytes(&loaded), bytes(&patches));
+        assert_eq!(loaded.len(), 3000);
+        assert_eq!(
+            loaded.color_neighbors.len(),
+            3000 * COLOR_NEIGHBORS,
+            "a coloured cloud keeps its neighbours"
+        );
+    }
+    let leftovers = std::fs::read_dir(directory.path()).unwrap().count();
+    assert_eq!(leftovers, 1, "no temporary files left behind");
+}
+
+#[test]
+fn a_cloud_without_colours_or_intensities_stores_no_neighbours() {
+    let directory = tempfile::tempdir().unwrap();
+    let mut cloud = common::sphere(500, 1.0, DVec3::ZERO);
+    let patches = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap().0;
+    assert!(patches.color_neighbors.is_empty());
+    // Intensities alone keep them: an intensity ramp colours the points at load.
+    cloud.intensities = Some(vec![0.5; 500]);
+    let ramped = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap().0;
+    assert_eq!(ramped.color_neighbors.len(), 500 * COLOR_NEIGHBORS);
+    let coloured = sample_patches(BoxKind::Cube);
+    let neighbour_bytes = 4 * COLOR_NEIGHBORS as u64 * coloured.len() as u64;
+    let size = |p: &PatchSet| std::fs::metadata(written(directory.path(), p)).unwrap().len();
+    let plain = PatchSet { color_neighbors: Vec::new(), ..coloured.clone() };
+    assert_eq!(size(&coloured) - size(&plain), neighbour_bytes);
+    assert_eq!(patch_store::read(&written(directory.path(), &patches)).unwrap(), patches);
+}
+
+#[test]
+fn a_neighbour_list_of_the_wrong_length_is_not_written() {
+    let directory = tempfile::tempdir().unwrap();
+    let mut patches = sample_patches(BoxKind::Cube);
+    patches.color_neighbors.pop();
+    let path = directory.path().join("model.patches");
+    let error = patch_store::write(&path, &patches).unwrap_err();
+    assert!(matches!(error, StoreError::InconsistentPatchSet { .. }), "{error:?}");
+    assert!(!path.exists());
+}
+
+#[test]
+fn a_neighbour_beyond_the_patches_is_malformed() {
+    let directory = tempfile::tempdir().unwrap();
+    let patches = sample_patches(BoxKind::Cube);
+    let path = written(directory.path(), &patches);
+    let mut bytes = std::fs::read(&path).unwrap();
+    // The last neighbour entry sits just before the checksum; point it past the end and
+    // re-seal the file so that only the range check can catch it.
+    let last = bytes.len() - 8;
+    bytes[last..last + 4].copy_from_slice(&3000u32.to_le_bytes());
+    let body = bytes.len() - 4;
+    let checksum = crc32fast::hash(&bytes[..body]);
+    bytes[body..].copy_from_slice(&checksum.to_le_bytes());
+    std::fs::write(&path, bytes).unwrap();
+    let error = patch_store::read(&path).unwrap_err();
+    assert!(matches!(error, StoreError::Malformed { .. }), "{error:?}");
+    assert!(
+        error
+            .to_string()
+            .contains(&format!("colour neighbour {} of patch 2999 is 3000", COLOR_NEIGHBORS - 1)),
+        "{error}"
+    );
+}
+
+#[test]
+fn empty_patch_set_round_trips() {
+    let directory = tempfile::tempdir().unwrap();
+    let empty = PatchSet::default();
+    let loaded = patch_store::read(&written(directory.path(), &empty)).unwrap();
+    assert_eq!(loaded, empty);
+}
+
+fn damaged(damage: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, StoreError, tempfile::TempDir) {
+    let directory = tempfile::tempdir().unwrap();
+    let path = written(directory.path(), &sample_patches(BoxKind::Cube));
+    let mut bytes = std::fs::read(&path).unwrap();
+    damage(&mut bytes);
+    std::fs::write(&path, bytes).unwrap();
+    let error = patch_store::read(&path).expect_err("damaged stores are refused");
+    (path, error, directory)
+}
+
+#[test]
+fn another_version_is_refused_by_name() {
+    // Version 1 stores (before the colour neighbours) are refused with the way out.
+    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&1u32.to_le_bytes()));
+    assert!(matches!(error, StoreError::WrongVersion { found: 1, .. }), "{error:?}");
+    let message = error.to_string();
+    assert!(message.contains("version 1, this build reads version 2: re-run `pointray prep`"), "{message}");
+    assert!(message.contains(&path.display().to_string()), "{message}");
+}
+
+#[test]
+fn a_flipped_byte_is_a_checksum_mismatch() {
+    for position in [200, 100_000, 150_000] {
+        let (path, error, _dir) = damaged(|bytes| bytes[position] ^= 0x10);
+        assert!(matches!(error, StoreError::ChecksumMismatch { .. }), "byte {position}: {error:?}");
+        let message = error.to_string();
+        assert!(message.contains("corrupted: checksum mismatch"), "{message}");
+        assert!(message.contains(&path.display().to_string()), "{message}");
+    }
+}
+
+#[test]
+fn a_truncated_file_is_refused() {
+    let (_, error, _dir) = damaged(|bytes| bytes.truncate(bytes.len() - 100));
+    assert!(matches!(error, StoreError::WrongLength { .. }), "{error:?}");
+    assert!(error.to_string().contains("truncated"));
+    let (_, error, _dir) = damaged(|bytes| bytes.truncate(20));
+    assert!(matches!(error, StoreError::WrongLength { .. }), "{error:?}");
+}
+
+#[test]
+fn other_files_are_not_patch_stores() {
+    let (_, error, _dir) = damaged(|bytes| bytes[0] = b'X');
+    assert!(matches!(error, StoreError::NotAPatchStore { .. }), "{error:?}");
+    let directory = tempfile::tempdir().unwrap();
+    let ply = directory.path().join("cloud.ply");
+    std::fs::write(&ply, b"ply\nformat ascii 1.0\n").unwrap();
+    assert!(matches!(patch_store::read(&ply), Err(StoreError::NotAPatchStore { .. })));
+    let missing = patch_store::read(&directory.path().join("missing.patches")).unwrap_err();
+    assert!(matches!(missing, StoreError::Io { .. }));
+}

@@ -1,0 +1,80 @@
+//! `prep` refuses bad point sets with specific errors, and survives duplicates.
+
+use crate::common;
+
+use glam::DVec3;
+use pointray_io::PointCloud;
+use pointray_surface::{NoProgress, PrepError, PrepOptions, prep};
+
+fn prep_error(positions: Vec<DVec3>) -> PrepError {
+    let cloud = PointCloud::from_positions(positions);
+    prep(&cloud, &PrepOptions::default(), &NoProgress).expect_err("bad input must be refused")
+}
+
+fn plane(n: usize) -> Vec<DVec3> {
+    common::height_field(n, DVec3::ZERO, |x, y| 0.1 * x + 0.2 * y).positions
+}
+
+#[test]
+fn nan_and_infinite_coordinates_name_the_point() {
+    let mut positions = plane(10);
+    positions[42].x = f64::NAN;
+    let error = prep_error(positions.clone());
+    assert_eq!(error, PrepError::NonFiniteCoordinate { index: 42 });
+    assert!(error.to_string().contains("point 42"), "{error}");
+    positions[42].x = 0.0;
+    positions[17].z = f64::INFINITY;
+    assert_eq!(prep_error(positions), PrepError::NonFiniteCoordinate { index: 17 });
+}
+
+#[test]
+fn too_few_points_for_k() {
+    assert_eq!(prep_error(plane(3)), PrepError::TooFewPoints { found: 9, k: 9 });
+    assert_eq!(prep_error(Vec::new()), PrepError::TooFewPoints { found: 0, k: 9 });
+}
+
+#[test]
+fn too_few_distinct_points_after_merging() {
+    // 12 points, but only 4 distinct ones.
+    let corners = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    let positions: Vec<DVec3> = (0..12).map(|i| corners[i % 4]).collect();
+    assert_eq!(prep_error(positions), PrepError::TooFewDistinctPoints { found: 4, k: 9 });
+}
+
+#[test]
+fn identical_and_collinear_points() {
+    let error = prep_error(vec![DVec3::new(1.0, 2.0, 3.0); 50]);
+    assert_eq!(error, PrepError::AllPointsIdentical { count: 50 });
+    assert!(error.to_string().contains("identical"));
+    let line = (0..50).map(|i| DVec3::new(1.0, -2.0, 0.5) * f64::from(i) + DVec3::splat(7.0)).collect();
+    let error = prep_error(line);
+    assert_eq!(error, PrepError::AllPointsCollinear { count: 50 });
+    assert!(error.to_string().contains("one line"));
+}
+
+#[test]
+fn attribute_arrays_must_match_the_points() {
+    let mut cloud = PointCloud::from_positions(plane(10));
+    cloud.colors = Some(vec![[1, 2, 3]; 99]);
+    let error = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap_err();
+    assert_eq!(error, PrepError::AttributeLength { attribute: "colours", found: 99, expected: 100 });
+}
+
+#[test]
+fn exact_and_near_duplicates_are_merged_without_nans_or_zero_radii() {
+    let base = plane(20);
+    let mut positions = base.clone();
+    positions.extend(base.iter().step_by(2).copied()); // exact copies
+    positions.extend(base.iter().skip(1).step_by(2).map(|p| *p + DVec3::splat(1e-9))); // 1e-9 apart
+    let cloud = PointCloud::from_positions(positions);
+    let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoProgress).expect("duplicates are fine");
+    assert_eq!(report.input_points, 800);
+    assert_eq!(report.merged_duplicates, 400);
+    assert_eq!(patches.len(), 400);
+    for patch in &patches.hot {
+        let values =
+            patch.origin_radius.iter().chain(&patch.tangent_c0).chain(&patch.normal_c1).chain(&patch.c2_c5);
+        assert!(values.into_iter().all(|v| v.is_finite()), "{patch:?}");
+        assert!(patch.radius() > 0.0, "{patch:?}");
+    }
+}

@@ -1,0 +1,15 @@
+//! The vulkan crate's integration tests, in one binary so that CI links it once.
+
+mod against_cpu;
+mod bench_hooks;
+mod common;
+mod demo_scene;
+mod devices;
+mod hit_reordering;
+mod layouts;
+mod point_colors;
+mod reflection;
+mod shadow;
+mod silhouette;
+mod sphere_normals;
+mod trace_target;

@@ -1,0 +1,79 @@
+//! Reusable trace targets: the display output is the AOV colour, encoded as a PNG would be;
+//! a target follows size changes; camera and light changes need no re-preparation.
+
+use crate::common;
+
+use common::{assert_no_validation_messages, point_light, renderer, sphere_on_floor};
+use glam::Vec3;
+use pointray_kernels::srgb_encode_rgba8;
+use pointray_scene::RenderSettings;
+use pointray_vulkan::{PixelOutput, TraceTarget};
+
+fn small(width: u32, height: u32) -> RenderSettings {
+    RenderSettings { width, height, ..RenderSettings::default() }
+}
+
+/// The largest difference of any byte of two RGBA8 images.
+fn largest_byte_difference(a: &[u8], b: &[u8]) -> u8 {
+    assert_eq!(a.len(), b.len());
+    a.iter().zip(b).map(|(x, y)| x.abs_diff(*y)).max().unwrap_or(0)
+}
+
+#[test]
+fn display_output_is_the_aov_colour_in_srgb8() {
+    let Some(renderer) = renderer() else { return };
+    let prepared = renderer.prepare(&sphere_on_floor(0.5, 1.0)).expect("prepares");
+    let settings = small(48, 32);
+    let frame = renderer.trace(&prepared, &settings).expect("traces");
+    let mut display = TraceTarget::new(PixelOutput::Display);
+    renderer.trace_into(&prepared, &settings, &mut display).expect("traces");
+    let expected: Vec<u8> = frame.color.iter().flat_map(|&c| srgb_encode_rgba8(c).to_le_bytes()).collect();
+    let got = display.display_rgba8().expect("a display image");
+    // pow() on the GPU may round the last bit differently from the CPU's powf().
+    assert!(largest_byte_difference(got, &expected) <= 1, "display bytes differ from the encoded AOV colour");
+    assert!(display.frame().is_err(), "a display target has no AOV frame");
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn a_target_follows_size_changes() {
+    let Some(renderer) = renderer() else { return };
+    let prepared = renderer.prepare(&sphere_on_floor(0.5, 1.0)).expect("prepares");
+    let mut target = TraceTarget::new(PixelOutput::Aovs);
+    assert!(target.frame().is_err(), "nothing traced yet");
+    for (width, height) in [(40, 30), (40, 30), (17, 9)] {
+        renderer.trace_into(&prepared, &small(width, height), &mut target).expect("traces");
+        let frame = target.frame().expect("a frame");
+        assert_eq!(
+            (frame.width, frame.height, frame.color.len()),
+            (width, height, (width * height) as usize)
+        );
+        let fresh = renderer.trace(&prepared, &small(width, height)).expect("traces");
+        assert_eq!(frame, fresh, "a reused target traces what a fresh one does");
+    }
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn moving_the_camera_and_the_light_matches_a_fresh_preparation() {
+    let Some(renderer) = renderer() else { return };
+    let mut scene = sphere_on_floor(0.5, 1.0);
+    let mut prepared = renderer.prepare(&scene).expect("prepares");
+    let mut target = TraceTarget::new(PixelOutput::Aovs);
+    let settings = small(40, 30);
+    renderer.trace_into(&prepared, &settings, &mut target).expect("traces");
+    let before = target.frame().expect("a frame");
+
+    scene.camera.position += Vec3::new(0.4, 0.3, 0.0);
+    scene.lights =
+        vec![point_light(Vec3::new(-2.0, 3.0, 1.0), 0.8), point_light(Vec3::new(2.0, 2.0, 2.0), 0.5)];
+    prepared.camera = scene.camera;
+    prepared.set_lights(&scene.lights).expect("sets the lights");
+    renderer.trace_into(&prepared, &settings, &mut target).expect("traces");
+    let moved = target.frame().expect("a frame");
+
+    let fresh = renderer.trace(&renderer.prepare(&scene).expect("prepares"), &settings).expect("traces");
+    assert_ne!(moved.color, before.color, "the move changed the picture");
+    assert_eq!(moved, fresh, "updating in place equals preparing the moved scene");
+    assert_no_validation_messages(&renderer);
+}
