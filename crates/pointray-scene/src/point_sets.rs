@@ -3,7 +3,7 @@
 //! input, which may be read-only or shared).
 //!
 //! A cache file is `<cache_dir>/<stem>-<key>.patches`, where the key hashes the input's
-//! canonical path, size and modification time, the prep options and this crate's version, so
+//! canonical path, size and modification time, the prep options, prep's revision and this crate's version, so
 //! that a changed input or setting never reuses a stale result. A cache file that cannot be
 //! read (truncated, corrupted, from another format version) is regenerated.
 
@@ -160,6 +160,7 @@ fn cache_file_name(input: &Path, prep_options: &PrepOptions) -> Result<String, p
     key.write(&modified.to_le_bytes());
     // Debug covers every option, including ones added later, without listing them here.
     key.write(format!("{prep_options:?}").as_bytes());
+    key.write(&pointray_surface::PREP_REVISION.to_le_bytes());
     key.write(env!("CARGO_PKG_VERSION").as_bytes());
     let stem = input.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     Ok(format!("{stem}-{:016x}.patches", key.0))

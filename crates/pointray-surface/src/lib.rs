@@ -28,7 +28,7 @@ pub use frame::TangentFrame;
 pub use outlier_removal::OutlierFilter;
 pub use patch_bounds::BoxKind;
 pub use patch_set::{PatchSet, PrepParams};
-pub use prep::{PrepOptions, prep};
+pub use prep::{PREP_REVISION, PrepOptions, prep};
 pub use prep_error::PrepError;
 pub use prep_progress::{NoProgress, PrepProgress, Stage};
 pub use prep_report::{FitCounts, PrepReport, RadiusFallbacks};
