@@ -8,12 +8,10 @@
 
 const uint COLOR_NEIGHBORS = 12u;
 const uint NO_NEIGHBOR = 0xffffffffu;
-const float COLOR_SUPPORT_SCALE = 0.75;
 const uint COLOR_WALK_SCANS = 3u;
 
-// theta(r) = (1 - r)^4 (4r + 1) of r = distance / (COLOR_SUPPORT_SCALE d_j), 0 from r = 1 on.
-float color_weight(float distance_to_point, float radius) {
-    float reach = COLOR_SUPPORT_SCALE * radius;
+// theta(r) = (1 - r)^4 (4r + 1) of r = distance / reach, 0 from r = 1 on.
+float color_weight(float distance_to_point, float reach) {
     if (reach <= 0.0 || distance_to_point >= reach) {
         return 0.0;
     }
@@ -41,7 +39,8 @@ struct ColorScan {
     uint nearest;
 };
 
-ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatches cold, ColorNeighbors neighbors) {
+ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatches cold, ColorNeighbors neighbors,
+                            float reach_scale) {
     ColorScan scan = ColorScan(vec3(0.0), 0.0, centre);
     float nearest_distance = 1.0 / 0.0;
     uint slots = has_address(neighbors) ? COLOR_NEIGHBORS : 0u;
@@ -52,7 +51,7 @@ ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatc
         }
         vec4 origin_radius = hot.records[j].origin_radius;
         float distance_to_point = distance(position, origin_radius.xyz);
-        float weight = color_weight(distance_to_point, origin_radius.w);
+        float weight = color_weight(distance_to_point, reach_scale * origin_radius.w);
         scan.weighted_color += weight * color_from_rgba8(cold.records[j].color_rgba8);
         scan.total_weight += weight;
         if (distance_to_point < nearest_distance) {
@@ -65,12 +64,14 @@ ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatc
 
 // The colour at `position` (the patches' space) on patch `hit`, as linear RGBA8; where no
 // point reaches it, the colour of the point nearest it. `neighbors` may be 0: then the blend
-// is over the hit patch alone. Indices are trusted (the loader checks them).
-uint interpolate_color(vec3 position, uint hit, HotPatches hot, ColdPatches cold, ColorNeighbors neighbors) {
+// is over the hit patch alone. Each point's colour reaches `reach_scale` times its radius.
+// Indices are trusted (the loader checks them).
+uint interpolate_color(vec3 position, uint hit, HotPatches hot, ColdPatches cold, ColorNeighbors neighbors,
+                       float reach_scale) {
     uint centre = hit;
     ColorScan scan;
     for (uint step = 0u; step < COLOR_WALK_SCANS; ++step) {
-        scan = color_scan_around(position, centre, hot, cold, neighbors);
+        scan = color_scan_around(position, centre, hot, cold, neighbors, reach_scale);
         if (scan.nearest == centre) {
             break;
         }

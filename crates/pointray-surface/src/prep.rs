@@ -8,6 +8,7 @@ use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
+use crate::color_reach::color_reach_scale;
 use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii, cell_radii};
 use crate::duplicates::merge_duplicates;
 use crate::frame::TangentFrame;
@@ -34,7 +35,8 @@ const PROGRESS_CHUNK: usize = 16_384;
 
 /// Changes whenever `prep` makes different patches from the same input and options (the
 /// cell margin went from 1.15 to 1.5 in revision 2), so that caches keyed on the options also
-/// key on this and never serve patches of an older rule.
+/// key on this and never serve patches of an older rule. (A new store format is refused by
+/// version anyway; this covers changes within one format.)
 pub const PREP_REVISION: u32 = 2;
 
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -93,9 +95,10 @@ pub fn prep(
     });
     let frames: Vec<TangentFrame> = clock
         .run(Stage::Frames, patches, || normals.par_iter().map(|&n| TangentFrame::from_normal(n)).collect());
-    let (radii, radius_fallbacks, radius_adjustments) = clock.run(Stage::SupportRadii, patches, || {
-        support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode)
-    });
+    let (radii, radius_fallbacks, radius_adjustments, color_reach_scale) =
+        clock.run(Stage::SupportRadii, patches, || {
+            support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode, params.disk_scale)
+        });
     let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
         fit_patches(&points, &frames, &radii, &neighbors, k, params.disk_scale, progress)
     });
@@ -117,7 +120,7 @@ pub fn prep(
         patch_sources: source,
         stage_times: clock.times,
     };
-    Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors }, report))
+    Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors, color_reach_scale }, report))
 }
 
 /// Times each stage and tells `progress` about it.
@@ -236,7 +239,9 @@ fn keep_inliers(
     Ok(survivors)
 }
 
-/// The paper's radii (SPEC.md §2.3), then, in adaptive mode, their density correction.
+/// The paper's radii (SPEC.md §2.3), or in adaptive and cell mode their corrections, and
+/// the colour reach scale that takes the stored radii (these times `disk_scale`) back to the
+/// paper's.
 fn support_radii(
     points: &[Vec3],
     normals: &[Vec3],
@@ -244,18 +249,17 @@ fn support_radii(
     neighbors: &Neighbors,
     k: usize,
     mode: RadiusMode,
-) -> (Vec<f32>, RadiusFallbacks, RadiusAdjustments) {
+    disk_scale: f32,
+) -> (Vec<f32>, RadiusFallbacks, RadiusAdjustments, f32) {
     let (paper, fallbacks) = paper_radii(points, normals, neighbors, k);
-    match mode {
-        RadiusMode::Paper => (paper, fallbacks, RadiusAdjustments::default()),
-        RadiusMode::Adaptive => {
-            let (adaptive, adjustments) = adaptive_radii(frames, points, neighbors, k, &paper);
-            (adaptive, fallbacks, adjustments)
-        }
-        RadiusMode::Cell => {
-            (cell_radii(frames, points, neighbors, k, &paper), fallbacks, RadiusAdjustments::default())
-        }
-    }
+    let (radii, adjustments) = match mode {
+        RadiusMode::Paper => (paper.clone(), RadiusAdjustments::default()),
+        RadiusMode::Adaptive => adaptive_radii(frames, points, neighbors, k, &paper),
+        RadiusMode::Cell => (cell_radii(frames, points, neighbors, k, &paper), RadiusAdjustments::default()),
+    };
+    let stored: Vec<f32> = radii.iter().map(|r| r * disk_scale).collect();
+    let reach = color_reach_scale(&paper, &stored);
+    (radii, fallbacks, adjustments, reach)
 }
 
 fn paper_radii(

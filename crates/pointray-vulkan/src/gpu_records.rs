@@ -38,8 +38,10 @@ pub(crate) struct ObjectRecord {
 }
 
 impl ObjectRecord {
-    /// This record (its addresses) with `material`'s values.
-    pub(crate) fn with_material(self, material: &Material) -> Self {
+    /// This record (its addresses) with `material`'s values. `color_reach_scale` is the
+    /// patch set's (`PatchSet::color_reach_scale`), any positive number for a mesh; the
+    /// shaders read a nonzero one as "use the point colours".
+    pub(crate) fn with_material(self, material: &Material, color_reach_scale: f32) -> Self {
         let d = material.diffuse;
         Self {
             diffuse_ambient: [d.x, d.y, d.z, material.ambient],
@@ -47,7 +49,7 @@ impl ObjectRecord {
                 material.specular,
                 material.shininess,
                 material.reflectivity,
-                if material.use_point_colors { 1.0 } else { 0.0 },
+                if material.use_point_colors { color_reach_scale } else { 0.0 },
             ],
             ..self
         }

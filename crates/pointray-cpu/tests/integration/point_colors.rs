@@ -7,8 +7,9 @@ use common::*;
 use glam::{Affine3A, DVec3, Vec3};
 use pointray_cpu::render;
 use pointray_io::PointCloud;
+use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
 use pointray_scene::{Camera, Frame, Light, Material, RenderSettings};
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepOptions, RadiusMode, prep};
 
 /// A deterministic value in [-0.5, 0.5).
 fn jitter(i: u64) -> f64 {
@@ -25,6 +26,10 @@ fn srgb_byte(linear: f64) -> u8 {
 /// A jittered grid of `side²` points on y = 0 over [-1, 1]², red rising along x and blue
 /// along z, prepped as a scan would be.
 fn gradient_plane(side: usize) -> PatchSet {
+    gradient_plane_with(side, RadiusMode::Paper)
+}
+
+fn gradient_plane_with(side: usize, radius_mode: RadiusMode) -> PatchSet {
     let cell = 2.0 / side as f64;
     let positions: Vec<DVec3> = (0..side * side)
         .map(|i| {
@@ -36,7 +41,9 @@ fn gradient_plane(side: usize) -> PatchSet {
     let colors =
         positions.iter().map(|p| [srgb_byte(0.5 + 0.45 * p.x), 40, srgb_byte(0.5 + 0.45 * p.z)]).collect();
     let cloud = PointCloud { colors: Some(colors), ..PointCloud::from_positions(positions) };
-    prep(&cloud, &PrepOptions::default(), &NoProgress).expect("a plane preps").0
+    prep(&cloud, &PrepOptions { radius_mode, ..PrepOptions::default() }, &NoProgress)
+        .expect("a plane preps")
+        .0
 }
 
 const SIZE: u32 = 160;
@@ -108,4 +115,18 @@ fn a_gradient_plane_has_no_steps_between_patches() {
     // between them) and the 8-bit rounding (0.004).
     assert!(blocky_step > 0.06, "one colour per patch shows steps: {blocky_step}");
     assert!(smooth_step < 0.025, "interpolated colours step by {smooth_step} beyond the gradients");
+}
+
+#[test]
+fn cell_radii_widen_the_colour_reach_so_the_blend_still_follows_the_gradients() {
+    let patches = gradient_plane_with(30, RadiusMode::Cell);
+    assert!(patches.color_reach_scale > 1.5 * COLOR_SUPPORT_SCALE, "{}", patches.color_reach_scale);
+    let narrow = PatchSet { color_reach_scale: COLOR_SUPPORT_SCALE, ..patches.clone() };
+    let (widened, narrow) = (largest_step(&render_plane(patches)), largest_step(&render_plane(narrow)));
+    eprintln!(
+        "cell radii: largest step {widened} with the set's colour reach, {narrow} with the paper's scale"
+    );
+    // Measured: 0.026 widened, 0.046 at the paper's scale (0.014 with the paper's radii).
+    assert!(widened < 0.035, "cell radii: interpolated colours step by {widened}");
+    assert!(narrow > widened + 0.01, "the paper's scale on cell radii steps by only {narrow}");
 }
