@@ -15,7 +15,7 @@ pub struct BenchArgs {
     /// Timed frames per case.
     #[arg(long, default_value_t = 100)]
     frames: u32,
-    /// Untimed frames before the timed ones.
+    /// Untimed frames before the timed ones, repeated until at least 0.5 s has passed.
     #[arg(long, default_value_t = 10)]
     warmup: u32,
     /// Replace every size (both flags are needed).
