@@ -3,6 +3,7 @@
 use std::fmt::Write;
 
 use crate::case_result::{CaseResult, Variant};
+use crate::measure::MIN_WARMUP;
 use crate::report::Report;
 
 const MIB: f64 = 1024.0 * 1024.0;
@@ -12,10 +13,15 @@ pub fn markdown(report: &Report) -> String {
     let _ = writeln!(out, "## {} on {}\n", report.suite, report.device);
     let _ = writeln!(
         out,
-        "Driver {}, Vulkan {}; {} warm-up frames, then {} timed frames per case. FPS = 1 / median GPU \
+        "Driver {}, Vulkan {}; warm-up in rounds of {} frames for at least {} s, then {} timed frames per \
+         case. FPS = 1 / median GPU \
          time of a whole frame (trace, then the copy of its sRGB8 display colour to host memory; \
          timestamps); rays counted on the GPU (primary, shadow and reflection).\n",
-        report.driver, report.vulkan_api, report.warmup_frames, report.timed_frames
+        report.driver,
+        report.vulkan_api,
+        report.warmup_frames,
+        MIN_WARMUP.as_secs_f32(),
+        report.timed_frames
     );
     frames_table(&mut out, report);
     limit_table(&mut out, report);

@@ -17,10 +17,10 @@ pub struct FrameCounts {
 
 /// Warm-up goes on in rounds of `warmup` frames until at least this long has passed. On the
 /// H200, after 50 warm-up frames (0.05 s), the first case of the 1,195K model, timed right
-/// after the other models' cases with a cold prep cache, ran slow in all three such suite
-/// runs (a tenth of its frames at 2.4 ms instead of 0.95, or all of them 50% slow) with the SM
-/// clock steady at its maximum; timed alone, or with a warm cache, it did not
-/// (bench/RESULTS.md, run 5).
+/// after the other models' cases, ran slow in three suite runs of five (a tenth of its frames
+/// at 2.4 ms instead of 0.95, or all of them 50% slow) with the SM clock steady at its
+/// maximum; timed alone it did not. With this warm-up, two suite runs in a row were clean
+/// (bench/RESULTS.md, runs 5 and 6).
 pub const MIN_WARMUP: Duration = Duration::from_millis(500);
 
 /// What one timed case measured.
