@@ -27,17 +27,6 @@ vec3 patch_quadratic(PatchHot hot, vec3 o, vec3 d) {
     return vec3(a, b, o.z - f);
 }
 
-// How much farther than the disk a ray's (u, v) path may pass before it is culled.
-const float DISK_CULL_SLACK = 1.001;
-
-// Under the disk test every accepted hit has u^2 + v^2 <= d^2, so a ray whose (u, v) path
-// passes farther than d from the patch's axis is a miss without solving the quadratic.
-bool passes_outside_disk(vec3 o, vec3 d, float radius) {
-    float across = o.x * d.y - o.y * d.x;
-    float reach = DISK_CULL_SLACK * radius;
-    return across * across > reach * reach * (d.x * d.x + d.y * d.y);
-}
-
 bool patch_accepts(vec3 point, vec2 uv, PatchHot hot, uint acceptance) {
     float radius = patch_radius(hot);
     bool in_box = all(lessThanEqual(abs(point - patch_origin(hot)), vec3(radius)));
@@ -54,9 +43,6 @@ bool intersect_patch(Ray ray, PatchHot hot, float t_min, float t_max, uint accep
     uv_hit = vec2(0.0);
     vec3 o = patch_to_local(hot, ray.origin);
     vec3 d = patch_direction_to_local(hot, ray.direction);
-    if (acceptance == ACCEPTANCE_DISK && passes_outside_disk(o, d, patch_radius(hot))) {
-        return false;
-    }
     vec3 abc = patch_quadratic(hot, o, d);
     vec2 roots;
     uint count = quadratic_roots(abc.x, abc.y, abc.z, roots);

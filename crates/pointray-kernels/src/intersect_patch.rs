@@ -50,9 +50,6 @@ pub fn intersect_patch(
 ) -> Option<PatchHit> {
     let o = patch.to_local(ray.origin);
     let d = patch.direction_to_local(ray.direction);
-    if acceptance == PatchAcceptance::Disk && passes_outside_disk(o, d, patch.radius()) {
-        return None;
-    }
     let [a, b, c] = patch_quadratic(patch, o, d);
     let roots = quadratic_roots(a, b, c);
     roots.as_slice().iter().copied().filter(|t| (t_min..=t_max).contains(t)).find_map(|t| {
@@ -60,18 +57,6 @@ pub fn intersect_patch(
         accepts(ray.at(t), uv, patch, acceptance).then_some(PatchHit { t, uv })
     })
 }
-
-/// Under the disk test every accepted hit has `u² + v² <= d²`, so a ray whose `(u, v)` path
-/// (the line `o.xy + t d.xy`) passes farther than `d` from the patch's axis is a miss without
-/// solving the quadratic. `DISK_CULL_SLACK` keeps rounding from culling a hit on the rim.
-fn passes_outside_disk(o: Vec3, d: Vec3, radius: f32) -> bool {
-    let across = o.x * d.y - o.y * d.x;
-    let reach = DISK_CULL_SLACK * radius;
-    across * across > reach * reach * (d.x * d.x + d.y * d.y)
-}
-
-/// How much farther than the disk a ray's `(u, v)` path may pass before it is culled.
-pub const DISK_CULL_SLACK: f32 = 1.001;
 
 /// `A, B, C` of `A t² + B t + C = 0` for the local ray `o + t d` against `w = f(u, v)`.
 fn patch_quadratic(patch: &PatchHot, o: Vec3, d: Vec3) -> [f32; 3] {
@@ -108,51 +93,6 @@ mod tests {
 
     fn hit(ray: Ray, patch: &PatchHot, acceptance: PatchAcceptance) -> Option<PatchHit> {
         intersect_patch(&ray, patch, 0.0, f32::INFINITY, acceptance)
-    }
-
-    /// The disk test without the early cull: every root in range, the first that passes.
-    fn uncut_disk_hit(ray: &Ray, patch: &PatchHot) -> Option<PatchHit> {
-        let (o, d) = (patch.to_local(ray.origin), patch.direction_to_local(ray.direction));
-        let [a, b, c] = patch_quadratic(patch, o, d);
-        quadratic_roots(a, b, c).as_slice().iter().copied().filter(|t| *t >= 0.0).find_map(|t| {
-            let uv = Vec2::new(o.x + t * d.x, o.y + t * d.y);
-            accepts(ray.at(t), uv, patch, PatchAcceptance::Disk).then_some(PatchHit { t, uv })
-        })
-    }
-
-    #[test]
-    fn the_glsl_twin_uses_the_same_slack() {
-        let glsl = include_str!("../shaders/intersect_patch.glsl");
-        let expected = format!("const float DISK_CULL_SLACK = {DISK_CULL_SLACK:?};");
-        assert!(glsl.contains(&expected), "shaders/intersect_patch.glsl must declare `{expected}`");
-    }
-
-    #[test]
-    fn the_early_disk_cull_changes_no_hit() {
-        let normal = Vec3::new(0.2, 0.9, -0.3).normalize();
-        let patch = PatchHot::new(
-            Vec3::new(0.5, -0.2, 0.1),
-            normal.any_orthonormal_vector(),
-            normal,
-            [0.0, 0.1, -0.1, 0.8, 0.2, -0.5],
-            0.3,
-        );
-        let (mut hits, mut culled) = (0, 0);
-        for i in 0..20_000u32 {
-            let unit = |k: u32| {
-                ((i.wrapping_mul(2_654_435_761).wrapping_add(k * 40_503) >> 8) % 10_000) as f32 / 10_000.0
-            };
-            let origin =
-                patch.origin() + 2.0 * Vec3::new(unit(1) - 0.5, unit(2) - 0.5, unit(3) - 0.5) + normal;
-            let target = patch.origin() + 1.6 * Vec3::new(unit(4) - 0.5, unit(5) - 0.5, unit(6) - 0.5);
-            let ray = Ray::new(origin, (target - origin).normalize());
-            let expected = uncut_disk_hit(&ray, &patch);
-            assert_eq!(intersect_patch(&ray, &patch, 0.0, f32::INFINITY, PatchAcceptance::Disk), expected);
-            hits += usize::from(expected.is_some());
-            let local = (patch.to_local(ray.origin), patch.direction_to_local(ray.direction));
-            culled += usize::from(passes_outside_disk(local.0, local.1, patch.radius()));
-        }
-        assert!(hits > 2_000 && culled > 2_000, "{hits} hits, {culled} culled: the rays test both sides");
     }
 
     #[test]
