@@ -4,6 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::common::data_file;
+
 use glam::Vec3;
 use pointray_scene::object_spec::ShapeSpec;
 use pointray_scene::{Frame, LoadOptions, RenderSettings, SceneFile, load_scene_file};
@@ -12,21 +14,6 @@ const WIDTH: u32 = 160;
 const HEIGHT: u32 = 120;
 /// The tile is the scene's first object.
 const TILE: u32 = 0;
-
-/// `../shared/data` from the workspace root, or `$POINTRAY_DATA`; `None` (with a note) when
-/// the tile is missing, a failure instead when `CI=true`.
-fn autzen_file() -> Option<PathBuf> {
-    let root = std::env::var_os("POINTRAY_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
-    let path = root.join("scans/autzen_trim.las");
-    if path.is_file() {
-        return Some(path);
-    }
-    assert!(std::env::var("CI").as_deref() != Ok("true"), "test data {} is missing", path.display());
-    eprintln!("note: skipping, test data {} is missing", path.display());
-    None
-}
 
 /// The shipped scene, with its points path pointed at the data folder in use.
 fn autzen_scene(data: PathBuf) -> SceneFile {
@@ -49,7 +36,7 @@ fn tile_pixels(frame: &Frame) -> Vec<usize> {
 
 #[test]
 fn autzen_renders_lit_shadowed_and_in_colour() {
-    let Some(data) = autzen_file() else { return };
+    let Some(data) = data_file("scans/autzen_trim.las") else { return };
     let loaded =
         load_scene_file(&autzen_scene(data), &LoadOptions::default()).expect("the autzen scene loads");
     let settings = RenderSettings { width: WIDTH, height: HEIGHT, ..loaded.settings };

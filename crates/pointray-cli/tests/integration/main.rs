@@ -1,5 +1,7 @@
 //! The cli crate's integration tests, in one binary so that CI links it once.
 
+mod common;
+
 mod autzen_scene;
 mod bad_input;
 mod geo_offset;

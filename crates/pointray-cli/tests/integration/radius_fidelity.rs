@@ -12,7 +12,8 @@
 //! ```
 //! `POINTRAY_FIDELITY_SIZE` sets the image size (default 512, as `pointray fidelity`).
 
-use std::path::{Path, PathBuf};
+use crate::common::data_file;
+
 use std::sync::Arc;
 
 use pointray_fidelity::{CpuFrameRenderer, FidelityMetrics, FidelityOptions, measure_fidelity};
@@ -29,12 +30,6 @@ const SAMPLINGS: [(&str, Unevenness); 3] = [
     ("gradient 10x", Unevenness::Gradient { ratio: 10.0 }),
     ("scan lines 60 x 25%", Unevenness::ScanLines { lines: 60, duty: 0.25 }),
 ];
-
-fn data_root() -> PathBuf {
-    std::env::var_os("POINTRAY_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"))
-}
 
 fn measure(
     cloud: &PointCloud,
@@ -80,12 +75,7 @@ fn radius_modes_on_uneven_density() {
     );
     println!("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for model in MODELS {
-        let path = data_root().join(format!("meshes/{model}.ply"));
-        if !path.is_file() {
-            assert!(std::env::var("CI").as_deref() != Ok("true"), "{} is missing", path.display());
-            eprintln!("note: {} is missing", path.display());
-            continue;
-        }
+        let Some(path) = data_file(&format!("meshes/{model}.ply")) else { continue };
         let mesh = Arc::new(pointray_io::formats::read_triangle_mesh(&path).unwrap());
         for (sampling, unevenness) in SAMPLINGS {
             let cloud = sample_mesh_unevenly(&mesh, SAMPLES, 1, unevenness);

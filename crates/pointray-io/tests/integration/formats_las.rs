@@ -9,6 +9,8 @@ use pointray_io::IoError;
 use pointray_io::formats::detect::{PointFormat, detect_format};
 use pointray_io::formats::las::read_las;
 
+use crate::common::data_dir;
+
 /// Coordinates near 10^6 feet, stored at 0.01 resolution, as in geo-referenced tiles.
 const SCALE: f64 = 0.01;
 const EASTING: f64 = 1_234_567.89;
@@ -191,18 +193,6 @@ fn more_declared_points_than_stored_is_refused() {
 }
 
 // ---- the real tile ----
-
-fn data_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("POINTRAY_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
-    if dir.exists() {
-        return Some(dir);
-    }
-    assert!(std::env::var("CI").as_deref() != Ok("true"), "test data missing at {}", dir.display());
-    eprintln!("note: test data missing at {}; skipping", dir.display());
-    None
-}
 
 #[test]
 fn autzen_tile_reads_with_its_point_count_colours_and_bounds() {

@@ -4,10 +4,12 @@
 use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
-use pcd_rs::{DataKind, DynRecord, DynWriter, Field, Schema, ValueKind, WriterInit};
+use pcd_rs::{DataKind, DynRecord, Field};
 use pointray_io::formats::detect::{PointFormat, detect_format};
 use pointray_io::formats::pcd::read_pcd;
 use pointray_io::{IoError, PointCloud};
+
+use crate::common::write_pcd_f32;
 
 fn sample_records() -> Vec<DynRecord> {
     (0..40)
@@ -26,23 +28,9 @@ fn sample_records() -> Vec<DynRecord> {
         .collect()
 }
 
-fn write_pcd(path: &Path, data_kind: DataKind, records: &[DynRecord]) {
-    let schema = ["x", "y", "z", "intensity", "normal_x", "normal_y", "normal_z"]
-        .map(|name| (name, ValueKind::F32, 1));
-    let mut writer: DynWriter<_> = WriterInit {
-        width: records.len() as u64,
-        height: 1,
-        viewpoint: Default::default(),
-        data_kind,
-        schema: Some(Schema::from_iter(schema)),
-        version: None,
-    }
-    .create(path)
-    .unwrap();
-    for record in records {
-        writer.push(record).unwrap();
-    }
-    writer.finish().unwrap();
+fn write_pcd(path: &Path, data_kind: DataKind, records: Vec<DynRecord>) {
+    let fields = ["x", "y", "z", "intensity", "normal_x", "normal_y", "normal_z"];
+    write_pcd_f32(path, data_kind, &fields, records.into_iter());
 }
 
 fn assert_matches_sample(cloud: &PointCloud) {
@@ -62,7 +50,7 @@ fn assert_matches_sample(cloud: &PointCloud) {
 fn round_trip(data_kind: DataKind) {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("cloud.pcd");
-    write_pcd(&path, data_kind, &sample_records());
+    write_pcd(&path, data_kind, sample_records());
     assert_eq!(detect_format(&path).unwrap(), PointFormat::Pcd);
     assert_matches_sample(&read_pcd(&path).unwrap());
 }
@@ -128,7 +116,7 @@ fn assert_refused(name: &str, bytes: &[u8], needle: &str) -> IoError {
 fn valid_bytes(data_kind: DataKind) -> Vec<u8> {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("valid.pcd");
-    write_pcd(&path, data_kind, &sample_records());
+    write_pcd(&path, data_kind, sample_records());
     std::fs::read(path).unwrap()
 }
 

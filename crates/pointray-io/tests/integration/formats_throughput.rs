@@ -7,10 +7,11 @@
 use std::path::Path;
 use std::time::Instant;
 
+use crate::common::write_pcd_f32;
 use e57::{E57Writer, Record, RecordDataType, RecordName, RecordValue};
 use las::point::Format;
 use las::{Builder, Color, Transform, Vector};
-use pcd_rs::{DataKind, DynRecord, DynWriter, Field, Schema, ValueKind, WriterInit};
+use pcd_rs::{DataKind, DynRecord, Field};
 use pointray_io::PointCloud;
 use pointray_io::formats::{
     e57::read_e57, kitti::read_kitti_bin, las::read_las, pcd::read_pcd, xyz::read_xyz,
@@ -49,27 +50,14 @@ fn write_las(path: &Path, compressed: bool) {
 }
 
 fn write_pcd(path: &Path, data_kind: DataKind) {
-    let schema =
-        [("x", ValueKind::F32), ("y", ValueKind::F32), ("z", ValueKind::F32), ("rgb", ValueKind::F32)]
-            .map(|(name, kind)| (name, kind, 1));
-    let mut writer: DynWriter<_> = WriterInit {
-        width: POINTS as u64,
-        height: 1,
-        viewpoint: Default::default(),
-        data_kind,
-        schema: Some(Schema::from_iter(schema)),
-        version: None,
-    }
-    .create(path)
-    .unwrap();
-    for i in 0..POINTS {
+    let records = (0..POINTS).map(|i| {
         // PCD clouds are usually local: keep f32-friendly coordinates.
         let ([x, y, z], [r, g, b], _) = sample(i);
         let rgb = f32::from_bits(u32::from_be_bytes([0, r, g, b]));
         let fields = [x - 500_000.0, y - 4_000_000.0, z].map(|c| Field::F32(vec![c as f32]));
-        writer.push(&DynRecord(fields.into_iter().chain([Field::F32(vec![rgb])]).collect())).unwrap();
-    }
-    writer.finish().unwrap();
+        DynRecord(fields.into_iter().chain([Field::F32(vec![rgb])]).collect())
+    });
+    write_pcd_f32(path, data_kind, &["x", "y", "z", "rgb"], records);
 }
 
 fn write_e57(path: &Path) {

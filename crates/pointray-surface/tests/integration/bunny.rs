@@ -1,33 +1,15 @@
 //! The Stanford bunny (issue 2, "The bunny"): finite patches, positive radii, and
 //! oriented normals that agree with the mesh's.
 
-use crate::common;
+use crate::normals_support::{area_weighted_vertex_normals, data_dir};
 
-use glam::Vec3;
-use pointray_io::TriangleMesh;
 use pointray_io::formats::ply;
 use pointray_surface::{NoProgress, PrepOptions, prep};
 
-/// Area-weighted vertex normals: the sum of the unnormalised normals of the faces around
-/// each vertex (zero for vertices no face uses).
-fn area_weighted_vertex_normals(mesh: &TriangleMesh) -> Vec<Vec3> {
-    let mut normals = vec![Vec3::ZERO; mesh.positions.len()];
-    for (t, triangle) in mesh.triangles.iter().enumerate() {
-        let face = mesh.face_normal(t);
-        for &v in triangle {
-            normals[v as usize] += face;
-        }
-    }
-    normals
-}
-
 #[test]
 fn bunny_patches_are_finite_and_normals_agree_with_the_mesh() {
-    let (Some(points), Some(mesh)) =
-        (common::data_file("points/bunny.ply"), common::data_file("meshes/bunny.ply"))
-    else {
-        return;
-    };
+    let Some(data) = data_dir() else { return };
+    let (points, mesh) = (data.join("points/bunny.ply"), data.join("meshes/bunny.ply"));
     let cloud = ply::read_point_cloud(&points).expect("the bunny points read");
     let mesh = ply::read_triangle_mesh(&mesh).expect("the bunny mesh reads");
     let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoProgress).expect("the bunny preps");

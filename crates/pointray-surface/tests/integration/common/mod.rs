@@ -61,19 +61,3 @@ pub fn surface_over_disk(patch: &PatchHot, offset: DVec3) -> Vec<DVec3> {
     }
     uv.into_iter().map(|(u, v)| patch.to_world(glam::Vec3::new(u, v, f(u, v))).as_dvec3() + offset).collect()
 }
-
-/// A file under the shared test data (`../shared/data` from the workspace root, or
-/// `$POINTRAY_DATA`). `None`, with a note, when it is missing; a test failure instead
-/// when `CI=true`, where the data must be present.
-pub fn data_file(relative: &str) -> Option<std::path::PathBuf> {
-    let root = std::env::var_os("POINTRAY_DATA")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
-    let path = root.join(relative);
-    if path.is_file() {
-        return Some(path);
-    }
-    assert!(std::env::var("CI").as_deref() != Ok("true"), "test data {} is missing", path.display());
-    eprintln!("note: skipping, test data {} is missing", path.display());
-    None
-}
