@@ -8,12 +8,12 @@ use crate::measure::Measurement;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Variant {
-    /// The point set with our defaults: one geometry, split buffers, tight boxes, the disk
+    /// The point set with our defaults: cell radii, one geometry, split buffers, tight boxes, the disk
     /// test, display output.
     Points,
     /// The model's triangle mesh in place of its points (the limit).
     Mesh,
-    /// The paper's configuration: cube boxes and the box test.
+    /// The paper's configuration: its radius, cube boxes and the box test.
     PaperConfiguration,
     /// Ablation: one BLAS geometry per patch box.
     GeometryPerAabb,
@@ -31,8 +31,8 @@ pub enum Variant {
     SixNeighbours,
     /// Ablation: patches reaching 0.7 of the paper's support radius (`PrepParams::disk_scale`).
     SmallerDisks,
-    /// Ablation: radii that just cover each point's Voronoi cell (`RadiusMode::Cell`).
-    CellRadius,
+    /// Ablation: the paper's support radius instead of the cell radius (`RadiusMode::Paper`).
+    PaperRadius,
 }
 
 impl Variant {
@@ -40,7 +40,7 @@ impl Variant {
         match self {
             Self::Points => "points",
             Self::Mesh => "mesh",
-            Self::PaperConfiguration => "paper's configuration (cube boxes, box test)",
+            Self::PaperConfiguration => "paper's configuration (its radius, cube boxes, box test)",
             Self::GeometryPerAabb => "one geometry per AABB",
             Self::CombinedBuffers => "combined buffers",
             Self::CubeBoxes => "cube boxes",
@@ -49,7 +49,7 @@ impl Variant {
             Self::HitReordering => "hit reordering (SER)",
             Self::SixNeighbours => "k = 6 neighbours",
             Self::SmallerDisks => "disk scale 0.7",
-            Self::CellRadius => "cell radius",
+            Self::PaperRadius => "paper's radius",
         }
     }
 }

@@ -166,9 +166,8 @@ impl ModelRun<'_> {
         let smaller =
             self.reprepped(base, with_params(PrepParams { disk_scale: 0.7, ..PrepParams::default() }))?;
         self.time(&smaller, settings, BlasLayout::OneGeometry, Variant::SmallerDisks)?;
-        let cells =
-            self.reprepped(base, PrepOptions { radius_mode: RadiusMode::Cell, ..PrepOptions::default() })?;
-        self.time(&cells, settings, BlasLayout::OneGeometry, Variant::CellRadius)?;
+        let paper_radii = self.reprepped(base, paper_radius(PrepParams::default()))?;
+        self.time(&paper_radii, settings, BlasLayout::OneGeometry, Variant::PaperRadius)?;
         if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
             return Ok(());
         }
@@ -176,7 +175,9 @@ impl ModelRun<'_> {
         let cubes = self
             .reprepped(base, with_params(PrepParams { box_kind: BoxKind::Cube, ..PrepParams::default() }))?;
         self.time(&cubes, settings, BlasLayout::OneGeometry, Variant::CubeBoxes)?;
-        self.time(&cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)?;
+        let paper_cubes = self
+            .reprepped(base, paper_radius(PrepParams { box_kind: BoxKind::Cube, ..PrepParams::default() }))?;
+        self.time(&paper_cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)?;
         let six = self.reprepped(base, with_params(PrepParams { k: 6, ..PrepParams::default() }))?;
         self.time(&six, settings, BlasLayout::OneGeometry, Variant::SixNeighbours)
     }
@@ -245,4 +246,8 @@ impl ModelRun<'_> {
 
 fn with_params(params: PrepParams) -> PrepOptions {
     PrepOptions { params, ..PrepOptions::default() }
+}
+
+fn paper_radius(params: PrepParams) -> PrepOptions {
+    PrepOptions { radius_mode: RadiusMode::Paper, ..with_params(params) }
 }

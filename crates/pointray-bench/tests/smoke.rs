@@ -67,7 +67,7 @@ fn table1_bunny_runs_with_limit_and_ablations() {
             Variant::BoxAcceptance,
             Variant::AovOutput,
             Variant::SmallerDisks,
-            Variant::CellRadius,
+            Variant::PaperRadius,
             Variant::GeometryPerAabb,
             Variant::CubeBoxes,
             Variant::PaperConfiguration,

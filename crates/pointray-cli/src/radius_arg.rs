@@ -3,8 +3,8 @@
 use clap::ValueEnum;
 use pointray_surface::RadiusMode;
 
-/// The support radius: the paper's (farthest of the k neighbours), or adapted to the local
-/// density.
+/// The support radius: the paper's (farthest of the k neighbours), adapted to the local
+/// density, or just covering each point's Voronoi cell.
 #[derive(Clone, Copy, ValueEnum)]
 pub enum Radius {
     Paper,

@@ -122,8 +122,7 @@ impl CpuRenderer {
                 // In object space, where the patches are; `t` is the same there.
                 let position = instance.to_object(ray).at(hit.t);
                 let (hot, cold, neighbors) = (&patches.hot, &patches.cold, &patches.color_neighbors);
-                let reach = patches.color_reach_scale;
-                color_from_rgba8(interpolate_color(position, hit.primitive, hot, cold, neighbors, reach))
+                color_from_rgba8(interpolate_color(position, hit.primitive, hot, cold, neighbors))
             }
             Geometry::Mesh(_) => Vec3::ONE,
         }

@@ -29,8 +29,7 @@ struct ObjectRecord {
     MeshIndices indices;
     ColorNeighbors color_neighbors;         // 0 where the points have no colours (interpolate_color.glsl)
     vec4 diffuse_ambient;                   // rgb = diffuse colour, a = ambient
-    vec4 specular_shininess_reflect_colors; // x = specular, y = shininess, z = reflectivity,
-                                            // w = 0, or where point colours are used, their reach scale (interpolate_color)
+    vec4 specular_shininess_reflect_colors; // x = specular, y = shininess, z = reflectivity, w = use point colours
 };
 
 // Point light: xyz = position, w = 0. Directional: xyz = travel direction, w = 1.

@@ -39,8 +39,7 @@ struct ColorScan {
     uint nearest;
 };
 
-ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatches cold, ColorNeighbors neighbors,
-                            float reach_scale) {
+ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatches cold, ColorNeighbors neighbors) {
     ColorScan scan = ColorScan(vec3(0.0), 0.0, centre);
     float nearest_distance = 1.0 / 0.0;
     uint slots = has_address(neighbors) ? COLOR_NEIGHBORS : 0u;
@@ -49,10 +48,10 @@ ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatc
         if (j == NO_NEIGHBOR) {
             continue;
         }
-        vec4 origin_radius = hot.records[j].origin_radius;
-        float distance_to_point = distance(position, origin_radius.xyz);
-        float weight = color_weight(distance_to_point, reach_scale * origin_radius.w);
-        scan.weighted_color += weight * color_from_rgba8(cold.records[j].color_rgba8);
+        float distance_to_point = distance(position, hot.records[j].origin_radius.xyz);
+        PatchCold record = cold.records[j];
+        float weight = color_weight(distance_to_point, record.color_reach);
+        scan.weighted_color += weight * color_from_rgba8(record.color_rgba8);
         scan.total_weight += weight;
         if (distance_to_point < nearest_distance) {
             scan.nearest = j;
@@ -64,14 +63,12 @@ ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatc
 
 // The colour at `position` (the patches' space) on patch `hit`, as linear RGBA8; where no
 // point reaches it, the colour of the point nearest it. `neighbors` may be 0: then the blend
-// is over the hit patch alone. Each point's colour reaches `reach_scale` times its radius.
-// Indices are trusted (the loader checks them).
-uint interpolate_color(vec3 position, uint hit, HotPatches hot, ColdPatches cold, ColorNeighbors neighbors,
-                       float reach_scale) {
+// is over the hit patch alone. Indices are trusted (the loader checks them).
+uint interpolate_color(vec3 position, uint hit, HotPatches hot, ColdPatches cold, ColorNeighbors neighbors) {
     uint centre = hit;
     ColorScan scan;
     for (uint step = 0u; step < COLOR_WALK_SCANS; ++step) {
-        scan = color_scan_around(position, centre, hot, cold, neighbors, reach_scale);
+        scan = color_scan_around(position, centre, hot, cold, neighbors);
         if (scan.nearest == centre) {
             break;
         }

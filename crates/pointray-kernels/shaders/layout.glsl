@@ -12,6 +12,7 @@ struct PatchHot {
 struct PatchCold {
     uint color_rgba8;    // linear RGBA8, r in the low byte
     float intensity;
+    float color_reach;   // how far the point's colour reaches in the blend (interpolate_color)
 };
 
 #endif

@@ -22,8 +22,7 @@ uint hit_color(ObjectRecord object, uint patch_index) {
     }
     // In object space, where the patches are; t is the same there.
     vec3 position = gl_ObjectRayOriginEXT + gl_HitTEXT * gl_ObjectRayDirectionEXT;
-    return interpolate_color(position, patch_index, object.hot, object.cold, object.color_neighbors,
-                             object.specular_shininess_reflect_colors.w);
+    return interpolate_color(position, patch_index, object.hot, object.cold, object.color_neighbors);
 }
 
 void main() {

@@ -1,11 +1,10 @@
 //! The colour at a hit point, blended from the points around it (issue 7: no blocky seams
 //! between patches). Twin of `shaders/interpolate_color.glsl`.
 //!
-//! Each point `j` spreads its colour over the ball of radius `reach_scale * d_j` around
-//! `p_j` with the Wendland weight, where `d_j` is its stored radius and `reach_scale` one
-//! number per patch set: `COLOR_SUPPORT_SCALE` for the paper's radius, more for the cell
-//! radius or a disk scale, whose smaller disks would otherwise leave colour gaps (prep sets
-//! it, `pointray_surface::color_reach`), and the colour at `x` is the weighted mean over
+//! Each point `j` spreads its colour over the ball of radius `COLOR_SUPPORT_SCALE * d_j`
+//! around `p_j` with the Wendland weight, where `d_j` is the paper's radius, stored in the cold
+//! record as the point's colour reach whatever radius its patch has (a smaller radius, as the
+//! cell radius gives, would leave gaps in the blend), and the colour at `x` is the weighted mean over
 //! the points whose ball holds `x`. A point's weight depends only on `x` and on that point,
 //! never on the patch that was hit, so this is one continuous field over the surface,
 //! provided that every patch hit at `x` sums over the same points.
@@ -37,8 +36,8 @@ pub const COLOR_NEIGHBORS: usize = 12;
 /// Marks an unused neighbour slot.
 pub const NO_NEIGHBOR: u32 = u32::MAX;
 
-/// Point `j`'s colour reaches this multiple of the paper's support radius `d_j` (about 1.3
-/// point spacings for `k = 9`). At 0.6 the gaps of a jittered grid were barely
+/// Point `j`'s colour reaches this multiple of its support radius `d_j` (about 1.3 point
+/// spacings for the default `k = 9`). At 0.6 the gaps of a jittered grid were barely
 /// reached, and a rendered gradient plane stepped by 0.02 between pixels where only one
 /// faint weight was left; at 0.75 it followed the gradient. Larger blurs colour detail.
 pub const COLOR_SUPPORT_SCALE: f32 = 0.75;
@@ -49,7 +48,7 @@ pub const COLOR_WALK_SCANS: u32 = 3;
 
 /// The colour at `position` (in the patches' space) on patch `hit`, as linear RGBA8.
 /// `neighbors` holds `COLOR_NEIGHBORS` patch indices per patch, or nothing, when the blend
-/// is over the hit patch alone. Each point's colour reaches `reach_scale` times its radius. Where no point reaches `position`, the colour of the point
+/// is over the hit patch alone. Where no point reaches `position`, the colour of the point
 /// nearest it. Packed, as the GPU's hit payload carries it, so that both renderers round the
 /// same way. Indices out of range count as `NO_NEIGHBOR`.
 pub fn interpolate_color(
@@ -58,12 +57,11 @@ pub fn interpolate_color(
     hot: &[PatchHot],
     cold: &[PatchCold],
     neighbors: &[u32],
-    reach_scale: f32,
 ) -> u32 {
     let mut centre = hit;
     let mut scan = ColorScan::default();
     for _ in 0..COLOR_WALK_SCANS {
-        scan = ColorScan::around(position, centre, (hot, cold, neighbors), reach_scale);
+        scan = ColorScan::around(position, centre, hot, cold, neighbors);
         if scan.nearest == centre {
             break;
         }
@@ -85,12 +83,7 @@ struct ColorScan {
 }
 
 impl ColorScan {
-    fn around(
-        position: Vec3,
-        centre: u32,
-        (hot, cold, neighbors): (&[PatchHot], &[PatchCold], &[u32]),
-        reach_scale: f32,
-    ) -> Self {
+    fn around(position: Vec3, centre: u32, hot: &[PatchHot], cold: &[PatchCold], neighbors: &[u32]) -> Self {
         let row = (centre as usize)
             .checked_mul(COLOR_NEIGHBORS)
             .and_then(|first| neighbors.get(first..first.checked_add(COLOR_NEIGHBORS)?));
@@ -101,7 +94,7 @@ impl ColorScan {
                 continue;
             };
             let distance = position.distance(patch.origin());
-            let weight = color_weight(distance, reach_scale * patch.radius());
+            let weight = color_weight(distance, record.color_reach);
             scan.weighted_color += weight * color_from_rgba8(record.color_rgba8);
             scan.total_weight += weight;
             if distance < nearest_distance {
@@ -168,7 +161,11 @@ mod tests {
             let hot = points.iter().map(|&p| PatchHot::new(p, Vec3::X, Vec3::Z, [0.0; 6], 2.0)).collect();
             let cold = points
                 .iter()
-                .map(|&p| PatchCold { color_rgba8: color_to_rgba8(field(p)), intensity: 0.0 })
+                .map(|&p| PatchCold {
+                    color_rgba8: color_to_rgba8(field(p)),
+                    color_reach: COLOR_SUPPORT_SCALE * 2.0,
+                    ..PatchCold::default()
+                })
                 .collect();
             let neighbors = (0..points.len())
                 .flat_map(|i| {
@@ -187,7 +184,7 @@ mod tests {
         }
 
         fn color(&self, position: Vec3, hit: u32) -> u32 {
-            interpolate_color(position, hit, &self.hot, &self.cold, &self.neighbors, COLOR_SUPPORT_SCALE)
+            interpolate_color(position, hit, &self.hot, &self.cold, &self.neighbors)
         }
     }
 
@@ -246,22 +243,13 @@ mod tests {
         let own = plane.cold[hit as usize].color_rgba8;
         let origin = plane.hot[hit as usize].origin();
         for offset in [Vec3::ZERO, Vec3::new(0.4, 0.3, 0.0), Vec3::new(5.0, 0.0, 0.0)] {
-            assert_eq!(
-                interpolate_color(origin + offset, hit, &plane.hot, &plane.cold, &[], COLOR_SUPPORT_SCALE),
-                own
-            );
+            assert_eq!(interpolate_color(origin + offset, hit, &plane.hot, &plane.cold, &[]), own);
         }
         // Slots marked unused are skipped, and so are indices beyond the patches.
         let unused = vec![NO_NEIGHBOR; plane.neighbors.len()];
-        assert_eq!(
-            interpolate_color(origin, hit, &plane.hot, &plane.cold, &unused, COLOR_SUPPORT_SCALE),
-            own
-        );
+        assert_eq!(interpolate_color(origin, hit, &plane.hot, &plane.cold, &unused), own);
         let beyond = vec![u32::MAX - 1; plane.neighbors.len()];
-        assert_eq!(
-            interpolate_color(origin + Vec3::X, hit, &plane.hot, &plane.cold, &beyond, COLOR_SUPPORT_SCALE),
-            own
-        );
+        assert_eq!(interpolate_color(origin + Vec3::X, hit, &plane.hot, &plane.cold, &beyond), own);
     }
 
     #[test]

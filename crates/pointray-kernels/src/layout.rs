@@ -84,7 +84,7 @@ impl PatchHot {
     }
 }
 
-/// What only shading reads for patch `i`. 8 bytes.
+/// What only shading reads for patch `i`. 12 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct PatchCold {
@@ -92,18 +92,26 @@ pub struct PatchCold {
     pub color_rgba8: u32,
     /// Scanner intensity in [0, 1]; 0 when the input had none.
     pub intensity: f32,
+    /// How far the point's colour reaches in the blend of `interpolate_color`:
+    /// `COLOR_SUPPORT_SCALE` times the paper's `d_i`, whatever radius the patch itself has;
+    /// 0 reaches nowhere (the blend then takes the nearest point's colour).
+    pub color_reach: f32,
 }
 
 impl Default for PatchCold {
     fn default() -> Self {
-        Self { color_rgba8: 0xffff_ffff, intensity: 0.0 }
+        Self { color_rgba8: 0xffff_ffff, intensity: 0.0, color_reach: 0.0 }
     }
 }
 
 impl PatchCold {
     pub fn from_rgb8(rgb: [u8; 3], intensity: f32) -> Self {
-        let color_rgba8 = u32::from_le_bytes([rgb[0], rgb[1], rgb[2], 255]);
-        Self { color_rgba8, intensity }
+        Self { color_rgba8: rgb8_to_rgba8(rgb), intensity, ..Self::default() }
+    }
+
+    /// Replaces the colour, keeping the intensity and the reach.
+    pub fn set_rgb8(&mut self, rgb: [u8; 3]) {
+        self.color_rgba8 = rgb8_to_rgba8(rgb);
     }
 
     /// The colour as linear RGB in [0, 1].
@@ -111,6 +119,10 @@ impl PatchCold {
         let [r, g, b, _] = self.color_rgba8.to_le_bytes();
         Vec3::new(r as f32, g as f32, b as f32) / 255.0
     }
+}
+
+fn rgb8_to_rgba8(rgb: [u8; 3]) -> u32 {
+    u32::from_le_bytes([rgb[0], rgb[1], rgb[2], 255])
 }
 
 /// An axis-aligned box, laid out as `VkAabbPositionsKHR`.
@@ -150,7 +162,7 @@ mod tests {
     #[test]
     fn layouts_match_the_glsl_strides() {
         assert_eq!(std::mem::size_of::<PatchHot>(), 64);
-        assert_eq!(std::mem::size_of::<PatchCold>(), 8);
+        assert_eq!(std::mem::size_of::<PatchCold>(), 12);
         assert_eq!(std::mem::size_of::<Aabb>(), 24);
     }
 

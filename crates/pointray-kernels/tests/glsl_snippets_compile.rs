@@ -64,7 +64,7 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
         "HotPatches hot = HotPatches(uvec2(64u, 0u));
              ColdPatches cold = ColdPatches(uvec2(128u, 0u));
              ColorNeighbors neighbors = ColorNeighbors(uvec2(0u));
-             uint packed = interpolate_color(vec3(0.5, 0.0, 0.0), 3u, hot, cold, neighbors, 0.75);
+             uint packed = interpolate_color(vec3(0.5, 0.0, 0.0), 3u, hot, cold, neighbors);
              result = color_from_rgba8(packed) + vec3(color_weight(0.2, 1.0));",
     ),
     (

@@ -79,7 +79,7 @@ impl IntensityRamp {
     pub fn recolor(&self, cold: &mut [PatchCold]) {
         for record in cold {
             let rgb = (self.color_at(record.intensity).clamp(Vec3::ZERO, Vec3::ONE) * 255.0).round();
-            *record = PatchCold::from_rgb8([rgb.x as u8, rgb.y as u8, rgb.z as u8], record.intensity);
+            record.set_rgb8([rgb.x as u8, rgb.y as u8, rgb.z as u8]);
         }
     }
 }

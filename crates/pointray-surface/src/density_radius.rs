@@ -31,20 +31,21 @@ use crate::neighbors::Neighbors;
 
 /// How `prep` chooses each patch's support radius `d_i`.
 ///
-/// The paper's radius stays the default: the cell radius halves the false surface at
-/// silhouettes and the normal error on the bunny and horse scans and shortens the GPU frame
-/// by 8–26%, but leaves a few pinhole pixels in 100,000 where the paper's leaves none, and
-/// its colour blend steps twice as much (bench/FIDELITY.md, "Cell margin").
+/// The default is the cell radius: against the paper's on the bunny and horse scans it halves
+/// the false surface at silhouettes and the normal error, and shortens the GPU frame by 8–26%.
+/// It leaves no pinholes: the few pixels in 100,000 that the mesh covers and it does not all
+/// lie on the mesh's silhouette, where the paper's larger disks bulge past it instead
+/// (bench/FIDELITY.md, "Cell margin").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum RadiusMode {
     /// SPEC.md §2.3: the tangential distance to the farthest of the `k` neighbours.
-    #[default]
     Paper,
     /// The paper's radius widened to cover the point's Voronoi cell and held to a band
     /// around the neighbourhood's median.
     Adaptive,
     /// Just what covers the point's Voronoi cell, `CELL_MARGIN` times its farthest corner,
     /// and never more than the paper's radius.
+    #[default]
     Cell,
 }
 

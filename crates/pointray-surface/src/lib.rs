@@ -1,7 +1,6 @@
 //! From a point set to MLS quadratic patches (SPEC.md §2): the offline half of pointray.
 
 pub mod cold_records;
-pub mod color_reach;
 pub mod density_radius;
 pub mod duplicates;
 pub mod frame;

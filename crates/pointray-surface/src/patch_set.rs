@@ -1,7 +1,6 @@
 //! The result of `prep`: one patch per (deduplicated) point, in Morton order.
 
 use glam::DVec3;
-use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 
 use crate::patch_bounds::BoxKind;
@@ -32,7 +31,7 @@ impl Default for PrepParams {
 
 /// Patches in local, recentred f32 coordinates; `offset` takes them back to the
 /// input's coordinates (`input = local + offset`).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct PatchSet {
     pub params: PrepParams,
     pub offset: DVec3,
@@ -43,23 +42,6 @@ pub struct PatchSet {
     /// slots: the points a hit's colour is blended from (`interpolate_color`). Empty when
     /// the cloud has neither colours nor intensities, as there is nothing to blend.
     pub color_neighbors: Vec<u32>,
-    /// Each point's colour reaches this multiple of its stored radius in the blend
-    /// (`color_reach`): `COLOR_SUPPORT_SCALE` for the paper's radii, more for smaller ones.
-    pub color_reach_scale: f32,
-}
-
-impl Default for PatchSet {
-    fn default() -> Self {
-        Self {
-            params: PrepParams::default(),
-            offset: DVec3::ZERO,
-            aabbs: Vec::new(),
-            hot: Vec::new(),
-            cold: Vec::new(),
-            color_neighbors: Vec::new(),
-            color_reach_scale: COLOR_SUPPORT_SCALE,
-        }
-    }
 }
 
 impl PatchSet {

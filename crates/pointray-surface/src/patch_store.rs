@@ -6,7 +6,7 @@
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRPATCH\0"` |
 //! | 8 | 4 | format version, u32 = 3 |
-//! | 12 | 4 | header size in bytes, u32 = 176 |
+//! | 12 | 4 | header size in bytes, u32 = 160 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
 //! | 24 | 4 | `k`, u32 |
 //! | 28 | 4 | `normal_k`, u32 |
@@ -16,12 +16,10 @@
 //! | 64 | 24 | offset, f64 x 3 (`input = local + offset`) |
 //! | 88 | 64 | section table: (byte offset u64, byte length u64) for aabbs, hot, cold, neighbours |
 //! | 152 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
-//! | 156 | 4 | disk scale, f32 (`PrepParams::disk_scale`) |
-//! | 160 | 4 | colour reach scale, f32 (`PatchSet::color_reach_scale`) |
-//! | 164 | 12 | zero |
-//! | 176 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
+//! | 156 | 4 | disk scale, f32 (`PrepParams::disk_scale`; 0, as written before it existed, reads as 1) |
+//! | 160 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
 //! | 16-aligned | 64 n | hot: `PatchHot` (origin+d_i, t1+c0, n+c1, c2..c5; f32 x 16) |
-//! | 16-aligned | 8 n | cold: `PatchCold` (RGBA8 u32, intensity f32) |
+//! | 16-aligned | 12 n | cold: `PatchCold` (RGBA8 u32, intensity f32, colour reach f32) |
 //! | 16-aligned | 4 m n | neighbours: `m` patch indices per patch (u32, `NO_NEIGHBOR` = unused) |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
 //!
@@ -91,8 +89,6 @@ struct Header {
     sections: [Section; SECTION_COUNT],
     neighbor_slots: u32,
     disk_scale: f32,
-    color_reach_scale: f32,
-    reserved: [u32; 3],
 }
 
 /// Where each section lies for `n` patches with `neighbor_slots` colour neighbours each;
@@ -200,8 +196,6 @@ fn header_for(patches: &PatchSet, layout: &Layout, neighbor_slots: u32) -> Heade
         sections: layout.sections,
         neighbor_slots,
         disk_scale: patches.params.disk_scale,
-        color_reach_scale: patches.color_reach_scale,
-        reserved: [0; 3],
     }
 }
 
@@ -245,7 +239,7 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
             normal_k: header.normal_k,
             box_kind,
             duplicate_tolerance: header.duplicate_tolerance,
-            disk_scale: header.disk_scale,
+            disk_scale: if header.disk_scale == 0.0 { 1.0 } else { header.disk_scale },
         },
         offset: DVec3::from_array(header.offset),
         aabbs: bytemuck::pod_collect_to_vec(section(0)),
@@ -253,7 +247,6 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
         cold: bytemuck::pod_collect_to_vec(section(2)),
         color_neighbors: checked_neighbors(section(3), header.point_count)
             .map_err(|problem| malformed(&problem))?,
-        color_reach_scale: header.color_reach_scale,
     })
 }
 
@@ -315,13 +308,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn header_is_176_bytes_and_sections_are_aligned() {
-        assert_eq!(HEADER_BYTES, 176);
+    fn header_is_160_bytes_and_sections_are_aligned() {
+        assert_eq!(HEADER_BYTES, 160);
         let layout = Layout::new(3, COLOR_NEIGHBORS as u32).unwrap();
         assert!(layout.sections.iter().all(|s| s.offset % 16 == 0));
-        assert_eq!(layout.sections[0], Section { offset: 176, length: 72 });
-        assert_eq!(layout.sections[1], Section { offset: 256, length: 192 });
-        assert_eq!(layout.sections[2], Section { offset: 448, length: 24 });
+        assert_eq!(layout.sections[0], Section { offset: 160, length: 72 });
+        assert_eq!(layout.sections[1], Section { offset: 240, length: 192 });
+        assert_eq!(layout.sections[2], Section { offset: 432, length: 36 });
         assert_eq!(layout.sections[3], Section { offset: 480, length: 144 });
         assert_eq!(layout.total_bytes, 628);
         let without = Layout::new(3, 0).unwrap();

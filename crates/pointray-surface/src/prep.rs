@@ -4,11 +4,11 @@ use std::time::{Duration, Instant};
 
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
+use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
-use crate::color_reach::color_reach_scale;
 use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii, cell_radii};
 use crate::duplicates::merge_duplicates;
 use crate::frame::TangentFrame;
@@ -35,8 +35,7 @@ const PROGRESS_CHUNK: usize = 16_384;
 
 /// Changes whenever `prep` makes different patches from the same input and options (the
 /// cell margin went from 1.15 to 1.5 in revision 2), so that caches keyed on the options also
-/// key on this and never serve patches of an older rule. (A new store format is refused by
-/// version anyway; this covers changes within one format.)
+/// key on this and never serve patches of an older rule.
 pub const PREP_REVISION: u32 = 2;
 
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -95,17 +94,16 @@ pub fn prep(
     });
     let frames: Vec<TangentFrame> = clock
         .run(Stage::Frames, patches, || normals.par_iter().map(|&n| TangentFrame::from_normal(n)).collect());
-    let (radii, radius_fallbacks, radius_adjustments, color_reach_scale) =
-        clock.run(Stage::SupportRadii, patches, || {
-            support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode, params.disk_scale)
-        });
+    let radii = clock.run(Stage::SupportRadii, patches, || {
+        support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode)
+    });
     let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
-        fit_patches(&points, &frames, &radii, &neighbors, k, params.disk_scale, progress)
+        fit_patches(&points, &frames, &radii.chosen, &neighbors, k, params.disk_scale, progress)
     });
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
     let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
-        (gather_cold(cloud, &source), color_neighbor_table(&neighbors, has_point_colors(cloud)))
+        (gather_cold(cloud, &source, &radii.paper), color_neighbor_table(&neighbors, has_point_colors(cloud)))
     });
     let report = PrepReport {
         input_points: count,
@@ -114,13 +112,13 @@ pub fn prep(
         patches,
         replaced_input_normals,
         fits,
-        radius_fallbacks,
-        radius_adjustments,
+        radius_fallbacks: radii.fallbacks,
+        radius_adjustments: radii.adjustments,
         offset,
         patch_sources: source,
         stage_times: clock.times,
     };
-    Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors, color_reach_scale }, report))
+    Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors }, report))
 }
 
 /// Times each stage and tells `progress` about it.
@@ -239,9 +237,16 @@ fn keep_inliers(
     Ok(survivors)
 }
 
-/// The paper's radii (SPEC.md §2.3), or in adaptive and cell mode their corrections, and
-/// the colour reach scale that takes the stored radii (these times `disk_scale`) back to the
-/// paper's.
+/// Each patch's support radius, and the paper's radius it was derived from, which also sets
+/// how far the point's colour reaches (`PatchCold::color_reach`).
+struct SupportRadii {
+    chosen: Vec<f32>,
+    paper: Vec<f32>,
+    fallbacks: RadiusFallbacks,
+    adjustments: RadiusAdjustments,
+}
+
+/// The paper's radii (SPEC.md §2.3), then, in adaptive or cell mode, their correction.
 fn support_radii(
     points: &[Vec3],
     normals: &[Vec3],
@@ -249,17 +254,14 @@ fn support_radii(
     neighbors: &Neighbors,
     k: usize,
     mode: RadiusMode,
-    disk_scale: f32,
-) -> (Vec<f32>, RadiusFallbacks, RadiusAdjustments, f32) {
+) -> SupportRadii {
     let (paper, fallbacks) = paper_radii(points, normals, neighbors, k);
-    let (radii, adjustments) = match mode {
+    let (chosen, adjustments) = match mode {
         RadiusMode::Paper => (paper.clone(), RadiusAdjustments::default()),
         RadiusMode::Adaptive => adaptive_radii(frames, points, neighbors, k, &paper),
         RadiusMode::Cell => (cell_radii(frames, points, neighbors, k, &paper), RadiusAdjustments::default()),
     };
-    let stored: Vec<f32> = radii.iter().map(|r| r * disk_scale).collect();
-    let reach = color_reach_scale(&paper, &stored);
-    (radii, fallbacks, adjustments, reach)
+    SupportRadii { chosen, paper, fallbacks, adjustments }
 }
 
 fn paper_radii(
@@ -339,10 +341,14 @@ fn has_point_colors(cloud: &PointCloud) -> bool {
     cloud.colors.is_some() || cloud.intensities.is_some()
 }
 
-fn gather_cold(cloud: &PointCloud, source: &[u32]) -> Vec<PatchCold> {
+fn gather_cold(cloud: &PointCloud, source: &[u32], paper_radii: &[f32]) -> Vec<PatchCold> {
     let colors = cloud.colors.as_deref().map(|values| gather(values, source));
     let intensities = cloud.intensities.as_deref().map(|values| gather(values, source));
-    cold_records(colors.as_deref(), intensities.as_deref(), source.len())
+    let mut cold = cold_records(colors.as_deref(), intensities.as_deref(), source.len());
+    for (record, radius) in cold.iter_mut().zip(paper_radii) {
+        record.color_reach = COLOR_SUPPORT_SCALE * radius;
+    }
+    cold
 }
 
 fn gather<T: Copy + Send + Sync>(values: &[T], source: &[u32]) -> Vec<T> {

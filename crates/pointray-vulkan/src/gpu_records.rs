@@ -13,12 +13,12 @@ use crate::trace_target::PixelOutput;
 pub(crate) struct PatchCombined {
     hot: PatchHot,
     cold: PatchCold,
-    pad: [u32; 2],
+    pad: u32,
 }
 
 impl PatchCombined {
     pub(crate) fn new(hot: PatchHot, cold: PatchCold) -> Self {
-        Self { hot, cold, pad: [0; 2] }
+        Self { hot, cold, pad: 0 }
     }
 }
 
@@ -38,10 +38,8 @@ pub(crate) struct ObjectRecord {
 }
 
 impl ObjectRecord {
-    /// This record (its addresses) with `material`'s values. `color_reach_scale` is the
-    /// patch set's (`PatchSet::color_reach_scale`), any positive number for a mesh; the
-    /// shaders read a nonzero one as "use the point colours".
-    pub(crate) fn with_material(self, material: &Material, color_reach_scale: f32) -> Self {
+    /// This record (its addresses) with `material`'s values.
+    pub(crate) fn with_material(self, material: &Material) -> Self {
         let d = material.diffuse;
         Self {
             diffuse_ambient: [d.x, d.y, d.z, material.ambient],
@@ -49,7 +47,7 @@ impl ObjectRecord {
                 material.specular,
                 material.shininess,
                 material.reflectivity,
-                if material.use_point_colors { color_reach_scale } else { 0.0 },
+                if material.use_point_colors { 1.0 } else { 0.0 },
             ],
             ..self
         }

@@ -269,11 +269,7 @@ pub(crate) fn prepare(
             Geometry::Patches(patches) => prepare_patches(context, patches, layout)?,
             Geometry::Mesh(mesh) => prepare_mesh(context, mesh)?,
         };
-        let color_reach_scale = match &object.geometry {
-            Geometry::Patches(patches) => patches.color_reach_scale,
-            Geometry::Mesh(_) => 1.0,
-        };
-        records.push(prepared.record.with_material(&object.material, color_reach_scale));
+        records.push(prepared.record.with_material(&object.material));
         if let Some((blas, hit_group)) = prepared.blas {
             instances.push(instance(&object.transform, index as u32, &blas, hit_group));
             bottom_levels.push(blas);

@@ -39,8 +39,9 @@ pub struct FidelityArgs {
     /// The box around each patch.
     #[arg(long, value_enum, default_value_t = Boxes::Tight)]
     boxes: Boxes,
-    /// The support radius: the paper's, or adapted to the local density.
-    #[arg(long, value_enum, default_value_t = Radius::Paper)]
+    /// The support radius: the point's Voronoi cell (the default), the paper's, or adapted
+    /// to the local density.
+    #[arg(long, value_enum, default_value_t = Radius::Cell)]
     radius: Radius,
     /// How far each patch reaches, as a fraction of the paper's support radius.
     #[arg(long, default_value_t = PrepParams::default().disk_scale)]

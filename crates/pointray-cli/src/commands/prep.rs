@@ -42,11 +42,12 @@ pub struct PrepArgs {
     /// nearest neighbours is more than N standard deviations above the mean (e.g. `8,2`).
     #[arg(long, value_name = "K,N", value_parser = parse_outlier_filter)]
     remove_outliers: Option<OutlierFilter>,
-    /// The support radius: the paper's (farthest of the k neighbours), or adapted to the
-    /// local density (each disk grown over the part of its point's Voronoi cell that no
-    /// other disk covers, held to a band around the neighbourhood's median): fewer holes
-    /// on scan-line data, more false surface (bench/FIDELITY.md).
-    #[arg(long, value_enum, default_value_t = Radius::Paper)]
+    /// The support radius: by default each disk just covers its point's Voronoi cell (less
+    /// false surface and a faster trace than the paper's); `paper` is the farthest of the k
+    /// neighbours; `adaptive` grows each disk over the part of its cell that no other disk
+    /// covers, held to a band around the neighbourhood's median: fewer holes on scan-line
+    /// data, more false surface (bench/FIDELITY.md).
+    #[arg(long, value_enum, default_value_t = Radius::Cell)]
     radius: Radius,
 }
 

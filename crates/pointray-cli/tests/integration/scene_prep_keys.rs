@@ -39,10 +39,15 @@ fn outliers_are_removed_and_the_radius_mode_applies() {
     assert_eq!(default.len(), 905);
     let filtered = patch_radii(&write_scene(dir.path(), "remove_outliers = { neighbors = 8, sigmas = 2.0 }"));
     assert_eq!(filtered.len(), 900);
-    assert_eq!(patch_radii(&write_scene(dir.path(), "radius = \"paper\"")), default, "paper is the default");
+    assert_eq!(patch_radii(&write_scene(dir.path(), "radius = \"cell\"")), default, "cell is the default");
+    let paper = patch_radii(&write_scene(dir.path(), "radius = \"paper\""));
+    // On the grid (spacing 0.1) the paper's disks reach a diagonal neighbour two rows away;
+    // the cell radius only 1.5 times the cell's half-diagonal.
+    assert!(paper.iter().zip(&default).all(|(p, c)| c <= p), "a cell radius past the paper's");
+    assert!((default[450] - 1.5 * 0.05 * 2f32.sqrt()).abs() < 1e-4, "{}", default[450]);
     let adaptive = patch_radii(&write_scene(dir.path(), "radius = \"adaptive\""));
     assert_eq!(adaptive.len(), 905);
-    assert!(adaptive.iter().zip(&default).any(|(a, d)| a != d), "`radius = \"adaptive\"` changed no radius");
+    assert!(adaptive.iter().zip(&paper).any(|(a, p)| a != p), "`radius = \"adaptive\"` changed no radius");
 }
 
 #[test]

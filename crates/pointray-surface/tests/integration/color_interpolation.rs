@@ -47,7 +47,6 @@ fn every_patch_a_ray_meets_gives_the_same_colour() {
                 &patches.hot,
                 &patches.cold,
                 &patches.color_neighbors,
-                patches.color_reach_scale,
             );
             at_point.push(color_from_rgba8(color));
             per_patch.push(patches.cold[i].color());

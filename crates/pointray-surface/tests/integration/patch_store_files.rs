@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use pointray_kernels::COLOR_NEIGHBORS;
 use pointray_surface::patch_store::{self, StoreError};
-use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepOptions, PrepParams, RadiusMode, prep};
+use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepOptions, PrepParams, prep};
 
 fn sample_patches(box_kind: BoxKind) -> PatchSet {
     let mut cloud = common::sphere(3000, 1.5, DVec3::new(1e5, 2e5, -3.0));
@@ -23,18 +23,6 @@ fn written(directory: &Path, patches: &PatchSet) -> PathBuf {
     let path = directory.join("model.patches");
     patch_store::write(&path, patches).expect("writing to a temporary directory");
     path
-}
-
-#[test]
-fn the_colour_reach_scale_of_cell_radii_round_trips() {
-    let directory = tempfile::tempdir().unwrap();
-    let cloud = common::sphere(3000, 1.5, DVec3::ZERO);
-    let options = PrepOptions { radius_mode: RadiusMode::Cell, ..PrepOptions::default() };
-    let patches = prep(&cloud, &options, &NoProgress).expect("a sphere preps").0;
-    // Cell radii are about half the paper's, so the colour reaches twice as many of them.
-    assert!(patches.color_reach_scale > 1.2, "{}", patches.color_reach_scale);
-    let loaded = patch_store::read(&written(directory.path(), &patches)).unwrap();
-    assert_eq!(loaded.color_reach_scale.to_bits(), patches.color_reach_scale.to_bits());
 }
 
 #[test]
@@ -138,7 +126,7 @@ fn damaged(damage: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, StoreError, tempfile:
 
 #[test]
 fn another_version_is_refused_by_name() {
-    // Version 2 stores (before the colour reach scale) are refused with the way out.
+    // Version 2 stores (before the colour reach) are refused with the way out.
     let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&2u32.to_le_bytes()));
     assert!(matches!(error, StoreError::WrongVersion { found: 2, .. }), "{error:?}");
     let message = error.to_string();
