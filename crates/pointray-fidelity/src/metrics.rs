@@ -13,6 +13,9 @@ pub struct FidelityMetrics {
     pub both_hit_pixels: u64,
     /// Pixels the mesh covers but the points miss.
     pub hole_rate: Option<f64>,
+    /// Of those, the ones inside the mesh's image (all eight neighbours covered): pinholes
+    /// through the surface rather than a silhouette a pixel narrower.
+    pub pinhole_rate: Option<f64>,
     /// Pixels the points cover but the mesh misses.
     pub false_surface_rate: Option<f64>,
     /// `|d_points - d_mesh|` over the mesh's bounding-box diagonal, at pixels both hit.
@@ -32,6 +35,7 @@ impl PixelComparison {
             mesh_pixels: self.mesh_pixels,
             both_hit_pixels: self.depth_errors.len() as u64,
             hole_rate: rate(self.hole_pixels),
+            pinhole_rate: rate(self.pinhole_pixels),
             false_surface_rate: rate(self.false_surface_pixels),
             depth_error_mean: mean(&self.depth_errors),
             depth_error_p99: percentile(&mut self.depth_errors.clone(), 0.99).map(f64::from),

@@ -12,6 +12,9 @@ pub struct PixelComparison {
     pub mesh_pixels: u64,
     /// Pixels the mesh covers and the points miss.
     pub hole_pixels: u64,
+    /// Holes whose eight neighbours the mesh also covers: seen through the surface, where
+    /// the other holes lie on the mesh's silhouette and only move its edge by a pixel.
+    pub pinhole_pixels: u64,
     /// Pixels the points cover and the mesh misses.
     pub false_surface_pixels: u64,
     /// `|d_points - d_mesh| / diagonal` at each pixel both hit.
@@ -47,6 +50,7 @@ impl PixelComparison {
     pub fn merge(&mut self, other: PixelComparison) {
         self.mesh_pixels += other.mesh_pixels;
         self.hole_pixels += other.hole_pixels;
+        self.pinhole_pixels += other.pinhole_pixels;
         self.false_surface_pixels += other.false_surface_pixels;
         self.depth_errors.extend(other.depth_errors);
         self.normal_errors_degrees.extend(other.normal_errors_degrees);
@@ -58,7 +62,9 @@ impl PixelComparison {
         let mesh_hit = mesh.instance_id[pixel] != Frame::MISS;
         let points_hit = points.instance_id[pixel] != Frame::MISS;
         self.mesh_pixels += u64::from(mesh_hit);
-        self.hole_pixels += u64::from(mesh_hit && !points_hit);
+        let hole = mesh_hit && !points_hit;
+        self.hole_pixels += u64::from(hole);
+        self.pinhole_pixels += u64::from(hole && mesh_covers_around(mesh, pixel));
         self.false_surface_pixels += u64::from(points_hit && !mesh_hit);
         if mesh_hit && points_hit {
             self.depth_errors.push((points.depth[pixel] - mesh.depth[pixel]).abs() / diagonal);
@@ -69,6 +75,21 @@ impl PixelComparison {
         self.squared_color_error += f64::from(difference.length_squared());
         self.color_samples += 3;
     }
+}
+
+/// Whether the mesh covers all eight neighbours of `pixel` (pixels past the frame's edge count
+/// as uncovered).
+fn mesh_covers_around(mesh: &Frame, pixel: usize) -> bool {
+    let (width, height) = (mesh.width as i64, mesh.height as i64);
+    let (x, y) = ((pixel as i64) % width, (pixel as i64) / width);
+    (-1..=1).all(|dy| {
+        (-1..=1).all(|dx| {
+            let (nx, ny) = (x + dx, y + dy);
+            (0..width).contains(&nx)
+                && (0..height).contains(&ny)
+                && mesh.instance_id[(ny * width + nx) as usize] != Frame::MISS
+        })
+    })
 }
 
 /// The angle between two lines (a normal and its flip count as the same); a zero normal is

@@ -54,8 +54,9 @@ fn row(
 ) -> String {
     let f = |value: Option<f64>, scale: f64| value.map_or("-".into(), |v| format!("{:.4}", v * scale));
     format!(
-        "| {model} | {sampling} | {points} | {mode:?} | {scale} | {} | {} | {} | {} | {} | {} | {} | {} |",
+        "| {model} | {sampling} | {points} | {mode:?} | {scale} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
         f(m.hole_rate.map(|r| r * m.mesh_pixels as f64), 1.0).trim_end_matches(".0000"),
+        f(m.pinhole_rate.map(|r| r * m.mesh_pixels as f64), 1.0).trim_end_matches(".0000"),
         f(m.hole_rate, 100.0),
         f(m.false_surface_rate, 100.0),
         f(m.depth_error_mean, 1.0),
@@ -71,9 +72,9 @@ fn row(
 fn radius_modes_on_uneven_density() {
     let size = std::env::var("POINTRAY_FIDELITY_SIZE").ok().and_then(|s| s.parse().ok()).unwrap_or(512);
     println!(
-        "| model | sampling | points | radius | disk scale | hole px | hole % | false surface % | depth mean | depth p99 | normal mean ° | normal p95 ° | PSNR dB |"
+        "| model | sampling | points | radius | disk scale | hole px | pinhole px | hole % | false surface % | depth mean | depth p99 | normal mean ° | normal p95 ° | PSNR dB |"
     );
-    println!("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for model in MODELS {
         let Some(path) = data_file(&format!("meshes/{model}.ply")) else { continue };
         let mesh = Arc::new(pointray_io::formats::read_triangle_mesh(&path).unwrap());

@@ -55,6 +55,8 @@ fn rates_errors_and_psnr_match_the_hand_computed_values() {
     assert_eq!(metrics.mesh_pixels, 3);
     assert_eq!(metrics.both_hit_pixels, 2);
     assert!(close(metrics.hole_rate, 1.0 / 3.0, 1e-12), "{metrics:?}");
+    // One row: the hole's neighbours above and below lie off the frame, so it is no pinhole.
+    assert_eq!(metrics.pinhole_rate, Some(0.0));
     assert!(close(metrics.false_surface_rate, 1.0 / 3.0, 1e-12), "{metrics:?}");
     // Depth errors 0.1 / 2 and 0.
     assert!(close(metrics.depth_error_mean, 0.025, 1e-6), "{metrics:?}");
@@ -98,6 +100,22 @@ fn merging_pools_pixels_rather_than_averaging_rates() {
     assert_eq!(metrics.mesh_pixels, 12);
     assert!(close(metrics.hole_rate, 1.0 / 12.0, 1e-12), "{metrics:?}");
     assert_eq!(metrics.both_hit_pixels, 11);
+}
+
+#[test]
+fn only_holes_the_mesh_surrounds_are_pinholes() {
+    let hit = (Some((1.0, Vec3::Z, GREY)), Vec3::ZERO);
+    let square = |holes: &[usize]| {
+        let pixels: Vec<_> =
+            (0..25).map(|i| if holes.contains(&i) { (None, Vec3::ZERO) } else { hit }).collect();
+        Frame { width: 5, height: 5, ..frame(&pixels) }
+    };
+    // The mesh misses its corner pixel 0; the points miss the centre (12, surrounded),
+    // pixel 6 (beside the missing corner) and pixel 10 (on the frame's left edge).
+    let metrics = PixelComparison::of_frames(&square(&[0]), &square(&[0, 6, 10, 12]), 1.0).unwrap().metrics();
+    assert_eq!(metrics.mesh_pixels, 24);
+    assert!(close(metrics.hole_rate, 3.0 / 24.0, 1e-12), "{metrics:?}");
+    assert!(close(metrics.pinhole_rate, 1.0 / 24.0, 1e-12), "{metrics:?}");
 }
 
 #[test]
