@@ -8,8 +8,8 @@ use crate::measure::Measurement;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Variant {
-    /// The point set with our defaults: cell radii, one geometry, split buffers, tight boxes, the disk
-    /// test, display output.
+    /// The point set with our defaults: cell radii, one geometry, split buffers, tight boxes,
+    /// the disk test, display output.
     Points,
     /// The model's triangle mesh in place of its points (the limit).
     Mesh,

@@ -7,7 +7,7 @@
 //! path = "../../shared/data/points/bunny.ply"
 //! k = 9                    # optional prep overrides
 //! normal_k = 16
-//! radius = "adaptive"      # support radius: "cell" (the default), "paper" or "adaptive" (to the local density)
+//! radius = "adaptive"      # support radius: "cell" (the default), "paper" or "adaptive"
 //! remove_outliers = { neighbors = 8, sigmas = 2.0 }  # drop statistical outliers first
 //!
 //! [[objects]]

@@ -16,7 +16,7 @@
 //! | 64 | 24 | offset, f64 x 3 (`input = local + offset`) |
 //! | 88 | 64 | section table: (byte offset u64, byte length u64) for aabbs, hot, cold, neighbours |
 //! | 152 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
-//! | 156 | 4 | disk scale, f32 (`PrepParams::disk_scale`; 0, as written before it existed, reads as 1) |
+//! | 156 | 4 | disk scale, f32 (`PrepParams::disk_scale`) |
 //! | 160 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
 //! | 16-aligned | 64 n | hot: `PatchHot` (origin+d_i, t1+c0, n+c1, c2..c5; f32 x 16) |
 //! | 16-aligned | 12 n | cold: `PatchCold` (RGBA8 u32, intensity f32, colour reach f32) |
@@ -239,7 +239,7 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
             normal_k: header.normal_k,
             box_kind,
             duplicate_tolerance: header.duplicate_tolerance,
-            disk_scale: if header.disk_scale == 0.0 { 1.0 } else { header.disk_scale },
+            disk_scale: header.disk_scale,
         },
         offset: DVec3::from_array(header.offset),
         aabbs: bytemuck::pod_collect_to_vec(section(0)),
