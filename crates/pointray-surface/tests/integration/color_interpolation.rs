@@ -5,9 +5,9 @@
 use crate::common;
 
 use glam::{DVec3, Vec3};
-use pointray_kernels::interpolate_color::color_from_rgba8;
+use pointray_kernels::interpolate_color::{COLOR_SUPPORT_SCALE, color_from_rgba8};
 use pointray_kernels::{COLOR_NEIGHBORS, PatchAcceptance, Ray, interpolate_color, intersect_patch};
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepOptions, RadiusMode, prep};
 
 /// A jittered height field with a smooth colour field (sRGB in the file, as scans carry it).
 fn coloured_scan() -> PatchSet {
@@ -60,4 +60,19 @@ fn every_patch_a_ray_meets_gives_the_same_colour() {
     // One 8-bit step is 1/255 = 0.0039.
     assert!(mean(&own) > 0.03, "one colour per patch shows steps: mean {}", mean(&own));
     assert!(mean(&blended) < 0.001 && worst <= 2.0 / 255.0, "blended: mean {} worst {worst}", mean(&blended));
+}
+
+#[test]
+fn colours_reach_the_papers_distance_whatever_the_radius() {
+    let cloud = common::height_field(30, DVec3::ZERO, |x, y| 0.1 * x * y);
+    let prepped = |radius_mode| {
+        prep(&cloud, &PrepOptions { radius_mode, ..PrepOptions::default() }, &NoProgress).unwrap().0
+    };
+    let (paper, cell) = (prepped(RadiusMode::Paper), prepped(RadiusMode::Cell));
+    for (i, (p, c)) in paper.cold.iter().zip(&cell.cold).enumerate() {
+        assert_eq!(p.color_reach, COLOR_SUPPORT_SCALE * paper.hot[i].radius(), "patch {i}");
+        assert_eq!(c.color_reach, p.color_reach, "patch {i}: the cell radius changed the colour reach");
+    }
+    let shorter = cell.hot.iter().zip(&paper.hot).filter(|(c, p)| c.radius() < p.radius()).count();
+    assert!(shorter > cell.len() / 2, "the cell radius shortened only {shorter} of {} disks", cell.len());
 }
