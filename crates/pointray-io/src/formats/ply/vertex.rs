@@ -171,7 +171,7 @@ pub(super) fn into_point_cloud(
     let colors =
         layout.color_unit.map(|unit| records.iter().map(|r| r.color.map(|c| to_byte(c / unit))).collect());
     let intensities = layout.intensity_unit.map(|unit| normalised_intensities(records, unit));
-    Ok(PointCloud { positions, normals, colors, intensities, sensor_position: None })
+    Ok(PointCloud { positions, normals, colors, intensities, ..PointCloud::default() })
 }
 
 /// The positions in file order; an error names the first point with a NaN or infinite coordinate.
