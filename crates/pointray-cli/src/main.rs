@@ -3,6 +3,7 @@
 mod acceptance_arg;
 mod backend;
 mod boxes_arg;
+mod columns_arg;
 mod commands;
 mod progress;
 mod radius_arg;

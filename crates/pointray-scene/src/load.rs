@@ -6,11 +6,12 @@ use std::sync::Arc;
 
 use glam::{Affine3A, Vec3};
 use pointray_kernels::Aabb;
+use pointray_surface::PatchSet;
 use pointray_surface::prep_progress::{NoProgress, PrepProgress};
 
 use crate::error::{InvalidValue, SceneError};
 use crate::ground::GroundPlacement;
-use crate::intensity_ramp::IntensityRamp;
+use crate::material_spec::ColorSource;
 use crate::object_spec::{ObjectSpec, OutlierSpec, RadiusSpec, ShapeSpec};
 use crate::point_sets::{self, PointSetOrigin};
 use crate::procedural;
@@ -100,7 +101,14 @@ fn load_object(
         spec.transform.to_affine().map_err(|e| e.within(&format!("{key}.transform")).in_file(&file.path))?;
     let in_material = |e: InvalidValue| e.within(&format!("{key}.material")).in_file(&file.path);
     let material = spec.material.to_material().map_err(in_material)?;
-    let ramp = spec.material.intensity_ramp().map_err(in_material)?;
+    let ramp = spec.material.ramp().map_err(in_material)?;
+    let source = spec.material.color_source().map_err(in_material)?;
+    let color_error = |problem: String| SceneError::Invalid {
+        path: file.path.clone(),
+        key: format!("{key}.material.color_source"),
+        problem: format!("{}: {problem}", described_source(file, spec)),
+    };
+    check_color_source(source, &spec.shape).map_err(color_error)?;
     let (geometry, origin, default_name): LoadedGeometry = match &spec.shape {
         ShapeSpec::Mesh { path } => {
             let path = existing_file(file, &key, path)?;
@@ -108,7 +116,7 @@ fn load_object(
                 .map_err(|source| SceneError::Input { scene: file.path.clone(), key: key.clone(), source })?;
             (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
         }
-        ShapeSpec::Points { path, k, normal_k, radius, remove_outliers } => {
+        ShapeSpec::Points { path, k, normal_k, radius, remove_outliers, columns } => {
             let path = existing_file(file, &key, path)?;
             let request = point_sets::PrepRequest {
                 k: *k,
@@ -116,7 +124,11 @@ fn load_object(
                 radius: radius.map(RadiusSpec::mode),
                 remove_outliers: remove_outliers.map(OutlierSpec::filter),
             };
-            let (patches, origin) = point_sets::load_points_file(&path, &request, options)
+            let read = point_sets::ReadRequest {
+                columns: columns.clone(),
+                classification_colors: source == ColorSource::Classification,
+            };
+            let (patches, origin) = point_sets::load_points_file(&path, &request, &read, options)
                 .map_err(|e| e.in_scene(&file.path, &key))?;
             (Geometry::Patches(Arc::new(patches)), Some(origin), file_stem(&path))
         }
@@ -133,13 +145,18 @@ fn load_object(
             (Geometry::Mesh(Arc::new(mesh)), None, "ground".to_string())
         }
     };
-    let geometry = match ramp {
-        Some(ramp) => colored_by_intensity(geometry, &ramp).map_err(|problem| SceneError::Invalid {
-            path: file.path.clone(),
-            key: format!("{key}.material.color_source"),
-            problem: format!("{}: {problem}", described_source(file, spec)),
-        })?,
-        None => geometry,
+    // The ramp's colours go into the patches' cold records, where both renderers already
+    // read point colours.
+    let geometry = match (geometry, ramp) {
+        (Geometry::Patches(mut patches), Some(ramp)) => {
+            let values = match source {
+                ColorSource::Height => heights(&patches, &transform),
+                _ => intensities(&patches).map_err(|problem| color_error(problem.into()))?,
+            };
+            ramp.recolor(&mut Arc::make_mut(&mut patches).cold, values);
+            Geometry::Patches(patches)
+        }
+        (geometry, _) => geometry,
     };
     let transform = match &geometry {
         // prep recentred the points (`input = local + offset`); put them back where they were.
@@ -150,19 +167,53 @@ fn load_object(
     Ok((SceneObject { name, transform, material, geometry }, origin))
 }
 
-/// `color_source = "intensity"`: the ramp's colours go into the patches' cold records, where
-/// both renderers already read point colours.
-fn colored_by_intensity(geometry: Geometry, ramp: &IntensityRamp) -> Result<Geometry, &'static str> {
-    let Geometry::Patches(mut patches) = geometry else {
-        return Err("a mesh has no intensities; `color_source = \"intensity\"` applies to point sets");
+/// Refuses a colour source the object cannot give: only point sets have point colours to
+/// replace, and only points files have classifications.
+fn check_color_source(source: ColorSource, shape: &ShapeSpec) -> Result<(), String> {
+    let name = match source {
+        ColorSource::Fixed | ColorSource::Points => return Ok(()),
+        ColorSource::Intensity => "intensity",
+        ColorSource::Height => "height",
+        ColorSource::Classification => "classification",
     };
+    let kind = shape.type_name();
+    match shape {
+        ShapeSpec::Mesh { .. } | ShapeSpec::Ground { .. } => {
+            Err(format!("`color_source = \"{name}\"` applies to point sets, not a {kind} object"))
+        }
+        ShapeSpec::SpherePoints { .. } | ShapeSpec::TorusPoints { .. }
+            if source == ColorSource::Classification =>
+        {
+            Err(format!(
+                "a {kind} object has no classification, which `color_source = \"classification\"` needs"
+            ))
+        }
+        _ => Ok(()),
+    }
+}
+
+fn intensities(patches: &PatchSet) -> Result<Vec<f32>, &'static str> {
     // The readers report an all-zero intensity field as absent, and prep stores 0 for absent.
     if patches.cold.iter().all(|record| record.intensity == 0.0) {
         return Err("the points have no intensity, which `color_source = \"intensity\"` needs; \
-                    use \"points\" or \"fixed\"");
+                    use \"points\", \"height\" or \"fixed\"");
     }
-    ramp.recolor(&mut Arc::make_mut(&mut patches).cold);
-    Ok(Geometry::Patches(patches))
+    Ok(patches.cold.iter().map(|record| record.intensity).collect())
+}
+
+/// Each patch's height in the world (Y, after the object's transform) as a fraction of the
+/// object's vertical extent, 0 at its lowest point and 1 at its highest; computed in f64, as
+/// geo-referenced offsets are large. A flat object is all 0.5.
+fn heights(patches: &PatchSet, transform: &Affine3A) -> Vec<f32> {
+    let matrix = transform.matrix3;
+    let y_row = Vec3::new(matrix.x_axis.y, matrix.y_axis.y, matrix.z_axis.y).as_dvec3();
+    let world_y =
+        |local: Vec3| y_row.dot(local.as_dvec3() + patches.offset) + f64::from(transform.translation.y);
+    let heights: Vec<f64> = patches.hot.iter().map(|hot| world_y(hot.origin())).collect();
+    let (low, high) =
+        heights.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &h| (low.min(h), high.max(h)));
+    let span = high - low;
+    heights.iter().map(|&h| if span > 0.0 { ((h - low) / span) as f32 } else { 0.5 }).collect()
 }
 
 /// The object's points file, or its type when it has none: for messages.

@@ -8,9 +8,10 @@
 //! specular = 0.3
 //! shininess = 32.0
 //! reflectivity = 0.5          # 0 = none, 1 = a mirror
-//! color_source = "fixed"      # "fixed" (diffuse), "points" (the file's RGB) or "intensity"
-//! ramp = "viridis"            # for "intensity": "grey", "viridis", or evenly spaced
-//!                             # linear RGB stops, e.g. [[0, 0, 0.2], [1, 1, 0.8]]
+//! color_source = "fixed"      # "fixed" (diffuse), "points" (the file's RGB), "intensity",
+//!                             # "height" or "classification" (the ASPRS palette)
+//! ramp = "viridis"            # for "intensity" and "height": "grey", "viridis", or evenly
+//!                             # spaced linear RGB stops, e.g. [[0, 0, 0.2], [1, 1, 0.8]]
 //! intensity_range = [0.0, 1.0] # for "intensity": the intensities the ramp spans
 //! ```
 //!
@@ -21,8 +22,8 @@ use serde::Deserialize;
 
 use crate::Material;
 use crate::checks;
+use crate::color_ramp::{ColorRamp, RAMP_NAMES};
 use crate::error::InvalidValue;
-use crate::intensity_ramp::{IntensityRamp, RAMP_NAMES};
 
 /// Where a point set's diffuse colour comes from.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
@@ -35,6 +36,11 @@ pub enum ColorSource {
     Points,
     /// The points' intensities through the `ramp`.
     Intensity,
+    /// The points' height (world Y) through the `ramp`, from the object's lowest point to
+    /// its highest.
+    Height,
+    /// The points' LAS classification, in the ASPRS palette.
+    Classification,
 }
 
 /// A named ramp or a list of colour stops.
@@ -45,8 +51,10 @@ pub enum RampSpec {
     Stops(Vec<[f32; 3]>),
 }
 
-/// Without a `ramp`, intensities are shown in grey: no colour that the scan does not have.
-const DEFAULT_RAMP: &str = "grey";
+/// Without a `ramp`, intensities are shown in grey (no colour that the scan does not have)
+/// and heights in viridis (even steps of height look even).
+const DEFAULT_INTENSITY_RAMP: &str = "grey";
+const DEFAULT_HEIGHT_RAMP: &str = "viridis";
 
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -94,22 +102,31 @@ impl MaterialSpec {
         }
     }
 
-    /// The ramp that colours the points by intensity; `None` unless `color_source` is
-    /// `"intensity"`. `ramp` and `intensity_range` are refused with any other source.
-    pub(crate) fn intensity_ramp(&self) -> Result<Option<IntensityRamp>, InvalidValue> {
-        if self.color_source()? != ColorSource::Intensity {
-            if let Some(key) =
-                [("ramp", self.ramp.is_some()), ("intensity_range", self.intensity_range.is_some())]
-                    .into_iter()
-                    .find_map(|(key, given)| given.then_some(key))
-            {
-                return Err(InvalidValue::new(key, "applies only with `color_source = \"intensity\"`"));
-            }
-            return Ok(None);
+    /// The ramp that colours the points by a value; `None` unless `color_source` is
+    /// `"intensity"` or `"height"`. `ramp` is refused with any other source, and
+    /// `intensity_range` with any but `"intensity"`.
+    pub(crate) fn ramp(&self) -> Result<Option<ColorRamp>, InvalidValue> {
+        let source = self.color_source()?;
+        if source != ColorSource::Intensity && self.intensity_range.is_some() {
+            return Err(InvalidValue::new(
+                "intensity_range",
+                "applies only with `color_source = \"intensity\"`",
+            ));
         }
+        let default = match source {
+            ColorSource::Intensity => DEFAULT_INTENSITY_RAMP,
+            ColorSource::Height => DEFAULT_HEIGHT_RAMP,
+            _ if self.ramp.is_some() => {
+                return Err(InvalidValue::new(
+                    "ramp",
+                    "applies only with `color_source = \"intensity\"` or `\"height\"`",
+                ));
+            }
+            _ => return Ok(None),
+        };
         let ramp = match &self.ramp {
-            None => IntensityRamp::named(DEFAULT_RAMP).unwrap_or_else(|| unreachable!("a built-in ramp")),
-            Some(RampSpec::Named(name)) => IntensityRamp::named(name).ok_or_else(|| {
+            None => ColorRamp::named(default).unwrap_or_else(|| unreachable!("a built-in ramp")),
+            Some(RampSpec::Named(name)) => ColorRamp::named(name).ok_or_else(|| {
                 InvalidValue::new(
                     "ramp",
                     format!("unknown ramp `{name}`; the named ramps are {RAMP_NAMES:?}"),
@@ -118,7 +135,7 @@ impl MaterialSpec {
             Some(RampSpec::Stops(stops)) => {
                 let colors =
                     stops.iter().map(|&stop| checks::color("ramp", stop)).collect::<Result<_, _>>()?;
-                IntensityRamp::from_stops(colors)?
+                ColorRamp::from_stops(colors)?
             }
         };
         match self.intensity_range {

@@ -9,6 +9,7 @@
 //! normal_k = 16
 //! radius = "adaptive"      # support radius: "cell" (the default), "paper" or "adaptive"
 //! remove_outliers = { neighbors = 8, sigmas = 2.0 }  # drop statistical outliers first
+//! columns = "x,y,z,intensity,ring"  # for text and raw .bin files: what each column holds
 //!
 //! [[objects]]
 //! type = "mesh"            # PLY or OBJ
@@ -35,6 +36,7 @@
 
 use std::path::PathBuf;
 
+use pointray_io::formats::ColumnSpec;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
@@ -60,6 +62,8 @@ pub enum ShapeSpec {
         normal_k: Option<u32>,
         radius: Option<RadiusSpec>,
         remove_outliers: Option<OutlierSpec>,
+        #[serde(default, deserialize_with = "column_spec")]
+        columns: Option<ColumnSpec>,
     },
     Mesh {
         path: PathBuf,
@@ -207,6 +211,12 @@ impl<'de> Deserialize<'de> for ObjectSpec {
             shape: ShapeSpec::deserialize(toml::Value::Table(table)).map_err(D::Error::custom)?,
         })
     }
+}
+
+/// `columns = "x,y,z,intensity,ring"`, parsed with the file so that a bad name fails early.
+fn column_spec<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Option<ColumnSpec>, D::Error> {
+    let text = String::deserialize(deserializer)?;
+    ColumnSpec::parse(&text).map(Some).map_err(D::Error::custom)
 }
 
 fn field_error<'de, D: Deserializer<'de>>(key: &str, error: toml::de::Error) -> D::Error {

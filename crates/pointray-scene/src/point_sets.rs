@@ -3,17 +3,20 @@
 //! input, which may be read-only or shared).
 //!
 //! A cache file is `<cache_dir>/<stem>-<key>.patches`, where the key hashes the input's
-//! canonical path, size and modification time, the prep options, prep's revision and this crate's version, so
-//! that a changed input or setting never reuses a stale result. A cache file that cannot be
+//! canonical path, size and modification time, how it is read (column spec, classification
+//! colours), the prep options, prep's revision and this crate's version, so that a changed
+//! input or setting never reuses a stale result. A cache file that cannot be
 //! read (truncated, corrupted, from another format version) is regenerated.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use pointray_io::PointCloud;
+use pointray_io::formats::ColumnSpec;
 use pointray_surface::patch_store::{self, StoreError};
 use pointray_surface::{OutlierFilter, PatchSet, PrepError, PrepOptions, RadiusMode, prep};
 
+use crate::classification_palette::classification_color;
 use crate::error::SceneError;
 use crate::load::LoadOptions;
 
@@ -24,6 +27,16 @@ pub struct PrepRequest {
     pub normal_k: Option<u32>,
     pub radius: Option<RadiusMode>,
     pub remove_outliers: Option<OutlierFilter>,
+}
+
+/// How a points file is read before prep; it changes the points, so it is part of the
+/// cache key.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ReadRequest {
+    /// What each column holds, for files that do not name their columns (text, raw `.bin`).
+    pub columns: Option<ColumnSpec>,
+    /// Colour the points by their classification (ASPRS palette) instead of their RGB.
+    pub classification_colors: bool,
 }
 
 /// Where a point set's patches came from.
@@ -49,6 +62,7 @@ pub(crate) enum PointSetError {
     Store(StoreError),
     CacheDir { path: PathBuf, source: std::io::Error },
     StoreWithPrepSettings { file: PathBuf },
+    NoClassifications { file: PathBuf },
 }
 
 impl PointSetError {
@@ -63,7 +77,19 @@ impl PointSetError {
                 path: scene,
                 key,
                 problem: format!(
-                    "{}: is a patch store, already prepped: `k`, `normal_k`, `radius` and `remove_outliers` apply only to points files",
+                    "{}: is a patch store, already prepped: `k`, `normal_k`, `radius`, \
+                     `remove_outliers`, `columns` and `color_source = \"classification\"` apply \
+                     only to points files",
+                    file.display()
+                ),
+            },
+            Self::NoClassifications { file } => SceneError::Invalid {
+                path: scene,
+                key: format!("{key}.material.color_source"),
+                problem: format!(
+                    "{}: the points have no classification, which `color_source = \
+                     \"classification\"` needs (LAS, or a `classification` field or column); use \
+                     \"points\", \"intensity\", \"height\" or \"fixed\"",
                     file.display()
                 ),
             },
@@ -71,25 +97,27 @@ impl PointSetError {
     }
 }
 
-/// Loads a patch store, or preps a points file through the cache in `options.cache_dir`.
+/// Loads a patch store, or reads a points file as `read` says and preps it through the
+/// cache in `options.cache_dir`.
 pub(crate) fn load_points_file(
     path: &Path,
     request: &PrepRequest,
+    read: &ReadRequest,
     options: &LoadOptions,
 ) -> Result<(PatchSet, PointSetOrigin), PointSetError> {
     if is_patch_store(path) {
-        if *request != PrepRequest::default() {
+        if *request != PrepRequest::default() || *read != ReadRequest::default() {
             return Err(PointSetError::StoreWithPrepSettings { file: path.to_path_buf() });
         }
         return Ok((patch_store::read(path).map_err(PointSetError::Store)?, PointSetOrigin::PatchStore));
     }
     let prep_options = request.prep_options();
     let Some(cache_dir) = options.cache_dir else {
-        return Ok((prep_file(path, &prep_options, options)?, PointSetOrigin::Prepped { cache: None }));
+        return Ok((prep_file(path, &prep_options, read, options)?, PointSetOrigin::Prepped { cache: None }));
     };
     std::fs::create_dir_all(cache_dir)
         .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
-    let cache = cache_dir.join(cache_file_name(path, &prep_options).map_err(PointSetError::Input)?);
+    let cache = cache_dir.join(cache_file_name(path, &prep_options, read).map_err(PointSetError::Input)?);
     let regenerated_because = match patch_store::read(&cache) {
         Ok(patches) => return Ok((patches, PointSetOrigin::CacheHit { cache })),
         Err(StoreError::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => None,
@@ -98,7 +126,7 @@ pub(crate) fn load_points_file(
             Some(problem.to_string())
         }
     };
-    let patches = prep_file(path, &prep_options, options)?;
+    let patches = prep_file(path, &prep_options, read, options)?;
     patch_store::write(&cache, &patches).map_err(PointSetError::Store)?;
     let origin = match regenerated_because {
         Some(problem) => PointSetOrigin::CacheRegenerated { cache, problem },
@@ -118,9 +146,18 @@ pub(crate) fn prep_in_memory(cloud: &PointCloud, options: &LoadOptions) -> Resul
 fn prep_file(
     path: &Path,
     prep_options: &PrepOptions,
+    read: &ReadRequest,
     options: &LoadOptions,
 ) -> Result<PatchSet, PointSetError> {
-    let cloud = pointray_io::formats::read_point_cloud(path).map_err(PointSetError::Input)?;
+    let mut cloud = pointray_io::formats::read_point_cloud_with(path, read.columns.as_ref())
+        .map_err(PointSetError::Input)?;
+    if read.classification_colors {
+        let classes = cloud
+            .classifications
+            .as_ref()
+            .ok_or(PointSetError::NoClassifications { file: path.to_path_buf() })?;
+        cloud.colors = Some(classes.iter().map(|&class| classification_color(class)).collect());
+    }
     let (patches, report) = prep(&cloud, prep_options, options.progress)
         .map_err(|source| PointSetError::Prep { file: path.to_path_buf(), source })?;
     tracing::info!("prepped {}:\n{report}", path.display());
@@ -145,7 +182,11 @@ fn is_patch_store(path: &Path) -> bool {
         && magic == patch_store::MAGIC
 }
 
-fn cache_file_name(input: &Path, prep_options: &PrepOptions) -> Result<String, pointray_io::IoError> {
+fn cache_file_name(
+    input: &Path,
+    prep_options: &PrepOptions,
+    read: &ReadRequest,
+) -> Result<String, pointray_io::IoError> {
     let os_error = |source| pointray_io::IoError::os(input, source);
     let canonical = input.canonicalize().map_err(os_error)?;
     let metadata = std::fs::metadata(&canonical).map_err(os_error)?;
@@ -160,6 +201,10 @@ fn cache_file_name(input: &Path, prep_options: &PrepOptions) -> Result<String, p
     key.write(&modified.to_le_bytes());
     // Debug covers every option, including ones added later, without listing them here.
     key.write(format!("{prep_options:?}").as_bytes());
+    // Left out when default, so that caches of files read the plain way stay valid.
+    if *read != ReadRequest::default() {
+        key.write(format!("{read:?}").as_bytes());
+    }
     key.write(&pointray_surface::PREP_REVISION.to_le_bytes());
     key.write(env!("CARGO_PKG_VERSION").as_bytes());
     let stem = input.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();

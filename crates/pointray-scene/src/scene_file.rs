@@ -180,6 +180,7 @@ impl SceneFile {
                         normal_k: None,
                         radius: None,
                         remove_outliers: None,
+                        columns: None,
                     },
                     MaterialSpec::default(),
                 ),
@@ -189,6 +190,17 @@ impl SceneFile {
             // Relative paths stay relative to the working directory, as the user typed them.
             path: PathBuf::from("(default scene)"),
         }
+    }
+
+    /// Gives every points object without its own `columns` these (the command line's
+    /// `--columns`).
+    pub fn with_columns(mut self, spec: Option<&pointray_io::formats::ColumnSpec>) -> Self {
+        for object in &mut self.objects {
+            if let ShapeSpec::Points { columns: columns @ None, .. } = &mut object.shape {
+                *columns = spec.cloned();
+            }
+        }
+        self
     }
 
     /// A path from the file, relative to the file's folder unless absolute.

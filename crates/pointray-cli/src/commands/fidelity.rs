@@ -13,6 +13,7 @@ use pointray_vulkan::DeviceSelector;
 use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendChoice};
 use crate::boxes_arg::Boxes;
+use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
 use crate::radius_arg::Radius;
 
@@ -54,6 +55,8 @@ pub struct FidelityArgs {
     /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
     #[arg(long, default_value = "auto")]
     device: DeviceSelector,
+    #[command(flatten)]
+    columns: ColumnsArg,
 }
 
 /// The CLI's backend choice (CPU or Vulkan) as the fidelity crate's renderer.
@@ -78,6 +81,7 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
     let patches = prep_points(
         &args.points,
+        &args.columns,
         PrepOptions {
             params: PrepParams {
                 k: args.k,
@@ -103,8 +107,8 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn prep_points(path: &Path, options: PrepOptions) -> anyhow::Result<PatchSet> {
-    let cloud = pointray_io::formats::read_point_cloud(path)?;
+fn prep_points(path: &Path, columns: &ColumnsArg, options: PrepOptions) -> anyhow::Result<PatchSet> {
+    let cloud = columns.read_point_cloud(path)?;
     let (patches, _) = prep(&cloud, &options, &PrepBar::default())
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     Ok(patches)

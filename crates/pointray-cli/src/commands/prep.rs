@@ -7,6 +7,7 @@ use glam::DVec3;
 use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, prep};
 
 use crate::boxes_arg::Boxes;
+use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
 use crate::radius_arg::Radius;
 
@@ -49,11 +50,13 @@ pub struct PrepArgs {
     /// data, more false surface (bench/FIDELITY.md).
     #[arg(long, value_enum, default_value_t = Radius::Cell)]
     radius: Radius,
+    #[command(flatten)]
+    columns: ColumnsArg,
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     pointray_io::ensure_not_same_file(&args.points, &args.output)?;
-    let cloud = pointray_io::formats::read_point_cloud(&args.points)?;
+    let cloud = args.columns.read_point_cloud(&args.points)?;
     let params = PrepParams {
         k: args.k,
         normal_k: args.normal_k,

@@ -5,12 +5,14 @@ use std::time::Instant;
 
 use anyhow::Context;
 use clap::{Args, ValueEnum};
+use pointray_scene::SceneFile;
 use pointray_scene::frame_output::{AovSelection, write_frame};
-use pointray_scene::load::{LoadOptions, LoadedScene, load_scene};
+use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
 use pointray_scene::{BufferLayout, RenderSettings};
 
 use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendArgs};
+use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
 
 /// Render a scene (TOML) to PNG (8-bit sRGB) or EXR (linear float).
@@ -45,6 +47,8 @@ pub struct RenderArgs {
     /// Also write depth, normal, instance id, primitive id and hit mask next to the image.
     #[arg(long)]
     aovs: bool,
+    #[command(flatten)]
+    columns: ColumnsArg,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -58,7 +62,8 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     std::fs::create_dir_all(&cache_dir).with_context(|| format!("creating {}", cache_dir.display()))?;
     let bar = PrepBar::default();
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar };
-    let LoadedScene { scene, settings, .. } = load_scene(&args.scene, &options)?;
+    let file = args.columns.apply_to(SceneFile::read(&args.scene)?);
+    let LoadedScene { scene, settings, .. } = load_scene_file(&file, &options)?;
     let settings = apply_flags(&args, settings);
     let backend = Backend::open(args.backend.backend, &args.backend.device)?;
     println!("backend: {}", backend.describe());

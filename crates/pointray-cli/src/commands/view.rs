@@ -5,11 +5,12 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::Args;
 use pointray_scene::SceneFile;
-use pointray_scene::load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
+use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
 use pointray_viewer::{RenderBackend, Script, ViewerOptions, run_viewer};
 use pointray_vulkan::validation_requested_by_env;
 
 use crate::backend::{BackendArgs, BackendChoice};
+use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
 
 /// Open a window on a scene (TOML) or a points file, and fly around it.
@@ -42,10 +43,12 @@ pub struct ViewArgs {
     /// Save every scripted frame into this folder as `frame-NNNNN.png`.
     #[arg(long, requires = "frames")]
     sequence: Option<PathBuf>,
+    #[command(flatten)]
+    columns: ColumnsArg,
 }
 
 pub fn run(args: ViewArgs) -> anyhow::Result<()> {
-    let LoadedScene { scene, mut settings, .. } = load(&args.scene)?;
+    let LoadedScene { scene, mut settings, .. } = load(&args.scene, &args.columns)?;
     settings.width = args.width.unwrap_or(settings.width);
     settings.height = args.height.unwrap_or(settings.height);
     settings.samples_per_pixel = args.spp.unwrap_or(settings.samples_per_pixel);
@@ -77,16 +80,12 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
 
 /// A `.toml` is a scene; anything else is a points file given the default scene. Prepared
 /// point sets are cached in `.pointray-cache` in the working directory.
-fn load(path: &Path) -> anyhow::Result<LoadedScene> {
+fn load(path: &Path, columns: &ColumnsArg) -> anyhow::Result<LoadedScene> {
     let cache_dir = PathBuf::from(".pointray-cache");
     std::fs::create_dir_all(&cache_dir).with_context(|| format!("creating {}", cache_dir.display()))?;
     let bar = PrepBar::default();
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar };
     let is_scene = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
-    let loaded = if is_scene {
-        load_scene(path, &options)?
-    } else {
-        load_scene_file(&SceneFile::for_points_file(path), &options)?
-    };
-    Ok(loaded)
+    let file = if is_scene { SceneFile::read(path)? } else { SceneFile::for_points_file(path) };
+    Ok(load_scene_file(&columns.apply_to(file), &options)?)
 }

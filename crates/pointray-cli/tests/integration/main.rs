@@ -4,6 +4,8 @@ mod common;
 
 mod autzen_scene;
 mod bad_input;
+mod classification_render;
+mod columns_flag;
 mod geo_offset;
 mod intensity_material;
 mod prep_robustness_flags;

@@ -1,5 +1,6 @@
 //! The scene crate's integration tests, in one binary so that CI links it once.
 
+mod color_sources;
 mod common;
 mod frame_output;
 mod loading;

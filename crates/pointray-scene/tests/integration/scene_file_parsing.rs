@@ -108,7 +108,8 @@ fn a_full_scene_parses_into_the_expected_values() {
             k: Some(12),
             normal_k: None,
             radius: None,
-            remove_outliers: None
+            remove_outliers: None,
+            columns: None
         }
     );
     assert_eq!(file.objects[0].material.use_point_colors, Some(true));

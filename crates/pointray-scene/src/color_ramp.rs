@@ -1,6 +1,6 @@
-//! Colour from scanner intensity (issue 7): a ramp of evenly spaced colour stops that
-//! turns each patch's intensity into the colour the renderers already read from its cold
-//! record, so that both renderers show it with no shader of their own.
+//! Colour from a value per point (scanner intensity, height): a ramp of evenly spaced colour
+//! stops that turns each patch's value into the colour the renderers already read from its
+//! cold record, so that both renderers show it with no shader of their own.
 
 use glam::Vec3;
 use pointray_kernels::PatchCold;
@@ -24,17 +24,17 @@ const VIRIDIS_SRGB: [[u8; 3]; 9] = [
 /// The ramps that can be named in a scene file.
 pub const RAMP_NAMES: [&str; 2] = ["grey", "viridis"];
 
-/// Maps intensity to linear RGB: intensities in `[low, high]` spread over the stops,
-/// linearly between neighbouring stops; outside it they take the end stops.
+/// Maps a value to linear RGB: values in `[low, high]` spread over the stops, linearly
+/// between neighbouring stops; outside it they take the end stops.
 #[derive(Clone, Debug, PartialEq)]
-pub struct IntensityRamp {
+pub struct ColorRamp {
     stops: Vec<Vec3>,
     low: f32,
     high: f32,
 }
 
-impl IntensityRamp {
-    /// A named ramp over intensities `[0, 1]`; `None` for a name not in `RAMP_NAMES`.
+impl ColorRamp {
+    /// A named ramp over values `[0, 1]`; `None` for a name not in `RAMP_NAMES`.
     pub fn named(name: &str) -> Option<Self> {
         let stops = match name {
             "grey" => vec![Vec3::ZERO, Vec3::ONE],
@@ -56,7 +56,7 @@ impl IntensityRamp {
     }
 
     /// Spreads the ramp over `[low, high]` instead of `[0, 1]`: scanners often use a
-    /// small part of their range.
+    /// small part of their intensity range.
     pub(crate) fn over(self, low: f32, high: f32) -> Result<Self, InvalidValue> {
         if !(low.is_finite() && high.is_finite() && low < high) {
             return Err(InvalidValue::new(
@@ -67,18 +67,18 @@ impl IntensityRamp {
         Ok(Self { low, high, ..self })
     }
 
-    /// The colour for `intensity`.
-    pub fn color_at(&self, intensity: f32) -> Vec3 {
-        let t = ((intensity - self.low) / (self.high - self.low)).clamp(0.0, 1.0);
+    /// The colour for `value`.
+    pub fn color_at(&self, value: f32) -> Vec3 {
+        let t = ((value - self.low) / (self.high - self.low)).clamp(0.0, 1.0);
         let position = t * (self.stops.len() - 1) as f32;
         let below = (position.floor() as usize).min(self.stops.len() - 2);
         self.stops[below].lerp(self.stops[below + 1], position - below as f32)
     }
 
-    /// Replaces each record's colour by the ramp's colour for its intensity.
-    pub fn recolor(&self, cold: &mut [PatchCold]) {
-        for record in cold {
-            let rgb = (self.color_at(record.intensity).clamp(Vec3::ZERO, Vec3::ONE) * 255.0).round();
+    /// Replaces each record's colour by the ramp's colour for its value (one per record).
+    pub fn recolor(&self, cold: &mut [PatchCold], values: impl IntoIterator<Item = f32>) {
+        for (record, value) in cold.iter_mut().zip(values) {
+            let rgb = (self.color_at(value).clamp(Vec3::ZERO, Vec3::ONE) * 255.0).round();
             record.set_rgb8([rgb.x as u8, rgb.y as u8, rgb.z as u8]);
         }
     }
@@ -98,7 +98,7 @@ mod tests {
 
     #[test]
     fn grey_is_the_identity_on_each_channel() {
-        let grey = IntensityRamp::named("grey").unwrap();
+        let grey = ColorRamp::named("grey").unwrap();
         assert_eq!(grey.color_at(0.25), Vec3::splat(0.25));
         assert_eq!(grey.color_at(-1.0), Vec3::ZERO);
         assert_eq!(grey.color_at(2.0), Vec3::ONE);
@@ -106,34 +106,34 @@ mod tests {
 
     #[test]
     fn stops_are_evenly_spaced_and_interpolated() {
-        let ramp = IntensityRamp::from_stops(vec![Vec3::X, Vec3::Y, Vec3::Z]).unwrap();
+        let ramp = ColorRamp::from_stops(vec![Vec3::X, Vec3::Y, Vec3::Z]).unwrap();
         assert_eq!(ramp.color_at(0.0), Vec3::X);
         assert_eq!(ramp.color_at(0.5), Vec3::Y);
         assert_eq!(ramp.color_at(1.0), Vec3::Z);
         assert_eq!(ramp.color_at(0.75), Vec3::new(0.0, 0.5, 0.5));
-        assert!(IntensityRamp::from_stops(vec![Vec3::X]).is_err());
+        assert!(ColorRamp::from_stops(vec![Vec3::X]).is_err());
     }
 
     #[test]
     fn a_range_stretches_the_ramp() {
-        let ramp = IntensityRamp::named("grey").unwrap().over(0.1, 0.3).unwrap();
+        let ramp = ColorRamp::named("grey").unwrap().over(0.1, 0.3).unwrap();
         assert!((ramp.color_at(0.2) - Vec3::splat(0.5)).length() < 1e-6);
-        assert!(IntensityRamp::named("grey").unwrap().over(0.3, 0.3).is_err());
+        assert!(ColorRamp::named("grey").unwrap().over(0.3, 0.3).is_err());
     }
 
     #[test]
     fn viridis_runs_from_dark_purple_to_yellow_in_linear_rgb() {
-        let viridis = IntensityRamp::named("viridis").unwrap();
+        let viridis = ColorRamp::named("viridis").unwrap();
         let (start, end) = (viridis.color_at(0.0), viridis.color_at(1.0));
         assert!(start.z > start.x && start.z > start.y, "starts blue-purple: {start}");
         assert!(end.x > 0.9 && end.y > 0.7 && end.z < 0.05, "ends yellow: {end}");
-        assert!(IntensityRamp::named("jet").is_none());
+        assert!(ColorRamp::named("jet").is_none());
     }
 
     #[test]
     fn recolor_keeps_the_intensity() {
         let mut cold = [PatchCold::from_rgb8([1, 2, 3], 0.5)];
-        IntensityRamp::named("grey").unwrap().recolor(&mut cold);
+        ColorRamp::named("grey").unwrap().recolor(&mut cold, [0.5]);
         assert_eq!(cold[0], PatchCold::from_rgb8([128, 128, 128], 0.5));
     }
 }

@@ -1,0 +1,31 @@
+//! `--columns`, shared by every command that reads points: what each column of a file that
+//! does not name its columns holds (text points, raw `.bin` sweeps).
+
+use std::path::Path;
+
+use clap::Args;
+use pointray_io::formats::ColumnSpec;
+use pointray_io::{IoError, PointCloud};
+use pointray_scene::SceneFile;
+
+#[derive(Args)]
+pub struct ColumnsArg {
+    /// What each column of a text or raw .bin points file holds, e.g. `x,y,z,intensity,ring`
+    /// (names: x y z intensity r g b nx ny nz ring classification, `_` to skip; .bin columns
+    /// are float32). Without it, .bin files are KITTI (x,y,z,intensity) or, named *.pcd.bin,
+    /// nuScenes (x,y,z,intensity,ring). Files that name their fields (PLY, LAS, PCD, E57)
+    /// refuse it.
+    #[arg(long, value_name = "NAMES")]
+    columns: Option<ColumnSpec>,
+}
+
+impl ColumnsArg {
+    pub fn read_point_cloud(&self, path: &Path) -> Result<PointCloud, IoError> {
+        pointray_io::formats::read_point_cloud_with(path, self.columns.as_ref())
+    }
+
+    /// The scene with these columns for every points object that gives none of its own.
+    pub fn apply_to(&self, scene: SceneFile) -> SceneFile {
+        scene.with_columns(self.columns.as_ref())
+    }
+}
