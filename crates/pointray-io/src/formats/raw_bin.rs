@@ -121,8 +121,9 @@ fn inferred_layout(bytes: &[u8], origin: &Path) -> Result<SweepLayout, IoError> 
 fn plausible(bytes: &[u8], layout: SweepLayout) -> Result<(), String> {
     let width = layout.columns().len();
     whole_records(bytes.len(), width)?;
+    let mut values = [0.0f32; 5];
     for (index, record) in bytes.chunks_exact(width * FLOAT_BYTES).enumerate() {
-        let values: Vec<f32> = floats(record).collect();
+        values.iter_mut().zip(floats(record)).for_each(|(value, float)| *value = float);
         let problem = if !values[..3].iter().all(|c| c.is_finite()) {
             "a non-finite coordinate"
         } else if !(values[3].is_finite() && values[3] >= 0.0) {
@@ -134,7 +135,7 @@ fn plausible(bytes: &[u8], layout: SweepLayout) -> Result<(), String> {
         } else {
             continue;
         };
-        return Err(format!("point {index} has {problem} ({values:?})"));
+        return Err(format!("point {index} has {problem} ({:?})", &values[..width]));
     }
     Ok(())
 }
