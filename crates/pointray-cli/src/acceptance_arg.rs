@@ -1,7 +1,7 @@
 //! The `--acceptance` flag, shared by the commands that render.
 
 use clap::ValueEnum;
-use pointray_scene::AcceptanceTest;
+use pointray_scene::PatchAcceptance;
 
 /// Which hits on a patch count: inside its box (the paper) or also over its disk.
 #[derive(Clone, Copy, ValueEnum)]
@@ -10,11 +10,11 @@ pub enum Acceptance {
     Disk,
 }
 
-impl From<Acceptance> for AcceptanceTest {
+impl From<Acceptance> for PatchAcceptance {
     fn from(acceptance: Acceptance) -> Self {
         match acceptance {
-            Acceptance::Box => AcceptanceTest::Box,
-            Acceptance::Disk => AcceptanceTest::Disk,
+            Acceptance::Box => PatchAcceptance::Box,
+            Acceptance::Disk => PatchAcceptance::Disk,
         }
     }
 }

@@ -32,6 +32,7 @@ pub use light::Light;
 pub use load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
 pub use material::Material;
 pub use point_sets::{PointSetOrigin, PrepRequest};
-pub use render_settings::{AcceptanceTest, BufferLayout, RenderSettings};
+pub use pointray_kernels::PatchAcceptance;
+pub use render_settings::{BufferLayout, RenderSettings};
 pub use scene::{Background, Geometry, Scene, SceneObject};
 pub use scene_file::SceneFile;

@@ -1,18 +1,6 @@
 //! The settings of one render, shared by every backend.
 
-/// Which hits on a patch's quadratic count (SPEC.md §3, intersection step 3).
-///
-/// The disk test is the default: against the meshes it has fewer false surfaces, smaller depth
-/// and normal errors and a higher PSNR than the box test at every k, with no more holes
-/// (bench/FIDELITY.md), for 0–7% more frame time (bench/RESULTS.md, ablations).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum AcceptanceTest {
-    /// The hit point must lie inside the patch's box (the paper's test).
-    Box,
-    /// The hit point must also lie over the patch's own disk, `u² + v² <= d_i²`.
-    #[default]
-    Disk,
-}
+use pointray_kernels::PatchAcceptance;
 
 /// How the per-patch data reaches the GPU (SPEC.md §2.7).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -33,7 +21,7 @@ pub struct RenderSettings {
     /// Ray depth: 1 = primary rays only, 2 = one reflection bounce (the paper's setting).
     pub max_depth: u32,
     pub shadows: bool,
-    pub acceptance: AcceptanceTest,
+    pub acceptance: PatchAcceptance,
     pub buffer_layout: BufferLayout,
 }
 
@@ -45,7 +33,7 @@ impl Default for RenderSettings {
             samples_per_pixel: 1,
             max_depth: 2,
             shadows: true,
-            acceptance: AcceptanceTest::default(),
+            acceptance: PatchAcceptance::default(),
             buffer_layout: BufferLayout::default(),
         }
     }

@@ -1,11 +1,11 @@
 //! The patch store: the versioned binary file that caches a `PatchSet`.
 //!
-//! All numbers are little-endian. Version 3 layout:
+//! All numbers are little-endian. Version 4 layout:
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRPATCH\0"` |
-//! | 8 | 4 | format version, u32 = 3 |
+//! | 8 | 4 | format version, u32 = 4 |
 //! | 12 | 4 | header size in bytes, u32 = 160 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
 //! | 24 | 4 | `k`, u32 |
@@ -18,7 +18,7 @@
 //! | 152 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
 //! | 156 | 4 | disk scale, f32 (`PrepParams::disk_scale`) |
 //! | 160 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
-//! | 16-aligned | 64 n | hot: `PatchHot` (origin+d_i, t1+c0, n+c1, c2..c5; f32 x 16) |
+//! | 16-aligned | 36 n | hot: `PatchHot` (origin, d_u: f32 x 4; octahedral normal, tangent angle and d_v/d_u, c0..c5 as scaled halves: u32 x 5) |
 //! | 16-aligned | 12 n | cold: `PatchCold` (RGBA8 u32, intensity f32, colour reach f32) |
 //! | 16-aligned | 4 m n | neighbours: `m` patch indices per patch (u32, `NO_NEIGHBOR` = unused) |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
@@ -39,7 +39,7 @@ use crate::patch_bounds::BoxKind;
 use crate::patch_set::{PatchSet, PrepParams};
 
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 const SECTION_COUNT: usize = 4;
 const HEADER_BYTES: usize = std::mem::size_of::<Header>();
 const CHECKSUM_BYTES: usize = 4;
@@ -313,13 +313,13 @@ mod tests {
         let layout = Layout::new(3, COLOR_NEIGHBORS as u32).unwrap();
         assert!(layout.sections.iter().all(|s| s.offset % 16 == 0));
         assert_eq!(layout.sections[0], Section { offset: 160, length: 72 });
-        assert_eq!(layout.sections[1], Section { offset: 240, length: 192 });
-        assert_eq!(layout.sections[2], Section { offset: 432, length: 36 });
-        assert_eq!(layout.sections[3], Section { offset: 480, length: 144 });
-        assert_eq!(layout.total_bytes, 628);
+        assert_eq!(layout.sections[1], Section { offset: 240, length: 108 });
+        assert_eq!(layout.sections[2], Section { offset: 352, length: 36 });
+        assert_eq!(layout.sections[3], Section { offset: 400, length: 144 });
+        assert_eq!(layout.total_bytes, 548);
         let without = Layout::new(3, 0).unwrap();
-        assert_eq!(without.sections[3], Section { offset: 480, length: 0 });
-        assert_eq!(without.total_bytes, 484);
+        assert_eq!(without.sections[3], Section { offset: 400, length: 0 });
+        assert_eq!(without.total_bytes, 404);
         assert!(Layout::new(u64::MAX, 0).is_none());
     }
 }

@@ -2,16 +2,16 @@
 
 use std::time::{Duration, Instant};
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use pointray_io::PointCloud;
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
-use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_kernels::packed_frame::normal_basis;
+use pointray_kernels::{Aabb, PackedFrame, PatchCold, PatchHot, TangentFrame};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
 use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii, cell_radii};
 use crate::duplicates::merge_duplicates;
-use crate::frame::TangentFrame;
 use crate::input_validation::{validate_params, validate_positions};
 use crate::morton::morton_order;
 use crate::neighbors::{Neighbors, k_nearest};
@@ -22,8 +22,10 @@ use crate::patch_bounds::patch_box;
 use crate::patch_set::{PatchSet, PrepParams};
 use crate::prep_error::PrepError;
 use crate::prep_progress::{PrepProgress, Stage};
-use crate::prep_report::{FitCounts, PrepReport, RadiusFallbacks};
+use crate::prep_report::{FitCounts, PrepReport, RadiusFallbacks, ScanSummary};
 use crate::quadratic_fit::{FitKind, PatchFit, fit_patch};
+use crate::scan_lines::ScanLines;
+use crate::scan_patches::scan_patches;
 use crate::support_radius::{RadiusSource, support_radius};
 
 /// The Wendland scale `h_i` is this multiple of the farthest neighbour's distance, so
@@ -35,8 +37,9 @@ const PROGRESS_CHUNK: usize = 16_384;
 
 /// Changes whenever `prep` makes different patches from the same input and options (the
 /// cell margin went from 1.15 to 1.5 in revision 2), so that caches keyed on the options also
-/// key on this and never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 2;
+/// key on this and never serve patches of an older rule (revision 3: scan-aware patches and
+/// the packed record).
+pub const PREP_REVISION: u32 = 3;
 
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PrepOptions {
@@ -48,8 +51,21 @@ pub struct PrepOptions {
     pub sensor: Option<DVec3>,
     /// Drop statistical outliers before fitting; `None` keeps every point.
     pub remove_outliers: Option<OutlierFilter>,
-    /// How the support radius `d_i` is chosen.
+    /// How the support radius `d_i` is chosen where the scan structure is not used.
     pub radius_mode: RadiusMode,
+    /// Whether a LiDAR scan's line structure shapes the patches.
+    pub scan: ScanMode,
+}
+
+/// Whether `prep` uses a LiDAR scan's structure (`scan_lines`): scan lines from a ring field
+/// or recovered from elevations, seen from a known sensor.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ScanMode {
+    /// Scan-aware patches whenever the sensor is known and its lines can be found.
+    #[default]
+    Auto,
+    /// Every cloud as unstructured points.
+    Off,
 }
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
@@ -87,18 +103,53 @@ pub fn prep(
     drop(sorted);
     let patches = points.len();
     let neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
+    let scan = clock.run(Stage::ScanLines, patches, || scan_structure(&points, cloud, &source, options, offset));
+    if let Some(scan) = scan {
+        let scanned = clock.run(Stage::QuadraticFit, patches, || scan_patches(&points, &scan));
+        let summary = ScanSummary {
+            lines: scan.lines.len(),
+            surface_patches: scanned.iter().filter(|p| p.on_surface).count(),
+        };
+        drop(scan);
+        let hot: Vec<PatchHot> = scanned
+            .par_iter()
+            .zip(&points)
+            .map(|(patch, &p)| PatchHot::new(p, patch.frame, patch.radii * params.disk_scale, patch.fit.coefficients))
+            .collect();
+        let reach: Vec<f32> = scanned.iter().map(|patch| patch.radii.x).collect();
+        let fits = count_fits(&scanned.iter().map(|patch| patch.fit.kind).collect::<Vec<_>>());
+        let aabbs: Vec<Aabb> =
+            clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
+        let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
+            (gather_cold(cloud, &source, &reach), color_neighbor_table(&neighbors, has_point_colors(cloud)))
+        });
+        let report = PrepReport {
+            input_points: count,
+            merged_duplicates: merge.merged_count,
+            removed_outliers,
+            patches,
+            replaced_input_normals: 0,
+            fits,
+            radius_fallbacks: RadiusFallbacks::default(),
+            radius_adjustments: RadiusAdjustments::default(),
+            scan: Some(summary),
+            offset,
+            patch_sources: source,
+            stage_times: clock.times,
+        };
+        return Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors }, report));
+    }
     let (mut normals, replaced_input_normals) =
         clock.run(Stage::Normals, patches, || normals_for(&points, &neighbors, cloud, &source, options));
     clock.run(Stage::Orientation, patches, || {
         orient(&points, &mut normals, &neighbors, cloud, options, offset)
     });
-    let frames: Vec<TangentFrame> = clock
-        .run(Stage::Frames, patches, || normals.par_iter().map(|&n| TangentFrame::from_normal(n)).collect());
+    let (packed_frames, frames) = clock.run(Stage::Frames, patches, || stored_frames(&normals));
     let radii = clock.run(Stage::SupportRadii, patches, || {
         support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode)
     });
     let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
-        fit_patches(&points, &frames, &radii.chosen, &neighbors, k, params.disk_scale, progress)
+        fit_patches(&points, (&packed_frames, &frames), &radii.chosen, &neighbors, k, params.disk_scale, progress)
     });
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
@@ -114,6 +165,7 @@ pub fn prep(
         fits,
         radius_fallbacks: radii.fallbacks,
         radius_adjustments: radii.adjustments,
+        scan: None,
         offset,
         patch_sources: source,
         stage_times: clock.times,
@@ -287,9 +339,20 @@ fn paper_radii(
     )
 }
 
+/// Each patch's frame as stored, and what it decodes to: the frame the fit works in.
+fn stored_frames(normals: &[Vec3]) -> (Vec<PackedFrame>, Vec<TangentFrame>) {
+    normals
+        .par_iter()
+        .map(|&n| {
+            let packed = PackedFrame::new(n, normal_basis(n).0);
+            (packed, packed.decode())
+        })
+        .unzip()
+}
+
 fn fit_patches(
     points: &[Vec3],
-    frames: &[TangentFrame],
+    (packed_frames, frames): (&[PackedFrame], &[TangentFrame]),
     radii: &[f32],
     neighbors: &Neighbors,
     k: usize,
@@ -304,17 +367,34 @@ fn fit_patches(
                 progress.advanced(PROGRESS_CHUNK.min(points.len() - i) as u64);
             }
             let fit = fit_one(points, &frames[i], radii[i], neighbors, k, i);
-            let frame = &frames[i];
-            (PatchHot::new(points[i], frame.t1, frame.n, fit.coefficients, radii[i] * disk_scale), fit.kind)
+            let support = Vec2::splat(radii[i] * disk_scale);
+            (PatchHot::new(points[i], packed_frames[i], support, fit.coefficients), fit.kind)
         })
         .unzip();
+    (hot, count_fits(&kinds))
+}
+
+fn count_fits(kinds: &[FitKind]) -> FitCounts {
     let count = |wanted| kinds.par_iter().filter(|&&kind| kind == wanted).count();
-    let fits = FitCounts {
-        quadratic: count(FitKind::Quadratic),
-        plane: count(FitKind::Plane),
-        flat: count(FitKind::Flat),
-    };
-    (hot, fits)
+    FitCounts { quadratic: count(FitKind::Quadratic), plane: count(FitKind::Plane), flat: count(FitKind::Flat) }
+}
+
+/// The scan lines of the prepped points, when the mode allows, the sensor is known and its
+/// lines can be found.
+fn scan_structure(
+    points: &[Vec3],
+    cloud: &PointCloud,
+    source: &[u32],
+    options: &PrepOptions,
+    offset: DVec3,
+) -> Option<ScanLines> {
+    if options.scan == ScanMode::Off {
+        return None;
+    }
+    let sensor_of = |i: u32| options.sensor.or_else(|| cloud.sensor_of(i as usize));
+    let sensors: Vec<DVec3> = source.iter().map(|&i| sensor_of(i).map(|s| s - offset)).collect::<Option<_>>()?;
+    let rings = cloud.rings.as_deref().map(|rings| gather(rings, source));
+    ScanLines::new(points, &sensors, rings.as_deref())
 }
 
 /// The patch of point `i` from the point itself and its `k` nearest neighbours.

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::DVec3;
-use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, prep};
+use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, ScanMode, prep};
 
 use crate::boxes_arg::Boxes;
 use crate::progress::PrepBar;
@@ -49,6 +49,27 @@ pub struct PrepArgs {
     /// data, more false surface (bench/FIDELITY.md).
     #[arg(long, value_enum, default_value_t = Radius::Cell)]
     radius: Radius,
+    /// LiDAR scans: `auto` shapes elliptical patches along the scan lines (from a ring field,
+    /// or beams recovered from elevations) whenever the sensor position is known (the file's,
+    /// or `--sensor`); `off` treats every cloud as unstructured points.
+    #[arg(long, value_enum, default_value_t = Scan::Auto)]
+    scan: Scan,
+}
+
+/// Whether `prep` uses a scan's line structure.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Scan {
+    Auto,
+    Off,
+}
+
+impl From<Scan> for ScanMode {
+    fn from(scan: Scan) -> Self {
+        match scan {
+            Scan::Auto => ScanMode::Auto,
+            Scan::Off => ScanMode::Off,
+        }
+    }
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {
@@ -67,6 +88,7 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         sensor: args.sensor,
         remove_outliers: args.remove_outliers,
         radius_mode: args.radius.into(),
+        scan: args.scan.into(),
     };
     let bar = PrepBar::default();
     let (patches, report) =

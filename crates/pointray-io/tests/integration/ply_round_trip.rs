@@ -19,7 +19,7 @@ fn full_cloud(offset: f64) -> PointCloud {
         colors: Some((0..50u8).map(|i| [i, 255 - i, i.wrapping_mul(7)]).collect()),
         intensities: Some((0..50).map(|i| i as f32 / 49.0).collect()),
         positions,
-        sensor_position: None,
+        ..PointCloud::default()
     }
 }
 

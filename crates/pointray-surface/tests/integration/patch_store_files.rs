@@ -126,11 +126,11 @@ fn damaged(damage: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, StoreError, tempfile:
 
 #[test]
 fn another_version_is_refused_by_name() {
-    // Version 2 stores (before the colour reach) are refused with the way out.
-    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&2u32.to_le_bytes()));
-    assert!(matches!(error, StoreError::WrongVersion { found: 2, .. }), "{error:?}");
+    // Version 3 stores (before the packed record) are refused with the way out.
+    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&3u32.to_le_bytes()));
+    assert!(matches!(error, StoreError::WrongVersion { found: 3, .. }), "{error:?}");
     let message = error.to_string();
-    assert!(message.contains("version 2, this build reads version 3: re-run `pointray prep`"), "{message}");
+    assert!(message.contains("version 3, this build reads version 4: re-run `pointray prep`"), "{message}");
     assert!(message.contains(&path.display().to_string()), "{message}");
 }
 
