@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use pointray_scene::load::{LoadOptions, load_scene};
-use pointray_scene::{PatchAcceptance, BufferLayout, Geometry, RenderSettings, Scene};
+use pointray_scene::{BufferLayout, Geometry, PatchAcceptance, RenderSettings, Scene};
 use pointray_surface::{BoxKind, NoProgress, PrepOptions, PrepParams, RadiusMode};
 use pointray_vulkan::{BlasLayout, PixelOutput, VulkanError, VulkanRenderer};
 

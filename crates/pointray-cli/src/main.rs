@@ -1,6 +1,5 @@
 //! `pointray`: point clouds rendered as smooth surfaces by ray tracing.
 
-mod acceptance_arg;
 mod backend;
 mod boxes_arg;
 mod commands;

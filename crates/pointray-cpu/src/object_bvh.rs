@@ -101,8 +101,10 @@ impl ObjectBvh {
         }
         let (t_min, t_max) = (candidate.tmin, candidate.tmax);
         match &self.geometry {
-            Geometry::Patches(patches) => intersect_patch(ray, &patches.hot[index].decode(), t_min, t_max, acceptance)
-                .map(|hit| ObjectHit { t: hit.t, primitive, uv: hit.uv }),
+            Geometry::Patches(patches) => {
+                intersect_patch(ray, &patches.hot[index].decode(), t_min, t_max, acceptance)
+                    .map(|hit| ObjectHit { t: hit.t, primitive, uv: hit.uv })
+            }
             Geometry::Mesh(mesh) => intersect_triangle(ray, triangle_corners(mesh, index), t_min, t_max)
                 .map(|t| ObjectHit { t, primitive, uv: Vec2::ZERO }),
         }

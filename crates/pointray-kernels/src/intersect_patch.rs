@@ -134,9 +134,14 @@ mod tests {
     fn hits_in_a_rotated_frame_lie_on_the_surface() {
         let normal = Vec3::new(0.3, -0.5, 0.8).normalize();
         let tangent = normal.any_orthonormal_vector();
-        let patch =
-            PatchHot::isotropic(Vec3::new(1.0, 2.0, -1.0), tangent, normal, [0.01, 0.1, -0.2, 0.4, 0.3, -0.2], 0.5)
-                .decode();
+        let patch = PatchHot::isotropic(
+            Vec3::new(1.0, 2.0, -1.0),
+            tangent,
+            normal,
+            [0.01, 0.1, -0.2, 0.4, 0.3, -0.2],
+            0.5,
+        )
+        .decode();
         let target = patch.to_world(Vec3::new(0.1, -0.2, 0.0));
         let origin = target + Vec3::new(0.5, 1.0, 2.0);
         let hit = hit(Ray::new(origin, (target - origin).normalize()), &patch, PatchAcceptance::Disk)

@@ -252,7 +252,8 @@ mod tests {
         let n = Vec3::new(-0.2, 0.9, 0.1).normalize();
         let frame = PackedFrame::new(n, n.any_orthonormal_vector());
         let coefficients = [0.001, 0.2, -0.1, 30.0, -12.0, 5.0];
-        let patch = PatchHot::new(Vec3::new(4.0, 5.0, 6.0), frame, Vec2::new(0.02, 0.005), coefficients).decode();
+        let patch =
+            PatchHot::new(Vec3::new(4.0, 5.0, 6.0), frame, Vec2::new(0.02, 0.005), coefficients).decode();
         assert_eq!(patch.frame, frame.decode());
         assert!((patch.radii - Vec2::new(0.02, 0.005)).abs().max_element() < 1e-7);
         for (decoded, wanted) in patch.coefficients.iter().zip(coefficients) {

@@ -26,8 +26,8 @@
 use glam::Vec2;
 use rayon::prelude::*;
 
-use pointray_kernels::TangentFrame;
 use crate::neighbors::Neighbors;
+use pointray_kernels::TangentFrame;
 
 /// How `prep` chooses each patch's support radius `d_i`.
 ///

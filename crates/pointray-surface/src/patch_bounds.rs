@@ -92,7 +92,12 @@ mod tests {
     fn sample_patch() -> PatchHot {
         let n = Vec3::new(0.3, -0.2, 1.0).normalize();
         let frame = pointray_kernels::PackedFrame::new(n, n.any_orthonormal_vector());
-        PatchHot::new(Vec3::new(1.0, 2.0, 3.0), frame, Vec2::new(0.3, 0.12), [0.01, 0.2, -0.1, 1.5, -0.7, 2.0])
+        PatchHot::new(
+            Vec3::new(1.0, 2.0, 3.0),
+            frame,
+            Vec2::new(0.3, 0.12),
+            [0.01, 0.2, -0.1, 1.5, -0.7, 2.0],
+        )
     }
 
     #[test]

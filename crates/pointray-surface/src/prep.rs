@@ -103,7 +103,8 @@ pub fn prep(
     drop(sorted);
     let patches = points.len();
     let neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
-    let scan = clock.run(Stage::ScanLines, patches, || scan_structure(&points, cloud, &source, options, offset));
+    let scan =
+        clock.run(Stage::ScanLines, patches, || scan_structure(&points, cloud, &source, options, offset));
     if let Some(scan) = scan {
         let scanned = clock.run(Stage::QuadraticFit, patches, || scan_patches(&points, &scan));
         let summary = ScanSummary {
@@ -114,12 +115,14 @@ pub fn prep(
         let hot: Vec<PatchHot> = scanned
             .par_iter()
             .zip(&points)
-            .map(|(patch, &p)| PatchHot::new(p, patch.frame, patch.radii * params.disk_scale, patch.fit.coefficients))
+            .map(|(patch, &p)| {
+                PatchHot::new(p, patch.frame, patch.radii * params.disk_scale, patch.fit.coefficients)
+            })
             .collect();
         let reach: Vec<f32> = scanned.iter().map(|patch| patch.radii.x).collect();
         let fits = count_fits(&scanned.iter().map(|patch| patch.fit.kind).collect::<Vec<_>>());
-        let aabbs: Vec<Aabb> =
-            clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
+        let aabbs: Vec<Aabb> = clock
+            .run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
         let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
             (gather_cold(cloud, &source, &reach), color_neighbor_table(&neighbors, has_point_colors(cloud)))
         });
@@ -149,7 +152,15 @@ pub fn prep(
         support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode)
     });
     let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
-        fit_patches(&points, (&packed_frames, &frames), &radii.chosen, &neighbors, k, params.disk_scale, progress)
+        fit_patches(
+            &points,
+            (&packed_frames, &frames),
+            &radii.chosen,
+            &neighbors,
+            k,
+            params.disk_scale,
+            progress,
+        )
     });
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
@@ -376,7 +387,11 @@ fn fit_patches(
 
 fn count_fits(kinds: &[FitKind]) -> FitCounts {
     let count = |wanted| kinds.par_iter().filter(|&&kind| kind == wanted).count();
-    FitCounts { quadratic: count(FitKind::Quadratic), plane: count(FitKind::Plane), flat: count(FitKind::Flat) }
+    FitCounts {
+        quadratic: count(FitKind::Quadratic),
+        plane: count(FitKind::Plane),
+        flat: count(FitKind::Flat),
+    }
 }
 
 /// The scan lines of the prepped points, when the mode allows, the sensor is known and its
@@ -392,7 +407,8 @@ fn scan_structure(
         return None;
     }
     let sensor_of = |i: u32| options.sensor.or_else(|| cloud.sensor_of(i as usize));
-    let sensors: Vec<DVec3> = source.iter().map(|&i| sensor_of(i).map(|s| s - offset)).collect::<Option<_>>()?;
+    let sensors: Vec<DVec3> =
+        source.iter().map(|&i| sensor_of(i).map(|s| s - offset)).collect::<Option<_>>()?;
     let rings = cloud.rings.as_deref().map(|rings| gather(rings, source));
     ScanLines::new(points, &sensors, rings.as_deref())
 }

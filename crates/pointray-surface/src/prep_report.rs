@@ -86,7 +86,10 @@ impl fmt::Display for PrepReport {
         }
         if let Some(ScanSummary { lines, surface_patches }) = self.scan {
             let disks = self.patches - surface_patches;
-            writeln!(f, "scan-aware: {lines} scan lines, {surface_patches} surface patches, {disks} footprint disks")?;
+            writeln!(
+                f,
+                "scan-aware: {lines} scan lines, {surface_patches} surface patches, {disks} footprint disks"
+            )?;
         }
         if self.replaced_input_normals > 0 {
             writeln!(f, "input normals replaced: {}", self.replaced_input_normals)?;

@@ -140,7 +140,12 @@ fn recovered_beams(offsets: &[Vec3], station_of: &[u32], station_count: usize) -
 
 /// Lines keyed by (station, ring), members sorted by azimuth, linked to their elevation
 /// neighbours at the same station.
-fn group_lines(offsets: &[Vec3], station_of: &[u32], rings: &[u16], azimuth: &[f32]) -> (Vec<ScanLine>, Vec<u32>) {
+fn group_lines(
+    offsets: &[Vec3],
+    station_of: &[u32],
+    rings: &[u16],
+    azimuth: &[f32],
+) -> (Vec<ScanLine>, Vec<u32>) {
     let mut index: HashMap<(u32, u16), u32> = HashMap::new();
     let mut lines: Vec<ScanLine> = Vec::new();
     let mut elevation_sums: Vec<f64> = Vec::new();
@@ -210,7 +215,8 @@ mod tests {
         assert_eq!(middle.members.len(), 180);
         assert_eq!(scan.nearby_lines(100).count(), 2);
         assert!((scan.beam_spacing(100).unwrap() - 2f32.to_radians()).abs() < 1e-4);
-        let sorted = middle.members.windows(2).all(|w| scan.azimuth[w[0] as usize] <= scan.azimuth[w[1] as usize]);
+        let sorted =
+            middle.members.windows(2).all(|w| scan.azimuth[w[0] as usize] <= scan.azimuth[w[1] as usize]);
         assert!(sorted);
     }
 
@@ -219,8 +225,10 @@ mod tests {
         let points: Vec<Vec3> = (0..8)
             .flat_map(|beam| {
                 (0..50).map(move |step| {
-                    let (azimuth, e) = ((step as f32 * 7.0).to_radians(), (beam as f32 * 0.4 - 1.4).to_radians());
-                    Vec3::new(azimuth.cos() * e.cos(), azimuth.sin() * e.cos(), e.sin()) * (5.0 + step as f32 * 0.1)
+                    let (azimuth, e) =
+                        ((step as f32 * 7.0).to_radians(), (beam as f32 * 0.4 - 1.4).to_radians());
+                    Vec3::new(azimuth.cos() * e.cos(), azimuth.sin() * e.cos(), e.sin())
+                        * (5.0 + step as f32 * 0.1)
                 })
             })
             .collect();

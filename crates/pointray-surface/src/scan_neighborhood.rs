@@ -35,7 +35,8 @@ const AZIMUTH_STEPS: f32 = 3.0;
 pub fn candidates(scan: &ScanLines, i: usize) -> Vec<u32> {
     let line = &scan.lines[scan.line_of[i] as usize];
     let position = line.members.partition_point(|&m| scan.azimuth[m as usize] < scan.azimuth[i]);
-    let position = (position..line.members.len()).find(|&at| line.members[at] as usize == i).unwrap_or(position);
+    let position =
+        (position..line.members.len()).find(|&at| line.members[at] as usize == i).unwrap_or(position);
     let found: Vec<u32> = (1..=ALONG_LINE)
         .flat_map(|step| [position.checked_sub(step), Some(position + step)])
         .flatten()
@@ -61,7 +62,12 @@ fn bracketing<'a>(line: &'a ScanLine, scan: &ScanLines, azimuth: f32) -> impl It
 /// The neighbourhood of point `i` among `candidates`: of the planes through the point and two
 /// candidates, the one that most candidates lie near (a small exhaustive RANSAC: a wall's
 /// returns must not tilt the ground at its foot), refined by PCA over those that agree.
-pub fn agreeing_neighborhood(points: &[Vec3], scan: &ScanLines, i: usize, candidates: &[u32]) -> ScanNeighborhood {
+pub fn agreeing_neighborhood(
+    points: &[Vec3],
+    scan: &ScanLines,
+    i: usize,
+    candidates: &[u32],
+) -> ScanNeighborhood {
     let offsets: Vec<Vec3> = candidates.iter().map(|&j| points[j as usize] - points[i]).collect();
     let line = scan.line_of[i];
     let scale = candidates
@@ -72,7 +78,12 @@ pub fn agreeing_neighborhood(points: &[Vec3], scan: &ScanLines, i: usize, candid
         .fold(f32::INFINITY, f32::min);
     let scale = if scale.is_finite() { scale } else { 0.0 };
     let agreeing = |normal: Vec3| -> Vec<u32> {
-        candidates.iter().zip(&offsets).filter(|&(_, &d)| slope(d, normal, scale) <= MAX_RISE).map(|(&j, _)| j).collect()
+        candidates
+            .iter()
+            .zip(&offsets)
+            .filter(|&(_, &d)| slope(d, normal, scale) <= MAX_RISE)
+            .map(|(&j, _)| j)
+            .collect()
     };
     // Most agreeing candidates first, then the flattest fit among them.
     let score = |normal: Vec3| {
@@ -118,10 +129,10 @@ fn slope(offset: Vec3, normal: Vec3, scale: f32) -> f32 {
 /// (with offsets, one return a little off the plane out there would tilt it). +z when the
 /// members leave it undefined.
 fn plane_normal(points: &[Vec3], i: usize, members: &[u32]) -> Vec3 {
-    let scatter = members.iter().filter_map(|&j| (points[j as usize] - points[i]).as_dvec3().try_normalize()).fold(
-        DMat3::ZERO,
-        |scatter, u| scatter + DMat3::from_cols(u * u.x, u * u.y, u * u.z),
-    );
+    let scatter = members
+        .iter()
+        .filter_map(|&j| (points[j as usize] - points[i]).as_dvec3().try_normalize())
+        .fold(DMat3::ZERO, |scatter, u| scatter + DMat3::from_cols(u * u.x, u * u.y, u * u.z));
     let normal = smallest_eigenvector(scatter);
     if normal.is_finite() && normal.length_squared() > 0.5 { normal.as_vec3() } else { Vec3::Z }
 }

@@ -52,7 +52,8 @@ fn scan_patch(points: &[Vec3], scan: &ScanLines, i: usize) -> ScanPatch {
     if neighborhood.crosses_lines && neighborhood.members.len() >= 3 {
         surface_patch(points, scan, i, &neighborhood, toward_sensor)
     } else {
-        let nearest = candidates.iter().map(|&j| points[j as usize].distance(points[i])).fold(f32::INFINITY, f32::min);
+        let nearest =
+            candidates.iter().map(|&j| points[j as usize].distance(points[i])).fold(f32::INFINITY, f32::min);
         footprint_disk(points, scan, i, nearest, toward_sensor)
     }
 }
@@ -65,7 +66,8 @@ fn surface_patch(
     neighborhood: &ScanNeighborhood,
     toward_sensor: Vec3,
 ) -> ScanPatch {
-    let normal = if neighborhood.normal.dot(toward_sensor) < 0.0 { -neighborhood.normal } else { neighborhood.normal };
+    let normal =
+        if neighborhood.normal.dot(toward_sensor) < 0.0 { -neighborhood.normal } else { neighborhood.normal };
     let along = along_line_direction(points, scan, i, &neighborhood.members, normal);
     let offsets: Vec<(Vec3, bool)> = neighborhood
         .members
@@ -137,7 +139,9 @@ fn cap_by_beam_spacing(spacing: f32, scan: &ScanLines, i: usize, range: f32, inc
 fn elliptical_fit(frame: &TangentFrame, offsets: &[(Vec3, bool)], major_radius: f32) -> PatchFit {
     let locals: Vec<Vec3> = offsets.iter().map(|(d, _)| frame.to_local(*d)).collect();
     let reach = locals.iter().fold(Vec2::ZERO, |reach, l| reach.max(Vec2::new(l.x.abs(), l.y.abs())));
-    let scales = (reach * WENDLAND_SCALE).max(Vec2::splat(reach.max_element() * 0.1)).max(Vec2::splat(f32::MIN_POSITIVE));
+    let scales = (reach * WENDLAND_SCALE)
+        .max(Vec2::splat(reach.max_element() * 0.1))
+        .max(Vec2::splat(f32::MIN_POSITIVE));
     let h = scales.max_element();
     let samples = locals.iter().map(|&l| (l, h * (Vec2::new(l.x, l.y) / scales).length()));
     fit_patch(std::iter::once((Vec3::ZERO, 0.0)).chain(samples), h, major_radius)
@@ -145,7 +149,13 @@ fn elliptical_fit(frame: &TangentFrame, offsets: &[(Vec3, bool)], major_radius: 
 
 /// A small flat disk facing the sensor, as wide as the return's footprint: where neighbours
 /// agree on no surface (vegetation, edges, isolated returns), nothing wider is justified.
-fn footprint_disk(points: &[Vec3], scan: &ScanLines, i: usize, nearest: f32, toward_sensor: Vec3) -> ScanPatch {
+fn footprint_disk(
+    points: &[Vec3],
+    scan: &ScanLines,
+    i: usize,
+    nearest: f32,
+    toward_sensor: Vec3,
+) -> ScanPatch {
     let range = scan.sensor[i].distance(points[i]);
     let footprint = scan.beam_spacing(i).map_or(f32::INFINITY, |spacing| spacing * range);
     let radius = (0.5 * nearest.min(footprint)).max(f32::MIN_POSITIVE);

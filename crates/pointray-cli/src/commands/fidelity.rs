@@ -6,11 +6,11 @@ use std::sync::Arc;
 use anyhow::Context;
 use clap::Args;
 use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, measure_fidelity};
+use pointray_scene::PatchAcceptance;
 use pointray_scene::{Frame, RenderSettings, Scene};
 use pointray_surface::{PatchSet, PrepOptions, PrepParams, prep};
 use pointray_vulkan::DeviceSelector;
 
-use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendChoice};
 use crate::boxes_arg::Boxes;
 use crate::progress::PrepBar;
@@ -33,9 +33,10 @@ pub struct FidelityArgs {
     /// Neighbours for the support radius and the quadratic fit.
     #[arg(long, default_value_t = 9)]
     k: u32,
-    /// Which hits on a patch count: inside its box (the paper) or also over its disk.
-    #[arg(long, value_enum, default_value_t = Acceptance::Disk)]
-    acceptance: Acceptance,
+    /// Which hits on a patch count: `box` (inside its box, the paper) or `disk` (also over
+    /// its support).
+    #[arg(long, default_value = "disk")]
+    acceptance: PatchAcceptance,
     /// The box around each patch.
     #[arg(long, value_enum, default_value_t = Boxes::Tight)]
     boxes: Boxes,
@@ -74,7 +75,7 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
         pointray_io::ensure_not_same_file(&args.points, json)?;
         pointray_io::ensure_not_same_file(&args.mesh, json)?;
     }
-    let options = FidelityOptions::around(args.views, args.size, args.acceptance.into())?;
+    let options = FidelityOptions::around(args.views, args.size, args.acceptance)?;
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
     let patches = prep_points(
         &args.points,

@@ -9,7 +9,6 @@ use pointray_scene::frame_output::{AovSelection, write_frame};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene};
 use pointray_scene::{BufferLayout, RenderSettings};
 
-use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendArgs};
 use crate::progress::PrepBar;
 
@@ -34,9 +33,10 @@ pub struct RenderArgs {
     /// Turn shadow rays off.
     #[arg(long)]
     no_shadows: bool,
-    /// Which hits on a patch count: inside its box (the paper) or also over its disk.
-    #[arg(long, value_enum, default_value_t = Acceptance::Disk)]
-    acceptance: Acceptance,
+    /// Which hits on a patch count: `box` (inside its box, the paper) or `disk` (also over
+    /// its support).
+    #[arg(long, default_value = "disk")]
+    acceptance: PatchAcceptance,
     /// Per-patch data in split hot/cold buffers or one combined buffer (Vulkan only).
     #[arg(long, value_enum, default_value_t = Buffers::Split)]
     buffers: Buffers,
@@ -80,7 +80,7 @@ fn apply_flags(args: &RenderArgs, mut settings: RenderSettings) -> RenderSetting
     settings.samples_per_pixel = args.spp.unwrap_or(settings.samples_per_pixel);
     settings.max_depth = args.max_depth.unwrap_or(settings.max_depth);
     settings.shadows &= !args.no_shadows;
-    settings.acceptance = args.acceptance.into();
+    settings.acceptance = args.acceptance;
     settings.buffer_layout = match args.buffers {
         Buffers::Split => BufferLayout::Split,
         Buffers::Combined => BufferLayout::Combined,

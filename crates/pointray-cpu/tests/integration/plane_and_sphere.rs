@@ -6,7 +6,7 @@ use crate::common;
 use common::*;
 use glam::{Affine3A, Quat, Vec3};
 use pointray_cpu::{CpuRenderer, render};
-use pointray_scene::{PatchAcceptance, Frame, RenderSettings};
+use pointray_scene::{Frame, PatchAcceptance, RenderSettings};
 
 fn settings(width: u32, height: u32) -> RenderSettings {
     RenderSettings { width, height, ..RenderSettings::default() }

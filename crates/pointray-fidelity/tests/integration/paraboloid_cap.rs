@@ -58,8 +58,11 @@ fn views_that_see_the_cap() -> Vec<Vec3> {
 
 fn measure(points: &PointCloud, mesh: TriangleMesh) -> FidelityReport {
     let (patches, _) = prep(points, &PrepOptions::default(), &NoProgress).expect("prep of the cap");
-    let options =
-        FidelityOptions { directions: views_that_see_the_cap(), size: SIZE, acceptance: PatchAcceptance::Box };
+    let options = FidelityOptions {
+        directions: views_that_see_the_cap(),
+        size: SIZE,
+        acceptance: PatchAcceptance::Box,
+    };
     let report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &CpuFrameRenderer).unwrap();
     println!("{report}");
     report

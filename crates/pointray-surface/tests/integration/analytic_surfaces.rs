@@ -78,7 +78,8 @@ fn sphere_patches_stay_within_one_percent_and_one_degree() {
         let degrees = normal.dot(radial).abs().min(1.0).acos().to_degrees();
         assert!(degrees < 1.0, "patch {i}: normal {degrees}° off");
         let [_, c1, c2, ..] = patch.decode().coefficients;
-        let surface_normal = patch.decode().direction_to_world(Vec3::new(-c1, -c2, 1.0).normalize()).as_dvec3();
+        let surface_normal =
+            patch.decode().direction_to_world(Vec3::new(-c1, -c2, 1.0).normalize()).as_dvec3();
         let surface_degrees = surface_normal.dot(radial).abs().min(1.0).acos().to_degrees();
         assert!(surface_degrees < 1.0, "patch {i}: surface normal {surface_degrees}° off");
         outward += usize::from(normal.dot(radial) > 0.0);

@@ -73,7 +73,8 @@ fn exact_and_near_duplicates_are_merged_without_nans_or_zero_radii() {
     assert_eq!(patches.len(), 400);
     for patch in &patches.hot {
         let decoded = patch.decode();
-        let values = decoded.origin.to_array().into_iter().chain(decoded.coefficients).chain(decoded.radii.to_array());
+        let values =
+            decoded.origin.to_array().into_iter().chain(decoded.coefficients).chain(decoded.radii.to_array());
         assert!(values.into_iter().all(|v| v.is_finite()), "{patch:?}");
         assert!(patch.radius() > 0.0, "{patch:?}");
     }

@@ -17,7 +17,8 @@ fn sweep(noise: f64) -> (PointCloud, Vec<u16>) {
         let elevation = (-25.0 + f64::from(beam) * 30.0 / 31.0).to_radians();
         for step in 0..1800 {
             let azimuth = (step as f64 * 0.2).to_radians();
-            let direction = DVec3::new(azimuth.cos() * elevation.cos(), azimuth.sin() * elevation.cos(), elevation.sin());
+            let direction =
+                DVec3::new(azimuth.cos() * elevation.cos(), azimuth.sin() * elevation.cos(), elevation.sin());
             let ground = if direction.z < 0.0 { -SENSOR.z / direction.z } else { f64::INFINITY };
             let wall = if direction.x > 0.0 { WALL_X / direction.x } else { f64::INFINITY };
             let range = ground.min(wall);
@@ -47,7 +48,9 @@ fn covered_fraction(patches: &PatchSet, probes: &[DVec3]) -> f64 {
             let local = (probe - patches.offset).as_vec3();
             decoded.iter().any(|patch| {
                 let offset = patch.to_local(local);
-                (offset.x.abs() <= patch.radii.x) && patch.supports(Vec2::new(offset.x, offset.y)) && offset.z.abs() < 0.1
+                (offset.x.abs() <= patch.radii.x)
+                    && patch.supports(Vec2::new(offset.x, offset.y))
+                    && offset.z.abs() < 0.1
             })
         })
         .count();
@@ -58,7 +61,8 @@ fn covered_fraction(patches: &PatchSet, probes: &[DVec3]) -> f64 {
 fn ground_probes() -> Vec<DVec3> {
     (0..400)
         .map(|i| {
-            let (range, angle) = (4.0 + 11.0 * ((i * 37) % 400) as f64 / 400.0, (i as f64 * 0.9).to_radians() + 1.7);
+            let (range, angle) =
+                (4.0 + 11.0 * ((i * 37) % 400) as f64 / 400.0, (i as f64 * 0.9).to_radians() + 1.7);
             DVec3::new(range * angle.cos(), range * angle.sin(), 0.0)
         })
         .filter(|probe| probe.x < WALL_X - 0.5)
@@ -102,7 +106,11 @@ fn ground_normals_point_up_and_no_support_exceeds_three_line_spacings() {
         let range = (world - SENSOR).length() as f32;
         let grazing = (SENSOR.z as f32 / range).asin();
         let ring_gap = range * beam_step / grazing.sin();
-        assert!(patch.radii.x <= 3.0 * ring_gap.max(range * 0.2f32.to_radians()), "{world}: {:?} vs gap {ring_gap}", patch.radii);
+        assert!(
+            patch.radii.x <= 3.0 * ring_gap.max(range * 0.2f32.to_radians()),
+            "{world}: {:?} vs gap {ring_gap}",
+            patch.radii
+        );
     }
     assert!(ground > 10_000);
 }
@@ -121,6 +129,10 @@ fn the_wall_and_the_ground_are_not_bridged() {
             let offset = patch.to_local(local);
             patch.supports(Vec2::new(offset.x, offset.y)) && offset.z.abs() < 0.05
         });
-        assert!(hit.is_none(), "{probe} lies on a patch at {}", hit.unwrap().origin.as_dvec3() + patches.offset);
+        assert!(
+            hit.is_none(),
+            "{probe} lies on a patch at {}",
+            hit.unwrap().origin.as_dvec3() + patches.offset
+        );
     }
 }

@@ -8,7 +8,7 @@ use common::{
     assert_no_validation_messages, data_file, model_on_floor, prepped_points_with_boxes, renderer, settings,
     sphere_on_floor,
 };
-use pointray_scene::{PatchAcceptance, Frame, Geometry, Material, RenderSettings, Scene, demo_scene};
+use pointray_scene::{Frame, Geometry, Material, PatchAcceptance, RenderSettings, Scene, demo_scene};
 use pointray_surface::BoxKind;
 
 struct Agreement {

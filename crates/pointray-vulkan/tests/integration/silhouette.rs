@@ -12,7 +12,7 @@ use common::{
     settings,
 };
 use pointray_io::formats::ply::read_triangle_mesh;
-use pointray_scene::{PatchAcceptance, Frame, Material, RenderSettings};
+use pointray_scene::{Frame, Material, PatchAcceptance, RenderSettings};
 
 const MODEL: u32 = 0;
 

@@ -59,5 +59,7 @@ pub fn surface_over_disk(patch: &PatchHot, offset: DVec3) -> Vec<DVec3> {
             uv.push((r * angle.cos(), r * angle.sin()));
         }
     }
-    uv.into_iter().map(|(u, v)| patch.decode().to_world(glam::Vec3::new(u, v, f(u, v))).as_dvec3() + offset).collect()
+    uv.into_iter()
+        .map(|(u, v)| patch.decode().to_world(glam::Vec3::new(u, v, f(u, v))).as_dvec3() + offset)
+        .collect()
 }
