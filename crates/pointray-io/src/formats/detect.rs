@@ -18,8 +18,23 @@ pub enum PointFormat {
     Ply,
     /// Whitespace- or comma-separated text: `.xyz`, `.pts`, `.txt`, `.csv`.
     Xyz,
-    /// KITTI-style raw f32 (x, y, z, intensity) records.
-    KittiBin,
+    /// Raw float32 LiDAR sweeps: KITTI `.bin`, nuScenes `.pcd.bin`.
+    RawBin,
+}
+
+impl PointFormat {
+    /// The format's usual name, for messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Las => "LAS",
+            Self::Laz => "LAZ",
+            Self::Pcd => "PCD",
+            Self::E57 => "E57",
+            Self::Ply => "PLY",
+            Self::Xyz => "text points",
+            Self::RawBin => "raw .bin sweep",
+        }
+    }
 }
 
 /// How much of the file the content checks look at.
@@ -41,7 +56,7 @@ pub fn detect_format(path: &Path) -> Result<PointFormat, IoError> {
         path: path.into(),
         what: "binary content with no known signature".into(),
         supported: "LAS/LAZ (\"LASF\"), PCD, E57 (\"ASTM-E57\"), PLY (\"ply\"), text x y z \
-                    (.xyz .pts .txt .csv), KITTI .bin"
+                    (.xyz .pts .txt .csv), raw sweeps (KITTI .bin, nuScenes .pcd.bin)"
             .into(),
     })
 }
@@ -109,7 +124,7 @@ fn looks_like_text(head: &[u8]) -> bool {
 fn binary_format_by_extension(path: &Path) -> Option<PointFormat> {
     let extension = path.extension()?.to_str()?.to_ascii_lowercase();
     match extension.as_str() {
-        "bin" => Some(PointFormat::KittiBin),
+        "bin" => Some(PointFormat::RawBin),
         _ => None,
     }
 }

@@ -5,8 +5,9 @@ use std::fs::File;
 use std::io::Read;
 use std::path::Path;
 
+use super::columns::ColumnSpec;
 use super::detect::{PointFormat, detect_format_from};
-use super::{e57, kitti, las, obj, pcd, ply, xyz};
+use super::{e57, las, obj, pcd, ply, raw_bin, xyz};
 use crate::{IoError, PointCloud, TriangleMesh};
 
 /// Every file format pointray reads.
@@ -27,11 +28,11 @@ const EXTENSIONS: [(&[&str], FileFormat); 8] = [
     (&["pcd"], FileFormat::Points(PointFormat::Pcd)),
     (&["e57"], FileFormat::Points(PointFormat::E57)),
     (&["xyz", "pts", "txt", "csv"], FileFormat::Points(PointFormat::Xyz)),
-    (&["bin"], FileFormat::Points(PointFormat::KittiBin)),
+    (&["bin"], FileFormat::Points(PointFormat::RawBin)),
 ];
 
 const SUPPORTED: &str = "PLY (.ply), OBJ (.obj), LAS/LAZ (.las .laz), PCD (.pcd), E57 (.e57), \
-                         text x y z (.xyz .pts .txt .csv), KITTI (.bin)";
+                         text x y z (.xyz .pts .txt .csv), raw sweeps (KITTI .bin, nuScenes .pcd.bin)";
 const SUPPORTED_MESHES: &str = "PLY with faces (.ply), OBJ (.obj)";
 
 /// How much of the file the content checks look at.
@@ -39,15 +40,32 @@ const HEAD_BYTES: u64 = 4096;
 
 /// Reads a point cloud from any supported format.
 pub fn read_point_cloud(path: &Path) -> Result<PointCloud, IoError> {
-    match detect_file_format(path)? {
+    read_point_cloud_with(path, None)
+}
+
+/// Reads a point cloud, with `columns` saying what each column holds in a format that does
+/// not name its columns (text, raw `.bin` sweeps); other formats name their own fields and
+/// refuse a column spec rather than ignore it.
+pub fn read_point_cloud_with(path: &Path, columns: Option<&ColumnSpec>) -> Result<PointCloud, IoError> {
+    let format = detect_file_format(path)?;
+    if let Some(spec) = columns
+        && !matches!(format, FileFormat::Points(PointFormat::Xyz | PointFormat::RawBin))
+    {
+        return Err(IoError::Unsupported {
+            path: path.into(),
+            what: format!("column spec {spec} for a {} file, which names its own fields", format.name()),
+            supported: "column specs for text points (.xyz .pts .txt .csv) and raw sweeps (.bin)".into(),
+        });
+    }
+    match format {
         FileFormat::Obj => obj::read_point_cloud(path),
         FileFormat::Points(format) => match format {
             PointFormat::Ply => ply::read_point_cloud(path),
             PointFormat::Las | PointFormat::Laz => las::read_las(path),
             PointFormat::Pcd => pcd::read_pcd(path),
             PointFormat::E57 => e57::read_e57(path),
-            PointFormat::Xyz => xyz::read_xyz(path, None),
-            PointFormat::KittiBin => kitti::read_kitti_bin(path),
+            PointFormat::Xyz => xyz::read_xyz(path, columns),
+            PointFormat::RawBin => raw_bin::read_raw_bin(path, columns),
         },
     }
 }
@@ -62,6 +80,16 @@ pub fn read_triangle_mesh(path: &Path) -> Result<TriangleMesh, IoError> {
             what: format!("mesh format ({other:?} holds points only)"),
             supported: SUPPORTED_MESHES.into(),
         }),
+    }
+}
+
+impl FileFormat {
+    /// The format's usual name, for messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Obj => "OBJ",
+            Self::Points(format) => format.name(),
+        }
     }
 }
 

@@ -4,7 +4,7 @@ use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::Path;
 
-use e57::{CartesianCoordinate, E57Reader};
+use e57::{CartesianCoordinate, E57Reader, RecordName};
 use glam::DVec3;
 
 use crate::{IoError, PointCloud};
@@ -16,10 +16,12 @@ const HEADER_BYTES: usize = 48;
 
 /// Reads an `.e57` file. Every scan is moved into the file's frame by its pose and the
 /// scans are merged into one cloud. The sensor position is the **first** scan's pose
-/// translation (one position per cloud is all `PointCloud` holds); it is absent when that
-/// scan has no pose. Points without a valid Cartesian position are dropped. Colours and
-/// intensities (normalised by the file's own limits) are kept only when every scan has them;
-/// a point whose colour is marked invalid is black.
+/// translation; it is absent when that scan has no pose. When several scans are merged and
+/// each has a pose, every point also gets its own scan's position (`sensor_origins`).
+/// Points without a valid Cartesian position are dropped. Colours, intensities (normalised
+/// by the file's own limits) and row indices (the scan lines of a scanner's angular grid,
+/// kept as rings when all fit 16 bits) are kept only when every scan has them; a point whose
+/// colour is marked invalid is black.
 pub fn read_e57(path: &Path) -> Result<PointCloud, IoError> {
     let file = File::open(path).map_err(|source| IoError::os(path, source))?;
     read_e57_from(BufReader::new(file), path)
@@ -101,6 +103,8 @@ struct MergedScans {
     positions: Vec<DVec3>,
     colors: Option<Vec<[u8; 3]>>,
     intensities: Option<Vec<f32>>,
+    rings: Option<Vec<u16>>,
+    sensor_origins: Option<Vec<DVec3>>,
     scans: usize,
 }
 
@@ -122,12 +126,25 @@ impl MergedScans {
         keep_if_all(&mut self.intensities, first, scan.has_intensity(), || {
             valid.iter().map(|(_, p)| p.intensity.unwrap_or(0.0).clamp(0.0, 1.0))
         });
+        let has_rows = scan.prototype.iter().any(|record| record.name == RecordName::RowIndex)
+            && valid.iter().all(|(_, p)| u16::try_from(p.row).is_ok());
+        keep_if_all(&mut self.rings, first, has_rows, || valid.iter().map(|(_, p)| p.row as u16));
+        let station = scan.transform.as_ref().map(|pose| {
+            let t = &pose.translation;
+            DVec3::new(t.x, t.y, t.z)
+        });
+        keep_if_all(&mut self.sensor_origins, first, station.is_some(), || {
+            std::iter::repeat_n(station.unwrap_or_default(), valid.len())
+        });
     }
 
     fn into_point_cloud(self) -> PointCloud {
         PointCloud {
             colors: self.colors,
             intensities: self.intensities,
+            rings: self.rings,
+            // One scan's position is the cloud's `sensor_position`.
+            sensor_origins: self.sensor_origins.filter(|_| self.scans > 1),
             ..PointCloud::from_positions(self.positions)
         }
     }

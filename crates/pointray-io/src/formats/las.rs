@@ -23,7 +23,9 @@ const BATCH_BYTES: u64 = 4 << 20;
 
 /// Reads a `.las` or `.laz` file. Colours are scaled to 8 bits (files that store 8-bit values
 /// in the 16-bit fields are detected and kept as they are); intensities are normalised to
-/// [0, 1]; an all-zero colour or intensity field is reported as absent.
+/// [0, 1]; classifications are the ASPRS codes (5 bits before point format 6, 8 bits from it
+/// on). Every LAS point has these fields, filled or not: an all-zero colour, intensity or
+/// classification (class 0, "never classified") is reported as absent.
 pub fn read_las(path: &Path) -> Result<PointCloud, IoError> {
     let file = File::open(path).map_err(|source| IoError::os(path, source))?;
     read_las_from(BufReader::new(file), path)
@@ -245,12 +247,14 @@ struct LasColumns {
     positions: Vec<DVec3>,
     raw_intensities: Vec<f64>,
     raw_colors: Option<Vec<[u16; 3]>>,
+    classifications: Vec<u8>,
 }
 
 impl LasColumns {
     fn append(&mut self, batch: &PointData) {
         self.positions.extend(batch.x().zip(batch.y()).zip(batch.z()).map(|((x, y), z)| DVec3::new(x, y, z)));
         self.raw_intensities.extend(batch.intensity().map(f64::from));
+        self.classifications.extend(batch.classification());
         if let Some(rgb) = batch.rgb() {
             self.raw_colors.get_or_insert_with(Vec::new).extend(rgb.map(|(r, g, b)| [r, g, b]));
         }
@@ -260,6 +264,11 @@ impl LasColumns {
         PointCloud {
             intensities: normalise_intensities(&self.raw_intensities),
             colors: self.raw_colors.as_deref().and_then(colors_to_8_bit),
+            classifications: self
+                .classifications
+                .iter()
+                .any(|&class| class != 0)
+                .then_some(self.classifications),
             ..PointCloud::from_positions(self.positions)
         }
     }

@@ -1,14 +1,19 @@
 //! One module per file format; `read_point_cloud` and `read_triangle_mesh` pick the reader.
 
+mod column_rows;
+pub mod columns;
 pub mod detect;
 mod dispatch;
 pub mod e57;
 mod intensity;
-pub mod kitti;
 pub mod las;
 pub mod obj;
 pub mod pcd;
 pub mod ply;
+pub mod raw_bin;
 pub mod xyz;
 
-pub use dispatch::{FileFormat, detect_file_format, read_point_cloud, read_triangle_mesh};
+pub use columns::ColumnSpec;
+pub use dispatch::{
+    FileFormat, detect_file_format, read_point_cloud, read_point_cloud_with, read_triangle_mesh,
+};

@@ -2,20 +2,22 @@
 //! binary_compressed data.
 //!
 //! The header is checked against the data before `pcd-rs` sees it, so that a header that
-//! lies about its point count or sizes gives an error instead of a huge allocation.
+//! lies about its point count or sizes gives an error instead of a huge allocation, and a
+//! header that says `DATA binary` over a text body (or over more data than its points fill)
+//! gives an error instead of garbage.
 
 use std::io::Cursor;
 use std::path::Path;
 
 use glam::{DVec3, Vec3};
-use pcd_rs::{DataKind, DynReader, Field, PcdMeta, ValueKind};
+use pcd_rs::{DataKind, DynReader, Field, PcdMeta, ValueKind, ViewPoint};
 
 use super::intensity::normalise_intensities;
 use crate::{IoError, PointCloud};
 
 const SUPPORTED: &str = "PCD 0.5-0.7 with DATA ascii, binary or binary_compressed; field types I/U of \
      1, 2, 4 or 8 bytes and F of 4 or 8 bytes; x y z of COUNT 1; colour as packed rgb/rgba (F 4 or U 4) \
-     or r g b (U 1)";
+     or r g b (U 1); ring of an integer type (I or U)";
 
 /// A record larger than this is not a point; refusing it bounds every allocation.
 const MAX_RECORD_BYTES: u64 = 1 << 20;
@@ -24,7 +26,9 @@ const MAX_RECORD_BYTES: u64 = 1 << 20;
 const MAX_LZF_EXPANSION: u64 = 100;
 
 /// Reads a `.pcd` file. Points whose coordinates are NaN (PCL's marker for "no return" in
-/// organised clouds) are dropped. Intensities are normalised to [0, 1].
+/// organised clouds) are dropped. Intensities are normalised to [0, 1]. A `ring` field gives
+/// each point's scan line. A `VIEWPOINT` other than PCL's default (which every writer puts
+/// there, sensor or not) gives the sensor position: its translation, in the cloud's frame.
 pub fn read_pcd(path: &Path) -> Result<PointCloud, IoError> {
     let bytes = std::fs::read(path).map_err(|source| IoError::os(path, source))?;
     read_pcd_from(&bytes, path)
@@ -39,11 +43,17 @@ pub fn read_pcd_from(bytes: &[u8], origin: &Path) -> Result<PointCloud, IoError>
     check_payload(&meta, &layout, payload, origin)?;
     let reader = DynReader::from_bytes(bytes).map_err(|error| pcd_error(origin, error))?;
     let mut columns = PcdColumns::with_capacity(meta.num_points.min(payload.len() as u64) as usize);
-    for record in reader {
+    for (index, record) in reader.enumerate() {
         let record = record.map_err(|error| pcd_error(origin, error))?;
-        columns.push(&layout, &record.0);
+        columns
+            .push(&layout, &record.0)
+            .map_err(|problem| IoError::malformed(origin, format!("point {index}: {problem}")))?;
     }
-    Ok(columns.into_point_cloud(&layout))
+    let sensor_position = (meta.viewpoint != ViewPoint::default()).then(|| {
+        let ViewPoint { tx, ty, tz, .. } = meta.viewpoint;
+        DVec3::new(tx, ty, tz)
+    });
+    Ok(PointCloud { sensor_position, ..columns.into_point_cloud(&layout) })
 }
 
 /// Sorts `pcd-rs` errors into "we cannot read this variant" and "this file is broken".
@@ -77,6 +87,7 @@ struct PcdLayout {
     color: Option<ColorFields>,
     intensity: Option<usize>,
     normal: Option<[usize; 3]>,
+    ring: Option<usize>,
     record_bytes: u64,
 }
 
@@ -107,7 +118,13 @@ impl PcdLayout {
             Self::color_fields(&fields, find("rgb")?.or(find("rgba")?), group(["r", "g", "b"])?, origin)?;
         let normal = group(["normal_x", "normal_y", "normal_z"])?;
         let intensity = find("intensity")?;
-        Ok(Self { position, color, intensity, normal, record_bytes: record_bytes(meta, origin)? })
+        let ring = find("ring")?;
+        if let Some(index) = ring
+            && matches!(fields[index].kind, ValueKind::F32 | ValueKind::F64)
+        {
+            return Err(unsupported(origin, format!("PCD ring field of type {:?}", fields[index].kind)));
+        }
+        Ok(Self { position, color, intensity, normal, ring, record_bytes: record_bytes(meta, origin)? })
     }
 
     fn color_fields(
@@ -159,8 +176,21 @@ fn check_payload(meta: &PcdMeta, layout: &PcdLayout, payload: &[u8], origin: &Pa
     };
     match meta.data {
         DataKind::Ascii => Ok(()),
+        DataKind::Binary if looks_like_text(payload) => Err(IoError::malformed(
+            origin,
+            "the header says DATA binary, but the data is text (numbers in lines): it should say DATA ascii",
+        )),
         DataKind::Binary => match needed {
-            Some(needed) if needed <= payload.len() as u64 => Ok(()),
+            Some(needed) if needed == payload.len() as u64 => Ok(()),
+            Some(needed) if needed < payload.len() as u64 => {
+                let problem = format!(
+                    "{} bytes follow the {} points the header declares: its POINTS or field sizes do \
+                     not match the data",
+                    payload.len() as u64 - needed,
+                    meta.num_points
+                );
+                Err(IoError::malformed(origin, problem))
+            }
             _ => truncated(payload.len() as u64),
         },
         DataKind::BinaryCompressed => {
@@ -182,6 +212,20 @@ fn check_payload(meta: &PcdMeta, layout: &PcdLayout, payload: &[u8], origin: &Pa
             Ok(())
         }
     }
+}
+
+/// Whether binary data is in fact lines of numbers: every byte printable or a line break,
+/// and the first line at least three numbers. Binary floats and integers hold control bytes
+/// almost at once.
+fn looks_like_text(payload: &[u8]) -> bool {
+    let head = &payload[..payload.len().min(4096)];
+    let printable = head.iter().all(|&byte| byte.is_ascii_graphic() || byte.is_ascii_whitespace());
+    let first_line = head.split(|&byte| byte == b'\n').next().unwrap_or_default();
+    let numbers = String::from_utf8_lossy(first_line)
+        .split_whitespace()
+        .map(|token| token.parse::<f64>().is_ok())
+        .collect::<Vec<_>>();
+    printable && !head.is_empty() && numbers.iter().all(|&number| number) && numbers.len() >= 3
 }
 
 fn compressed_sizes(payload: &[u8], origin: &Path) -> Result<[u64; 2], IoError> {
@@ -228,6 +272,7 @@ struct PcdColumns {
     colors: Vec<[u8; 3]>,
     intensities: Vec<f64>,
     normals: Vec<Vec3>,
+    rings: Vec<u16>,
 }
 
 impl PcdColumns {
@@ -235,10 +280,19 @@ impl PcdColumns {
         Self { positions: Vec::with_capacity(points), ..Self::default() }
     }
 
-    fn push(&mut self, layout: &PcdLayout, fields: &[Field]) {
+    /// Adds a record's point; a point without a position (NaN) is skipped, a ring out of
+    /// range is an error.
+    fn push(&mut self, layout: &PcdLayout, fields: &[Field]) -> Result<(), String> {
         let [x, y, z] = layout.position.map(|index| scalar(&fields[index]));
         if !(x.is_finite() && y.is_finite() && z.is_finite()) {
-            return;
+            return Ok(());
+        }
+        if let Some(index) = layout.ring {
+            let ring = scalar(&fields[index]);
+            if !(0.0..=f64::from(u16::MAX)).contains(&ring) {
+                return Err(format!("ring {ring} is outside 0 to {}", u16::MAX));
+            }
+            self.rings.push(ring as u16);
         }
         self.positions.push(DVec3::new(x, y, z));
         match layout.color {
@@ -253,6 +307,7 @@ impl PcdColumns {
             let [nx, ny, nz] = indices.map(|index| scalar(&fields[index]) as f32);
             self.normals.push(Vec3::new(nx, ny, nz));
         }
+        Ok(())
     }
 
     fn into_point_cloud(self, layout: &PcdLayout) -> PointCloud {
@@ -260,6 +315,7 @@ impl PcdColumns {
             colors: layout.color.is_some().then_some(self.colors),
             intensities: normalise_intensities(&self.intensities),
             normals: layout.normal.is_some().then_some(self.normals),
+            rings: layout.ring.is_some().then_some(self.rings),
             ..PointCloud::from_positions(self.positions)
         }
     }

@@ -1,7 +1,9 @@
 //! PLY (Stanford polygon format): ascii, binary little and big endian, read and written with
 //! the `ply-rs-bw` crate. Point clouds take x, y, z (any numeric type), and optionally nx, ny,
-//! nz, red, green, blue (integers scaled by their type's maximum, or floats in [0, 1]) and
-//! intensity or scalar_intensity. Meshes take faces as `vertex_indices` or `vertex_index`
+//! nz, red, green, blue (integers scaled by their type's maximum, or floats in [0, 1]),
+//! intensity or scalar_intensity, ring and classification (any integer type), and the
+//! per-point sensor position sensor_x, sensor_y, sensor_z. Other properties (a scanner's
+//! azimuth or time, say) are skipped. Meshes take faces as `vertex_indices` or `vertex_index`
 //! lists of any integer type, fan-triangulated.
 
 mod face;
@@ -35,7 +37,10 @@ pub fn read_triangle_mesh(path: &Path) -> Result<TriangleMesh, IoError> {
 }
 
 /// Writes a cloud as binary little-endian PLY, atomically. Positions are float, or double when
-/// any coordinate exceeds 1e5 in magnitude; normals, colours and intensities when present.
+/// any coordinate exceeds 1e5 in magnitude; then, when present, normals (float `nx ny nz`),
+/// colours (uchar `red green blue`), intensities (float), rings (ushort `ring`),
+/// classifications (uchar `classification`) and sensor origins (double `sensor_x sensor_y
+/// sensor_z`), so that reading the file back gives the same cloud.
 pub fn write_point_cloud(path: &Path, cloud: &PointCloud) -> Result<(), IoError> {
     write_point_cloud_as(path, cloud, PlyEncoding::BinaryLittleEndian)
 }

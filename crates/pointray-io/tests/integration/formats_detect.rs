@@ -52,7 +52,7 @@ fn text_without_a_signature_is_xyz() {
 #[test]
 fn binary_without_a_signature_goes_by_extension() {
     let binary = [0u8, 1, 2, 3, 0xff, 0x80, 0x00, 0x10];
-    assert_eq!(detect_format_from(&binary, Path::new("000001.BIN")), Some(PointFormat::KittiBin));
+    assert_eq!(detect_format_from(&binary, Path::new("000001.BIN")), Some(PointFormat::RawBin));
     assert_eq!(detect_format_from(&binary, Path::new("cloud.dat")), None);
 }
 

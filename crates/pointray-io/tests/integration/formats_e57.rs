@@ -9,15 +9,17 @@ use pointray_io::IoError;
 use pointray_io::formats::detect::{PointFormat, detect_format};
 use pointray_io::formats::e57::read_e57;
 
-/// One scan to write: its pose, its local points, and whether it carries colour.
+/// One scan to write: its pose, its local points, whether it carries colour, and the number
+/// of rows of its angular grid (point `i` lies on row `i % rows`), if it has one.
 struct Scan {
     rotation: DQuat,
     translation: DVec3,
     points: Vec<DVec3>,
     with_color: bool,
+    rows: Option<i64>,
 }
 
-fn prototype(with_color: bool) -> Vec<Record> {
+fn prototype(with_color: bool, rows: Option<i64>) -> Vec<Record> {
     let double = |name| Record { name, data_type: RecordDataType::Double { min: None, max: None } };
     let integer = |name, max| Record { name, data_type: RecordDataType::Integer { min: 0, max } };
     let mut records = vec![
@@ -31,13 +33,17 @@ fn prototype(with_color: bool) -> Vec<Record> {
             [RecordName::ColorRed, RecordName::ColorGreen, RecordName::ColorBlue].map(|n| integer(n, 255)),
         );
     }
+    if let Some(rows) = rows {
+        records.extend([integer(RecordName::RowIndex, rows - 1), integer(RecordName::ColumnIndex, 1000)]);
+    }
     records
 }
 
 fn write_e57(path: &Path, scans: &[Scan]) {
     let mut writer = E57Writer::from_file(path, "file-guid").unwrap();
     for (index, scan) in scans.iter().enumerate() {
-        let mut cloud = writer.add_pointcloud(&format!("scan-{index}"), prototype(scan.with_color)).unwrap();
+        let mut cloud =
+            writer.add_pointcloud(&format!("scan-{index}"), prototype(scan.with_color, scan.rows)).unwrap();
         let q = scan.rotation;
         let t = scan.translation;
         cloud.set_transform(Some(Transform {
@@ -58,6 +64,9 @@ fn write_e57(path: &Path, scans: &[Scan]) {
                     RecordValue::Integer(0),
                 ]);
             }
+            if let Some(rows) = scan.rows {
+                values.extend([RecordValue::Integer(i as i64 % rows), RecordValue::Integer(i as i64 / rows)]);
+            }
             cloud.add_point(values).unwrap();
         }
         cloud.finalize().unwrap();
@@ -73,12 +82,14 @@ fn two_scans(second_has_color: bool) -> Vec<Scan> {
             translation: DVec3::new(10.0, 20.0, 30.0),
             points: local(8),
             with_color: true,
+            rows: Some(3),
         },
         Scan {
             rotation: DQuat::IDENTITY,
             translation: DVec3::new(-5.0, 0.0, 1.0),
             points: local(5),
             with_color: second_has_color,
+            rows: Some(4),
         },
     ]
 }
@@ -106,6 +117,26 @@ fn scans_are_posed_merged_and_the_first_pose_is_the_sensor() {
     assert_eq!(colors[8 + 4], [255, 4, 0]);
     let intensities = cloud.intensities.unwrap();
     assert!((intensities[5] - 0.5).abs() < 1e-6, "{}", intensities[5]);
+    assert_eq!(cloud.rings, Some(vec![0, 1, 2, 0, 1, 2, 0, 1, 0, 1, 2, 3, 0]), "row indices");
+    let stations = [DVec3::new(10.0, 20.0, 30.0), DVec3::new(-5.0, 0.0, 1.0)];
+    let expected_origins: Vec<DVec3> = (0..13).map(|i| stations[usize::from(i >= 8)]).collect();
+    assert_eq!(cloud.sensor_origins, Some(expected_origins), "each point's own scan station");
+}
+
+#[test]
+fn one_scan_has_one_sensor_position_and_rows_only_when_every_scan_has_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("one.e57");
+    let mut scans = two_scans(true);
+    scans.truncate(1);
+    write_e57(&path, &scans);
+    let cloud = read_e57(&path).unwrap();
+    assert_eq!((cloud.sensor_position, cloud.sensor_origins), (Some(DVec3::new(10.0, 20.0, 30.0)), None));
+
+    let mut scans = two_scans(true);
+    scans[1].rows = None;
+    write_e57(&path, &scans);
+    assert_eq!(read_e57(&path).unwrap().rings, None);
 }
 
 #[test]

@@ -5,7 +5,7 @@ use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 use pointray_io::IoError;
-use pointray_io::formats::{e57, kitti, las, pcd, xyz};
+use pointray_io::formats::{e57, las, pcd, raw_bin, xyz};
 
 fn regressions(target: &str) -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions").join(target);
@@ -19,7 +19,7 @@ fn read_with(target: &str, bytes: Vec<u8>, origin: &Path) -> Result<pointray_io:
         "pcd" => pcd::read_pcd_from(&bytes, origin),
         "e57" => e57::read_e57_from(Cursor::new(bytes), origin),
         "xyz" => xyz::read_xyz_from(&bytes, origin, None),
-        "kitti" => kitti::read_kitti_bin_from(&bytes, origin),
+        "raw_bin" => raw_bin::read_raw_bin_from(&bytes, origin, None),
         other => panic!("no reader for fuzz target {other}"),
     }
 }
@@ -27,7 +27,7 @@ fn read_with(target: &str, bytes: Vec<u8>, origin: &Path) -> Result<pointray_io:
 #[test]
 fn every_recorded_crash_is_now_a_clear_error() {
     let mut replayed = 0;
-    for target in ["las", "pcd", "e57", "xyz", "kitti"] {
+    for target in ["las", "pcd", "e57", "xyz", "raw_bin"] {
         for path in regressions(target) {
             let bytes = std::fs::read(&path).unwrap();
             let error =

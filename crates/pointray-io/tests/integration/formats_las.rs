@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use las::point::Format;
+use las::point::{Classification, Format};
 use las::{Builder, Color, Point, Transform, Vector, Writer};
 use pointray_io::IoError;
 use pointray_io::formats::detect::{PointFormat, detect_format};
@@ -25,6 +25,7 @@ fn geo_points() -> Vec<Point> {
             intensity: (i * 1000) as u16,
             color: Some(Color::new(i as u16 * 1000, 65535 - i as u16 * 1000, 32768)),
             gps_time: Some(f64::from(i)),
+            classification: Classification::new([1, 2, 3, 5, 6, 9, 17][i as usize % 7]).unwrap(),
             ..Point::default()
         })
         .collect()
@@ -56,6 +57,8 @@ fn assert_same_points(path: &Path, points: &[Point], expect_color: bool) {
     for (read, written) in intensities.iter().zip(points) {
         assert!((read - f32::from(written.intensity) / 65535.0).abs() < 1e-6);
     }
+    let classes: Vec<u8> = points.iter().map(|p| u8::from(p.classification)).collect();
+    assert_eq!(cloud.classifications, Some(classes), "the ASPRS codes as written");
     match (cloud.colors, expect_color) {
         (Some(colors), true) => {
             for (read, written) in colors.iter().zip(points) {
@@ -107,6 +110,18 @@ fn las_1_4_format_6_has_no_colours() {
     let points: Vec<Point> = geo_points().into_iter().map(|p| Point { color: None, ..p }).collect();
     write_las(&path, 6, false, &points);
     assert_same_points(&path, &points, false);
+}
+
+#[test]
+fn classes_all_zero_mean_never_classified() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("unclassified.las");
+    let points: Vec<Point> = geo_points()
+        .into_iter()
+        .map(|p| Point { classification: Classification::new(0).unwrap(), ..p })
+        .collect();
+    write_las(&path, 3, false, &points);
+    assert_eq!(read_las(&path).unwrap().classifications, None);
 }
 
 // ---- malformed files ----
@@ -203,6 +218,10 @@ fn autzen_tile_reads_with_its_point_count_colours_and_bounds() {
     assert_eq!(colors.len(), 110_000);
     let distinct: std::collections::HashSet<_> = colors.iter().take(5000).collect();
     assert!(distinct.len() > 50, "colours look constant: {} distinct", distinct.len());
+    let classes = cloud.classifications.as_ref().expect("autzen is classified");
+    let ground = classes.iter().filter(|&&class| class == 2).count();
+    assert_eq!((ground, classes.len() - ground), (26_107, 83_893), "ground (2) and unclassified (1)");
+    assert!(classes.iter().all(|&class| class == 1 || class == 2));
     let (min, max) = cloud
         .positions
         .iter()

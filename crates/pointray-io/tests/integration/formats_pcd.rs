@@ -170,3 +170,66 @@ fn vector_valued_position_is_unsupported() {
 fn find(haystack: &[u8], needle: &[u8]) -> usize {
     haystack.windows(needle.len()).position(|window| window == needle).unwrap()
 }
+
+const RING_HEADER: &str = "VERSION 0.7\nFIELDS x y z intensity ring\nSIZE 4 4 4 4 2\nTYPE F F F F U\n\
+                           COUNT 1 1 1 1 1\nWIDTH 2\nHEIGHT 1\nVIEWPOINT 1.5 -2 0.5 1 0 0 0\nPOINTS 2\n";
+
+#[test]
+fn rings_and_a_viewpoint_are_read_in_ascii_and_binary() {
+    let ascii = format!("{RING_HEADER}DATA ascii\n1 2 3 10 5\n4 5 6 20 31\n");
+    let mut binary = format!("{RING_HEADER}DATA binary\n").into_bytes();
+    for (position, intensity, ring) in [([1.0f32, 2.0, 3.0], 10.0f32, 5u16), ([4.0, 5.0, 6.0], 20.0, 31)] {
+        position.iter().chain([&intensity]).for_each(|v| binary.extend(v.to_le_bytes()));
+        binary.extend(ring.to_le_bytes());
+    }
+    for (name, bytes) in [("ascii.pcd", ascii.into_bytes()), ("binary.pcd", binary)] {
+        let (_dir, path) = write_file(name, &bytes);
+        let cloud = read_pcd(&path).unwrap();
+        assert_eq!(cloud.positions, vec![DVec3::new(1.0, 2.0, 3.0), DVec3::new(4.0, 5.0, 6.0)], "{name}");
+        assert_eq!(cloud.rings, Some(vec![5, 31]), "{name}");
+        assert_eq!(cloud.sensor_position, Some(DVec3::new(1.5, -2.0, 0.5)), "{name}");
+    }
+}
+
+#[test]
+fn the_default_viewpoint_says_nothing_about_a_sensor() {
+    let text = format!("{PACKED_RGB_HEADER}1 2 3 0\n4 5 6 0\n6 7 8 0\n");
+    let (_dir, path) = write_file("default.pcd", text.as_bytes());
+    assert_eq!(read_pcd(&path).unwrap().sensor_position, None);
+}
+
+#[test]
+fn rings_must_be_integers_in_range() {
+    let float =
+        RING_HEADER.replace("TYPE F F F F U", "TYPE F F F F F").replace("SIZE 4 4 4 4 2", "SIZE 4 4 4 4 4");
+    let error = assert_refused(
+        "float_ring.pcd",
+        format!("{float}DATA ascii\n1 2 3 1 5\n4 5 6 1 6\n").as_bytes(),
+        "ring",
+    );
+    assert!(matches!(error, IoError::Unsupported { .. }));
+    let signed = RING_HEADER.replace("TYPE F F F F U", "TYPE F F F F I");
+    assert_refused(
+        "negative_ring.pcd",
+        format!("{signed}DATA ascii\n1 2 3 1 5\n4 5 6 1 -1\n").as_bytes(),
+        "point 1: ring -1 is outside 0 to 65535",
+    );
+}
+
+#[test]
+fn a_binary_header_over_a_text_body_is_refused() {
+    let text = PACKED_RGB_HEADER.replace("DATA ascii", "DATA binary");
+    let body = "1.5 2.5 3.5 4.5\n4.5 5.5 6.5 7.5\n6.5 7.5 8.5 9.5\n";
+    assert_refused(
+        "binary_text.pcd",
+        format!("{text}{body}").as_bytes(),
+        "says DATA binary, but the data is text",
+    );
+}
+
+#[test]
+fn binary_data_beyond_the_declared_points_is_refused() {
+    let mut bytes = valid_bytes(DataKind::Binary);
+    bytes.extend([0u8; 28]);
+    assert_refused("extra.pcd", &bytes, "28 bytes follow the 40 points the header declares");
+}

@@ -14,7 +14,7 @@ use las::{Builder, Color, Transform, Vector};
 use pcd_rs::{DataKind, DynRecord, Field};
 use pointray_io::PointCloud;
 use pointray_io::formats::{
-    e57::read_e57, kitti::read_kitti_bin, las::read_las, pcd::read_pcd, xyz::read_xyz,
+    e57::read_e57, las::read_las, pcd::read_pcd, raw_bin::read_raw_bin, xyz::read_xyz,
 };
 
 const POINTS: usize = 1_000_000;
@@ -94,13 +94,15 @@ fn write_xyz(path: &Path) {
     std::fs::write(path, text).unwrap();
 }
 
-fn write_kitti(path: &Path) {
+/// A raw sweep: KITTI's 4 floats a point, or nuScenes' 5 with a ring of 32 beams.
+fn write_sweep(path: &Path, with_ring: bool) {
     let bytes: Vec<u8> = (0..POINTS)
         .flat_map(|i| {
             let ([x, y, z], _, intensity) = sample(i);
             let record =
                 [(x - 500_000.0) as f32, (y - 4_000_000.0) as f32, z as f32, f32::from(intensity) / 4095.0];
-            record.into_iter().flat_map(f32::to_le_bytes)
+            let ring = with_ring.then_some((i % 32) as f32);
+            record.into_iter().chain(ring).flat_map(f32::to_le_bytes)
         })
         .collect();
     std::fs::write(path, bytes).unwrap();
@@ -131,7 +133,8 @@ fn read_throughput_of_every_reader() {
     write_pcd(&file("compressed.pcd"), DataKind::BinaryCompressed);
     write_e57(&file("cloud.e57"));
     write_xyz(&file("cloud.xyz"));
-    write_kitti(&file("cloud.bin"));
+    write_sweep(&file("cloud.bin"), false);
+    write_sweep(&file("cloud.pcd.bin"), true);
     println!("| reader | file | best of {RUNS} | throughput |\n|---|---|---|---|");
     measure("LAS (format 3)", &file("cloud.las"), |p| read_las(p).unwrap());
     measure("LAZ (format 3)", &file("cloud.laz"), |p| read_las(p).unwrap());
@@ -140,5 +143,6 @@ fn read_throughput_of_every_reader() {
     measure("PCD binary_compressed", &file("compressed.pcd"), |p| read_pcd(p).unwrap());
     measure("E57 (doubles, colour, intensity)", &file("cloud.e57"), |p| read_e57(p).unwrap());
     measure("XYZ text (x y z i r g b)", &file("cloud.xyz"), |p| read_xyz(p, None).unwrap());
-    measure("KITTI .bin", &file("cloud.bin"), |p| read_kitti_bin(p).unwrap());
+    measure("KITTI .bin", &file("cloud.bin"), |p| read_raw_bin(p, None).unwrap());
+    measure("nuScenes .pcd.bin", &file("cloud.pcd.bin"), |p| read_raw_bin(p, None).unwrap());
 }

@@ -4,8 +4,9 @@
 use std::path::PathBuf;
 
 use glam::{DVec3, Vec3};
+use pointray_io::formats::columns::{ColumnSpec, ColumnSpecError};
 use pointray_io::formats::detect::{PointFormat, detect_format};
-use pointray_io::formats::xyz::{ColumnSpec, ColumnSpecError, read_xyz};
+use pointray_io::formats::xyz::read_xyz;
 use pointray_io::{IoError, PointCloud};
 
 fn write_file(name: &str, text: &str) -> (tempfile::TempDir, PathBuf) {
@@ -73,10 +74,21 @@ fn column_spec_overrides_header_and_count() {
 }
 
 #[test]
-fn comments_blank_lines_and_semicolons_are_accepted() {
-    let text = "# exported\n\n// more\n1;2;3\n  4\t5 6  \n";
-    let cloud = read_text("mixed.txt", text, None);
-    assert_eq!(cloud.positions, vec![DVec3::new(1.0, 2.0, 3.0), DVec3::new(4.0, 5.0, 6.0)]);
+fn comments_blank_lines_semicolons_and_padding_are_accepted() {
+    let expected = vec![DVec3::new(1.0, 2.0, 3.0), DVec3::new(4.0, 5.0, 6.0)];
+    let text = "# exported\n\n// more\n1; 2;3\n  4 ;5;6;  \n";
+    assert_eq!(read_text("semicolons.txt", text, None).positions, expected);
+    assert_eq!(read_text("tabs.txt", "1 2\t3\n  4\t5 6  \n", None).positions, expected);
+}
+
+#[test]
+fn rings_and_classifications_come_from_a_header_or_a_spec() {
+    let cloud = read_text("scan.csv", "x,y,z,ring,classification,time\n1,2,3,7,2,0.5\n", None);
+    assert_eq!((cloud.rings, cloud.classifications), (Some(vec![7]), Some(vec![2])));
+    let spec = ColumnSpec::parse("x y z intensity ring").unwrap();
+    let cloud = read_text("sweep.txt", "1 2 3 0.5 31\n4 5 6 0.25 0\n", Some(&spec));
+    assert_eq!(cloud.rings, Some(vec![31, 0]));
+    assert_eq!(cloud.intensities, Some(vec![0.5, 0.25]));
 }
 
 #[test]
@@ -119,6 +131,39 @@ fn non_numeric_value_names_its_line() {
 #[test]
 fn short_row_names_its_line() {
     assert_refused("short.xyz", b"1 2 3\n4 5\n", "line 2: 2 values, the layout needs 3");
+}
+
+#[test]
+fn a_switch_from_three_to_six_columns_is_refused() {
+    assert_refused(
+        "switch.xyz",
+        b"1 2 3\n4 5 6\n7 8 9 255 0 0\n",
+        "line 3: 6 values, the layout needs 3 (x,y,z)",
+    );
+}
+
+#[test]
+fn mixed_separators_are_refused() {
+    assert_refused("mixed.csv", b"1,2,3\n4 5 6\n", "line 2 separates values by whitespace, line 1 by commas");
+    assert_refused("inline.csv", b"1,2 3\n", "line 1 mixes commas and whitespace");
+    assert_refused("both.csv", b"1,2;3\n", "line 1 mixes commas and semicolons");
+    assert_refused("gap.csv", b"1,,2,3\n", "line 1 has an empty value between commas");
+}
+
+#[test]
+fn a_column_count_without_an_obvious_layout_is_refused() {
+    assert_refused("five.xyz", b"1 2 3 0.5 7\n", "5 values per line fit no layout");
+    assert_refused("eight.xyz", b"1 2 3 4 5 6 7 8\n", "x,y,z,intensity,ring");
+}
+
+#[test]
+fn rings_that_are_not_small_whole_numbers_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ring.txt");
+    std::fs::write(&path, "1 2 3 1.5\n").unwrap();
+    let spec = ColumnSpec::parse("x,y,z,ring").unwrap();
+    let message = read_xyz(&path, Some(&spec)).unwrap_err().to_string();
+    assert!(message.contains("line 1: ring 1.5 is not a whole number from 0 to 65535"), "{message}");
 }
 
 #[test]

@@ -81,3 +81,50 @@ fn polygons_are_fan_triangulated_whatever_the_index_name_and_type() {
     let mesh = ply::read_triangle_mesh(&path).unwrap();
     assert_eq!(mesh.triangles, vec![[0, 1, 2], [0, 2, 3], [0, 3, 4], [4, 3, 2]]);
 }
+
+#[test]
+fn rings_and_classifications_of_any_integer_type_are_read() {
+    let text = ascii_vertices(
+        &["float x", "float y", "float z", "uchar ring", "int classification"],
+        &["0 0 0 31 2", "1 0 0 0 6"],
+    );
+    let (_dir, path) = fixture("rings.ply", text.as_bytes());
+    let cloud = ply::read_point_cloud(&path).unwrap();
+    assert_eq!(cloud.rings, Some(vec![31, 0]));
+    assert_eq!(cloud.classifications, Some(vec![2, 6]));
+    assert_eq!(cloud.sensor_origins, None);
+}
+
+/// The layout `pointray scan` writes: binary little-endian, x y z double, intensity float,
+/// ring ushort, azimuth and time float (skipped), classification uchar, sensor_x sensor_y
+/// sensor_z double.
+#[test]
+fn the_scanner_layout_reads_right() {
+    let header = "ply\nformat binary_little_endian 1.0\ncomment written by a scanner\nelement vertex 2\n\
+                  property double x\nproperty double y\nproperty double z\nproperty float intensity\n\
+                  property ushort ring\nproperty float azimuth\nproperty float time\n\
+                  property uchar classification\nproperty double sensor_x\nproperty double sensor_y\n\
+                  property double sensor_z\nend_header\n";
+    let points = [
+        ([12.5, -3.25, 0.125], 0.75f32, 17u16, 1.5f32, 0.05f32, 2u8, [0.0, 0.0, 1.8]),
+        ([-40.0, 8.0, 2.5], 0.25, 63, -3.0, 0.1, 6, [10.0, 0.0, 1.8]),
+    ];
+    let mut bytes = header.as_bytes().to_vec();
+    for (position, intensity, ring, azimuth, time, class, sensor) in points {
+        position.iter().for_each(|v: &f64| bytes.extend(v.to_le_bytes()));
+        bytes.extend(intensity.to_le_bytes());
+        bytes.extend(ring.to_le_bytes());
+        bytes.extend(azimuth.to_le_bytes());
+        bytes.extend(time.to_le_bytes());
+        bytes.push(class);
+        sensor.iter().for_each(|v: &f64| bytes.extend(v.to_le_bytes()));
+    }
+    let (_dir, path) = fixture("scan.ply", &bytes);
+    let cloud = ply::read_point_cloud(&path).unwrap();
+    assert_eq!(cloud.positions, points.map(|p| DVec3::from(p.0)).to_vec());
+    assert_eq!(cloud.intensities, Some(vec![0.75, 0.25]));
+    assert_eq!(cloud.rings, Some(vec![17, 63]));
+    assert_eq!(cloud.classifications, Some(vec![2, 6]));
+    assert_eq!(cloud.sensor_origins, Some(points.map(|p| DVec3::from(p.6)).to_vec()));
+    assert_eq!(cloud.sensor_of(1), Some(DVec3::new(10.0, 0.0, 1.8)));
+}

@@ -189,3 +189,53 @@ fn truncations_and_header_corruptions_never_panic() {
         }
     }
 }
+
+#[test]
+fn a_property_declared_twice_is_refused_in_ascii_and_binary() {
+    let ascii = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n\
+                 property float y\nproperty float z\nend_header\n0 1 2 3\n";
+    let error = cloud_error("twice.ply", ascii.as_bytes());
+    assert!(error.contains("element 'vertex' declares property 'y' twice"), "{error}");
+
+    let header = HEADER_3_FLOATS.replace("property float z\n", "property float z\nproperty float x\n");
+    let mut bytes = header.into_bytes();
+    bytes.extend(binary_body(&[0.0; 12]));
+    let error = cloud_error("twice_binary.ply", &bytes);
+    assert!(error.contains("declares property 'x' twice"), "{error}");
+    assert!(!error.contains("bytes follow"), "{error}");
+}
+
+#[test]
+fn an_element_declared_twice_is_refused() {
+    let ascii = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n\
+                 property float z\nelement vertex 1\nproperty float w\nend_header\n0 1 2\n3\n";
+    assert!(cloud_error("elements.ply", ascii.as_bytes()).contains("declares element 'vertex' twice"));
+}
+
+#[test]
+fn an_ascii_line_with_more_or_fewer_values_than_properties_is_refused() {
+    let ascii = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n\
+                 property float z\nend_header\n0 1 2\n3 4 5 6\n";
+    let error = cloud_error("extra.ply", ascii.as_bytes());
+    assert!(error.contains("element 'vertex' entry 1: 4 values, but its properties take 3"), "{error}");
+    let mesh = format!("{MESH_HEADER}3 0 1 2 3\n");
+    let error = mesh_error("extra_index.ply", mesh.as_bytes());
+    assert!(error.contains("element 'face' entry 0: 5 values, but its properties take 4"), "{error}");
+}
+
+#[test]
+fn rings_and_classifications_must_be_integers_in_range() {
+    let header = |property: &str| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n\
+             property float z\nproperty {property}\nend_header\n"
+        )
+    };
+    let error = cloud_error("float_ring.ply", format!("{}0 0 0 3\n", header("float ring")).as_bytes());
+    assert!(error.contains("'ring' is a floating-point number"), "{error}");
+    let error = cloud_error("negative_ring.ply", format!("{}0 0 0 -1\n", header("int ring")).as_bytes());
+    assert!(error.contains("point 0 has ring -1"), "{error}");
+    let error =
+        cloud_error("wide_class.ply", format!("{}0 0 0 256\n", header("short classification")).as_bytes());
+    assert!(error.contains("point 0 has classification 256"), "{error}");
+}

@@ -18,6 +18,11 @@ fn full_cloud(offset: f64) -> PointCloud {
         normals: Some((0..50).map(|i| Vec3::new(i as f32, 1.0, -0.25).normalize()).collect()),
         colors: Some((0..50u8).map(|i| [i, 255 - i, i.wrapping_mul(7)]).collect()),
         intensities: Some((0..50).map(|i| i as f32 / 49.0).collect()),
+        classifications: Some((0..50u8).map(|i| i % 19).collect()),
+        rings: Some((0..50u16).map(|i| i * 1000).collect()),
+        sensor_origins: Some(
+            (0..50).map(|i| DVec3::new(f64::from(i % 3) * 12.5, -0.1, 1.75) + offset).collect(),
+        ),
         positions,
         ..PointCloud::default()
     }

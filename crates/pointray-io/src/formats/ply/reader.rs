@@ -1,9 +1,10 @@
 //! Reading a PLY file's elements through ply-rs-bw, with the checks it does not make itself:
-//! an empty or non-PLY file, a body too short for the header's counts, bytes left over after
-//! the last element, and elements that would loop forever without consuming input.
+//! an empty or non-PLY file, a name declared twice, a body too short for the header's counts,
+//! an ascii line with more or fewer values than its element's properties, bytes left over
+//! after the last element, and elements that would loop forever without consuming input.
 
 use std::fs::File;
-use std::io::{BufRead, BufReader, Seek};
+use std::io::{BufRead, BufReader, Read, Seek};
 use std::path::Path;
 
 use ply_rs_bw::parser::{Parser, Reader};
@@ -34,6 +35,9 @@ pub(super) fn read_contents(path: &Path, want_faces: bool) -> Result<PlyContents
     let header = Parser::<VertexRecord>::new()
         .read_header(&mut reader)
         .map_err(|e| malformed(format!("bad PLY header: {}", one_line(&e.to_string()))))?;
+    let header_length = reader.get_mut().stream_position().map_err(|e| IoError::os(path, e))?;
+    check_unique_names(&header_text(path, header_length).map_err(|e| IoError::os(path, e))?)
+        .map_err(malformed)?;
     let vertex_element =
         header.elements.get("vertex").ok_or_else(|| malformed("no 'vertex' element".into()))?;
     let layout = VertexLayout::from_element(vertex_element).map_err(malformed)?;
@@ -78,6 +82,43 @@ fn open_checked(path: &Path) -> Result<FileReader, IoError> {
 /// ply-rs-bw messages span several lines; ours stay on one.
 fn one_line(message: &str) -> String {
     message.split(['\n', '\t']).map(str::trim).filter(|part| !part.is_empty()).collect::<Vec<_>>().join("; ")
+}
+
+/// The header as written: ply-rs-bw keeps only the last of two equal names.
+fn header_text(path: &Path, length: u64) -> std::io::Result<String> {
+    let mut bytes = Vec::new();
+    File::open(path)?.take(length).read_to_end(&mut bytes)?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// ply-rs-bw stores elements and properties by name, so a name declared twice replaces the
+/// first while the body still holds both: every value after it would land in the wrong
+/// property. Refused here, before it can shift a column.
+fn check_unique_names(header: &str) -> Result<(), String> {
+    let (mut elements, mut properties) = (Vec::new(), Vec::new());
+    for line in header.lines() {
+        match line.split_whitespace().collect::<Vec<_>>()[..] {
+            ["element", name, ..] => {
+                if elements.contains(&name) {
+                    return Err(format!("the header declares element '{name}' twice"));
+                }
+                elements.push(name);
+                properties.clear();
+            }
+            ["property", .., name] => {
+                if properties.contains(&name) {
+                    let element = elements.last().unwrap_or(&"(none)");
+                    return Err(format!(
+                        "element '{element}' declares property '{name}' twice, so its values \
+                         cannot be told apart"
+                    ));
+                }
+                properties.push(name);
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// An element without properties takes no bytes, so a binary reader would spin through its
@@ -138,9 +179,62 @@ fn read_element<E: PropertyAccess>(
     element: &ElementDef,
     header: &Header,
 ) -> Result<Vec<E>, String> {
+    if header.encoding == Encoding::Ascii {
+        return read_ascii_element(reader, element);
+    }
     Parser::<E>::new()
         .read_payload_for_element(reader, element, header)
         .map_err(|e| format!("element '{}': {}", element.name, one_line(&e.to_string())))
+}
+
+/// Reads ascii lines one entry each, as ply-rs-bw would, but refuses a line whose count of
+/// values does not match the properties: ply-rs-bw ignores extra values.
+fn read_ascii_element<E: PropertyAccess>(
+    reader: &mut FileReader,
+    element: &ElementDef,
+) -> Result<Vec<E>, String> {
+    let parser = Parser::<E>::new();
+    let name = &element.name;
+    // The count comes from the header: reserve only what a modest file could hold.
+    let mut entries = Vec::with_capacity(element.count.min(1 << 16));
+    let mut line = String::new();
+    for index in 0..element.count {
+        line.clear();
+        if reader.get_mut().read_line(&mut line).map_err(|e| e.to_string())? == 0 {
+            return Err(format!(
+                "element '{name}': the file ends after {index} of the {} entries the header declares",
+                element.count
+            ));
+        }
+        check_value_count(&line, element)
+            .map_err(|problem| format!("element '{name}' entry {index}: {problem}"))?;
+        let entry = parser
+            .read_ascii_element(&line, element)
+            .map_err(|e| format!("element '{name}' entry {index}: {}", one_line(&e.to_string())))?;
+        entries.push(entry);
+    }
+    Ok(entries)
+}
+
+/// Scalars take one value each, lists their count and then that many values.
+fn check_value_count(line: &str, element: &ElementDef) -> Result<(), String> {
+    let values: Vec<&str> = line.split_whitespace().collect();
+    let mut expected = 0;
+    for (property, definition) in &element.properties {
+        let taken = match definition.data_type {
+            PropertyType::Scalar(_) => 1,
+            PropertyType::List(..) => {
+                let count = values.get(expected).and_then(|count| count.parse::<usize>().ok());
+                1 + count.ok_or_else(|| format!("list '{property}' has no count"))?
+            }
+        };
+        expected += taken;
+    }
+    if values.len() == expected {
+        Ok(())
+    } else {
+        Err(format!("{} values, but its properties take {expected}", values.len()))
+    }
 }
 
 /// Leftover bytes mean the header understates its counts (ascii files may end in blank lines).

@@ -10,6 +10,9 @@ const POSITION: [&str; 3] = ["x", "y", "z"];
 const NORMAL: [&str; 3] = ["nx", "ny", "nz"];
 const COLOR: [&str; 3] = ["red", "green", "blue"];
 const INTENSITY: [&str; 2] = ["intensity", "scalar_intensity"];
+const RING: &str = "ring";
+const CLASSIFICATION: &str = "classification";
+const SENSOR: [&str; 3] = ["sensor_x", "sensor_y", "sensor_z"];
 
 /// Which optional attributes the vertex element declares. Colours and intensities carry the
 /// value that means 1 in their stored type, to bring them to a common scale.
@@ -18,10 +21,14 @@ pub(super) struct VertexLayout {
     pub has_normals: bool,
     pub color_unit: Option<f64>,
     pub intensity_unit: Option<f64>,
+    pub has_rings: bool,
+    pub has_classifications: bool,
+    pub has_sensor_origins: bool,
 }
 
 impl VertexLayout {
-    /// Reads the layout from the header; x, y and z must be numeric scalars.
+    /// Reads the layout from the header; x, y and z must be numeric scalars, a ring and a
+    /// classification integers.
     pub fn from_element(element: &ElementDef) -> Result<Self, String> {
         for name in POSITION {
             scalar_type(element, name)?
@@ -31,6 +38,9 @@ impl VertexLayout {
             has_normals: group_type(element, &NORMAL)?.is_some(),
             color_unit: group_type(element, &COLOR)?.as_ref().map(unit_value),
             intensity_unit: first_scalar_type(element, &INTENSITY)?.as_ref().map(unit_value),
+            has_rings: integer_type(element, RING)?,
+            has_classifications: integer_type(element, CLASSIFICATION)?,
+            has_sensor_origins: group_type(element, &SENSOR)?.is_some(),
         })
     }
 }
@@ -41,6 +51,17 @@ fn scalar_type(element: &ElementDef, name: &str) -> Result<Option<ScalarType>, S
         None => Ok(None),
         Some(PropertyType::Scalar(scalar)) => Ok(Some(scalar.clone())),
         Some(PropertyType::List(..)) => Err(format!("vertex property '{name}' is a list, expected a number")),
+    }
+}
+
+/// Whether the named property is present; an error when it is not an integer.
+fn integer_type(element: &ElementDef, name: &str) -> Result<bool, String> {
+    match scalar_type(element, name)? {
+        None => Ok(false),
+        Some(ScalarType::Float | ScalarType::Double) => {
+            Err(format!("vertex property '{name}' is a floating-point number, expected an integer type"))
+        }
+        Some(_) => Ok(true),
     }
 }
 
@@ -71,39 +92,64 @@ pub(super) struct VertexRecord {
     pub normal: [f64; 3],
     pub color: [f64; 3],
     pub intensity: f64,
+    pub ring: f64,
+    pub classification: f64,
+    pub sensor: [f64; 3],
+}
+
+/// Which value of a record a property name refers to.
+#[derive(Clone, Copy)]
+enum Field {
+    Position(usize),
+    Normal(usize),
+    Color(usize),
+    Intensity,
+    Ring,
+    Classification,
+    Sensor(usize),
+}
+
+impl Field {
+    fn named(name: &str) -> Option<Self> {
+        let index = |names: &[&str]| names.iter().position(|n| *n == name);
+        index(&POSITION)
+            .map(Self::Position)
+            .or_else(|| index(&NORMAL).map(Self::Normal))
+            .or_else(|| index(&COLOR).map(Self::Color))
+            .or_else(|| index(&INTENSITY).map(|_| Self::Intensity))
+            .or_else(|| (name == RING).then_some(Self::Ring))
+            .or_else(|| (name == CLASSIFICATION).then_some(Self::Classification))
+            .or_else(|| index(&SENSOR).map(Self::Sensor))
+    }
 }
 
 impl VertexRecord {
-    fn slot(&mut self, name: &str) -> Option<&mut f64> {
-        let [x, y, z] = &mut self.position;
-        let [nx, ny, nz] = &mut self.normal;
-        let [r, g, b] = &mut self.color;
-        Some(match name {
-            "x" => x,
-            "y" => y,
-            "z" => z,
-            "nx" => nx,
-            "ny" => ny,
-            "nz" => nz,
-            "red" => r,
-            "green" => g,
-            "blue" => b,
-            "intensity" | "scalar_intensity" => &mut self.intensity,
-            _ => return None,
-        })
+    fn slot(&mut self, field: Field) -> &mut f64 {
+        match field {
+            Field::Position(i) => &mut self.position[i],
+            Field::Normal(i) => &mut self.normal[i],
+            Field::Color(i) => &mut self.color[i],
+            Field::Intensity => &mut self.intensity,
+            Field::Ring => &mut self.ring,
+            Field::Classification => &mut self.classification,
+            Field::Sensor(i) => &mut self.sensor[i],
+        }
+    }
+
+    fn get(&self, field: Field) -> f64 {
+        match field {
+            Field::Position(i) => self.position[i],
+            Field::Normal(i) => self.normal[i],
+            Field::Color(i) => self.color[i],
+            Field::Intensity => self.intensity,
+            Field::Ring => self.ring,
+            Field::Classification => self.classification,
+            Field::Sensor(i) => self.sensor[i],
+        }
     }
 
     fn value(&self, name: &str) -> Option<f64> {
-        let index = |names: &[&str]| names.iter().position(|n| *n == name);
-        if let Some(i) = index(&POSITION) {
-            Some(self.position[i])
-        } else if let Some(i) = index(&NORMAL) {
-            Some(self.normal[i])
-        } else if let Some(i) = index(&COLOR) {
-            Some(self.color[i])
-        } else {
-            index(&INTENSITY).map(|_| self.intensity)
-        }
+        Field::named(name).map(|field| self.get(field))
     }
 }
 
@@ -113,8 +159,8 @@ impl PropertyAccess for VertexRecord {
     }
 
     fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
-        if let (Some(slot), Some(value)) = (self.slot(name), scalar_value(&property)) {
-            *slot = value;
+        if let (Some(field), Some(value)) = (Field::named(name), scalar_value(&property)) {
+            *self.slot(field) = value;
         }
         PropertyAccessResult::Ignored
     }
@@ -129,6 +175,10 @@ impl PropertyAccess for VertexRecord {
 
     fn get_uchar(&self, name: &str) -> Option<u8> {
         self.value(name).map(|v| v as u8)
+    }
+
+    fn get_ushort(&self, name: &str) -> Option<u16> {
+        self.value(name).map(|v| v as u16)
     }
 }
 
@@ -160,7 +210,8 @@ fn unit_value(stored_as: &ScalarType) -> f64 {
     }
 }
 
-/// Turns the records into a cloud, refusing non-finite coordinates.
+/// Turns the records into a cloud, refusing non-finite coordinates and sensor positions,
+/// and rings or classifications out of their range.
 pub(super) fn into_point_cloud(
     records: &[VertexRecord],
     layout: &VertexLayout,
@@ -171,7 +222,42 @@ pub(super) fn into_point_cloud(
     let colors =
         layout.color_unit.map(|unit| records.iter().map(|r| r.color.map(|c| to_byte(c / unit))).collect());
     let intensities = layout.intensity_unit.map(|unit| normalised_intensities(records, unit));
-    Ok(PointCloud { positions, normals, colors, intensities, ..PointCloud::default() })
+    let rings = layout.has_rings.then(|| whole_numbers(records, RING, u16::MAX.into())).transpose()?;
+    let classifications = layout
+        .has_classifications
+        .then(|| whole_numbers(records, CLASSIFICATION, u8::MAX.into()))
+        .transpose()?;
+    let sensor_origins = layout.has_sensor_origins.then(|| sensor_origins(records)).transpose()?;
+    Ok(PointCloud {
+        positions,
+        normals,
+        colors,
+        intensities,
+        rings: rings.map(|values| values.into_iter().map(|v| v as u16).collect()),
+        classifications: classifications.map(|values| values.into_iter().map(|v| v as u8).collect()),
+        sensor_origins,
+        sensor_position: None,
+    })
+}
+
+/// The named integer property's values, each within `[0, max]`.
+fn whole_numbers(records: &[VertexRecord], name: &str, max: f64) -> Result<Vec<f64>, String> {
+    let field = Field::named(name).ok_or("not a vertex attribute")?;
+    let values: Vec<f64> = records.iter().map(|record| record.get(field)).collect();
+    match values.iter().position(|value| !(0.0..=max).contains(value)) {
+        Some(index) => {
+            Err(format!("point {index} has {name} {}; it must lie between 0 and {max}", values[index]))
+        }
+        None => Ok(values),
+    }
+}
+
+fn sensor_origins(records: &[VertexRecord]) -> Result<Vec<DVec3>, String> {
+    let origins: Vec<DVec3> = records.iter().map(|record| DVec3::from(record.sensor)).collect();
+    match origins.iter().position(|origin| !origin.is_finite()) {
+        Some(index) => Err(format!("point {index} has a non-finite sensor position {}", origins[index])),
+        None => Ok(origins),
+    }
 }
 
 /// The positions in file order; an error names the first point with a NaN or infinite coordinate.
@@ -211,6 +297,9 @@ pub(super) fn records_of(cloud: &PointCloud) -> Vec<VertexRecord> {
             normal: cloud.normals.as_ref().map_or([0.0; 3], |n| n[i].as_dvec3().to_array()),
             color: cloud.colors.as_ref().map_or([0.0; 3], |c| c[i].map(f64::from)),
             intensity: cloud.intensities.as_ref().map_or(0.0, |v| v[i].into()),
+            ring: cloud.rings.as_ref().map_or(0.0, |v| v[i].into()),
+            classification: cloud.classifications.as_ref().map_or(0.0, |v| v[i].into()),
+            sensor: cloud.sensor_origins.as_ref().map_or([0.0; 3], |v| v[i].to_array()),
         })
         .collect()
 }

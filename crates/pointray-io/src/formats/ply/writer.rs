@@ -30,6 +30,15 @@ pub(super) fn write_cloud(path: &Path, cloud: &PointCloud, encoding: Encoding) -
     if cloud.intensities.is_some() {
         add_scalars(&mut vertex, &["intensity"], &ScalarType::Float);
     }
+    if cloud.rings.is_some() {
+        add_scalars(&mut vertex, &["ring"], &ScalarType::UShort);
+    }
+    if cloud.classifications.is_some() {
+        add_scalars(&mut vertex, &["classification"], &ScalarType::UChar);
+    }
+    if cloud.sensor_origins.is_some() {
+        add_scalars(&mut vertex, &["sensor_x", "sensor_y", "sensor_z"], &ScalarType::Double);
+    }
     let header = header(encoding, [vertex]);
     let records = records_of(cloud);
     write_atomically(path, |out| {
@@ -98,14 +107,21 @@ fn check_cloud(cloud: &PointCloud) -> Result<(), String> {
         ("normals", cloud.normals.as_ref().map(Vec::len)),
         ("colours", cloud.colors.as_ref().map(Vec::len)),
         ("intensities", cloud.intensities.as_ref().map(Vec::len)),
+        ("rings", cloud.rings.as_ref().map(Vec::len)),
+        ("classifications", cloud.classifications.as_ref().map(Vec::len)),
+        ("sensor origins", cloud.sensor_origins.as_ref().map(Vec::len)),
     ];
     for (what, length) in lengths {
         if let Some(length) = length.filter(|&length| length != count) {
             return Err(format!("the cloud has {count} points but {length} {what}"));
         }
     }
-    match cloud.positions.iter().position(|p| !p.is_finite()) {
-        Some(index) => Err(format!("point {index} has a non-finite coordinate {}", cloud.positions[index])),
+    if let Some(index) = cloud.positions.iter().position(|p| !p.is_finite()) {
+        return Err(format!("point {index} has a non-finite coordinate {}", cloud.positions[index]));
+    }
+    let origins = cloud.sensor_origins.as_deref().unwrap_or_default();
+    match origins.iter().position(|p| !p.is_finite()) {
+        Some(index) => Err(format!("point {index} has a non-finite sensor position {}", origins[index])),
         None => Ok(()),
     }
 }
