@@ -114,7 +114,7 @@ impl CpuRenderer {
     }
 }
 
-fn acceptance(test: AcceptanceTest) -> PatchAcceptance {
+pub(crate) fn acceptance(test: AcceptanceTest) -> PatchAcceptance {
     match test {
         AcceptanceTest::Box => PatchAcceptance::Box,
         AcceptanceTest::Disk => PatchAcceptance::Disk,
