@@ -86,7 +86,7 @@ impl CpuRenderer {
     }
 
     /// The hit primitive's normal in object space (not face-forwarded, any length).
-    fn object_normal(&self, hit: &SceneHit) -> Vec3 {
+    pub(crate) fn object_normal(&self, hit: &SceneHit) -> Vec3 {
         let index = hit.primitive as usize;
         match self.top.instances[hit.instance].blas.geometry() {
             Geometry::Patches(patches) => patch_normal(&patches.hot[index].decode(), hit.uv),

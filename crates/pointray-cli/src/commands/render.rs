@@ -7,7 +7,7 @@ use anyhow::Context;
 use clap::{Args, ValueEnum};
 use pointray_scene::frame_output::{AovSelection, write_frame};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene};
-use pointray_scene::{BufferLayout, RenderSettings};
+use pointray_scene::{BufferLayout, PatchAcceptance, RenderSettings};
 
 use crate::backend::{Backend, BackendArgs};
 use crate::progress::PrepBar;
