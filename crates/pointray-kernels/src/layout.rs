@@ -98,19 +98,20 @@ impl PatchHot {
         unpack_normal(self.normal)
     }
 
+    /// The stored frame: the normal word and the low half of `angle_aspect`.
+    pub fn frame(&self) -> PackedFrame {
+        PackedFrame { normal: self.normal, angle: self.angle_aspect as u16 }
+    }
+
     /// The patch as the maths works on it.
     pub fn decode(&self) -> Patch {
-        let angle_aspect = unpack_unorm2x16(self.angle_aspect);
-        let frame = TangentFrame::from_normal_and_angle(
-            unpack_normal(self.normal),
-            angle_aspect.x * std::f32::consts::PI,
-        );
+        let aspect = unpack_unorm2x16(self.angle_aspect).y;
         let unit = if self.radius > 0.0 { self.radius } else { 1.0 };
         let [c0_c1, c2_c3, c4_c5] = self.coefficients.map(unpack_half2x16);
         Patch {
             origin: self.origin(),
-            frame,
-            radii: Vec2::new(self.radius, self.radius * angle_aspect.y),
+            frame: self.frame().decode(),
+            radii: Vec2::new(self.radius, self.radius * aspect),
             coefficients: [c0_c1.x * unit, c0_c1.y, c2_c3.x, c2_c3.y / unit, c4_c5.x / unit, c4_c5.y / unit],
         }
     }

@@ -1,7 +1,5 @@
 //! `prep`: from a point cloud to a `PatchSet` (SPEC.md §2), stage by stage.
 
-use std::time::{Duration, Instant};
-
 use glam::{DVec3, Vec2, Vec3};
 use pointray_io::PointCloud;
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
@@ -22,10 +20,11 @@ use crate::patch_bounds::patch_box;
 use crate::patch_set::{PatchSet, PrepParams};
 use crate::prep_error::PrepError;
 use crate::prep_progress::{PrepProgress, Stage};
-use crate::prep_report::{FitCounts, PrepReport, RadiusFallbacks, ScanSummary};
+use crate::prep_report::{FitCounts, PrepReport, RadiusFallbacks};
 use crate::quadratic_fit::{FitKind, PatchFit, fit_patch};
-use crate::scan_lines::ScanLines;
-use crate::scan_patches::scan_patches;
+use crate::scan_prep::{scan_shaped, scan_structure};
+use crate::shaped_patches::{ShapedPatches, count_fits};
+use crate::stage_clock::StageClock;
 use crate::support_radius::{RadiusSource, support_radius};
 
 /// The Wendland scale `h_i` is this multiple of the farthest neighbour's distance, so
@@ -105,78 +104,29 @@ pub fn prep(
     let neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
     let scan =
         clock.run(Stage::ScanLines, patches, || scan_structure(&points, cloud, &source, options, offset));
-    if let Some(scan) = scan {
-        let scanned = clock.run(Stage::QuadraticFit, patches, || scan_patches(&points, &scan));
-        let summary = ScanSummary {
-            lines: scan.lines.len(),
-            surface_patches: scanned.iter().filter(|p| p.on_surface).count(),
-        };
-        drop(scan);
-        let hot: Vec<PatchHot> = scanned
-            .par_iter()
-            .zip(&points)
-            .map(|(patch, &p)| {
-                PatchHot::new(p, patch.frame, patch.radii * params.disk_scale, patch.fit.coefficients)
-            })
-            .collect();
-        let reach: Vec<f32> = scanned.iter().map(|patch| patch.radii.x).collect();
-        let fits = count_fits(&scanned.iter().map(|patch| patch.fit.kind).collect::<Vec<_>>());
-        let aabbs: Vec<Aabb> = clock
-            .run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
-        let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
-            (gather_cold(cloud, &source, &reach), color_neighbor_table(&neighbors, has_point_colors(cloud)))
-        });
-        let report = PrepReport {
-            input_points: count,
-            merged_duplicates: merge.merged_count,
-            removed_outliers,
-            patches,
-            replaced_input_normals: 0,
-            fits,
-            radius_fallbacks: RadiusFallbacks::default(),
-            radius_adjustments: RadiusAdjustments::default(),
-            scan: Some(summary),
-            offset,
-            patch_sources: source,
-            stage_times: clock.times,
-        };
-        return Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors }, report));
-    }
-    let (mut normals, replaced_input_normals) =
-        clock.run(Stage::Normals, patches, || normals_for(&points, &neighbors, cloud, &source, options));
-    clock.run(Stage::Orientation, patches, || {
-        orient(&points, &mut normals, &neighbors, cloud, options, offset)
-    });
-    let (packed_frames, frames) = clock.run(Stage::Frames, patches, || stored_frames(&normals));
-    let radii = clock.run(Stage::SupportRadii, patches, || {
-        support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode)
-    });
-    let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
-        fit_patches(
-            &points,
-            (&packed_frames, &frames),
-            &radii.chosen,
-            &neighbors,
-            k,
-            params.disk_scale,
-            progress,
-        )
-    });
+    let shaped = match scan {
+        Some(scan) => scan_shaped(&points, scan, params.disk_scale, &mut clock),
+        None => unstructured_shaped(&points, &neighbors, cloud, &source, options, offset, &mut clock),
+    };
+    let hot = shaped.hot;
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
     let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
-        (gather_cold(cloud, &source, &radii.paper), color_neighbor_table(&neighbors, has_point_colors(cloud)))
+        (
+            gather_cold(cloud, &source, &shaped.color_radii),
+            color_neighbor_table(&neighbors, has_point_colors(cloud)),
+        )
     });
     let report = PrepReport {
         input_points: count,
         merged_duplicates: merge.merged_count,
         removed_outliers,
         patches,
-        replaced_input_normals,
-        fits,
-        radius_fallbacks: radii.fallbacks,
-        radius_adjustments: radii.adjustments,
-        scan: None,
+        replaced_input_normals: shaped.replaced_input_normals,
+        fits: shaped.fits,
+        radius_fallbacks: shaped.radius_fallbacks,
+        radius_adjustments: shaped.radius_adjustments,
+        scan: shaped.scan,
         offset,
         patch_sources: source,
         stage_times: clock.times,
@@ -184,21 +134,47 @@ pub fn prep(
     Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors }, report))
 }
 
-/// Times each stage and tells `progress` about it.
-struct StageClock<'a> {
-    progress: &'a dyn PrepProgress,
-    times: Vec<(Stage, Duration)>,
-}
-
-impl StageClock<'_> {
-    fn run<T>(&mut self, stage: Stage, items: usize, work: impl FnOnce() -> T) -> T {
-        self.progress.stage_started(stage, items as u64);
-        let start = Instant::now();
-        let result = work();
-        let elapsed = start.elapsed();
-        self.progress.stage_finished(stage, elapsed);
-        self.times.push((stage, elapsed));
-        result
+/// Patches of unstructured points: PCA normals oriented over the neighbour graph or toward a
+/// sensor, round supports of the chosen radius mode, and quadratic fits (SPEC.md §2).
+fn unstructured_shaped(
+    points: &[Vec3],
+    neighbors: &Neighbors,
+    cloud: &PointCloud,
+    source: &[u32],
+    options: &PrepOptions,
+    offset: DVec3,
+    clock: &mut StageClock,
+) -> ShapedPatches {
+    let params = options.params;
+    let (k, patches) = (params.k as usize, points.len());
+    let (mut normals, replaced_input_normals) =
+        clock.run(Stage::Normals, patches, || normals_for(points, neighbors, cloud, source, options));
+    clock
+        .run(Stage::Orientation, patches, || orient(points, &mut normals, neighbors, cloud, options, offset));
+    let (packed_frames, frames) = clock.run(Stage::Frames, patches, || stored_frames(&normals));
+    let radii = clock.run(Stage::SupportRadii, patches, || {
+        support_radii(points, &normals, &frames, neighbors, k, options.radius_mode)
+    });
+    let progress = clock.progress;
+    let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
+        fit_patches(
+            points,
+            (&packed_frames, &frames),
+            &radii.chosen,
+            neighbors,
+            k,
+            params.disk_scale,
+            progress,
+        )
+    });
+    ShapedPatches {
+        hot,
+        fits,
+        color_radii: radii.paper,
+        radius_fallbacks: radii.fallbacks,
+        radius_adjustments: radii.adjustments,
+        replaced_input_normals,
+        scan: None,
     }
 }
 
@@ -383,34 +359,6 @@ fn fit_patches(
         })
         .unzip();
     (hot, count_fits(&kinds))
-}
-
-fn count_fits(kinds: &[FitKind]) -> FitCounts {
-    let count = |wanted| kinds.par_iter().filter(|&&kind| kind == wanted).count();
-    FitCounts {
-        quadratic: count(FitKind::Quadratic),
-        plane: count(FitKind::Plane),
-        flat: count(FitKind::Flat),
-    }
-}
-
-/// The scan lines of the prepped points, when the mode allows, the sensor is known and its
-/// lines can be found.
-fn scan_structure(
-    points: &[Vec3],
-    cloud: &PointCloud,
-    source: &[u32],
-    options: &PrepOptions,
-    offset: DVec3,
-) -> Option<ScanLines> {
-    if options.scan == ScanMode::Off {
-        return None;
-    }
-    let sensor_of = |i: u32| options.sensor.or_else(|| cloud.sensor_of(i as usize));
-    let sensors: Vec<DVec3> =
-        source.iter().map(|&i| sensor_of(i).map(|s| s - offset)).collect::<Option<_>>()?;
-    let rings = cloud.rings.as_deref().map(|rings| gather(rings, source));
-    ScanLines::new(points, &sensors, rings.as_deref())
 }
 
 /// The patch of point `i` from the point itself and its `k` nearest neighbours.

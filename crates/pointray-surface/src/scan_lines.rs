@@ -116,12 +116,12 @@ fn elevation(offset: Vec3) -> f64 {
 /// Beams recovered per station by splitting its sorted elevations at gaps wider than
 /// `BEAM_GAP_DEGREES`; `None` when a station's beam count is implausible.
 fn recovered_beams(offsets: &[Vec3], station_of: &[u32], station_count: usize) -> Option<Vec<u16>> {
+    let mut by_station: Vec<Vec<(f64, u32)>> = vec![Vec::new(); station_count];
+    for (i, (&offset, &station)) in offsets.iter().zip(station_of).enumerate() {
+        by_station[station as usize].push((elevation(offset), i as u32));
+    }
     let mut rings = vec![0u16; offsets.len()];
-    for station in 0..station_count as u32 {
-        let mut members: Vec<(f64, u32)> = (0..offsets.len() as u32)
-            .filter(|&i| station_of[i as usize] == station)
-            .map(|i| (elevation(offsets[i as usize]), i))
-            .collect();
+    for mut members in by_station {
         members.sort_by(|a, b| a.0.total_cmp(&b.0));
         let gap = BEAM_GAP_DEGREES.to_radians();
         let mut beam = 0usize;
