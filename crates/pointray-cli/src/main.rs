@@ -6,6 +6,7 @@ mod boxes_arg;
 mod commands;
 mod progress;
 mod radius_arg;
+mod setting_flag;
 
 use clap::{Parser, Subcommand};
 

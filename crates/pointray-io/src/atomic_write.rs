@@ -20,7 +20,7 @@ pub fn write_atomically(
         _ => Path::new("."),
     };
     let (file, temp_path) = temp_builder().tempfile_in(directory).map_err(os_error)?.into_parts();
-    let mut writer = BufWriter::new(file);
+    let mut writer = BufWriter::with_capacity(1 << 20, file);
     write(&mut writer).and_then(|()| writer.flush()).map_err(os_error)?;
     let file = writer.into_inner().map_err(|e| os_error(e.into_error()))?;
     file.sync_all().map_err(os_error)?;
@@ -39,29 +39,4 @@ fn temp_builder() -> tempfile::Builder<'static, 'static> {
         builder.permissions(std::fs::Permissions::from_mode(0o644));
     }
     builder
-}
-
-/// Refuses an `output` that is the same file as `input` (same path, a symlink to it, or a hard
-/// link), so that a command never overwrites what it reads. An output that does not exist yet
-/// is always accepted.
-pub fn ensure_not_same_file(input: &Path, output: &Path) -> Result<(), IoError> {
-    let Ok(output_metadata) = std::fs::metadata(output) else {
-        return Ok(());
-    };
-    let input_metadata = std::fs::metadata(input).map_err(|e| IoError::os(input, e))?;
-    if same_file(input, output, &input_metadata, &output_metadata) {
-        return Err(IoError::SameFile { input: input.into(), output: output.into() });
-    }
-    Ok(())
-}
-
-#[cfg(unix)]
-fn same_file(_: &Path, _: &Path, input: &std::fs::Metadata, output: &std::fs::Metadata) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    input.dev() == output.dev() && input.ino() == output.ino()
-}
-
-#[cfg(not(unix))]
-fn same_file(input: &Path, output: &Path, _: &std::fs::Metadata, _: &std::fs::Metadata) -> bool {
-    matches!((input.canonicalize(), output.canonicalize()), (Ok(a), Ok(b)) if a == b)
 }

@@ -32,6 +32,6 @@ pub use light::Light;
 pub use load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
 pub use material::Material;
 pub use point_sets::{PointSetOrigin, PrepRequest};
-pub use render_settings::{AcceptanceTest, BufferLayout, RenderSettings};
+pub use render_settings::{AcceptanceTest, BufferLayout, RenderSetting, RenderSettings};
 pub use scene::{Background, Geometry, Scene, SceneObject};
 pub use scene_file::SceneFile;

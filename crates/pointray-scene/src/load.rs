@@ -11,7 +11,7 @@ use pointray_surface::prep_progress::{NoProgress, PrepProgress};
 use crate::error::{InvalidValue, SceneError};
 use crate::ground::GroundPlacement;
 use crate::intensity_ramp::IntensityRamp;
-use crate::object_spec::{ObjectSpec, OutlierSpec, RadiusSpec, ShapeSpec};
+use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::point_sets::{self, PointSetOrigin};
 use crate::procedural;
 use crate::scene_file::SceneFile;
@@ -108,23 +108,20 @@ fn load_object(
                 .map_err(|source| SceneError::Input { scene: file.path.clone(), key: key.clone(), source })?;
             (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
         }
-        ShapeSpec::Points { path, k, normal_k, radius, remove_outliers } => {
+        ShapeSpec::Points { path, .. } => {
             let path = existing_file(file, &key, path)?;
-            let request = point_sets::PrepRequest {
-                k: *k,
-                normal_k: *normal_k,
-                radius: radius.map(RadiusSpec::mode),
-                remove_outliers: remove_outliers.map(OutlierSpec::filter),
-            };
+            let request = spec.shape.prep_request().expect("a points object");
             let (patches, origin) = point_sets::load_points_file(&path, &request, options)
                 .map_err(|e| e.in_scene(&file.path, &key))?;
             (Geometry::Patches(Arc::new(patches)), Some(origin), file_stem(&path))
         }
         ShapeSpec::SpherePoints { center, radius, count } => {
+            procedural_fits(*count).map_err(|e| e.in_scene(&file.path, &key))?;
             let cloud = procedural::sphere_points(Vec3::from(*center), *radius, *count);
             procedural_object(&cloud, "sphere", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
         ShapeSpec::TorusPoints { center, major_radius, minor_radius, count } => {
+            procedural_fits(*count).map_err(|e| e.in_scene(&file.path, &key))?;
             let cloud = procedural::torus_points(Vec3::from(*center), *major_radius, *minor_radius, *count);
             procedural_object(&cloud, "torus", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
@@ -185,18 +182,28 @@ fn procedural_object(
     Ok((Geometry::Patches(Arc::new(patches)), Some(PointSetOrigin::Procedural), name.to_string()))
 }
 
+/// Whether sampling and prepping `count` procedural points fits in memory, asked before
+/// sampling them.
+fn procedural_fits(count: u32) -> Result<(), point_sets::PointSetError> {
+    let budget = pointray_io::MemoryBudget::of_this_machine();
+    pointray_surface::input_validation::validate_size(count as usize, &Default::default(), &budget)
+        .map_err(|source| point_sets::PointSetError::Prep { file: "(procedural points)".into(), source })
+}
+
 fn object_key(index: usize, spec: &ObjectSpec) -> String {
     format!("objects[{index}] (type \"{}\")", spec.shape.type_name())
 }
 
-/// The file's path resolved against the scene's folder; an error naming it when it is missing.
+/// The file's path resolved against the scene's folder; an error naming it when it is missing,
+/// a folder or a device.
 fn existing_file(file: &SceneFile, key: &str, relative: &Path) -> Result<std::path::PathBuf, SceneError> {
     let path = file.resolve(relative);
-    if path.is_file() {
-        Ok(path)
-    } else {
-        Err(SceneError::MissingFile { scene: file.path.clone(), key: format!("{key}.path"), file: path })
-    }
+    pointray_io::ensure_readable_file(&path).map_err(|source| SceneError::Input {
+        scene: file.path.clone(),
+        key: format!("{key}.path"),
+        source,
+    })?;
+    Ok(path)
 }
 
 fn file_stem(path: &Path) -> String {

@@ -87,8 +87,6 @@ pub(crate) fn load_points_file(
     let Some(cache_dir) = options.cache_dir else {
         return Ok((prep_file(path, &prep_options, options)?, PointSetOrigin::Prepped { cache: None }));
     };
-    std::fs::create_dir_all(cache_dir)
-        .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
     let cache = cache_dir.join(cache_file_name(path, &prep_options).map_err(PointSetError::Input)?);
     let regenerated_because = match patch_store::read(&cache) {
         Ok(patches) => return Ok((patches, PointSetOrigin::CacheHit { cache })),
@@ -99,6 +97,9 @@ pub(crate) fn load_points_file(
         }
     };
     let patches = prep_file(path, &prep_options, options)?;
+    // Made only now, so that a failed load leaves no empty cache folder behind.
+    std::fs::create_dir_all(cache_dir)
+        .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
     patch_store::write(&cache, &patches).map_err(PointSetError::Store)?;
     let origin = match regenerated_because {
         Some(problem) => PointSetOrigin::CacheRegenerated { cache, problem },
@@ -128,7 +129,7 @@ fn prep_file(
 }
 
 impl PrepRequest {
-    fn prep_options(&self) -> PrepOptions {
+    pub fn prep_options(&self) -> PrepOptions {
         let mut options = PrepOptions::default();
         options.params.k = self.k.unwrap_or(options.params.k);
         options.params.normal_k = self.normal_k.unwrap_or(options.params.normal_k);

@@ -36,6 +36,7 @@ use crate::checks;
 use crate::error::{InvalidValue, SceneError};
 use crate::material_spec::MaterialSpec;
 use crate::object_spec::{ObjectSpec, ShapeSpec};
+use crate::render_settings::RenderSetting;
 use crate::transform_spec::TransformSpec;
 use crate::{Background, Camera, Light, RenderSettings};
 
@@ -191,6 +192,21 @@ impl SceneFile {
         }
     }
 
+    /// `RenderSettings::default()` with the `[render]` table on top.
+    pub fn render_settings(&self) -> Result<RenderSettings, SceneError> {
+        self.render.settings().map_err(|invalid| invalid.in_file(&self.path))
+    }
+
+    /// Every file loading this scene reads: the scene file itself and each object's points,
+    /// store or mesh file. No output may be any of them.
+    pub fn input_files(&self) -> Vec<PathBuf> {
+        let objects = self.objects.iter().filter_map(|object| match &object.shape {
+            ShapeSpec::Points { path, .. } | ShapeSpec::Mesh { path } => Some(self.resolve(path)),
+            _ => None,
+        });
+        std::iter::once(self.path.clone()).chain(objects).collect()
+    }
+
     /// A path from the file, relative to the file's folder unless absolute.
     pub fn resolve(&self, relative: &Path) -> PathBuf {
         self.path.parent().unwrap_or(Path::new("")).join(relative)
@@ -269,17 +285,17 @@ impl LightSpec {
 impl RenderSpec {
     /// `RenderSettings::default()` with this file's values on top.
     pub(crate) fn settings(&self) -> Result<RenderSettings, InvalidValue> {
-        let key = |name: &str| format!("render.{name}");
         let default = RenderSettings::default();
+        let value = |setting: RenderSetting, given: Option<u32>, default: u32| {
+            given.map_or(Ok(default), |value| {
+                setting.check(value).map_err(|problem| InvalidValue::new(setting.file_key(), problem))
+            })
+        };
         Ok(RenderSettings {
-            width: checks::at_least(&key("width"), self.width.unwrap_or(default.width), 1)?,
-            height: checks::at_least(&key("height"), self.height.unwrap_or(default.height), 1)?,
-            samples_per_pixel: checks::at_least(
-                &key("spp"),
-                self.spp.unwrap_or(default.samples_per_pixel),
-                1,
-            )?,
-            max_depth: checks::at_least(&key("max_depth"), self.max_depth.unwrap_or(default.max_depth), 1)?,
+            width: value(RenderSetting::Width, self.width, default.width)?,
+            height: value(RenderSetting::Height, self.height, default.height)?,
+            samples_per_pixel: value(RenderSetting::SamplesPerPixel, self.spp, default.samples_per_pixel)?,
+            max_depth: value(RenderSetting::MaxDepth, self.max_depth, default.max_depth)?,
             ..default
         })
     }

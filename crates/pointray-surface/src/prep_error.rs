@@ -14,6 +14,8 @@ pub enum PrepError {
     AllPointsCollinear { count: usize },
     #[error("the cloud has {found} {attribute} for {expected} points")]
     AttributeLength { attribute: &'static str, found: usize, expected: usize },
-    #[error("invalid settings: {problem}")]
-    InvalidSettings { problem: String },
+    #[error("invalid setting `{setting}`: {problem}")]
+    InvalidSetting { setting: &'static str, problem: String },
+    #[error("too large: {problem}")]
+    TooLarge { problem: String },
 }

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::DVec3;
+use pointray_surface::input_validation::validate_options;
 use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, prep};
 
 use crate::boxes_arg::Boxes;
@@ -52,8 +53,10 @@ pub struct PrepArgs {
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {
-    pointray_io::ensure_not_same_file(&args.points, &args.output)?;
-    let cloud = pointray_io::formats::read_point_cloud(&args.points)?;
+    pointray_io::ensure_outputs_spare_inputs(
+        std::slice::from_ref(&args.points),
+        std::slice::from_ref(&args.output),
+    )?;
     let params = PrepParams {
         k: args.k,
         normal_k: args.normal_k,
@@ -68,6 +71,8 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         remove_outliers: args.remove_outliers,
         radius_mode: args.radius.into(),
     };
+    validate_options(&options)?;
+    let cloud = pointray_io::formats::read_point_cloud(&args.points)?;
     let bar = PrepBar::default();
     let (patches, report) =
         prep(&cloud, &options, &bar).map_err(|e| anyhow::anyhow!("{}: {e}", args.points.display()))?;
@@ -96,6 +101,5 @@ fn parse_outlier_filter(text: &str) -> Result<OutlierFilter, String> {
         neighbors: neighbors.trim().parse().map_err(|e| format!("K `{neighbors}`: {e}"))?,
         sigmas: sigmas.trim().parse().map_err(|e| format!("N `{sigmas}`: {e}"))?,
     };
-    filter.validate().map_err(|e| e.to_string())?;
     Ok(filter)
 }

@@ -6,6 +6,8 @@ mod autzen_scene;
 mod bad_input;
 mod geo_offset;
 mod intensity_material;
+mod outputs_spare_inputs;
 mod prep_robustness_flags;
 mod radius_fidelity;
 mod scene_prep_keys;
+mod size_limits;

@@ -1,0 +1,69 @@
+//! The coordinates pointray can trace in f32. Beyond these, squared distances underflow or
+//! overflow: neighbour searches stall on tiny clouds, bounding-volume builders divide by
+//! infinite areas, and a render never ends or draws garbage. Every route checks its geometry
+//! against this range before any build and refuses what lies outside with a clear error.
+
+use pointray_kernels::Aabb;
+
+/// The smallest extent (bounding-box diagonal) a cloud or scene may have, in its own units.
+pub const MIN_EXTENT: f64 = 1e-9;
+
+/// The largest extent a cloud or scene may have, in its own units.
+pub const MAX_EXTENT: f64 = 1e12;
+
+/// The largest magnitude of a local (recentred) coordinate: a cloud within `MAX_EXTENT`
+/// stays far below it, and products of two such numbers stay finite in f32.
+pub const MAX_COORDINATE: f32 = 1e15;
+
+/// Why `extent` cannot be traced, if it cannot; `what` names the thing measured.
+pub fn extent_problem(what: &str, extent: f64) -> Option<String> {
+    if !extent.is_finite() {
+        return Some(format!("{what} has no finite extent"));
+    }
+    if extent < MIN_EXTENT {
+        return Some(format!(
+            "{what} spans only {extent:e} units, below the {MIN_EXTENT:e} that f32 maths can resolve: \
+             scale the coordinates up"
+        ));
+    }
+    if extent > MAX_EXTENT {
+        return Some(format!(
+            "{what} spans {extent:e} units, beyond the {MAX_EXTENT:e} that f32 maths can hold: \
+             scale the coordinates down"
+        ));
+    }
+    None
+}
+
+/// Whether every number of `value` is finite and within `MAX_COORDINATE`.
+pub fn coordinates_in_range(values: &[f32]) -> bool {
+    values.iter().all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE)
+}
+
+/// A box whose corners are in range and ordered.
+pub fn box_in_range(aabb: &Aabb) -> bool {
+    coordinates_in_range(&aabb.min)
+        && coordinates_in_range(&aabb.max)
+        && (0..3).all(|axis| aabb.min[axis] <= aabb.max[axis])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn extents_outside_the_range_are_explained() {
+        assert_eq!(extent_problem("the cloud", 0.2), None);
+        assert!(extent_problem("the cloud", 3e-26).unwrap().contains("scale the coordinates up"));
+        assert!(extent_problem("the cloud", 2e19).unwrap().contains("scale the coordinates down"));
+        assert!(extent_problem("the cloud", f64::NAN).is_some());
+    }
+
+    #[test]
+    fn boxes_must_be_finite_ordered_and_in_range() {
+        assert!(box_in_range(&Aabb::new([-1.0; 3].into(), [1.0; 3].into())));
+        assert!(!box_in_range(&Aabb::new([f32::NAN; 3].into(), [1.0; 3].into())));
+        assert!(!box_in_range(&Aabb::new([-1e38; 3].into(), [1e38; 3].into())));
+        assert!(!box_in_range(&Aabb::new([1.0; 3].into(), [-1.0; 3].into())));
+    }
+}
