@@ -8,6 +8,7 @@ pub mod formats;
 pub mod image_output;
 pub mod memory_budget;
 pub mod point_cloud;
+pub mod temporaries;
 pub mod triangle_mesh;
 
 pub use atomic_write::write_atomically;

@@ -1,11 +1,18 @@
 //! Range checks shared by the parts of the scene file.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use crate::error::InvalidValue;
 
 pub(crate) fn finite_vec3(key: &str, value: [f32; 3]) -> Result<Vec3, InvalidValue> {
     let v = Vec3::from(value);
+    if v.is_finite() { Ok(v) } else { Err(InvalidValue::new(key, format!("must be finite, got {value:?}"))) }
+}
+
+/// A position, kept in f64 so that geo-referenced coordinates keep their centimetres until
+/// the scene is recentred.
+pub(crate) fn finite_dvec3(key: &str, value: [f64; 3]) -> Result<DVec3, InvalidValue> {
+    let v = DVec3::from(value);
     if v.is_finite() { Ok(v) } else { Err(InvalidValue::new(key, format!("must be finite, got {value:?}"))) }
 }
 

@@ -22,6 +22,7 @@ pub mod render_settings;
 pub mod scene;
 pub mod scene_file;
 pub mod transform_spec;
+mod world_origin;
 
 pub use camera::Camera;
 pub use demo::{demo_scene, load_demo};

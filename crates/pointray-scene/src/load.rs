@@ -4,8 +4,9 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::{Affine3A, Vec3};
+use glam::{DAffine3, DVec3, Vec3};
 use pointray_kernels::Aabb;
+use pointray_surface::geometry_range::{self, extent_problem};
 use pointray_surface::prep_progress::{NoProgress, PrepProgress};
 
 use crate::error::{InvalidValue, SceneError};
@@ -15,6 +16,7 @@ use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::point_sets::{self, PointSetOrigin};
 use crate::procedural;
 use crate::scene_file::SceneFile;
+use crate::world_origin::{WorldBounds, placed_bounds, recentred_mesh, render_transform, world_origin};
 use crate::{Camera, Geometry, RenderSettings, Scene, SceneObject};
 
 /// Without a `[camera]`, the objects are seen from the front (+Z), a little from the right and
@@ -44,6 +46,9 @@ pub struct LoadedScene {
     pub settings: RenderSettings,
     /// How each point-set object got its patches, by object index.
     pub point_sets: Vec<(usize, PointSetOrigin)>,
+    /// Where the scene's origin lies in the file's coordinates: the scene was recentred there
+    /// in f64 (`world_origin`), so `file = scene + origin`.
+    pub origin: DVec3,
 }
 
 pub fn load_scene(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
@@ -52,32 +57,44 @@ pub fn load_scene(path: &Path, options: &LoadOptions) -> Result<LoadedScene, Sce
 
 pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
     let in_file = |invalid: InvalidValue| invalid.in_file(&file.path);
-    let settings = file.render.settings().map_err(in_file)?;
-    let lights =
-        file.lights.iter().map(|light| light.to_light()).collect::<Result<_, _>>().map_err(in_file)?;
+    let settings = file.render_settings()?;
     let background = file.background().map_err(in_file)?;
 
     // Grounds are sized and placed from the other objects, so they are built last, but they
     // keep their place in the object list: renderers report object indices as instance ids.
     let is_ground = |spec: &ObjectSpec| matches!(spec.shape, ShapeSpec::Ground { .. });
-    let mut slots: Vec<Option<SceneObject>> = vec![None; file.objects.len()];
+    let mut slots: Vec<Option<(SceneObject, DAffine3)>> = vec![None; file.objects.len()];
     let mut point_sets = Vec::new();
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| !is_ground(spec)) {
-        let (object, origin) = load_object(file, index, spec, options, None)?;
+        let (object, placement, origin) = load_object(file, index, spec, options, (None, DVec3::ZERO))?;
         point_sets.extend(origin.map(|origin| (index, origin)));
-        slots[index] = Some(object);
+        slots[index] = Some((object, placement));
     }
-    let others = slots.iter().flatten().filter_map(SceneObject::world_bounds).reduce(|a, b| a.union(&b));
+    let bounds = slots.iter().flatten().filter_map(|(o, placement)| placed_bounds(&o.geometry, placement));
+    let bounds = bounds.reduce(WorldBounds::union);
+    if let Some(problem) = bounds.and_then(|b| extent_problem("the scene's objects", b.diagonal())) {
+        return Err(SceneError::Invalid { path: file.path.clone(), key: "objects".into(), problem });
+    }
+    let origin = world_origin(bounds);
+    for (object, placement) in slots.iter_mut().flatten() {
+        object.transform = render_transform(placement, origin);
+    }
+    let others =
+        slots.iter().flatten().filter_map(|(object, _)| object.world_bounds()).reduce(|a, b| a.union(&b));
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| is_ground(spec)) {
-        slots[index] = Some(load_object(file, index, spec, options, others.as_ref())?.0);
+        let (mut ground, placement, _) = load_object(file, index, spec, options, (others.as_ref(), origin))?;
+        ground.transform = render_transform(&placement, origin);
+        slots[index] = Some((ground, placement));
     }
-    let objects: Vec<SceneObject> = slots.into_iter().flatten().collect();
+    let objects: Vec<SceneObject> = slots.into_iter().flatten().map(|(object, _)| object).collect();
 
+    let lights =
+        file.lights.iter().map(|light| light.to_light(origin)).collect::<Result<_, _>>().map_err(in_file)?;
     let camera = match &file.camera {
-        Some(camera) => camera.to_camera().map_err(|e| in_file(e.within("camera")))?,
+        Some(camera) => camera.to_camera(origin).map_err(|e| in_file(e.within("camera")))?,
         None => default_camera(others.as_ref(), &settings),
     };
-    Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets })
+    Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets, origin })
 }
 
 fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
@@ -86,26 +103,34 @@ fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
     Scene::framing_camera(bounds.unwrap_or(&unit_box), DEFAULT_VIEW_DIRECTION, DEFAULT_VFOV_DEGREES, aspect)
 }
 
-/// Loads one object and says where a point set's patches came from. `others` are the bounds
-/// of every non-ground object, which a ground is fitted to.
+/// Loads one object, with its local-to-file placement in f64, and says where a point set's
+/// patches came from. A ground is fitted to `others`, the bounds of every other object in the
+/// render frame, whose origin is the second member.
 fn load_object(
     file: &SceneFile,
     index: usize,
     spec: &ObjectSpec,
     options: &LoadOptions,
-    others: Option<&Aabb>,
-) -> Result<(SceneObject, Option<PointSetOrigin>), SceneError> {
+    (others, origin): (Option<&Aabb>, DVec3),
+) -> Result<(SceneObject, DAffine3, Option<PointSetOrigin>), SceneError> {
     let key = object_key(index, spec);
     let transform =
-        spec.transform.to_affine().map_err(|e| e.within(&format!("{key}.transform")).in_file(&file.path))?;
+        spec.transform.to_daffine().map_err(|e| e.within(&format!("{key}.transform")).in_file(&file.path))?;
     let in_material = |e: InvalidValue| e.within(&format!("{key}.material")).in_file(&file.path);
     let material = spec.material.to_material().map_err(in_material)?;
     let ramp = spec.material.intensity_ramp().map_err(in_material)?;
-    let (geometry, origin, default_name): LoadedGeometry = match &spec.shape {
+    let (geometry, point_set_origin, default_name): LoadedGeometry = match &spec.shape {
         ShapeSpec::Mesh { path } => {
             let path = existing_file(file, &key, path)?;
             let mesh = pointray_io::formats::read_triangle_mesh(&path)
                 .map_err(|source| SceneError::Input { scene: file.path.clone(), key: key.clone(), source })?;
+            if let Some(vertex) = geometry_range::first_vertex_out_of_range(&mesh) {
+                return Err(SceneError::Invalid {
+                    path: file.path.clone(),
+                    key: format!("{key}.path"),
+                    problem: format!("{}: vertex {vertex} is not finite or out of range", path.display()),
+                });
+            }
             (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
         }
         ShapeSpec::Points { path, .. } => {
@@ -126,6 +151,7 @@ fn load_object(
             procedural_object(&cloud, "torus", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
         &ShapeSpec::Ground { auto, height, size } => {
+            let height = height.map(|h| (f64::from(h) - origin.y) as f32);
             let mesh = GroundPlacement::new(others, auto, height, size).mesh();
             (Geometry::Mesh(Arc::new(mesh)), None, "ground".to_string())
         }
@@ -138,13 +164,26 @@ fn load_object(
         })?,
         None => geometry,
     };
-    let transform = match &geometry {
+    let (geometry, local_offset) = match geometry {
         // prep recentred the points (`input = local + offset`); put them back where they were.
-        Geometry::Patches(patches) => transform * Affine3A::from_translation(patches.offset.as_vec3()),
-        Geometry::Mesh(_) => transform,
+        Geometry::Patches(patches) => {
+            let offset = patches.offset;
+            (Geometry::Patches(patches), offset)
+        }
+        // A ground is built in the render frame.
+        Geometry::Mesh(mesh) if matches!(spec.shape, ShapeSpec::Ground { .. }) => {
+            (Geometry::Mesh(mesh), origin)
+        }
+        Geometry::Mesh(mesh) => {
+            let (mesh, offset) = recentred_mesh(Arc::unwrap_or_clone(mesh));
+            (Geometry::Mesh(Arc::new(mesh)), offset)
+        }
     };
+    let placement = transform * DAffine3::from_translation(local_offset);
     let name = spec.name.clone().unwrap_or(default_name);
-    Ok((SceneObject { name, transform, material, geometry }, origin))
+    let object =
+        SceneObject { name, transform: render_transform(&placement, DVec3::ZERO), material, geometry };
+    Ok((object, placement, point_set_origin))
 }
 
 /// `color_source = "intensity"`: the ramp's colours go into the patches' cold records, where

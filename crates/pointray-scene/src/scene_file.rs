@@ -29,6 +29,7 @@
 
 use std::path::{Path, PathBuf};
 
+use glam::DVec3;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
@@ -59,8 +60,8 @@ pub struct SceneFile {
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSpec {
-    pub position: [f32; 3],
-    pub look_at: [f32; 3],
+    pub position: [f64; 3],
+    pub look_at: [f64; 3],
     #[serde(default = "default_up")]
     pub up: [f32; 3],
     #[serde(default = "default_vfov_degrees")]
@@ -71,7 +72,7 @@ pub struct CameraSpec {
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum LightSpec {
     Point {
-        position: [f32; 3],
+        position: [f64; 3],
         #[serde(default = "white")]
         color: [f32; 3],
         #[serde(default = "unit_intensity")]
@@ -226,17 +227,17 @@ impl SceneFile {
     /// Every check that needs no file, so that a typo fails before any slow loading.
     fn check(&self) -> Result<(), InvalidValue> {
         if let Some(camera) = &self.camera {
-            camera.to_camera().map_err(|e| e.within("camera"))?;
+            camera.to_camera(DVec3::ZERO).map_err(|e| e.within("camera"))?;
         }
         for (i, light) in self.lights.iter().enumerate() {
-            light.to_light().map_err(|e| e.within(&format!("lights[{i}]")))?;
+            light.to_light(DVec3::ZERO).map_err(|e| e.within(&format!("lights[{i}]")))?;
         }
         self.background()?;
         self.render.settings()?;
         for (i, object) in self.objects.iter().enumerate() {
             let key = format!("objects[{i}]");
             object.shape.check().map_err(|e| e.within(&key))?;
-            object.transform.to_affine().map_err(|e| e.within(&format!("{key}.transform")))?;
+            object.transform.to_daffine().map_err(|e| e.within(&format!("{key}.transform")))?;
             object.material.to_material().map_err(|e| e.within(&format!("{key}.material")))?;
         }
         Ok(())
@@ -244,15 +245,17 @@ impl SceneFile {
 }
 
 impl CameraSpec {
-    pub(crate) fn to_camera(&self) -> Result<Camera, InvalidValue> {
-        let position = checks::finite_vec3("position", self.position)?;
-        let look_at = checks::finite_vec3("look_at", self.look_at)?;
+    /// The camera in the scene's render frame, whose origin is `origin` in the file's
+    /// coordinates (`load::world_origin`).
+    pub(crate) fn to_camera(&self, origin: DVec3) -> Result<Camera, InvalidValue> {
+        let position = checks::finite_dvec3("position", self.position)? - origin;
+        let look_at = checks::finite_dvec3("look_at", self.look_at)? - origin;
         let up = checks::nonzero_vec3("up", self.up)?;
         let forward = look_at - position;
         if forward.length_squared() == 0.0 {
             return Err(InvalidValue::new("look_at", "must differ from the camera position"));
         }
-        if forward.normalize().cross(up.normalize()).length() < 1e-4 {
+        if forward.normalize().as_vec3().cross(up.normalize()).length() < 1e-4 {
             return Err(InvalidValue::new("up", "must not be parallel to the viewing direction"));
         }
         if !(self.vfov_degrees > 0.0 && self.vfov_degrees < 180.0) {
@@ -261,15 +264,17 @@ impl CameraSpec {
                 format!("must be between 0 and 180, got {}", self.vfov_degrees),
             ));
         }
+        let (position, look_at) = (position.as_vec3(), look_at.as_vec3());
         Ok(Camera { position, look_at, up, vertical_fov_degrees: self.vfov_degrees })
     }
 }
 
 impl LightSpec {
-    pub(crate) fn to_light(&self) -> Result<Light, InvalidValue> {
+    /// The light in the render frame whose origin is `origin` (see `CameraSpec::to_camera`).
+    pub(crate) fn to_light(&self, origin: DVec3) -> Result<Light, InvalidValue> {
         Ok(match self {
             Self::Point { position, color, intensity } => Light::Point {
-                position: checks::finite_vec3("position", *position)?,
+                position: (checks::finite_dvec3("position", *position)? - origin).as_vec3(),
                 color: checks::color("color", *color)?,
                 intensity: checks::non_negative("intensity", *intensity)?,
             },

@@ -3,6 +3,7 @@
 //! infinite areas, and a render never ends or draws garbage. Every route checks its geometry
 //! against this range before any build and refuses what lies outside with a clear error.
 
+use pointray_io::TriangleMesh;
 use pointray_kernels::Aabb;
 
 /// The smallest extent (bounding-box diagonal) a cloud or scene may have, in its own units.
@@ -45,6 +46,11 @@ pub fn box_in_range(aabb: &Aabb) -> bool {
     coordinates_in_range(&aabb.min)
         && coordinates_in_range(&aabb.max)
         && (0..3).all(|axis| aabb.min[axis] <= aabb.max[axis])
+}
+
+/// The first vertex of `mesh` that is not finite or beyond `MAX_COORDINATE`.
+pub fn first_vertex_out_of_range(mesh: &TriangleMesh) -> Option<usize> {
+    mesh.positions.iter().position(|p| !coordinates_in_range(&p.to_array()))
 }
 
 #[cfg(test)]

@@ -6,6 +6,8 @@ use rayon::prelude::*;
 
 use pointray_io::MemoryBudget;
 
+use crate::geometry_range::extent_problem;
+
 use crate::outlier_removal::OutlierFilter;
 use crate::patch_set::PrepParams;
 use crate::prep::PrepOptions;
@@ -66,13 +68,14 @@ pub fn validate_params(params: &PrepParams) -> Result<(), PrepError> {
 
 fn validate_outlier_filter(filter: &OutlierFilter) -> Result<(), PrepError> {
     let OutlierFilter { neighbors, sigmas } = *filter;
-    if !(1..=MAX_NEIGHBOURS).contains(&neighbors) || !(sigmas.is_finite() && sigmas >= 0.0) {
+    if !(1..=MAX_NEIGHBOURS).contains(&neighbors) {
         return invalid(
-            "remove_outliers",
-            format!(
-                "needs 1 to {MAX_NEIGHBOURS} neighbours K and a finite N >= 0 sigmas, got K = {neighbors}, N = {sigmas}"
-            ),
+            "remove_outliers.neighbors",
+            format!("must be between 1 and {MAX_NEIGHBOURS}, got {neighbors}"),
         );
+    }
+    if !(sigmas.is_finite() && sigmas >= 0.0) {
+        return invalid("remove_outliers.sigmas", format!("must be a finite number >= 0, got {sigmas}"));
     }
     Ok(())
 }
@@ -105,6 +108,10 @@ pub fn validate_positions(positions: &[DVec3], k: usize) -> Result<(), PrepError
     let extent = (farthest - anchor).length();
     if extent == 0.0 {
         return Err(PrepError::AllPointsIdentical { count });
+    }
+    // Measured from one point, the extent is at least half the bounding box's diagonal.
+    if let Some(problem) = extent_problem("the cloud", extent) {
+        return Err(PrepError::ExtentOutOfRange { problem });
     }
     let direction = (farthest - anchor) / extent;
     let off_line = positions
@@ -153,6 +160,17 @@ mod tests {
         assert_eq!(validate_positions(&same, 9), Err(PrepError::AllPointsIdentical { count: 20 }));
         let line: Vec<DVec3> = (0..20).map(|i| DVec3::new(1.0, 2.0, 3.0) * i as f64).collect();
         assert_eq!(validate_positions(&line, 9), Err(PrepError::AllPointsCollinear { count: 20 }));
+    }
+
+    #[test]
+    fn refuses_clouds_too_small_or_too_large_for_f32() {
+        for scale in [1e-25, 1e-30, 1e15, 1e30] {
+            let points: Vec<DVec3> = grid(5).into_iter().map(|p| p * scale).collect();
+            let error = validate_positions(&points, 9).unwrap_err();
+            assert!(matches!(error, PrepError::ExtentOutOfRange { .. }), "scale {scale}: {error}");
+        }
+        let millimetres: Vec<DVec3> = grid(5).into_iter().map(|p| p * 1e-3 + DVec3::splat(5e6)).collect();
+        assert_eq!(validate_positions(&millimetres, 9), Ok(()));
     }
 
     #[test]

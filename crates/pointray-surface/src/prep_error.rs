@@ -12,6 +12,8 @@ pub enum PrepError {
     AllPointsIdentical { count: usize },
     #[error("all {count} points lie on one line: there is no surface to fit")]
     AllPointsCollinear { count: usize },
+    #[error("{problem}")]
+    ExtentOutOfRange { problem: String },
     #[error("the cloud has {found} {attribute} for {expected} points")]
     AttributeLength { attribute: &'static str, found: usize, expected: usize },
     #[error("invalid setting `{setting}`: {problem}")]

@@ -88,7 +88,7 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
         radius_mode: args.radius.into(),
         ..PrepOptions::default()
     };
-    validate_options(&prep_options)?;
+    validate_options(&prep_options).map_err(crate::commands::prep::flag_error)?;
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
     let patches = prep_points(&args.points, prep_options)?;
     let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use glam::DVec3;
 use pointray_surface::input_validation::validate_options;
-use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, prep};
+use pointray_surface::{OutlierFilter, PrepError, PrepOptions, PrepParams, prep};
 
 use crate::boxes_arg::Boxes;
 use crate::progress::PrepBar;
@@ -71,7 +71,7 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         remove_outliers: args.remove_outliers,
         radius_mode: args.radius.into(),
     };
-    validate_options(&options)?;
+    validate_options(&options).map_err(flag_error)?;
     let cloud = pointray_io::formats::read_point_cloud(&args.points)?;
     let bar = PrepBar::default();
     let (patches, report) =
@@ -80,6 +80,17 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     println!("{report}");
     println!("wrote {} patches to {} (offset stored in its header)", patches.len(), args.output.display());
     Ok(())
+}
+
+/// A prep setting's error, named by the flag that sets it.
+pub fn flag_error(error: PrepError) -> anyhow::Error {
+    match error {
+        PrepError::InvalidSetting { setting, problem } => {
+            let flag = setting.split('.').next().unwrap_or(setting).replace('_', "-");
+            anyhow::anyhow!("--{flag}: {problem}")
+        }
+        other => other.into(),
+    }
 }
 
 /// Parses `x,y,z`.

@@ -20,6 +20,7 @@ fn full_cloud(offset: f64) -> PointCloud {
         intensities: Some((0..50).map(|i| i as f32 / 49.0).collect()),
         positions,
         sensor_position: None,
+        ..PointCloud::default()
     }
 }
 
