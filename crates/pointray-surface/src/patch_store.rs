@@ -218,7 +218,12 @@ impl<W: Write> ChecksummedWriter<W> {
 /// magic, the version, the length and the checksum.
 pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let bytes = std::fs::read(path).map_err(|source| StoreError::Io { path: path.to_path_buf(), source })?;
-    let header = checked_header(path, &bytes)?;
+    read_from(&bytes, path)
+}
+
+/// Reads a patch store held in memory; `path` names it in errors.
+pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
+    let header = checked_header(path, bytes)?;
     let malformed =
         |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
     let layout = Layout::new(header.point_count, header.neighbor_slots)
