@@ -31,6 +31,7 @@ enum Command {
     Fidelity(commands::fidelity::FidelityArgs),
     Bench(commands::bench::BenchArgs),
     View(commands::view::ViewArgs),
+    Cache(commands::cache::CacheArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -45,6 +46,7 @@ fn main() -> std::process::ExitCode {
         Command::Fidelity(args) => commands::fidelity::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::View(args) => commands::view::run(args),
+        Command::Cache(args) => commands::cache::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -32,7 +32,7 @@ pub use frame_output::{AovSelection, write_frame};
 pub use light::Light;
 pub use load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
 pub use material::Material;
-pub use point_sets::{PointSetOrigin, PrepRequest};
+pub use point_sets::{PointSetOrigin, PrepRequest, clean_cache};
 pub use render_settings::{AcceptanceTest, BufferLayout, RenderSetting, RenderSettings};
 pub use scene::{Background, Geometry, Scene, SceneObject};
 pub use scene_file::SceneFile;

@@ -123,6 +123,20 @@ pub struct RenderSpec {
     pub max_depth: Option<u32>,
 }
 
+/// Where a TOML error is and what it is, without the source line that `toml` quotes: a file
+/// named as a scene by mistake (a system file, say) must not have its contents printed.
+fn parse_message(error: &toml::de::Error, text: &str) -> String {
+    match error.span() {
+        Some(span) => {
+            let before = &text[..span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let column = before.rsplit('\n').next().map_or(0, |start| start.chars().count()) + 1;
+            format!("line {line}, column {column}: {}", error.message())
+        }
+        None => error.message().to_string(),
+    }
+}
+
 fn default_up() -> [f32; 3] {
     [0.0, 1.0, 0.0]
 }
@@ -145,6 +159,14 @@ pub const DEFAULT_BACKGROUND: Background =
 
 impl SceneFile {
     pub fn read(path: &Path) -> Result<Self, SceneError> {
+        pointray_io::ensure_readable_file(path).map_err(|error| SceneError::Read {
+            path: path.to_path_buf(),
+            source: match error {
+                pointray_io::IoError::Os { source, .. } => source,
+                pointray_io::IoError::Unusable { problem, .. } => std::io::Error::other(problem),
+                other => std::io::Error::other(other.to_string()),
+            },
+        })?;
         let text = std::fs::read_to_string(path)
             .map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
         Self::parse(&text, path)
@@ -153,7 +175,7 @@ impl SceneFile {
     /// Parses and checks `text`; `path` names it in errors and anchors relative paths.
     pub fn parse(text: &str, path: &Path) -> Result<Self, SceneError> {
         let mut file: Self = toml::from_str(text)
-            .map_err(|e| SceneError::Parse { path: path.to_path_buf(), message: e.to_string() })?;
+            .map_err(|e| SceneError::Parse { path: path.to_path_buf(), message: parse_message(&e, text) })?;
         file.path = path.to_path_buf();
         file.check().map_err(|invalid| invalid.in_file(path))?;
         Ok(file)

@@ -185,11 +185,15 @@ struct TextTable {
 
 impl TextTable {
     /// A header line sets the layout, unless the caller gave one (theirs wins).
-    fn use_header(&mut self, names: &[&str], line: &str, number: usize) -> Result<(), String> {
+    fn use_header(&mut self, names: &[&str], number: usize) -> Result<(), String> {
         self.header_seen = true;
         if self.spec.is_none() {
+            // Named by its line, not quoted: a file that is no point cloud at all (a system file
+            // named by mistake) must not have its contents printed.
             let spec =
-                ColumnSpec::from_header(names, line).map_err(|error| format!("line {number}: {error}"))?;
+                ColumnSpec::from_header(names, &format!("header on line {number}")).map_err(|error| {
+                    format!("line {number} is neither numbers nor a header naming x, y and z: {error}")
+                })?;
             self.spec = Some(spec);
         }
         Ok(())
@@ -213,10 +217,8 @@ impl TextTable {
                 self.spec = Some(spec);
                 pushed
             }
-            (Err(_), _) if self.rows.is_empty() && !self.header_seen => {
-                self.use_header(&fields, trimmed, number)
-            }
-            (Err(error), _) => Err(format!("line {number}: {error} in {trimmed:?}")),
+            (Err(_), _) if self.rows.is_empty() && !self.header_seen => self.use_header(&fields, number),
+            (Err(error), _) => Err(format!("line {number}: {error}")),
         }
     }
 }

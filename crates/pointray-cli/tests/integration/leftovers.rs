@@ -1,6 +1,7 @@
-//! SIGTERM and SIGINT end a command through its handler, which removes any temporary file of
-//! a write in progress (`pointray_io::temporaries`); stale ones of killed runs are removed by
-//! the next write into their folder.
+//! What runs leave behind: SIGTERM and SIGINT end a command through its handler, which removes
+//! any temporary file of a write in progress (`pointray_io::temporaries`), and stale ones of
+//! killed runs go with the next write into their folder; warnings piped to a file carry no
+//! colour codes; `pointray cache clean` empties the point-set cache.
 
 use crate::common::{pointray_in, write_grid_ply};
 
@@ -59,4 +60,23 @@ fn warnings_carry_no_colour_codes_when_piped() {
     let (ok, _, stderr) = pointray_in(dir.path(), &args);
     assert!(ok && stderr.contains("regenerating"), "a warning is printed: {stderr}");
     assert!(!stderr.contains('\u{1b}'), "no ANSI escape codes: {stderr:?}");
+}
+
+#[test]
+fn cache_clean_removes_cached_point_sets_and_nothing_else() {
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    crate::common::write_points_scene(dir.path(), "scene.toml", "grid.ply");
+    let args = ["render", "scene.toml", "-o", "out.png", "--backend", "cpu", "--width", "8", "--height", "8"];
+    assert!(pointray_in(dir.path(), &args).0);
+    let cache = dir.path().join(".pointray-cache");
+    std::fs::write(cache.join("notes.txt"), b"mine").unwrap();
+    let (ok, stdout, stderr) = pointray_in(dir.path(), &["cache", "clean"]);
+    assert!(ok && stdout.contains("removed 1 cached point sets"), "{stdout}{stderr}");
+    let left: Vec<_> = std::fs::read_dir(&cache).unwrap().flatten().map(|e| e.file_name()).collect();
+    assert_eq!(left, vec![std::ffi::OsString::from("notes.txt")]);
+    std::fs::remove_file(cache.join("notes.txt")).unwrap();
+    assert!(pointray_in(dir.path(), &args).0);
+    assert!(pointray_in(dir.path(), &["cache", "clean"]).0);
+    assert!(!cache.exists(), "an emptied cache folder goes too");
 }
