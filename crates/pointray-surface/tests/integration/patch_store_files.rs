@@ -166,11 +166,14 @@ fn other_files_are_not_patch_stores() {
     assert!(matches!(missing, StoreError::Io { .. }));
 }
 
+/// A change to a patch set that its store must not survive.
+type Damage = fn(&mut PatchSet);
+
 #[test]
 fn numbers_no_renderer_can_build_on_are_malformed_despite_a_good_checksum() {
     let directory = tempfile::tempdir().unwrap();
     let good = sample_patches(BoxKind::Tight);
-    let damages: [(&str, fn(&mut PatchSet)); 5] = [
+    let damages: [(&str, Damage); 5] = [
         ("box 7", |p| p.aabbs[7].max[0] = f32::NAN),
         ("box 0", |p| {
             p.aabbs[0] = pointray_kernels::Aabb::new(glam::Vec3::splat(-1e38), glam::Vec3::splat(1e38))
