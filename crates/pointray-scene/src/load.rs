@@ -4,9 +4,9 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::{DAffine3, DVec3, Vec3};
+use glam::{DAffine3, Vec3};
 use pointray_kernels::Aabb;
-use pointray_surface::geometry_range::{self, extent_problem};
+use pointray_surface::geometry_range::{self, SCENE_EXTENTS, extent_problem};
 use pointray_surface::prep_progress::{NoProgress, PrepProgress};
 
 use crate::error::{InvalidValue, SceneError};
@@ -15,8 +15,8 @@ use crate::intensity_ramp::IntensityRamp;
 use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::point_sets::{self, PointSetOrigin};
 use crate::procedural;
+use crate::render_frame::{RenderFrame, WorldBounds, placed_bounds, recentred_mesh};
 use crate::scene_file::SceneFile;
-use crate::world_origin::{WorldBounds, placed_bounds, recentred_mesh, render_transform, world_origin};
 use crate::{Camera, Geometry, RenderSettings, Scene, SceneObject};
 
 /// Without a `[camera]`, the objects are seen from the front (+Z), a little from the right and
@@ -46,9 +46,10 @@ pub struct LoadedScene {
     pub settings: RenderSettings,
     /// How each point-set object got its patches, by object index.
     pub point_sets: Vec<(usize, PointSetOrigin)>,
-    /// Where the scene's origin lies in the file's coordinates: the scene was recentred there
-    /// in f64 (`world_origin`), so `file = scene + origin`.
-    pub origin: DVec3,
+    /// Where the scene lies in the file's coordinates: it was recentred and scaled in f64
+    /// (`RenderFrame::around`), so `file = origin + scale * scene`. Depths in a rendered frame
+    /// are in scene units: `scale` times them is file units.
+    pub frame: RenderFrame,
 }
 
 pub fn load_scene(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
@@ -66,35 +67,37 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
     let mut slots: Vec<Option<(SceneObject, DAffine3)>> = vec![None; file.objects.len()];
     let mut point_sets = Vec::new();
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| !is_ground(spec)) {
-        let (object, placement, origin) = load_object(file, index, spec, options, (None, DVec3::ZERO))?;
+        let (object, placement, origin) = load_object(file, index, spec, options, (None, RenderFrame::FILE))?;
         point_sets.extend(origin.map(|origin| (index, origin)));
         slots[index] = Some((object, placement));
     }
     let bounds = slots.iter().flatten().filter_map(|(o, placement)| placed_bounds(&o.geometry, placement));
     let bounds = bounds.reduce(WorldBounds::union);
-    if let Some(problem) = bounds.and_then(|b| extent_problem("the scene's objects", b.diagonal())) {
+    if let Some(problem) =
+        bounds.and_then(|b| extent_problem("the scene's objects", b.diagonal(), &SCENE_EXTENTS))
+    {
         return Err(SceneError::Invalid { path: file.path.clone(), key: "objects".into(), problem });
     }
-    let origin = world_origin(bounds);
+    let frame = RenderFrame::around(bounds);
     for (object, placement) in slots.iter_mut().flatten() {
-        object.transform = render_transform(placement, origin);
+        object.transform = frame.transform(placement);
     }
     let others =
         slots.iter().flatten().filter_map(|(object, _)| object.world_bounds()).reduce(|a, b| a.union(&b));
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| is_ground(spec)) {
-        let (mut ground, placement, _) = load_object(file, index, spec, options, (others.as_ref(), origin))?;
-        ground.transform = render_transform(&placement, origin);
+        let (mut ground, placement, _) = load_object(file, index, spec, options, (others.as_ref(), frame))?;
+        ground.transform = frame.transform(&placement);
         slots[index] = Some((ground, placement));
     }
     let objects: Vec<SceneObject> = slots.into_iter().flatten().map(|(object, _)| object).collect();
 
     let lights =
-        file.lights.iter().map(|light| light.to_light(origin)).collect::<Result<_, _>>().map_err(in_file)?;
+        file.lights.iter().map(|light| light.to_light(&frame)).collect::<Result<_, _>>().map_err(in_file)?;
     let camera = match &file.camera {
-        Some(camera) => camera.to_camera(origin).map_err(|e| in_file(e.within("camera")))?,
+        Some(camera) => camera.to_camera(&frame).map_err(|e| in_file(e.within("camera")))?,
         None => default_camera(others.as_ref(), &settings),
     };
-    Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets, origin })
+    Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets, frame })
 }
 
 fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
@@ -105,13 +108,13 @@ fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
 
 /// Loads one object, with its local-to-file placement in f64, and says where a point set's
 /// patches came from. A ground is fitted to `others`, the bounds of every other object in the
-/// render frame, whose origin is the second member.
+/// render frame, the second member.
 fn load_object(
     file: &SceneFile,
     index: usize,
     spec: &ObjectSpec,
     options: &LoadOptions,
-    (others, origin): (Option<&Aabb>, DVec3),
+    (others, frame): (Option<&Aabb>, RenderFrame),
 ) -> Result<(SceneObject, DAffine3, Option<PointSetOrigin>), SceneError> {
     let key = object_key(index, spec);
     let transform =
@@ -151,7 +154,8 @@ fn load_object(
             procedural_object(&cloud, "torus", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
         &ShapeSpec::Ground { auto, height, size } => {
-            let height = height.map(|h| (f64::from(h) - origin.y) as f32);
+            let height = height.map(|h| ((f64::from(h) - frame.origin.y) / frame.scale) as f32);
+            let size = size.map(|s| (f64::from(s) / frame.scale) as f32);
             let mesh = GroundPlacement::new(others, auto, height, size).mesh();
             (Geometry::Mesh(Arc::new(mesh)), None, "ground".to_string())
         }
@@ -164,25 +168,24 @@ fn load_object(
         })?,
         None => geometry,
     };
-    let (geometry, local_offset) = match geometry {
+    let (geometry, local_to_model) = match geometry {
         // prep recentred the points (`input = local + offset`); put them back where they were.
         Geometry::Patches(patches) => {
-            let offset = patches.offset;
+            let offset = DAffine3::from_translation(patches.offset);
             (Geometry::Patches(patches), offset)
         }
         // A ground is built in the render frame.
         Geometry::Mesh(mesh) if matches!(spec.shape, ShapeSpec::Ground { .. }) => {
-            (Geometry::Mesh(mesh), origin)
+            (Geometry::Mesh(mesh), frame.to_file())
         }
         Geometry::Mesh(mesh) => {
             let (mesh, offset) = recentred_mesh(Arc::unwrap_or_clone(mesh));
-            (Geometry::Mesh(Arc::new(mesh)), offset)
+            (Geometry::Mesh(Arc::new(mesh)), DAffine3::from_translation(offset))
         }
     };
-    let placement = transform * DAffine3::from_translation(local_offset);
+    let placement = transform * local_to_model;
     let name = spec.name.clone().unwrap_or(default_name);
-    let object =
-        SceneObject { name, transform: render_transform(&placement, DVec3::ZERO), material, geometry };
+    let object = SceneObject { name, transform: RenderFrame::FILE.transform(&placement), material, geometry };
     Ok((object, placement, point_set_origin))
 }
 

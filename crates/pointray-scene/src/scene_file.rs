@@ -29,7 +29,6 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::DVec3;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
@@ -37,6 +36,7 @@ use crate::checks;
 use crate::error::{InvalidValue, SceneError};
 use crate::material_spec::MaterialSpec;
 use crate::object_spec::{ObjectSpec, ShapeSpec};
+use crate::render_frame::RenderFrame;
 use crate::render_settings::RenderSetting;
 use crate::transform_spec::TransformSpec;
 use crate::{Background, Camera, Light, RenderSettings};
@@ -249,10 +249,10 @@ impl SceneFile {
     /// Every check that needs no file, so that a typo fails before any slow loading.
     fn check(&self) -> Result<(), InvalidValue> {
         if let Some(camera) = &self.camera {
-            camera.to_camera(DVec3::ZERO).map_err(|e| e.within("camera"))?;
+            camera.to_camera(&RenderFrame::FILE).map_err(|e| e.within("camera"))?;
         }
         for (i, light) in self.lights.iter().enumerate() {
-            light.to_light(DVec3::ZERO).map_err(|e| e.within(&format!("lights[{i}]")))?;
+            light.to_light(&RenderFrame::FILE).map_err(|e| e.within(&format!("lights[{i}]")))?;
         }
         self.background()?;
         self.render.settings()?;
@@ -267,11 +267,10 @@ impl SceneFile {
 }
 
 impl CameraSpec {
-    /// The camera in the scene's render frame, whose origin is `origin` in the file's
-    /// coordinates (`load::world_origin`).
-    pub(crate) fn to_camera(&self, origin: DVec3) -> Result<Camera, InvalidValue> {
-        let position = checks::finite_dvec3("position", self.position)? - origin;
-        let look_at = checks::finite_dvec3("look_at", self.look_at)? - origin;
+    /// The camera in the scene's render frame (`RenderFrame`).
+    pub(crate) fn to_camera(&self, frame: &RenderFrame) -> Result<Camera, InvalidValue> {
+        let position = frame.point(checks::finite_dvec3("position", self.position)?);
+        let look_at = frame.point(checks::finite_dvec3("look_at", self.look_at)?);
         let up = checks::nonzero_vec3("up", self.up)?;
         let forward = look_at - position;
         if forward.length_squared() == 0.0 {
@@ -292,11 +291,11 @@ impl CameraSpec {
 }
 
 impl LightSpec {
-    /// The light in the render frame whose origin is `origin` (see `CameraSpec::to_camera`).
-    pub(crate) fn to_light(&self, origin: DVec3) -> Result<Light, InvalidValue> {
+    /// The light in the scene's render frame (`RenderFrame`).
+    pub(crate) fn to_light(&self, frame: &RenderFrame) -> Result<Light, InvalidValue> {
         Ok(match self {
             Self::Point { position, color, intensity } => Light::Point {
-                position: (checks::finite_dvec3("position", *position)? - origin).as_vec3(),
+                position: frame.point(checks::finite_dvec3("position", *position)?).as_vec3(),
                 color: checks::color("color", *color)?,
                 intensity: checks::non_negative("intensity", *intensity)?,
             },

@@ -3,33 +3,40 @@
 //! infinite areas, and a render never ends or draws garbage. Every route checks its geometry
 //! against this range before any build and refuses what lies outside with a clear error.
 
+use std::ops::RangeInclusive;
+
 use pointray_io::TriangleMesh;
 use pointray_kernels::Aabb;
 
-/// The smallest extent (bounding-box diagonal) a cloud or scene may have, in its own units.
-pub const MIN_EXTENT: f64 = 1e-9;
+/// The extents (bounding-box diagonals) a cloud may have, in its own units: `prep` works in
+/// f32 on the recentred cloud.
+pub const CLOUD_EXTENTS: RangeInclusive<f64> = 1e-9..=1e12;
 
-/// The largest extent a cloud or scene may have, in its own units.
-pub const MAX_EXTENT: f64 = 1e12;
+/// The extents a scene's objects may span together, in file units: the loader places them in
+/// f64 and scales the scene to a size near 1 (`pointray_scene::RenderFrame`), so only f32's
+/// own range for the transforms bounds it.
+pub const SCENE_EXTENTS: RangeInclusive<f64> = 1e-30..=1e30;
 
-/// The largest magnitude of a local (recentred) coordinate: a cloud within `MAX_EXTENT`
+/// The largest magnitude of a local (recentred) coordinate: a cloud within `CLOUD_EXTENTS`
 /// stays far below it, and products of two such numbers stay finite in f32.
 pub const MAX_COORDINATE: f32 = 1e15;
 
-/// Why `extent` cannot be traced, if it cannot; `what` names the thing measured.
-pub fn extent_problem(what: &str, extent: f64) -> Option<String> {
+/// Why `extent` cannot be traced, if it cannot; `what` names the thing measured and `range`
+/// is what it may span.
+pub fn extent_problem(what: &str, extent: f64, range: &RangeInclusive<f64>) -> Option<String> {
+    let (min, max) = (*range.start(), *range.end());
     if !extent.is_finite() {
         return Some(format!("{what} has no finite extent"));
     }
-    if extent < MIN_EXTENT {
+    if extent < min {
         return Some(format!(
-            "{what} spans only {extent:e} units, below the {MIN_EXTENT:e} that f32 maths can resolve: \
+            "{what} spans only {extent:e} units, below the {min:e} that f32 maths can resolve: \
              scale the coordinates up"
         ));
     }
-    if extent > MAX_EXTENT {
+    if extent > max {
         return Some(format!(
-            "{what} spans {extent:e} units, beyond the {MAX_EXTENT:e} that f32 maths can hold: \
+            "{what} spans {extent:e} units, beyond the {max:e} that f32 maths can hold: \
              scale the coordinates down"
         ));
     }
@@ -59,10 +66,15 @@ mod tests {
 
     #[test]
     fn extents_outside_the_range_are_explained() {
-        assert_eq!(extent_problem("the cloud", 0.2), None);
-        assert!(extent_problem("the cloud", 3e-26).unwrap().contains("scale the coordinates up"));
-        assert!(extent_problem("the cloud", 2e19).unwrap().contains("scale the coordinates down"));
-        assert!(extent_problem("the cloud", f64::NAN).is_some());
+        assert_eq!(extent_problem("the cloud", 0.2, &CLOUD_EXTENTS), None);
+        assert!(
+            extent_problem("the cloud", 3e-26, &CLOUD_EXTENTS).unwrap().contains("scale the coordinates up")
+        );
+        assert!(
+            extent_problem("the cloud", 2e19, &CLOUD_EXTENTS).unwrap().contains("scale the coordinates down")
+        );
+        assert_eq!(extent_problem("the scene", 2e19, &SCENE_EXTENTS), None);
+        assert!(extent_problem("the cloud", f64::NAN, &CLOUD_EXTENTS).is_some());
     }
 
     #[test]

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use pointray_io::MemoryBudget;
 
-use crate::geometry_range::extent_problem;
+use crate::geometry_range::{CLOUD_EXTENTS, extent_problem};
 
 use crate::outlier_removal::OutlierFilter;
 use crate::patch_set::PrepParams;
@@ -110,7 +110,7 @@ pub fn validate_positions(positions: &[DVec3], k: usize) -> Result<(), PrepError
         return Err(PrepError::AllPointsIdentical { count });
     }
     // Measured from one point, the extent is at least half the bounding box's diagonal.
-    if let Some(problem) = extent_problem("the cloud", extent) {
+    if let Some(problem) = extent_problem("the cloud", extent, &CLOUD_EXTENTS) {
         return Err(PrepError::ExtentOutOfRange { problem });
     }
     let direction = (farthest - anchor) / extent;

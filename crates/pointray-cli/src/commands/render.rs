@@ -63,12 +63,13 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let cache_dir = cache_dir_for(&args.output);
     let bar = PrepBar::default();
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar };
-    let LoadedScene { scene, .. } = load_scene_file(&file, &options)?;
+    let LoadedScene { scene, frame: render_frame, .. } = load_scene_file(&file, &options)?;
     let backend = Backend::open(args.backend.backend, &args.backend.device)?;
     println!("backend: {}", backend.describe());
     let started = Instant::now();
-    let frame = backend.render(&scene, &settings)?;
+    let mut frame = backend.render(&scene, &settings)?;
     let elapsed = started.elapsed();
+    frame.scale_depth(render_frame.scale as f32);
     let written = write_frame(&frame, &args.output, &aovs)?;
     println!("rendered {}x{} in {:.2?}", settings.width, settings.height, elapsed);
     for path in written {

@@ -75,9 +75,11 @@ fn a_poisoned_cache_entry_is_regenerated_not_kept() {
 fn transforms_and_shapes_beyond_f32_are_refused_clearly() {
     let dir = tempfile::tempdir().unwrap();
     write_grid_ply(&dir.path().join("grid.ply"));
+    // Scaled far beyond f32's comfort, a scene still renders: the loader scales it back.
     let cases = [
-        ("[objects.transform]\nscale = 1e19\n", "scale the coordinates down"),
-        ("[objects.transform]\nscale = 1e-25\n", "scale the coordinates up"),
+        ("[objects.transform]\nscale = 1e19\n", None),
+        ("[objects.transform]\nscale = 1e-25\n", None),
+        ("[objects.transform]\nscale = 3e38\n", Some("scale the coordinates down")),
     ];
     for (transform, expected) in cases {
         let scene = write_points_scene(dir.path(), "scene.toml", "grid.ply");
@@ -90,7 +92,10 @@ fn transforms_and_shapes_beyond_f32_are_refused_clearly() {
         );
         std::fs::write(&scene, text).unwrap();
         let (ok, stderr) = render(dir.path(), "scene.toml");
-        assert!(!ok && stderr.contains(expected), "{transform}: {stderr}");
+        match expected {
+            Some(expected) => assert!(!ok && stderr.contains(expected), "{transform}: {stderr}"),
+            None => assert!(ok, "{transform}: {stderr}"),
+        }
     }
     std::fs::write(
         dir.path().join("sphere.toml"),

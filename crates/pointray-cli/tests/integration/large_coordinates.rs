@@ -41,10 +41,13 @@ fn write_scene(dir: &Path, name: &str, points: &str, translate: DVec3, frame: DV
     path
 }
 
+/// Rendered as `pointray render` does: depths in the file's units.
 fn render(scene: &Path) -> Frame {
     let loaded = load_scene(scene, &LoadOptions::default()).expect("the scene loads");
     let settings = RenderSettings { width: 96, height: 72, ..loaded.settings };
-    pointray_cpu::render(&loaded.scene, &settings)
+    let mut frame = pointray_cpu::render(&loaded.scene, &settings);
+    frame.scale_depth(loaded.frame.scale as f32);
+    frame
 }
 
 /// The mean colour difference and the share of pixels whose hit object differs.
@@ -73,4 +76,28 @@ fn utm_scenes_render_as_the_same_scene_at_the_origin() {
         assert!(hits < 0.01, "{what}: {:.1}% of pixels hit another object", 100.0 * hits);
         assert!(colour < 0.01, "{what}: colours differ by {colour} on average");
     }
+}
+
+#[test]
+fn a_cloud_scaled_by_1e10_renders_as_at_its_own_scale() {
+    let dir = tempfile::tempdir().unwrap();
+    pointray_io::formats::ply::write_point_cloud(&dir.path().join("local.ply"), &wavy_grid(DVec3::ZERO))
+        .unwrap();
+    let scene = |scale: &str| {
+        let path = dir.path().join(format!("scaled-{scale}.toml"));
+        let text = format!(
+            "[[lights]]\ntype = \"directional\"\ndirection = [-0.4, -1.0, -0.5]\n\n\
+             [[objects]]\ntype = \"points\"\npath = \"local.ply\"\n[objects.transform]\nscale = {scale}\n\n\
+             [[objects]]\ntype = \"ground\"\nauto = true\n"
+        );
+        std::fs::write(&path, text).unwrap();
+        render(&path)
+    };
+    let (unit, scaled) = (scene("1.0"), scene("1e10"));
+    let (colour, hits) = difference(&unit, &scaled);
+    assert!(hits < 0.01, "{:.1}% of pixels hit another object", 100.0 * hits);
+    assert!(colour < 0.01, "colours differ by {colour} on average");
+    let hit = (0..unit.pixel_count()).find(|&i| unit.depth[i].is_finite()).expect("something is hit");
+    let ratio = scaled.depth[hit] / unit.depth[hit];
+    assert!((ratio / 1e10 - 1.0).abs() < 1e-3, "depths are in the file's units: ratio {ratio}");
 }
