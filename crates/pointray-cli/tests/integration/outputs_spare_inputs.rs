@@ -72,6 +72,14 @@ fn view_refuses_a_screenshot_over_its_points_file() {
         &["view", "grid.png", "--backend", "cpu", "--frames", "1", "--screenshot", "grid.png"],
     );
     assert!(!ok && stderr.contains("refusing to write over the input file"), "{stderr}");
+    #[cfg(unix)]
+    {
+        std::fs::create_dir(dir.path().join("frames")).unwrap();
+        std::fs::hard_link(dir.path().join("grid.png"), dir.path().join("frames/frame-00001.png")).unwrap();
+        let args = ["view", "grid.png", "--backend", "cpu", "--frames", "3", "--sequence", "frames"];
+        let (ok, _, stderr) = pointray_in(dir.path(), &args);
+        assert!(!ok && stderr.contains("refusing to write over the input file"), "{stderr}");
+    }
 }
 
 #[test]
