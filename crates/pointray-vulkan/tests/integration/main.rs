@@ -6,6 +6,7 @@ mod common;
 mod demo_scene;
 mod devices;
 mod hit_reordering;
+mod large_coordinates;
 mod layouts;
 mod point_colors;
 mod reflection;
