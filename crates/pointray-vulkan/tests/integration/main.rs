@@ -1,6 +1,7 @@
 //! The vulkan crate's integration tests, in one binary so that CI links it once.
 
 mod against_cpu;
+mod bad_geometry;
 mod bench_hooks;
 mod common;
 mod demo_scene;
