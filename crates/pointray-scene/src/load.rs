@@ -4,11 +4,12 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::{DAffine3, Vec3};
+use glam::{DAffine3, DVec3, Vec3};
 use pointray_kernels::Aabb;
 use pointray_surface::geometry_range::{self, SCENE_EXTENTS, extent_problem};
 use pointray_surface::prep_progress::{NoProgress, PrepProgress};
 
+use crate::checks;
 use crate::error::{InvalidValue, SceneError};
 use crate::ground::GroundPlacement;
 use crate::intensity_ramp::IntensityRamp;
@@ -154,8 +155,15 @@ fn load_object(
             procedural_object(&cloud, "torus", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
         &ShapeSpec::Ground { auto, height, size } => {
-            let height = height.map(|h| ((f64::from(h) - frame.origin.y) / frame.scale) as f32);
-            let size = size.map(|s| (f64::from(s) / frame.scale) as f32);
+            let in_frame = |value: f64, name: &str| {
+                checks::placeable(name, DVec3::splat(value))
+                    .map(|v| v.x)
+                    .map_err(|e| e.within(&key).in_file(&file.path))
+            };
+            let height = height
+                .map(|h| in_frame((f64::from(h) - frame.origin.y) / frame.scale, "height"))
+                .transpose()?;
+            let size = size.map(|s| in_frame(f64::from(s) / frame.scale, "size")).transpose()?;
             let mesh = GroundPlacement::new(others, auto, height, size).mesh();
             (Geometry::Mesh(Arc::new(mesh)), None, "ground".to_string())
         }

@@ -285,8 +285,12 @@ impl CameraSpec {
                 format!("must be between 0 and 180, got {}", self.vfov_degrees),
             ));
         }
-        let (position, look_at) = (position.as_vec3(), look_at.as_vec3());
-        Ok(Camera { position, look_at, up, vertical_fov_degrees: self.vfov_degrees })
+        Ok(Camera {
+            position: checks::placeable("position", position)?,
+            look_at: checks::placeable("look_at", look_at)?,
+            up,
+            vertical_fov_degrees: self.vfov_degrees,
+        })
     }
 }
 
@@ -295,7 +299,10 @@ impl LightSpec {
     pub(crate) fn to_light(&self, frame: &RenderFrame) -> Result<Light, InvalidValue> {
         Ok(match self {
             Self::Point { position, color, intensity } => Light::Point {
-                position: frame.point(checks::finite_dvec3("position", *position)?).as_vec3(),
+                position: checks::placeable(
+                    "position",
+                    frame.point(checks::finite_dvec3("position", *position)?),
+                )?,
                 color: checks::color("color", *color)?,
                 intensity: checks::non_negative("intensity", *intensity)?,
             },
