@@ -92,8 +92,13 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
     }
     let objects: Vec<SceneObject> = slots.into_iter().flatten().map(|(object, _)| object).collect();
 
-    let lights =
-        file.lights.iter().map(|light| light.to_light(&frame)).collect::<Result<_, _>>().map_err(in_file)?;
+    let lights = file
+        .lights
+        .iter()
+        .enumerate()
+        .map(|(i, light)| light.to_light(&frame).map_err(|e| e.within(&format!("lights[{i}]"))))
+        .collect::<Result<_, _>>()
+        .map_err(in_file)?;
     let camera = match &file.camera {
         Some(camera) => camera.to_camera(&frame).map_err(|e| in_file(e.within("camera")))?,
         None => default_camera(others.as_ref(), &settings),

@@ -75,26 +75,29 @@ fn a_poisoned_cache_entry_is_regenerated_not_kept() {
 fn transforms_and_shapes_beyond_f32_are_refused_clearly() {
     let dir = tempfile::tempdir().unwrap();
     write_grid_ply(&dir.path().join("grid.ply"));
-    // Scaled far beyond f32's comfort, a scene still renders: the loader scales it back.
+    // Scaled far beyond f32's comfort, a scene still renders: the loader scales it back. A
+    // point light 2.5 units from a cloud 1e-26 across lies beyond f32 in the scene's own units.
+    let directional = "[[lights]]\ntype = \"directional\"\ndirection = [-0.4, -1.0, -0.5]\n";
     let cases = [
-        ("[objects.transform]\nscale = 1e19\n", None),
-        ("[objects.transform]\nscale = 1e-25\n", None),
-        ("[objects.transform]\nscale = 3e38\n", Some("scale the coordinates down")),
+        ("scale = 1e19", None, None),
+        ("scale = 1e-25", Some(directional), None),
+        ("scale = 1e-25", None, Some("lights[0].position: lies")),
+        ("scale = 3e38", None, Some("scale the coordinates down")),
     ];
-    for (transform, expected) in cases {
+    for (scale, lights, expected) in cases {
         let scene = write_points_scene(dir.path(), "scene.toml", "grid.ply");
-        let text = std::fs::read_to_string(&scene).unwrap();
+        let mut text = std::fs::read_to_string(&scene).unwrap();
+        if let Some(lights) = lights {
+            text = format!("{lights}{}", &text[text.find("[[objects]]").unwrap()..]);
+        }
         // The transform belongs to the points object, which precedes the ground.
-        let text = text.replacen(
-            "[[objects]]\ntype = \"ground\"",
-            &format!("{transform}\n[[objects]]\ntype = \"ground\""),
-            1,
-        );
+        let ground = "[[objects]]\ntype = \"ground\"";
+        text = text.replacen(ground, &format!("[objects.transform]\n{scale}\n\n{ground}"), 1);
         std::fs::write(&scene, text).unwrap();
         let (ok, stderr) = render(dir.path(), "scene.toml");
         match expected {
-            Some(expected) => assert!(!ok && stderr.contains(expected), "{transform}: {stderr}"),
-            None => assert!(ok, "{transform}: {stderr}"),
+            Some(expected) => assert!(!ok && stderr.contains(expected), "{scale}: {stderr}"),
+            None => assert!(ok, "{scale}: {stderr}"),
         }
     }
     std::fs::write(
