@@ -160,6 +160,18 @@ fn errors_never_print_the_contents_of_a_file_named_by_mistake() {
         assert!(!ok && stderr.contains("passwd"), "the error names the file: {stderr}");
         assert!(!stderr.contains("SECRET-MARKER"), "the file's contents were printed: {stderr}");
     }
+    let lookalikes = [
+        ("mesh.obj", "v 0 0 0\nv SECRET-MARKER 1 1\nf 1 2 3\n"),
+        ("corner.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 SECRET-MARKER\n"),
+        ("header.ply", "ply\nformat ascii 1.0\nelement vertex 2 SECRET-MARKER\nend_header\n"),
+    ];
+    for (name, text) in lookalikes {
+        let input = write(dir.path(), name, text.as_bytes());
+        let output = dir.path().join("out.patches");
+        let (ok, stderr) = pointray(&["prep", input.to_str().unwrap(), "-o", output.to_str().unwrap()]);
+        assert!(!ok && stderr.contains(name), "{name}: {stderr}");
+        assert!(!stderr.contains("SECRET-MARKER"), "{name}: the file's contents were printed: {stderr}");
+    }
 }
 
 #[test]
