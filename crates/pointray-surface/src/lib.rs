@@ -3,6 +3,7 @@
 pub mod cold_records;
 pub mod density_radius;
 pub mod duplicates;
+pub mod geometry_range;
 pub mod input_validation;
 pub mod morton;
 pub mod neighbors;
@@ -10,6 +11,7 @@ pub mod normals;
 pub mod orientation;
 pub mod outlier_removal;
 pub mod patch_bounds;
+mod patch_checks;
 pub mod patch_set;
 pub mod patch_store;
 pub mod prep;

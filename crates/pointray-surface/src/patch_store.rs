@@ -27,13 +27,12 @@
 //! those of `pointray_kernels::layout`, so the sections can be uploaded to the GPU as
 //! they are. `docs/PATCH_STORE.md` describes the same format.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
-use pointray_kernels::{Aabb, COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot};
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 
 use crate::patch_bounds::BoxKind;
 use crate::patch_set::{PatchSet, PrepParams};
@@ -114,17 +113,19 @@ impl Layout {
     }
 }
 
-/// Writes `patches` to `path` atomically: a temporary file in the same directory,
-/// renamed over `path` only once complete.
+/// Writes `patches` to `path` atomically (`pointray_io::write_atomically`): a temporary file
+/// in the same directory, renamed over `path` only once complete.
 pub fn write(path: &Path, patches: &PatchSet) -> Result<(), StoreError> {
-    let io_error = |source| StoreError::Io { path: path.to_path_buf(), source };
-    let directory = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let neighbor_slots = neighbor_slots(patches)
         .map_err(|problem| StoreError::InconsistentPatchSet { path: path.to_path_buf(), problem })?;
-    let temporary = tempfile::NamedTempFile::new_in(directory).map_err(io_error)?;
-    write_contents(temporary.as_file(), patches, neighbor_slots).map_err(io_error)?;
-    temporary.persist(path).map_err(|e| io_error(e.error))?;
-    Ok(())
+    pointray_io::write_atomically(path, |file| write_contents(file, patches, neighbor_slots)).map_err(
+        |error| match error {
+            pointray_io::IoError::Os { path, source } => StoreError::Io { path, source },
+            other => {
+                StoreError::Io { path: path.to_path_buf(), source: std::io::Error::other(other.to_string()) }
+            }
+        },
+    )
 }
 
 /// How many colour neighbours each patch has (0 or `COLOR_NEIGHBORS`), or why the record
@@ -145,14 +146,11 @@ fn neighbor_slots(patches: &PatchSet) -> Result<u32, String> {
 }
 
 /// The header and the sections, then the checksum of both.
-fn write_contents(file: &File, patches: &PatchSet, neighbor_slots: u32) -> std::io::Result<()> {
-    let mut writer = ChecksummedWriter::new(BufWriter::with_capacity(1 << 20, file));
+fn write_contents(file: &mut impl Write, patches: &PatchSet, neighbor_slots: u32) -> std::io::Result<()> {
+    let mut writer = ChecksummedWriter::new(file);
     write_body(&mut writer, patches, neighbor_slots)?;
     let checksum = writer.hasher.finalize();
-    let mut inner = writer.inner;
-    inner.write_all(&checksum.to_le_bytes())?;
-    inner.flush()?;
-    file.sync_all()
+    writer.inner.write_all(&checksum.to_le_bytes())
 }
 
 fn write_body(
@@ -220,7 +218,12 @@ impl<W: Write> ChecksummedWriter<W> {
 /// magic, the version, the length and the checksum.
 pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let bytes = std::fs::read(path).map_err(|source| StoreError::Io { path: path.to_path_buf(), source })?;
-    let header = checked_header(path, &bytes)?;
+    read_from(&bytes, path)
+}
+
+/// Reads a patch store held in memory; `path` names it in errors.
+pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
+    let header = checked_header(path, bytes)?;
     let malformed =
         |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
     let layout = Layout::new(header.point_count, header.neighbor_slots)
@@ -233,7 +236,7 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
         let Section { offset, length } = layout.sections[i];
         &bytes[offset as usize..(offset + length) as usize]
     };
-    Ok(PatchSet {
+    let patches = PatchSet {
         params: PrepParams {
             k: header.k,
             normal_k: header.normal_k,
@@ -245,24 +248,11 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
         aabbs: bytemuck::pod_collect_to_vec(section(0)),
         hot: bytemuck::pod_collect_to_vec(section(1)),
         cold: bytemuck::pod_collect_to_vec(section(2)),
-        color_neighbors: checked_neighbors(section(3), header.point_count)
-            .map_err(|problem| malformed(&problem))?,
-    })
-}
-
-/// The neighbour section, once every entry is a patch index or `NO_NEIGHBOR`: the GPU reads
-/// the patches they name without bounds checks.
-fn checked_neighbors(bytes: &[u8], point_count: u64) -> Result<Vec<u32>, String> {
-    let neighbors: Vec<u32> = bytemuck::pod_collect_to_vec(bytes);
-    match neighbors.iter().position(|&j| j != NO_NEIGHBOR && u64::from(j) >= point_count) {
-        Some(bad) => Err(format!(
-            "colour neighbour {} of patch {} is {}, beyond the {point_count} patches",
-            bad % COLOR_NEIGHBORS,
-            bad / COLOR_NEIGHBORS,
-            neighbors[bad]
-        )),
-        None => Ok(neighbors),
-    }
+        color_neighbors: bytemuck::pod_collect_to_vec(section(3)),
+    };
+    // A store can pass its checksum and still hold numbers no renderer can build on.
+    patches.check().map_err(|problem| malformed(&problem))?;
+    Ok(patches)
 }
 
 /// The header, once magic, version, length and checksum have been verified.

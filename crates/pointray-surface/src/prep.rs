@@ -1,7 +1,7 @@
 //! `prep`: from a point cloud to a `PatchSet` (SPEC.md §2), stage by stage.
 
 use glam::{DVec3, Vec2, Vec3};
-use pointray_io::PointCloud;
+use pointray_io::{MemoryBudget, PointCloud};
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
 use pointray_kernels::packed_frame::normal_basis;
 use pointray_kernels::{Aabb, PackedFrame, PatchCold, PatchHot, TangentFrame};
@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use crate::cold_records::{cold_records, color_neighbor_table};
 use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii, cell_radii};
 use crate::duplicates::merge_duplicates;
-use crate::input_validation::{validate_params, validate_positions};
+use crate::input_validation::{validate_options, validate_positions, validate_size};
 use crate::morton::morton_order;
 use crate::neighbors::{Neighbors, k_nearest};
 use crate::normals::pca_normals;
@@ -77,7 +77,7 @@ pub fn prep(
     let (k, normal_k) = (params.k as usize, params.normal_k as usize);
     let mut clock = StageClock { progress, times: Vec::new() };
     let count = cloud.len();
-    clock.run(Stage::Validate, count, || validate(cloud, &params))?;
+    clock.run(Stage::Validate, count, || validate(cloud, options))?;
     let (offset, recentred) = clock.run(Stage::Recentre, count, || recentre(&cloud.positions));
     let order = clock.run(Stage::MortonSort, count, || morton_order(&recentred));
     let sorted = gather(&recentred, &order);
@@ -178,8 +178,9 @@ fn unstructured_shaped(
     }
 }
 
-fn validate(cloud: &PointCloud, params: &PrepParams) -> Result<(), PrepError> {
-    validate_params(params)?;
+fn validate(cloud: &PointCloud, options: &PrepOptions) -> Result<(), PrepError> {
+    validate_options(options)?;
+    validate_size(cloud.len(), &options.params, &MemoryBudget::of_this_machine())?;
     let expected = cloud.len();
     let lengths = [
         ("normals", cloud.normals.as_ref().map(Vec::len)),
@@ -191,7 +192,7 @@ fn validate(cloud: &PointCloud, params: &PrepParams) -> Result<(), PrepError> {
             return Err(PrepError::AttributeLength { attribute, found, expected });
         }
     }
-    validate_positions(&cloud.positions, params.k as usize)
+    validate_positions(&cloud.positions, options.params.k as usize)
 }
 
 /// Recentres on the bounding-box centre in f64, then drops to f32: geo-referenced
@@ -266,7 +267,6 @@ fn keep_inliers(
     kept: &[u32],
     k: usize,
 ) -> Result<Vec<u32>, PrepError> {
-    filter.validate()?;
     let inliers = filter.inliers(&gather(sorted, kept));
     let survivors: Vec<u32> =
         kept.iter().zip(inliers).filter(|(_, inlier)| *inlier).map(|(&i, _)| i).collect();

@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::DVec3;
-use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, ScanMode, prep};
+use pointray_surface::input_validation::validate_options;
+use pointray_surface::{OutlierFilter, PrepError, PrepOptions, PrepParams, ScanMode, prep};
 
 use crate::boxes_arg::Boxes;
 use crate::progress::PrepBar;
@@ -73,8 +74,10 @@ impl From<Scan> for ScanMode {
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {
-    pointray_io::ensure_not_same_file(&args.points, &args.output)?;
-    let cloud = pointray_io::formats::read_point_cloud(&args.points)?;
+    pointray_io::ensure_outputs_spare_inputs(
+        std::slice::from_ref(&args.points),
+        std::slice::from_ref(&args.output),
+    )?;
     let params = PrepParams {
         k: args.k,
         normal_k: args.normal_k,
@@ -90,6 +93,8 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         radius_mode: args.radius.into(),
         scan: args.scan.into(),
     };
+    validate_options(&options).map_err(flag_error)?;
+    let cloud = pointray_io::formats::read_point_cloud(&args.points)?;
     let bar = PrepBar::default();
     let (patches, report) =
         prep(&cloud, &options, &bar).map_err(|e| anyhow::anyhow!("{}: {e}", args.points.display()))?;
@@ -97,6 +102,17 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     println!("{report}");
     println!("wrote {} patches to {} (offset stored in its header)", patches.len(), args.output.display());
     Ok(())
+}
+
+/// A prep setting's error, named by the flag that sets it.
+pub fn flag_error(error: PrepError) -> anyhow::Error {
+    match error {
+        PrepError::InvalidSetting { setting, problem } => {
+            let flag = setting.split('.').next().unwrap_or(setting).replace('_', "-");
+            anyhow::anyhow!("--{flag}: {problem}")
+        }
+        other => other.into(),
+    }
 }
 
 /// Parses `x,y,z`.
@@ -118,6 +134,5 @@ fn parse_outlier_filter(text: &str) -> Result<OutlierFilter, String> {
         neighbors: neighbors.trim().parse().map_err(|e| format!("K `{neighbors}`: {e}"))?,
         sigmas: sigmas.trim().parse().map_err(|e| format!("N `{sigmas}`: {e}"))?,
     };
-    filter.validate().map_err(|e| e.to_string())?;
     Ok(filter)
 }

@@ -2,6 +2,7 @@
 
 mod common;
 mod frame_output;
+mod fuzz_regressions;
 mod loading;
 mod point_set_cache;
 mod procedural;

@@ -38,6 +38,6 @@ fn disk_scales_outside_the_range_are_refused() {
     let cloud = common::height_field(10, DVec3::ZERO, |_, _| 0.0);
     for bad in [0.0, -0.5, 2.5, f32::NAN] {
         let error = prepped(&cloud, bad).expect_err("a bad disk scale must be refused");
-        assert!(error.to_string().contains("disk scale"), "{error}");
+        assert!(error.to_string().contains("disk_scale"), "{error}");
     }
 }
