@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Runs the Table 1 benchmark on the GPU machine (the `run` device tool; bench/RESULTS.md has
-# the exact calls). Expects, carried from the workspace: .gl (the Vulkan loader packages),
+# Runs the Table 1 benchmark on a machine with an NVIDIA GPU and the Vulkan loader
+# (bench/RESULTS.md has the exact calls). Expects, carried from the workspace: .gl (the Vulkan loader packages),
 # .devbin/bench/pointray (a release build of pointray-cli) and .devbin/data (the shared
 # meshes and points). Writes table1.json and table1.md to $OUT (or out/bench here).
 # FRAMES and WARMUP set the timed and warm-up frames (default 100 and 10); extra arguments

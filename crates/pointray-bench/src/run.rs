@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use pointray_scene::load::{LoadOptions, load_scene};
-use pointray_scene::{AcceptanceTest, BufferLayout, Geometry, RenderSettings, Scene};
+use pointray_scene::{BufferLayout, Geometry, PatchAcceptance, RenderSettings, Scene};
 use pointray_surface::{BoxKind, NoProgress, PrepOptions, PrepParams, RadiusMode};
 use pointray_vulkan::{BlasLayout, PixelOutput, VulkanError, VulkanRenderer};
 
@@ -157,7 +157,7 @@ impl ModelRun<'_> {
     fn ablations(&mut self, base: &Scene, settings: &RenderSettings) -> Result<(), BenchError> {
         let combined = RenderSettings { buffer_layout: BufferLayout::Combined, ..*settings };
         self.time(base, &combined, BlasLayout::OneGeometry, Variant::CombinedBuffers)?;
-        let box_test = RenderSettings { acceptance: AcceptanceTest::Box, ..*settings };
+        let box_test = RenderSettings { acceptance: PatchAcceptance::Box, ..*settings };
         self.time(base, &box_test, BlasLayout::OneGeometry, Variant::BoxAcceptance)?;
         self.time(base, settings, BlasLayout::OneGeometry, Variant::AovOutput)?;
         if let Some(reordering) = self.options.reordering {

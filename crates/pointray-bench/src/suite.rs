@@ -95,6 +95,16 @@ impl ModelSpec {
     }
 
     /// The sizes to time as (width, height).
+    /// The data files this model reads, inside the data folder `data`.
+    pub fn input_files(&self, data: &Path) -> Vec<PathBuf> {
+        let stand_in_mesh = self.stand_in.as_ref().map(|stand_in| &stand_in.mesh);
+        [self.points.as_ref(), self.mesh.as_ref(), stand_in_mesh]
+            .into_iter()
+            .flatten()
+            .map(|p| data.join(p))
+            .collect()
+    }
+
     pub fn size_list(&self) -> Vec<(u32, u32)> {
         self.sizes.iter().filter_map(|s| parse_size(s).ok()).collect()
     }

@@ -1,12 +1,14 @@
 //! `pointray`: point clouds rendered as smooth surfaces by ray tracing.
 
-mod acceptance_arg;
 mod backend;
 mod boxes_arg;
 mod columns_arg;
 mod commands;
 mod progress;
 mod radius_arg;
+mod setting_flag;
+
+use std::io::IsTerminal;
 
 use clap::{Parser, Subcommand};
 
@@ -29,11 +31,13 @@ enum Command {
     Fidelity(commands::fidelity::FidelityArgs),
     Bench(commands::bench::BenchArgs),
     View(commands::view::ViewArgs),
+    Cache(commands::cache::CacheArgs),
 }
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     init_logging(cli.verbose);
+    remove_temporaries_on_interrupt();
     let result = match cli.command {
         Command::Sample(args) => commands::sample::run(args),
         Command::Prep(args) => commands::prep::run(args),
@@ -42,6 +46,7 @@ fn main() -> std::process::ExitCode {
         Command::Fidelity(args) => commands::fidelity::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::View(args) => commands::view::run(args),
+        Command::Cache(args) => commands::cache::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
@@ -52,13 +57,31 @@ fn main() -> std::process::ExitCode {
     }
 }
 
+/// SIGINT, SIGTERM and SIGHUP end the process after removing the temporary file of any write
+/// in progress; the destination is never partial either way. SIGKILL cannot be caught: the
+/// next write into that folder removes what it left (`pointray_io::temporaries`).
+fn remove_temporaries_on_interrupt() {
+    let installed = ctrlc::set_handler(|| {
+        pointray_io::temporaries::remove_live();
+        std::process::exit(INTERRUPTED);
+    });
+    if let Err(error) = installed {
+        tracing::warn!("cannot clean up on interrupt: {error}");
+    }
+}
+
+/// The exit status of a process ended by SIGINT, as shells report it.
+const INTERRUPTED: i32 = 130;
+
 fn init_logging(verbose: u8) {
     let level = match verbose {
         0 => tracing::Level::WARN,
         1 => tracing::Level::INFO,
         _ => tracing::Level::DEBUG,
     };
-    tracing_subscriber::fmt().with_max_level(level).with_writer(std::io::stderr).init();
+    // Colour codes only for a terminal: piped into a file or another program they are noise.
+    let colour = std::io::stderr().is_terminal();
+    tracing_subscriber::fmt().with_max_level(level).with_writer(std::io::stderr).with_ansi(colour).init();
 }
 
 /// The error and its causes on one line. Our library errors already quote their source in

@@ -3,6 +3,7 @@
 use glam::{Affine3A, Mat3A, Vec3};
 use pointray_kernels::{Aabb, PatchAcceptance, Ray};
 use pointray_scene::SceneObject;
+use pointray_surface::geometry_range::box_in_range;
 
 use crate::object_bvh::{ObjectBvh, ObjectHit};
 
@@ -28,6 +29,10 @@ impl Instance {
         let blas = ObjectBvh::build(&object.geometry)?;
         let world_to_object = object.transform.inverse();
         let world_bounds = transformed_box(&blas.bounds(), &object.transform);
+        if !box_in_range(&world_bounds) {
+            tracing::warn!("CPU renderer: object {:?} is placed beyond the f32 range; left out", object.name);
+            return None;
+        }
         Some(Self {
             object_index,
             blas,

@@ -6,6 +6,7 @@
 //! A `CpuRenderer` builds its BVHs once; its camera and lights can then be changed between
 //! frames (`set_camera`, `set_lights`) without rebuilding anything.
 
+mod first_hit;
 mod instance;
 mod object_bvh;
 mod path;
@@ -16,6 +17,7 @@ mod shading;
 mod top_level;
 mod triangle;
 
+pub use first_hit::RayHit;
 pub use ray_counts::RayCounts;
 pub use renderer::CpuRenderer;
 

@@ -11,6 +11,7 @@ use pointray_io::TriangleMesh;
 use pointray_kernels::{Aabb, PatchAcceptance, Ray, intersect_patch};
 use pointray_scene::Geometry;
 use pointray_surface::PatchSet;
+use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
 
 use crate::triangle::intersect_triangle;
 
@@ -101,8 +102,10 @@ impl ObjectBvh {
         }
         let (t_min, t_max) = (candidate.tmin, candidate.tmax);
         match &self.geometry {
-            Geometry::Patches(patches) => intersect_patch(ray, &patches.hot[index], t_min, t_max, acceptance)
-                .map(|hit| ObjectHit { t: hit.t, primitive, uv: hit.uv }),
+            Geometry::Patches(patches) => {
+                intersect_patch(ray, &patches.hot[index].decode(), t_min, t_max, acceptance)
+                    .map(|hit| ObjectHit { t: hit.t, primitive, uv: hit.uv })
+            }
             Geometry::Mesh(mesh) => intersect_triangle(ray, triangle_corners(mesh, index), t_min, t_max)
                 .map(|t| ObjectHit { t, primitive, uv: Vec2::ZERO }),
         }
@@ -122,17 +125,24 @@ fn enters_box(bounds: &obvhs::aabb::Aabb, ray: &obvhs::ray::Ray) -> bool {
     entry <= exit
 }
 
+/// Records the BVH builder cannot take: it panics on NaN or infinite boxes.
 fn inconsistency(geometry: &Geometry) -> Option<String> {
     match geometry {
         Geometry::Patches(patches) if patches.aabbs.len() != patches.hot.len() => {
             Some(format!("{} patch boxes for {} patches", patches.aabbs.len(), patches.hot.len()))
         }
+        Geometry::Patches(patches) => {
+            let bad = patches.aabbs.iter().position(|aabb| !box_in_range(aabb))?;
+            Some(format!("patch box {bad} is not finite or out of range"))
+        }
         Geometry::Mesh(mesh) => {
             let vertices = mesh.positions.len();
+            if let Some(bad) = first_vertex_out_of_range(mesh) {
+                return Some(format!("vertex {bad} is not finite or out of range"));
+            }
             let bad = mesh.triangles.iter().position(|t| t.iter().any(|&i| i as usize >= vertices))?;
             Some(format!("triangle {bad} names a vertex beyond the mesh's {vertices}"))
         }
-        Geometry::Patches(_) => None,
     }
 }
 

@@ -86,10 +86,10 @@ impl CpuRenderer {
     }
 
     /// The hit primitive's normal in object space (not face-forwarded, any length).
-    fn object_normal(&self, hit: &SceneHit) -> Vec3 {
+    pub(crate) fn object_normal(&self, hit: &SceneHit) -> Vec3 {
         let index = hit.primitive as usize;
         match self.top.instances[hit.instance].blas.geometry() {
-            Geometry::Patches(patches) => patch_normal(&patches.hot[index], hit.uv),
+            Geometry::Patches(patches) => patch_normal(&patches.hot[index].decode(), hit.uv),
             Geometry::Mesh(mesh) => {
                 let [a, b, c] = triangle_corners(mesh, index);
                 (b - a).cross(c - a)

@@ -2,8 +2,8 @@
 //! over pixel tiles.
 
 use glam::{UVec2, Vec3};
-use pointray_kernels::{PatchAcceptance, PinholeCamera, Ray, camera_ray, sample_jitter};
-use pointray_scene::{AcceptanceTest, Frame, RenderSettings, Scene};
+use pointray_kernels::{PinholeCamera, Ray, camera_ray, sample_jitter};
+use pointray_scene::{Frame, RenderSettings, Scene};
 use rayon::prelude::*;
 
 use crate::path::PrimaryAov;
@@ -106,18 +106,11 @@ impl CpuRenderer {
     }
 
     pub(crate) fn closest_hit(&self, ray: &Ray, t_min: f32, settings: &RenderSettings) -> Option<SceneHit> {
-        self.top.closest_hit(ray, t_min, f32::INFINITY, acceptance(settings.acceptance))
+        self.top.closest_hit(ray, t_min, f32::INFINITY, settings.acceptance)
     }
 
     pub(crate) fn occluded(&self, ray: &Ray, t_min: f32, distance: f32, settings: &RenderSettings) -> bool {
-        self.top.occluded(ray, t_min, distance, acceptance(settings.acceptance))
-    }
-}
-
-fn acceptance(test: AcceptanceTest) -> PatchAcceptance {
-    match test {
-        AcceptanceTest::Box => PatchAcceptance::Box,
-        AcceptanceTest::Disk => PatchAcceptance::Disk,
+        self.top.occluded(ray, t_min, distance, settings.acceptance)
     }
 }
 

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use glam::Vec3;
 use pointray_io::TriangleMesh;
-use pointray_scene::{AcceptanceTest, RenderSettings};
+use pointray_scene::{PatchAcceptance, RenderSettings};
 use pointray_surface::PatchSet;
 
 use crate::view_directions::view_directions;
@@ -20,12 +20,12 @@ pub struct FidelityOptions {
     pub directions: Vec<Vec3>,
     /// Square images of this many pixels a side.
     pub size: u32,
-    pub acceptance: AcceptanceTest,
+    pub acceptance: PatchAcceptance,
 }
 
 impl FidelityOptions {
     /// `views` cameras spread around the model (see `view_directions`).
-    pub fn around(views: usize, size: u32, acceptance: AcceptanceTest) -> Result<Self, FidelityError> {
+    pub fn around(views: usize, size: u32, acceptance: PatchAcceptance) -> Result<Self, FidelityError> {
         Ok(Self { directions: view_directions(views)?, size, acceptance })
     }
 

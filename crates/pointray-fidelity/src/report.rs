@@ -3,7 +3,6 @@
 use std::path::PathBuf;
 
 use pointray_io::TriangleMesh;
-use pointray_scene::AcceptanceTest;
 use pointray_surface::PatchSet;
 use serde::Serialize;
 
@@ -53,17 +52,10 @@ impl FidelitySetup {
             mesh_file: None,
             backend,
             k: patches.params.k,
-            acceptance: acceptance_name(options.acceptance),
+            acceptance: options.acceptance.name(),
             size: options.size,
             patches: patches.len(),
             triangles: mesh.triangles.len(),
         }
-    }
-}
-
-fn acceptance_name(test: AcceptanceTest) -> &'static str {
-    match test {
-        AcceptanceTest::Box => "box",
-        AcceptanceTest::Disk => "disk",
     }
 }

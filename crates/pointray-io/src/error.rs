@@ -13,6 +13,9 @@ pub enum IoError {
     Unsupported { path: PathBuf, what: String, supported: String },
     #[error("{output}: refusing to write over the input file {input}")]
     SameFile { input: PathBuf, output: PathBuf },
+    /// A path that cannot serve: a folder or device where a file is wanted, a missing folder.
+    #[error("{path}: {problem}")]
+    Unusable { path: PathBuf, problem: String },
     /// Data handed to a writer that cannot be written (mismatched lengths, bad indices, ...).
     #[error("{path}: cannot write: {problem}")]
     Unwritable { path: PathBuf, problem: String },
@@ -25,6 +28,10 @@ impl IoError {
 
     pub fn unwritable(path: impl Into<PathBuf>, problem: impl Into<String>) -> Self {
         Self::Unwritable { path: path.into(), problem: problem.into() }
+    }
+
+    pub fn unusable(path: impl Into<PathBuf>, problem: impl Into<String>) -> Self {
+        Self::Unusable { path: path.into(), problem: problem.into() }
     }
 
     pub fn os(path: impl Into<PathBuf>, source: std::io::Error) -> Self {

@@ -3,12 +3,20 @@
 
 pub mod atomic_write;
 pub mod error;
+pub mod file_roles;
 pub mod formats;
 pub mod image_output;
+pub mod memory_budget;
 pub mod point_cloud;
+pub mod temporaries;
 pub mod triangle_mesh;
 
-pub use atomic_write::{ensure_not_same_file, write_atomically};
+pub use atomic_write::write_atomically;
 pub use error::IoError;
+pub use file_roles::{
+    ensure_not_same_file, ensure_outputs_spare_inputs, ensure_readable_file, ensure_writable_output,
+    folder_of,
+};
+pub use memory_budget::{MemoryBudget, MemoryShortfall};
 pub use point_cloud::PointCloud;
 pub use triangle_mesh::TriangleMesh;

@@ -9,13 +9,13 @@
 #include "layout.glsl"
 #include "patch_buffers.glsl"
 
-// Hot and cold records together, for BufferLayout::Combined (std430 pads it to 80 bytes).
+// Hot and cold records together, for BufferLayout::Combined: 48 bytes, no padding.
 struct PatchCombined {
     PatchHot hot;
     PatchCold cold;
 };
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CombinedPatches { PatchCombined records[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer CombinedPatches { PatchCombined records[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MeshVertices { vec4 positions[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer MeshIndices { uint indices[]; };
 

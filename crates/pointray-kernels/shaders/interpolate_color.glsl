@@ -48,7 +48,7 @@ ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatc
         if (j == NO_NEIGHBOR) {
             continue;
         }
-        float distance_to_point = distance(position, hot.records[j].origin_radius.xyz);
+        float distance_to_point = distance(position, patch_origin(hot.records[j]));
         PatchCold record = cold.records[j];
         float weight = color_weight(distance_to_point, record.color_reach);
         scan.weighted_color += weight * color_from_rgba8(record.color_rgba8);

@@ -2,12 +2,22 @@
 #ifndef POINTRAY_LAYOUT_GLSL
 #define POINTRAY_LAYOUT_GLSL
 
+// 36 bytes; decode_patch (patch_frame.glsl) unpacks it.
 struct PatchHot {
-    vec4 origin_radius;  // p_i, d_i
-    vec4 tangent_c0;     // t1, c0
-    vec4 normal_c1;      // n_i, c1
-    vec4 c2_c5;          // c2, c3, c4, c5
+    float origin_x;
+    float origin_y;
+    float origin_z;
+    float radius;        // d_u, the larger support radius
+    uint normal;         // octahedral normal, two snorm16
+    uint angle_aspect;   // angle of t1 / pi (unorm16, low), d_v / d_u (unorm16, high)
+    uint c0_c1;          // c0 / d_u, c1 (half floats)
+    uint c2_c3;          // c2, c3 d_u
+    uint c4_c5;          // c4 d_u, c5 d_u
 };
+
+vec3 patch_origin(PatchHot hot) {
+    return vec3(hot.origin_x, hot.origin_y, hot.origin_z);
+}
 
 struct PatchCold {
     uint color_rgba8;    // linear RGBA8, r in the low byte

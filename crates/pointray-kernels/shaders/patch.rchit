@@ -29,7 +29,7 @@ void main() {
     ObjectRecord object = objects[gl_InstanceCustomIndexEXT];
     uint patch_index = gl_PrimitiveID + gl_GeometryIndexEXT;
     PatchHot patch_record = load_hot(object, patch_index);
-    vec3 object_normal = patch_normal(patch_record, hit_uv);
+    vec3 object_normal = patch_normal(decode_patch(patch_record), hit_uv);
     // Normals go to world by the inverse transpose: n * WorldToObject.
     payload.normal_or_background = normalize((object_normal * gl_WorldToObjectEXT).xyz);
     payload.t = gl_HitTEXT;
@@ -38,5 +38,5 @@ void main() {
     payload.color_rgba8 = hit_color(object, patch_index);
     // World lengths from the inverse transform's first column, as the CPU renderer does.
     float world_scale = 1.0 / length(gl_WorldToObjectEXT[0]);
-    payload.clearance = self_clearance(patch_record.origin_radius.w * world_scale);
+    payload.clearance = self_clearance(patch_record.radius * world_scale);
 }

@@ -9,8 +9,8 @@
 
 #include "layout.glsl"
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HotPatches { PatchHot records[]; };
-layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer ColdPatches { PatchCold records[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer HotPatches { PatchHot records[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer ColdPatches { PatchCold records[]; };
 // COLOR_NEIGHBORS patch indices per patch (NO_NEIGHBOR in unused slots).
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ColorNeighbors { uint indices[]; };
 

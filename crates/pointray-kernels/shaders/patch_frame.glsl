@@ -1,41 +1,52 @@
-// Twin of the frame methods of `PatchHot` in src/layout.rs: world <-> patch-local (u, v, w).
+// Twin of `Patch` and `PatchHot::decode` in src/layout.rs: a patch decoded from its hot
+// record, and world <-> patch-local (u, v, w).
 #ifndef POINTRAY_PATCH_FRAME_GLSL
 #define POINTRAY_PATCH_FRAME_GLSL
 
 #include "layout.glsl"
+#include "packed_frame.glsl"
 
-vec3 patch_origin(PatchHot hot) {
-    return hot.origin_radius.xyz;
+const float PI = 3.14159265358979;
+
+struct Patch {
+    vec3 origin;
+    TangentFrame frame;
+    vec2 radii;          // (d_u, d_v)
+    float c0;
+    float c1;
+    float c2;
+    float c3;
+    float c4;
+    float c5;
+};
+
+Patch decode_patch(PatchHot hot) {
+    vec2 angle_aspect = unpackUnorm2x16(hot.angle_aspect);
+    TangentFrame frame = tangent_frame_from_normal_and_angle(unpack_normal(hot.normal), angle_aspect.x * PI);
+    float unit = hot.radius > 0.0 ? hot.radius : 1.0;
+    vec2 c0_c1 = unpackHalf2x16(hot.c0_c1);
+    vec2 c2_c3 = unpackHalf2x16(hot.c2_c3);
+    vec2 c4_c5 = unpackHalf2x16(hot.c4_c5);
+    return Patch(patch_origin(hot), frame,
+                 vec2(hot.radius, hot.radius * angle_aspect.y), c0_c1.x * unit, c0_c1.y, c2_c3.x,
+                 c2_c3.y / unit, c4_c5.x / unit, c4_c5.y / unit);
 }
 
-float patch_radius(PatchHot hot) {
-    return hot.origin_radius.w;
+vec3 patch_direction_to_local(Patch surface, vec3 world) {
+    return vec3(dot(world, surface.frame.t1), dot(world, surface.frame.t2), dot(world, surface.frame.n));
 }
 
-vec3 patch_tangent_u(PatchHot hot) {
-    return hot.tangent_c0.xyz;
+vec3 patch_to_local(Patch surface, vec3 world) {
+    return patch_direction_to_local(surface, world - surface.origin);
 }
 
-vec3 patch_normal_axis(PatchHot hot) {
-    return hot.normal_c1.xyz;
+vec3 patch_direction_to_world(Patch surface, vec3 local) {
+    return local.x * surface.frame.t1 + local.y * surface.frame.t2 + local.z * surface.frame.n;
 }
 
-// t2 = n x t1: the frame is right-handed and t2 is not stored.
-vec3 patch_tangent_v(PatchHot hot) {
-    return cross(patch_normal_axis(hot), patch_tangent_u(hot));
-}
-
-vec3 patch_direction_to_local(PatchHot hot, vec3 world) {
-    return vec3(dot(world, patch_tangent_u(hot)), dot(world, patch_tangent_v(hot)),
-                dot(world, patch_normal_axis(hot)));
-}
-
-vec3 patch_to_local(PatchHot hot, vec3 world) {
-    return patch_direction_to_local(hot, world - patch_origin(hot));
-}
-
-vec3 patch_direction_to_world(PatchHot hot, vec3 local) {
-    return local.x * patch_tangent_u(hot) + local.y * patch_tangent_v(hot) + local.z * patch_normal_axis(hot);
+bool patch_supports(Patch surface, vec2 uv) {
+    vec2 scaled = uv / surface.radii;
+    return dot(scaled, scaled) <= 1.0;
 }
 
 #endif

@@ -158,7 +158,8 @@ mod tests {
                     Vec3::new(ix as f32, iy as f32, 0.0) + 0.06 * (jitter - 2.0)
                 })
                 .collect();
-            let hot = points.iter().map(|&p| PatchHot::new(p, Vec3::X, Vec3::Z, [0.0; 6], 2.0)).collect();
+            let hot =
+                points.iter().map(|&p| PatchHot::isotropic(p, Vec3::X, Vec3::Z, [0.0; 6], 2.0)).collect();
             let cold = points
                 .iter()
                 .map(|&p| PatchCold {

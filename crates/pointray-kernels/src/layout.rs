@@ -5,82 +5,154 @@
 //! store, the CPU renderer and the Vulkan buffers share one byte layout.
 
 use bytemuck::{Pod, Zeroable};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
-/// What the intersection test reads for patch `i`: its local frame, its six
-/// quadratic coefficients and its support radius `d_i`. 64 bytes, four `vec4`s.
+use crate::packed_frame::{TangentFrame, pack_normal, tangent_angle_fraction, unpack_normal};
+use crate::packing::{pack_half2x16, pack_unorm2x16, unpack_half2x16, unpack_unorm2x16};
+
+/// What the intersection test reads for patch `i`, 36 bytes: its origin, its elliptical
+/// support, its tangent frame and its six quadratic coefficients, packed. `decode` gives the
+/// `Patch` the maths works on.
 ///
-/// The frame is `(t1, t2, n)` with `t2 = n × t1`, so it is right-handed and the
-/// 3x4 world-to-local matrix of the paper is recovered from origin, `t1` and `n`.
+/// The support is the ellipse `(u / d_u)² + (v / d_v)² <= 1` with `d_u >= d_v`, so `radius`
+/// (`d_u`) also bounds the patch. An isotropic patch has `d_v = d_u`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct PatchHot {
-    /// `p_i` in xyz, the support radius `d_i` in w.
-    pub origin_radius: [f32; 4],
-    /// The first tangent `t1` in xyz, `c0` in w.
-    pub tangent_c0: [f32; 4],
-    /// The normal `n_i` in xyz, `c1` in w.
-    pub normal_c1: [f32; 4],
-    /// `c2, c3, c4, c5`.
-    pub c2_c5: [f32; 4],
+    /// `p_i`.
+    pub origin: [f32; 3],
+    /// `d_u`, the support radius along the first tangent `t1`, the larger of the two.
+    pub radius: f32,
+    /// The normal `n_i`, octahedral in two snorm16 (`packed_frame::pack_normal`).
+    pub normal: u32,
+    /// The angle of `t1` from the normal's basis as a fraction of π (unorm16, low half) and
+    /// `d_v / d_u` (unorm16, high half).
+    pub angle_aspect: u32,
+    /// `c0 / d_u, c1, c2, c3 d_u, c4 d_u, c5 d_u` as half floats, low half first: scaled by the
+    /// radius so that each is of order one whatever the units, which is what half floats hold.
+    pub coefficients: [u32; 3],
+}
+
+/// A patch's frame as stored: what `prep` fits in, so that the fit and the stored frame agree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PackedFrame {
+    normal: u32,
+    angle: u16,
+}
+
+impl PackedFrame {
+    /// The stored frame nearest to unit normal `n` with first tangent `t` (in `n`'s plane).
+    pub fn new(n: Vec3, t: Vec3) -> Self {
+        let normal = pack_normal(n);
+        let angle = (tangent_angle_fraction(unpack_normal(normal), t) * 65535.0).round() as u16;
+        Self { normal, angle }
+    }
+
+    /// The frame the record decodes to.
+    pub fn decode(&self) -> TangentFrame {
+        let fraction = unpack_unorm2x16(u32::from(self.angle)).x;
+        TangentFrame::from_normal_and_angle(unpack_normal(self.normal), fraction * std::f32::consts::PI)
+    }
 }
 
 impl PatchHot {
-    /// Builds a patch from its frame and `f(u,v) = c0 + c1 u + c2 v + c3 u² + c4 uv + c5 v²`.
-    pub fn new(origin: Vec3, tangent: Vec3, normal: Vec3, coefficients: [f32; 6], radius: f32) -> Self {
+    /// Packs a patch whose frame is `frame`, whose support radii along `t1` and `t2` are
+    /// `radii` (`radii.x >= radii.y`) and whose height field over that frame is
+    /// `f(u,v) = c0 + c1 u + c2 v + c3 u² + c4 uv + c5 v²`.
+    pub fn new(origin: Vec3, frame: PackedFrame, radii: Vec2, coefficients: [f32; 6]) -> Self {
+        let radius = radii.x;
+        let aspect = if radius > 0.0 { (radii.y / radius).clamp(0.0, 1.0) } else { 1.0 };
+        let angle_aspect = u32::from(frame.angle) | (pack_unorm2x16(Vec2::new(0.0, aspect)) & 0xffff_0000);
         let [c0, c1, c2, c3, c4, c5] = coefficients;
+        let unit = if radius > 0.0 { radius } else { 1.0 };
         Self {
-            origin_radius: [origin.x, origin.y, origin.z, radius],
-            tangent_c0: [tangent.x, tangent.y, tangent.z, c0],
-            normal_c1: [normal.x, normal.y, normal.z, c1],
-            c2_c5: [c2, c3, c4, c5],
+            origin: origin.to_array(),
+            radius,
+            normal: frame.normal,
+            angle_aspect,
+            coefficients: [
+                pack_half2x16(Vec2::new(c0 / unit, c1)),
+                pack_half2x16(Vec2::new(c2, c3 * unit)),
+                pack_half2x16(Vec2::new(c4 * unit, c5 * unit)),
+            ],
         }
     }
 
+    /// A patch with a round support of `radius`, in the stored frame nearest to `(tangent,
+    /// normal)`.
+    pub fn isotropic(origin: Vec3, tangent: Vec3, normal: Vec3, coefficients: [f32; 6], radius: f32) -> Self {
+        Self::new(origin, PackedFrame::new(normal, tangent), Vec2::splat(radius), coefficients)
+    }
+
     pub fn origin(&self) -> Vec3 {
-        Vec3::from_slice(&self.origin_radius[..3])
+        Vec3::from_array(self.origin)
     }
 
+    /// `d_u`, the larger support radius: the patch lies within it of its origin.
     pub fn radius(&self) -> f32 {
-        self.origin_radius[3]
+        self.radius
     }
 
-    pub fn tangent_u(&self) -> Vec3 {
-        Vec3::from_slice(&self.tangent_c0[..3])
-    }
-
-    pub fn tangent_v(&self) -> Vec3 {
-        self.normal().cross(self.tangent_u())
-    }
-
+    /// The normal `n_i` as stored.
     pub fn normal(&self) -> Vec3 {
-        Vec3::from_slice(&self.normal_c1[..3])
+        unpack_normal(self.normal)
     }
 
-    pub fn coefficients(&self) -> [f32; 6] {
-        let [c2, c3, c4, c5] = self.c2_c5;
-        [self.tangent_c0[3], self.normal_c1[3], c2, c3, c4, c5]
+    /// The stored frame: the normal word and the low half of `angle_aspect`.
+    pub fn frame(&self) -> PackedFrame {
+        PackedFrame { normal: self.normal, angle: self.angle_aspect as u16 }
     }
 
+    /// The patch as the maths works on it.
+    pub fn decode(&self) -> Patch {
+        let aspect = unpack_unorm2x16(self.angle_aspect).y;
+        let unit = if self.radius > 0.0 { self.radius } else { 1.0 };
+        let [c0_c1, c2_c3, c4_c5] = self.coefficients.map(unpack_half2x16);
+        Patch {
+            origin: self.origin(),
+            frame: self.frame().decode(),
+            radii: Vec2::new(self.radius, self.radius * aspect),
+            coefficients: [c0_c1.x * unit, c0_c1.y, c2_c3.x, c2_c3.y / unit, c4_c5.x / unit, c4_c5.y / unit],
+        }
+    }
+}
+
+/// A patch decoded from its `PatchHot`: the frame, support and height field of SPEC.md §2.
+/// Twin of `Patch` in `shaders/patch_frame.glsl`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Patch {
+    pub origin: Vec3,
+    pub frame: TangentFrame,
+    /// `(d_u, d_v)`: the support's radii along `t1` and `t2`.
+    pub radii: Vec2,
+    /// `c0 .. c5` of `f(u,v) = c0 + c1 u + c2 v + c3 u² + c4 uv + c5 v²`.
+    pub coefficients: [f32; 6],
+}
+
+impl Patch {
     /// World position to local `(u, v, w)`.
     pub fn to_local(&self, world: Vec3) -> Vec3 {
-        let d = world - self.origin();
-        Vec3::new(d.dot(self.tangent_u()), d.dot(self.tangent_v()), d.dot(self.normal()))
+        self.frame.to_local(world - self.origin)
     }
 
     /// Local `(u, v, w)` to world position.
     pub fn to_world(&self, local: Vec3) -> Vec3 {
-        self.origin() + local.x * self.tangent_u() + local.y * self.tangent_v() + local.z * self.normal()
+        self.origin + self.frame.to_world(local)
     }
 
     /// A world direction to local axes.
     pub fn direction_to_local(&self, world: Vec3) -> Vec3 {
-        Vec3::new(world.dot(self.tangent_u()), world.dot(self.tangent_v()), world.dot(self.normal()))
+        self.frame.to_local(world)
     }
 
     /// A local direction to world axes.
     pub fn direction_to_world(&self, local: Vec3) -> Vec3 {
-        local.x * self.tangent_u() + local.y * self.tangent_v() + local.z * self.normal()
+        self.frame.to_world(local)
+    }
+
+    /// Whether local `(u, v)` lies over the support ellipse.
+    pub fn supports(&self, uv: Vec2) -> bool {
+        (uv / self.radii).length_squared() <= 1.0
     }
 }
 
@@ -161,7 +233,7 @@ mod tests {
 
     #[test]
     fn layouts_match_the_glsl_strides() {
-        assert_eq!(std::mem::size_of::<PatchHot>(), 64);
+        assert_eq!(std::mem::size_of::<PatchHot>(), 36);
         assert_eq!(std::mem::size_of::<PatchCold>(), 12);
         assert_eq!(std::mem::size_of::<Aabb>(), 24);
     }
@@ -170,9 +242,24 @@ mod tests {
     fn local_and_world_round_trip() {
         let n = Vec3::new(1.0, 2.0, 2.0).normalize();
         let t = n.any_orthonormal_vector();
-        let patch = PatchHot::new(Vec3::new(1.0, -2.0, 0.5), t, n, [0.0; 6], 0.1);
+        let patch = PatchHot::isotropic(Vec3::new(1.0, -2.0, 0.5), t, n, [0.0; 6], 0.1).decode();
         let p = Vec3::new(0.3, 0.7, -1.1);
         assert!((patch.to_world(patch.to_local(p)) - p).length() < 1e-5);
-        assert!(patch.tangent_u().cross(patch.tangent_v()).dot(n) > 0.999);
+        assert!(patch.frame.t1.cross(patch.frame.t2).dot(n) > 0.999);
+    }
+
+    #[test]
+    fn a_packed_patch_decodes_to_its_support_and_coefficients() {
+        let n = Vec3::new(-0.2, 0.9, 0.1).normalize();
+        let frame = PackedFrame::new(n, n.any_orthonormal_vector());
+        let coefficients = [0.001, 0.2, -0.1, 30.0, -12.0, 5.0];
+        let patch =
+            PatchHot::new(Vec3::new(4.0, 5.0, 6.0), frame, Vec2::new(0.02, 0.005), coefficients).decode();
+        assert_eq!(patch.frame, frame.decode());
+        assert!((patch.radii - Vec2::new(0.02, 0.005)).abs().max_element() < 1e-7);
+        for (decoded, wanted) in patch.coefficients.iter().zip(coefficients) {
+            assert!((decoded - wanted).abs() <= wanted.abs() / 1024.0, "{decoded} vs {wanted}");
+        }
+        assert!(patch.supports(Vec2::new(0.019, 0.0)) && !patch.supports(Vec2::new(0.0, 0.006)));
     }
 }

@@ -2,8 +2,8 @@
 //!
 //! Every function here has a twin of the same name in `shaders/NAME.glsl`; the file
 //! `src/NAME.rs` and `shaders/NAME.glsl` describe the same maths. Change both together.
-//! The frame methods of `PatchHot` (`src/layout.rs`) have their twins in
-//! `shaders/patch_frame.glsl`, prefixed `patch_`.
+//! `Patch` and its decoding from `PatchHot` (`src/layout.rs`) have their twins in
+//! `shaders/patch_frame.glsl`; `src/packing.rs` twins the GLSL packing built-ins.
 
 pub mod background;
 pub mod camera_ray;
@@ -11,6 +11,8 @@ pub mod face_forward;
 pub mod interpolate_color;
 pub mod intersect_patch;
 pub mod layout;
+pub mod packed_frame;
+pub mod packing;
 pub mod patch_normal;
 pub mod phong;
 pub mod quadratic_roots;
@@ -23,7 +25,8 @@ pub use camera_ray::{PinholeCamera, camera_ray, sample_jitter};
 pub use face_forward::face_forward;
 pub use interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
 pub use intersect_patch::{PatchAcceptance, PatchHit, intersect_patch};
-pub use layout::{Aabb, PatchCold, PatchHot};
+pub use layout::{Aabb, PackedFrame, Patch, PatchCold, PatchHot};
+pub use packed_frame::TangentFrame;
 pub use patch_normal::patch_normal;
 pub use phong::{PhongSurface, phong};
 pub use quadratic_roots::{QuadraticRoots, quadratic_roots};

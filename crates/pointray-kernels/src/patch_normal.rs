@@ -3,13 +3,13 @@
 
 use glam::{Vec2, Vec3};
 
-use crate::layout::PatchHot;
+use crate::layout::Patch;
 
 /// The gradient of `w - f(u, v)`, local `(-f_u, -f_v, 1)`, in the patch's space
 /// (object space), unit length. It points to the side the patch's normal `n_i` faces;
 /// callers face it toward the viewer with `face_forward`.
-pub fn patch_normal(patch: &PatchHot, uv: Vec2) -> Vec3 {
-    let [_, c1, c2, c3, c4, c5] = patch.coefficients();
+pub fn patch_normal(patch: &Patch, uv: Vec2) -> Vec3 {
+    let [_, c1, c2, c3, c4, c5] = patch.coefficients;
     let f_u = c1 + 2.0 * c3 * uv.x + c4 * uv.y;
     let f_v = c2 + c4 * uv.x + 2.0 * c5 * uv.y;
     patch.direction_to_world(Vec3::new(-f_u, -f_v, 1.0)).normalize()
@@ -18,10 +18,11 @@ pub fn patch_normal(patch: &PatchHot, uv: Vec2) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::layout::PatchHot;
 
     /// A frame with normal +Y and first tangent +X, so `t2 = Y × X = -Z`.
-    fn y_up_patch(coefficients: [f32; 6]) -> PatchHot {
-        PatchHot::new(Vec3::new(1.0, 2.0, 3.0), Vec3::X, Vec3::Y, coefficients, 1.0)
+    fn y_up_patch(coefficients: [f32; 6]) -> Patch {
+        PatchHot::isotropic(Vec3::new(1.0, 2.0, 3.0), Vec3::X, Vec3::Y, coefficients, 1.0).decode()
     }
 
     #[test]

@@ -1,12 +1,33 @@
 //! Range checks shared by the parts of the scene file.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use crate::error::InvalidValue;
 
 pub(crate) fn finite_vec3(key: &str, value: [f32; 3]) -> Result<Vec3, InvalidValue> {
     let v = Vec3::from(value);
     if v.is_finite() { Ok(v) } else { Err(InvalidValue::new(key, format!("must be finite, got {value:?}"))) }
+}
+
+/// A position, kept in f64 so that geo-referenced coordinates keep their centimetres until
+/// the scene is recentred.
+pub(crate) fn finite_dvec3(key: &str, value: [f64; 3]) -> Result<DVec3, InvalidValue> {
+    let v = DVec3::from(value);
+    if v.is_finite() { Ok(v) } else { Err(InvalidValue::new(key, format!("must be finite, got {value:?}"))) }
+}
+
+/// A position in the render frame, as f32: refused when it lies so far out (a camera 1e120
+/// units away, say) that f32 cannot hold it.
+pub(crate) fn placeable(key: &str, position: DVec3) -> Result<Vec3, InvalidValue> {
+    let limit = f64::from(pointray_surface::geometry_range::MAX_COORDINATE);
+    if position.abs().max_element() <= limit {
+        Ok(position.as_vec3())
+    } else {
+        Err(InvalidValue::new(
+            key,
+            format!("lies {:e} scene sizes from the objects, beyond what f32 can place", position.length()),
+        ))
+    }
 }
 
 pub(crate) fn nonzero_vec3(key: &str, value: [f32; 3]) -> Result<Vec3, InvalidValue> {

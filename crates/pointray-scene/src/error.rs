@@ -13,8 +13,6 @@ pub enum SceneError {
     /// A value of the right type that makes no sense, e.g. a negative radius.
     #[error("{path}: {key}: {problem}")]
     Invalid { path: PathBuf, key: String, problem: String },
-    #[error("{scene}: {key}: file not found: {file}")]
-    MissingFile { scene: PathBuf, key: String, file: PathBuf },
     #[error("{scene}: {key}: {source}")]
     Input { scene: PathBuf, key: String, source: pointray_io::IoError },
     #[error("{scene}: {key}: preparing patches from {file} failed: {source}")]

@@ -26,6 +26,12 @@ impl Frame {
         (self.width * self.height) as usize
     }
 
+    /// Depths into another unit: a scene loaded in a scaled render frame (`RenderFrame`) is
+    /// rendered in that frame's units, and `factor = frame.scale` gives the file's.
+    pub fn scale_depth(&mut self, factor: f32) {
+        self.depth.iter_mut().for_each(|depth| *depth *= factor);
+    }
+
     pub fn hit_mask(&self) -> Vec<bool> {
         self.instance_id.iter().map(|&id| id != Self::MISS).collect()
     }

@@ -39,6 +39,7 @@ const LARGEST_EXACT_FLOAT_ID: u32 = 1 << 24;
 /// Writes the colour image to `path` and the selected AOVs next to it; returns every path
 /// written, the colour image first.
 pub fn write_frame(frame: &Frame, path: &Path, aovs: &AovSelection) -> Result<Vec<PathBuf>, SceneError> {
+    frame_paths(path, aovs)?;
     check_ids(frame, path, aovs)?;
     let (width, height) = (frame.width, frame.height);
     let written = |path: &Path, result: Result<(), pointray_io::IoError>| {
@@ -47,14 +48,8 @@ pub fn write_frame(frame: &Frame, path: &Path, aovs: &AovSelection) -> Result<Ve
             .map_err(|source| SceneError::FrameOutput { path: path.to_path_buf(), source })
     };
     let color = match extension(path).as_deref() {
-        Some("png") => write_png_srgb(path, width, height, &frame.color),
         Some("exr") => write_exr_linear(path, width, height, &frame.color),
-        _ => {
-            return Err(SceneError::FrameFormat {
-                path: path.to_path_buf(),
-                problem: "unsupported image type; use .png (8-bit sRGB) or .exr (linear float)".into(),
-            });
-        }
+        _ => write_png_srgb(path, width, height, &frame.color),
     };
     let mut paths = vec![written(path, color)?];
     if aovs.depth {
@@ -77,6 +72,40 @@ pub fn write_frame(frame: &Frame, path: &Path, aovs: &AovSelection) -> Result<Ve
         let aov = aov_path(path, "mask.png");
         paths.push(written(&aov, write_png_mask(&aov, width, height, &frame.hit_mask()))?);
     }
+    Ok(paths)
+}
+
+/// Every file `write_frame` would write for `path` and `aovs`, the colour image first; an
+/// error for an image type it cannot write. Nothing is touched.
+pub fn frame_paths(path: &Path, aovs: &AovSelection) -> Result<Vec<PathBuf>, SceneError> {
+    if !matches!(extension(path).as_deref(), Some("png" | "exr")) {
+        return Err(SceneError::FrameFormat {
+            path: path.to_path_buf(),
+            problem: "unsupported image type; use .png (8-bit sRGB) or .exr (linear float)".into(),
+        });
+    }
+    let selected = [
+        (aovs.depth, "depth.exr"),
+        (aovs.normal, "normal.exr"),
+        (aovs.instance, "instance.exr"),
+        (aovs.primitive, "primitive.exr"),
+        (aovs.mask, "mask.png"),
+    ];
+    let aov_paths =
+        selected.into_iter().filter(|(wanted, _)| *wanted).map(|(_, suffix)| aov_path(path, suffix));
+    Ok(std::iter::once(path.to_path_buf()).chain(aov_paths).collect())
+}
+
+/// Checks, before any loading, that the frame's files can be written and that none of them is
+/// one of `inputs` (the scene's files, `SceneFile::input_files`); returns them.
+pub fn check_frame_outputs(
+    path: &Path,
+    aovs: &AovSelection,
+    inputs: &[PathBuf],
+) -> Result<Vec<PathBuf>, SceneError> {
+    let paths = frame_paths(path, aovs)?;
+    pointray_io::ensure_outputs_spare_inputs(inputs, &paths)
+        .map_err(|source| SceneError::FrameOutput { path: path.to_path_buf(), source })?;
     Ok(paths)
 }
 

@@ -4,17 +4,20 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::{Affine3A, Vec3};
+use glam::{DAffine3, DVec3, Vec3};
 use pointray_kernels::Aabb;
 use pointray_surface::PatchSet;
+use pointray_surface::geometry_range::{self, SCENE_EXTENTS, extent_problem};
 use pointray_surface::prep_progress::{NoProgress, PrepProgress};
 
+use crate::checks;
 use crate::error::{InvalidValue, SceneError};
 use crate::ground::GroundPlacement;
 use crate::material_spec::ColorSource;
-use crate::object_spec::{ObjectSpec, OutlierSpec, RadiusSpec, ShapeSpec};
+use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::point_sets::{self, PointSetOrigin};
 use crate::procedural;
+use crate::render_frame::{RenderFrame, WorldBounds, placed_bounds, recentred_mesh};
 use crate::scene_file::SceneFile;
 use crate::{Camera, Geometry, RenderSettings, Scene, SceneObject};
 
@@ -45,6 +48,10 @@ pub struct LoadedScene {
     pub settings: RenderSettings,
     /// How each point-set object got its patches, by object index.
     pub point_sets: Vec<(usize, PointSetOrigin)>,
+    /// Where the scene lies in the file's coordinates: it was recentred and scaled in f64
+    /// (`RenderFrame::around`), so `file = origin + scale * scene`. Depths in a rendered frame
+    /// are in scene units: `scale` times them is file units.
+    pub frame: RenderFrame,
 }
 
 pub fn load_scene(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
@@ -53,32 +60,51 @@ pub fn load_scene(path: &Path, options: &LoadOptions) -> Result<LoadedScene, Sce
 
 pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
     let in_file = |invalid: InvalidValue| invalid.in_file(&file.path);
-    let settings = file.render.settings().map_err(in_file)?;
-    let lights =
-        file.lights.iter().map(|light| light.to_light()).collect::<Result<_, _>>().map_err(in_file)?;
+    let settings = file.render_settings()?;
     let background = file.background().map_err(in_file)?;
 
     // Grounds are sized and placed from the other objects, so they are built last, but they
     // keep their place in the object list: renderers report object indices as instance ids.
     let is_ground = |spec: &ObjectSpec| matches!(spec.shape, ShapeSpec::Ground { .. });
-    let mut slots: Vec<Option<SceneObject>> = vec![None; file.objects.len()];
+    let mut slots: Vec<Option<(SceneObject, DAffine3)>> = vec![None; file.objects.len()];
     let mut point_sets = Vec::new();
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| !is_ground(spec)) {
-        let (object, origin) = load_object(file, index, spec, options, None)?;
+        let (object, placement, origin) = load_object(file, index, spec, options, (None, RenderFrame::FILE))?;
         point_sets.extend(origin.map(|origin| (index, origin)));
-        slots[index] = Some(object);
+        slots[index] = Some((object, placement));
     }
-    let others = slots.iter().flatten().filter_map(SceneObject::world_bounds).reduce(|a, b| a.union(&b));
+    let bounds = slots.iter().flatten().filter_map(|(o, placement)| placed_bounds(&o.geometry, placement));
+    let bounds = bounds.reduce(WorldBounds::union);
+    if let Some(problem) =
+        bounds.and_then(|b| extent_problem("the scene's objects", b.diagonal(), &SCENE_EXTENTS))
+    {
+        return Err(SceneError::Invalid { path: file.path.clone(), key: "objects".into(), problem });
+    }
+    let frame = RenderFrame::around(bounds);
+    for (object, placement) in slots.iter_mut().flatten() {
+        object.transform = frame.transform(placement);
+    }
+    let others =
+        slots.iter().flatten().filter_map(|(object, _)| object.world_bounds()).reduce(|a, b| a.union(&b));
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| is_ground(spec)) {
-        slots[index] = Some(load_object(file, index, spec, options, others.as_ref())?.0);
+        let (mut ground, placement, _) = load_object(file, index, spec, options, (others.as_ref(), frame))?;
+        ground.transform = frame.transform(&placement);
+        slots[index] = Some((ground, placement));
     }
-    let objects: Vec<SceneObject> = slots.into_iter().flatten().collect();
+    let objects: Vec<SceneObject> = slots.into_iter().flatten().map(|(object, _)| object).collect();
 
+    let lights = file
+        .lights
+        .iter()
+        .enumerate()
+        .map(|(i, light)| light.to_light(&frame).map_err(|e| e.within(&format!("lights[{i}]"))))
+        .collect::<Result<_, _>>()
+        .map_err(in_file)?;
     let camera = match &file.camera {
-        Some(camera) => camera.to_camera().map_err(|e| in_file(e.within("camera")))?,
+        Some(camera) => camera.to_camera(&frame).map_err(|e| in_file(e.within("camera")))?,
         None => default_camera(others.as_ref(), &settings),
     };
-    Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets })
+    Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets, frame })
 }
 
 fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
@@ -87,18 +113,19 @@ fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
     Scene::framing_camera(bounds.unwrap_or(&unit_box), DEFAULT_VIEW_DIRECTION, DEFAULT_VFOV_DEGREES, aspect)
 }
 
-/// Loads one object and says where a point set's patches came from. `others` are the bounds
-/// of every non-ground object, which a ground is fitted to.
+/// Loads one object, with its local-to-file placement in f64, and says where a point set's
+/// patches came from. A ground is fitted to `others`, the bounds of every other object in the
+/// render frame, the second member.
 fn load_object(
     file: &SceneFile,
     index: usize,
     spec: &ObjectSpec,
     options: &LoadOptions,
-    others: Option<&Aabb>,
-) -> Result<(SceneObject, Option<PointSetOrigin>), SceneError> {
+    (others, frame): (Option<&Aabb>, RenderFrame),
+) -> Result<(SceneObject, DAffine3, Option<PointSetOrigin>), SceneError> {
     let key = object_key(index, spec);
     let transform =
-        spec.transform.to_affine().map_err(|e| e.within(&format!("{key}.transform")).in_file(&file.path))?;
+        spec.transform.to_daffine().map_err(|e| e.within(&format!("{key}.transform")).in_file(&file.path))?;
     let in_material = |e: InvalidValue| e.within(&format!("{key}.material")).in_file(&file.path);
     let material = spec.material.to_material().map_err(in_material)?;
     let ramp = spec.material.ramp().map_err(in_material)?;
@@ -109,21 +136,23 @@ fn load_object(
         problem: format!("{}: {problem}", described_source(file, spec)),
     };
     check_color_source(source, &spec.shape).map_err(color_error)?;
-    let (geometry, origin, default_name): LoadedGeometry = match &spec.shape {
+    let (geometry, point_set_origin, default_name): LoadedGeometry = match &spec.shape {
         ShapeSpec::Mesh { path } => {
             let path = existing_file(file, &key, path)?;
             let mesh = pointray_io::formats::read_triangle_mesh(&path)
                 .map_err(|source| SceneError::Input { scene: file.path.clone(), key: key.clone(), source })?;
+            if let Some(vertex) = geometry_range::first_vertex_out_of_range(&mesh) {
+                return Err(SceneError::Invalid {
+                    path: file.path.clone(),
+                    key: format!("{key}.path"),
+                    problem: format!("{}: vertex {vertex} is not finite or out of range", path.display()),
+                });
+            }
             (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
         }
-        ShapeSpec::Points { path, k, normal_k, radius, remove_outliers, columns } => {
+        ShapeSpec::Points { path, columns, .. } => {
             let path = existing_file(file, &key, path)?;
-            let request = point_sets::PrepRequest {
-                k: *k,
-                normal_k: *normal_k,
-                radius: radius.map(RadiusSpec::mode),
-                remove_outliers: remove_outliers.map(OutlierSpec::filter),
-            };
+            let request = spec.shape.prep_request().expect("a points object");
             let read = point_sets::ReadRequest {
                 columns: columns.clone(),
                 classification_colors: source == ColorSource::Classification,
@@ -133,14 +162,25 @@ fn load_object(
             (Geometry::Patches(Arc::new(patches)), Some(origin), file_stem(&path))
         }
         ShapeSpec::SpherePoints { center, radius, count } => {
+            procedural_fits(*count).map_err(|e| e.in_scene(&file.path, &key))?;
             let cloud = procedural::sphere_points(Vec3::from(*center), *radius, *count);
             procedural_object(&cloud, "sphere", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
         ShapeSpec::TorusPoints { center, major_radius, minor_radius, count } => {
+            procedural_fits(*count).map_err(|e| e.in_scene(&file.path, &key))?;
             let cloud = procedural::torus_points(Vec3::from(*center), *major_radius, *minor_radius, *count);
             procedural_object(&cloud, "torus", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
         &ShapeSpec::Ground { auto, height, size } => {
+            let in_frame = |value: f64, name: &str| {
+                checks::placeable(name, DVec3::splat(value))
+                    .map(|v| v.x)
+                    .map_err(|e| e.within(&key).in_file(&file.path))
+            };
+            let height = height
+                .map(|h| in_frame((f64::from(h) - frame.origin.y) / frame.scale, "height"))
+                .transpose()?;
+            let size = size.map(|s| in_frame(f64::from(s) / frame.scale, "size")).transpose()?;
             let mesh = GroundPlacement::new(others, auto, height, size).mesh();
             (Geometry::Mesh(Arc::new(mesh)), None, "ground".to_string())
         }
@@ -158,13 +198,25 @@ fn load_object(
         }
         (geometry, _) => geometry,
     };
-    let transform = match &geometry {
+    let (geometry, local_to_model) = match geometry {
         // prep recentred the points (`input = local + offset`); put them back where they were.
-        Geometry::Patches(patches) => transform * Affine3A::from_translation(patches.offset.as_vec3()),
-        Geometry::Mesh(_) => transform,
+        Geometry::Patches(patches) => {
+            let offset = DAffine3::from_translation(patches.offset);
+            (Geometry::Patches(patches), offset)
+        }
+        // A ground is built in the render frame.
+        Geometry::Mesh(mesh) if matches!(spec.shape, ShapeSpec::Ground { .. }) => {
+            (Geometry::Mesh(mesh), frame.to_file())
+        }
+        Geometry::Mesh(mesh) => {
+            let (mesh, offset) = recentred_mesh(Arc::unwrap_or_clone(mesh));
+            (Geometry::Mesh(Arc::new(mesh)), DAffine3::from_translation(offset))
+        }
     };
+    let placement = transform * local_to_model;
     let name = spec.name.clone().unwrap_or(default_name);
-    Ok((SceneObject { name, transform, material, geometry }, origin))
+    let object = SceneObject { name, transform: RenderFrame::FILE.transform(&placement), material, geometry };
+    Ok((object, placement, point_set_origin))
 }
 
 /// Refuses a colour source the object cannot give: only point sets have point colours to
@@ -236,18 +288,28 @@ fn procedural_object(
     Ok((Geometry::Patches(Arc::new(patches)), Some(PointSetOrigin::Procedural), name.to_string()))
 }
 
+/// Whether sampling and prepping `count` procedural points fits in memory, asked before
+/// sampling them.
+fn procedural_fits(count: u32) -> Result<(), point_sets::PointSetError> {
+    let budget = pointray_io::MemoryBudget::of_this_machine();
+    pointray_surface::input_validation::validate_size(count as usize, &Default::default(), &budget)
+        .map_err(|source| point_sets::PointSetError::Prep { file: "(procedural points)".into(), source })
+}
+
 fn object_key(index: usize, spec: &ObjectSpec) -> String {
     format!("objects[{index}] (type \"{}\")", spec.shape.type_name())
 }
 
-/// The file's path resolved against the scene's folder; an error naming it when it is missing.
+/// The file's path resolved against the scene's folder; an error naming it when it is missing,
+/// a folder or a device.
 fn existing_file(file: &SceneFile, key: &str, relative: &Path) -> Result<std::path::PathBuf, SceneError> {
     let path = file.resolve(relative);
-    if path.is_file() {
-        Ok(path)
-    } else {
-        Err(SceneError::MissingFile { scene: file.path.clone(), key: format!("{key}.path"), file: path })
-    }
+    pointray_io::ensure_readable_file(&path).map_err(|source| SceneError::Input {
+        scene: file.path.clone(),
+        key: format!("{key}.path"),
+        source,
+    })?;
+    Ok(path)
 }
 
 fn file_stem(path: &Path) -> String {

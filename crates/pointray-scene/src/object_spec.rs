@@ -40,9 +40,13 @@ use pointray_io::formats::ColumnSpec;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
+use pointray_surface::PrepError;
+use pointray_surface::input_validation::validate_options;
+
 use crate::checks;
 use crate::error::InvalidValue;
 use crate::material_spec::MaterialSpec;
+use crate::point_sets::PrepRequest;
 use crate::transform_spec::TransformSpec;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -137,20 +141,31 @@ impl ShapeSpec {
 }
 
 impl ShapeSpec {
+    /// A points object's prep settings; `None` for other shapes.
+    pub fn prep_request(&self) -> Option<PrepRequest> {
+        match self {
+            Self::Points { k, normal_k, radius, remove_outliers, .. } => Some(PrepRequest {
+                k: *k,
+                normal_k: *normal_k,
+                radius: radius.map(RadiusSpec::mode),
+                remove_outliers: remove_outliers.map(OutlierSpec::filter),
+            }),
+            _ => None,
+        }
+    }
+
     /// Range checks that need no file.
     pub(crate) fn check(&self) -> Result<(), InvalidValue> {
         match self {
-            Self::Points { path, k, normal_k, remove_outliers, .. } => {
+            Self::Points { path, .. } => {
                 if path.as_os_str().is_empty() {
                     return Err(InvalidValue::new("path", "must not be empty"));
                 }
-                // Fewer neighbours than this cannot fit the six quadratic coefficients.
-                k.map(|k| checks::at_least("k", k, 5)).transpose()?;
-                normal_k.map(|k| checks::at_least("normal_k", k, 3)).transpose()?;
-                if let Some(OutlierSpec { neighbors, sigmas }) = remove_outliers {
-                    checks::at_least("remove_outliers.neighbors", *neighbors, 1)?;
-                    checks::non_negative("remove_outliers.sigmas", *sigmas)?;
-                }
+                let request = self.prep_request().expect("a points object");
+                validate_options(&request.prep_options()).map_err(|error| match error {
+                    PrepError::InvalidSetting { setting, problem } => InvalidValue::new(setting, problem),
+                    other => InvalidValue::new("type", other.to_string()),
+                })?;
             }
             Self::Mesh { path } if path.as_os_str().is_empty() => {
                 return Err(InvalidValue::new("path", "must not be empty"));

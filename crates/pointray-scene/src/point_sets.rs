@@ -115,8 +115,6 @@ pub(crate) fn load_points_file(
     let Some(cache_dir) = options.cache_dir else {
         return Ok((prep_file(path, &prep_options, read, options)?, PointSetOrigin::Prepped { cache: None }));
     };
-    std::fs::create_dir_all(cache_dir)
-        .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
     let cache = cache_dir.join(cache_file_name(path, &prep_options, read).map_err(PointSetError::Input)?);
     let regenerated_because = match patch_store::read(&cache) {
         Ok(patches) => return Ok((patches, PointSetOrigin::CacheHit { cache })),
@@ -127,6 +125,9 @@ pub(crate) fn load_points_file(
         }
     };
     let patches = prep_file(path, &prep_options, read, options)?;
+    // Made only now, so that a failed load leaves no empty cache folder behind.
+    std::fs::create_dir_all(cache_dir)
+        .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
     patch_store::write(&cache, &patches).map_err(PointSetError::Store)?;
     let origin = match regenerated_because {
         Some(problem) => PointSetOrigin::CacheRegenerated { cache, problem },
@@ -165,7 +166,7 @@ fn prep_file(
 }
 
 impl PrepRequest {
-    fn prep_options(&self) -> PrepOptions {
+    pub fn prep_options(&self) -> PrepOptions {
         let mut options = PrepOptions::default();
         options.params.k = self.k.unwrap_or(options.params.k);
         options.params.normal_k = self.normal_k.unwrap_or(options.params.normal_k);
@@ -209,6 +210,32 @@ fn cache_file_name(
     key.write(env!("CARGO_PKG_VERSION").as_bytes());
     let stem = input.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     Ok(format!("{stem}-{:016x}.patches", key.0))
+}
+
+/// Removes the cache files in `cache_dir` (named as `cache_file_name` names them; nothing else
+/// is touched), and the folder itself once empty. Returns the files removed and their bytes.
+pub fn clean_cache(cache_dir: &Path) -> Result<(usize, u64), pointray_io::IoError> {
+    let os_error = |source| pointray_io::IoError::os(cache_dir, source);
+    let mut removed = (0, 0);
+    for entry in std::fs::read_dir(cache_dir).map_err(os_error)?.flatten() {
+        let path = entry.path();
+        let is_cache_file = path.file_name().and_then(|n| n.to_str()).is_some_and(is_cache_file_name);
+        if is_cache_file && entry.file_type().is_ok_and(|kind| kind.is_file()) {
+            let bytes = entry.metadata().map_or(0, |m| m.len());
+            std::fs::remove_file(&path).map_err(|e| pointray_io::IoError::os(&path, e))?;
+            removed = (removed.0 + 1, removed.1 + bytes);
+        }
+    }
+    // Only an empty folder goes; `remove_dir` refuses any other.
+    let _ = std::fs::remove_dir(cache_dir);
+    Ok(removed)
+}
+
+/// `STEM-0123456789abcdef.patches`.
+fn is_cache_file_name(name: &str) -> bool {
+    let Some(rest) = name.strip_suffix(".patches") else { return false };
+    let key = rest.rsplit_once('-').map_or("", |(_, key)| key);
+    key.len() == 16 && key.chars().all(|c| c.is_ascii_hexdigit())
 }
 
 /// 64-bit FNV-1a: a hash that stays the same across builds and platforms (std's

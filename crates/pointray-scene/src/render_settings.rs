@@ -1,18 +1,6 @@
 //! The settings of one render, shared by every backend.
 
-/// Which hits on a patch's quadratic count (SPEC.md §3, intersection step 3).
-///
-/// The disk test is the default: against the meshes it has fewer false surfaces, smaller depth
-/// and normal errors and a higher PSNR than the box test at every k, with no more holes
-/// (bench/FIDELITY.md), for 0–7% more frame time (bench/RESULTS.md, ablations).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum AcceptanceTest {
-    /// The hit point must lie inside the patch's box (the paper's test).
-    Box,
-    /// The hit point must also lie over the patch's own disk, `u² + v² <= d_i²`.
-    #[default]
-    Disk,
-}
+use pointray_kernels::PatchAcceptance;
 
 /// How the per-patch data reaches the GPU (SPEC.md §2.7).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -33,7 +21,7 @@ pub struct RenderSettings {
     /// Ray depth: 1 = primary rays only, 2 = one reflection bounce (the paper's setting).
     pub max_depth: u32,
     pub shadows: bool,
-    pub acceptance: AcceptanceTest,
+    pub acceptance: PatchAcceptance,
     pub buffer_layout: BufferLayout,
 }
 
@@ -45,8 +33,80 @@ impl Default for RenderSettings {
             samples_per_pixel: 1,
             max_depth: 2,
             shadows: true,
-            acceptance: AcceptanceTest::default(),
+            acceptance: PatchAcceptance::default(),
             buffer_layout: BufferLayout::default(),
         }
+    }
+}
+
+/// One of the numeric render settings, which a scene file's `[render]` table and a command's
+/// flags both set: either way the value passes the same `RenderSetting::check`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RenderSetting {
+    Width,
+    Height,
+    SamplesPerPixel,
+    MaxDepth,
+}
+
+/// The longest image side: beyond it the GPU's dispatch and the image formats run out.
+pub const MAX_IMAGE_SIDE: u32 = 1 << 16;
+/// Beyond this many samples a pixel no longer changes visibly, and a frame takes hours.
+pub const MAX_SAMPLES_PER_PIXEL: u32 = 1 << 16;
+/// Beyond this many segments the reflection weights (< 1 each) leave nothing to see.
+pub const MAX_RAY_DEPTH: u32 = 64;
+
+/// What one pixel of a render holds on the host at its peak: the frame with its AOVs (36
+/// bytes), the renderer's own copy of them (the CPU's tiles, the GPU's readback) and the
+/// encoder's buffers, with room to spare.
+pub const FRAME_BYTES_PER_PIXEL: u64 = 112;
+
+impl RenderSetting {
+    /// The key in a scene file.
+    pub fn file_key(self) -> &'static str {
+        match self {
+            Self::Width => "render.width",
+            Self::Height => "render.height",
+            Self::SamplesPerPixel => "render.spp",
+            Self::MaxDepth => "render.max_depth",
+        }
+    }
+
+    /// `value` when it is in this setting's range; else why not.
+    pub fn check(self, value: u32) -> Result<u32, String> {
+        let maximum = match self {
+            Self::Width | Self::Height => MAX_IMAGE_SIDE,
+            Self::SamplesPerPixel => MAX_SAMPLES_PER_PIXEL,
+            Self::MaxDepth => MAX_RAY_DEPTH,
+        };
+        if (1..=maximum).contains(&value) {
+            Ok(value)
+        } else {
+            Err(format!("must be between 1 and {maximum}, got {value}"))
+        }
+    }
+
+    /// Parses a flag's text and checks it, for the command-line parser.
+    pub fn parse(self, text: &str) -> Result<u32, String> {
+        let value = text.trim().parse::<u32>().map_err(|e| format!("`{text}`: {e}"))?;
+        self.check(value)
+    }
+}
+
+impl RenderSettings {
+    /// Whether a frame of this size fits in `budget`; the error says which size would.
+    pub fn check_memory(&self, budget: &pointray_io::MemoryBudget) -> Result<(), String> {
+        let pixels = u64::from(self.width) * u64::from(self.height);
+        budget.check(pixels, FRAME_BYTES_PER_PIXEL, "pixels").map_err(|shortfall| {
+            let shrink = (shortfall.fitting as f64 / pixels as f64).sqrt();
+            let side = |length: u32| ((f64::from(length) * shrink) as u32).max(1);
+            format!(
+                "a {}x{} image: {shortfall}, e.g. {}x{}",
+                self.width,
+                self.height,
+                side(self.width),
+                side(self.height)
+            )
+        })
     }
 }

@@ -36,6 +36,8 @@ use crate::checks;
 use crate::error::{InvalidValue, SceneError};
 use crate::material_spec::MaterialSpec;
 use crate::object_spec::{ObjectSpec, ShapeSpec};
+use crate::render_frame::RenderFrame;
+use crate::render_settings::RenderSetting;
 use crate::transform_spec::TransformSpec;
 use crate::{Background, Camera, Light, RenderSettings};
 
@@ -58,8 +60,8 @@ pub struct SceneFile {
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSpec {
-    pub position: [f32; 3],
-    pub look_at: [f32; 3],
+    pub position: [f64; 3],
+    pub look_at: [f64; 3],
     #[serde(default = "default_up")]
     pub up: [f32; 3],
     #[serde(default = "default_vfov_degrees")]
@@ -70,7 +72,7 @@ pub struct CameraSpec {
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum LightSpec {
     Point {
-        position: [f32; 3],
+        position: [f64; 3],
         #[serde(default = "white")]
         color: [f32; 3],
         #[serde(default = "unit_intensity")]
@@ -121,6 +123,20 @@ pub struct RenderSpec {
     pub max_depth: Option<u32>,
 }
 
+/// Where a TOML error is and what it is, without the source line that `toml` quotes: a file
+/// named as a scene by mistake (a system file, say) must not have its contents printed.
+fn parse_message(error: &toml::de::Error, text: &str) -> String {
+    match error.span() {
+        Some(span) => {
+            let before = &text[..span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let column = before.rsplit('\n').next().map_or(0, |start| start.chars().count()) + 1;
+            format!("line {line}, column {column}: {}", error.message())
+        }
+        None => error.message().to_string(),
+    }
+}
+
 fn default_up() -> [f32; 3] {
     [0.0, 1.0, 0.0]
 }
@@ -143,6 +159,14 @@ pub const DEFAULT_BACKGROUND: Background =
 
 impl SceneFile {
     pub fn read(path: &Path) -> Result<Self, SceneError> {
+        pointray_io::ensure_readable_file(path).map_err(|error| SceneError::Read {
+            path: path.to_path_buf(),
+            source: match error {
+                pointray_io::IoError::Os { source, .. } => source,
+                pointray_io::IoError::Unusable { problem, .. } => std::io::Error::other(problem),
+                other => std::io::Error::other(other.to_string()),
+            },
+        })?;
         let text = std::fs::read_to_string(path)
             .map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
         Self::parse(&text, path)
@@ -151,7 +175,7 @@ impl SceneFile {
     /// Parses and checks `text`; `path` names it in errors and anchors relative paths.
     pub fn parse(text: &str, path: &Path) -> Result<Self, SceneError> {
         let mut file: Self = toml::from_str(text)
-            .map_err(|e| SceneError::Parse { path: path.to_path_buf(), message: e.to_string() })?;
+            .map_err(|e| SceneError::Parse { path: path.to_path_buf(), message: parse_message(&e, text) })?;
         file.path = path.to_path_buf();
         file.check().map_err(|invalid| invalid.in_file(path))?;
         Ok(file)
@@ -203,6 +227,21 @@ impl SceneFile {
         self
     }
 
+    /// `RenderSettings::default()` with the `[render]` table on top.
+    pub fn render_settings(&self) -> Result<RenderSettings, SceneError> {
+        self.render.settings().map_err(|invalid| invalid.in_file(&self.path))
+    }
+
+    /// Every file loading this scene reads: the scene file itself and each object's points,
+    /// store or mesh file. No output may be any of them.
+    pub fn input_files(&self) -> Vec<PathBuf> {
+        let objects = self.objects.iter().filter_map(|object| match &object.shape {
+            ShapeSpec::Points { path, .. } | ShapeSpec::Mesh { path } => Some(self.resolve(path)),
+            _ => None,
+        });
+        std::iter::once(self.path.clone()).chain(objects).collect()
+    }
+
     /// A path from the file, relative to the file's folder unless absolute.
     pub fn resolve(&self, relative: &Path) -> PathBuf {
         self.path.parent().unwrap_or(Path::new("")).join(relative)
@@ -222,17 +261,17 @@ impl SceneFile {
     /// Every check that needs no file, so that a typo fails before any slow loading.
     fn check(&self) -> Result<(), InvalidValue> {
         if let Some(camera) = &self.camera {
-            camera.to_camera().map_err(|e| e.within("camera"))?;
+            camera.to_camera(&RenderFrame::FILE).map_err(|e| e.within("camera"))?;
         }
         for (i, light) in self.lights.iter().enumerate() {
-            light.to_light().map_err(|e| e.within(&format!("lights[{i}]")))?;
+            light.to_light(&RenderFrame::FILE).map_err(|e| e.within(&format!("lights[{i}]")))?;
         }
         self.background()?;
         self.render.settings()?;
         for (i, object) in self.objects.iter().enumerate() {
             let key = format!("objects[{i}]");
             object.shape.check().map_err(|e| e.within(&key))?;
-            object.transform.to_affine().map_err(|e| e.within(&format!("{key}.transform")))?;
+            object.transform.to_daffine().map_err(|e| e.within(&format!("{key}.transform")))?;
             object.material.to_material().map_err(|e| e.within(&format!("{key}.material")))?;
         }
         Ok(())
@@ -240,15 +279,16 @@ impl SceneFile {
 }
 
 impl CameraSpec {
-    pub(crate) fn to_camera(&self) -> Result<Camera, InvalidValue> {
-        let position = checks::finite_vec3("position", self.position)?;
-        let look_at = checks::finite_vec3("look_at", self.look_at)?;
+    /// The camera in the scene's render frame (`RenderFrame`).
+    pub(crate) fn to_camera(&self, frame: &RenderFrame) -> Result<Camera, InvalidValue> {
+        let position = frame.point(checks::finite_dvec3("position", self.position)?);
+        let look_at = frame.point(checks::finite_dvec3("look_at", self.look_at)?);
         let up = checks::nonzero_vec3("up", self.up)?;
         let forward = look_at - position;
         if forward.length_squared() == 0.0 {
             return Err(InvalidValue::new("look_at", "must differ from the camera position"));
         }
-        if forward.normalize().cross(up.normalize()).length() < 1e-4 {
+        if forward.normalize().as_vec3().cross(up.normalize()).length() < 1e-4 {
             return Err(InvalidValue::new("up", "must not be parallel to the viewing direction"));
         }
         if !(self.vfov_degrees > 0.0 && self.vfov_degrees < 180.0) {
@@ -257,15 +297,24 @@ impl CameraSpec {
                 format!("must be between 0 and 180, got {}", self.vfov_degrees),
             ));
         }
-        Ok(Camera { position, look_at, up, vertical_fov_degrees: self.vfov_degrees })
+        Ok(Camera {
+            position: checks::placeable("position", position)?,
+            look_at: checks::placeable("look_at", look_at)?,
+            up,
+            vertical_fov_degrees: self.vfov_degrees,
+        })
     }
 }
 
 impl LightSpec {
-    pub(crate) fn to_light(&self) -> Result<Light, InvalidValue> {
+    /// The light in the scene's render frame (`RenderFrame`).
+    pub(crate) fn to_light(&self, frame: &RenderFrame) -> Result<Light, InvalidValue> {
         Ok(match self {
             Self::Point { position, color, intensity } => Light::Point {
-                position: checks::finite_vec3("position", *position)?,
+                position: checks::placeable(
+                    "position",
+                    frame.point(checks::finite_dvec3("position", *position)?),
+                )?,
                 color: checks::color("color", *color)?,
                 intensity: checks::non_negative("intensity", *intensity)?,
             },
@@ -281,17 +330,17 @@ impl LightSpec {
 impl RenderSpec {
     /// `RenderSettings::default()` with this file's values on top.
     pub(crate) fn settings(&self) -> Result<RenderSettings, InvalidValue> {
-        let key = |name: &str| format!("render.{name}");
         let default = RenderSettings::default();
+        let value = |setting: RenderSetting, given: Option<u32>, default: u32| {
+            given.map_or(Ok(default), |value| {
+                setting.check(value).map_err(|problem| InvalidValue::new(setting.file_key(), problem))
+            })
+        };
         Ok(RenderSettings {
-            width: checks::at_least(&key("width"), self.width.unwrap_or(default.width), 1)?,
-            height: checks::at_least(&key("height"), self.height.unwrap_or(default.height), 1)?,
-            samples_per_pixel: checks::at_least(
-                &key("spp"),
-                self.spp.unwrap_or(default.samples_per_pixel),
-                1,
-            )?,
-            max_depth: checks::at_least(&key("max_depth"), self.max_depth.unwrap_or(default.max_depth), 1)?,
+            width: value(RenderSetting::Width, self.width, default.width)?,
+            height: value(RenderSetting::Height, self.height, default.height)?,
+            samples_per_pixel: value(RenderSetting::SamplesPerPixel, self.spp, default.samples_per_pixel)?,
+            max_depth: value(RenderSetting::MaxDepth, self.max_depth, default.max_depth)?,
             ..default
         })
     }

@@ -8,7 +8,7 @@
 //! scale = 2.0                                  # or per axis: [1.0, 2.0, 1.0]
 //! ```
 
-use glam::{Affine3A, Quat, Vec3};
+use glam::{DAffine3, DVec3, Quat, Vec3};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
@@ -18,7 +18,7 @@ use crate::error::InvalidValue;
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TransformSpec {
-    pub translate: Option<[f32; 3]>,
+    pub translate: Option<[f64; 3]>,
     pub rotate: Option<RotationSpec>,
     pub scale: Option<ScaleSpec>,
 }
@@ -58,11 +58,12 @@ pub enum ScaleSpec {
 }
 
 impl TransformSpec {
-    /// Object to world: `translate * rotate * scale`.
-    pub(crate) fn to_affine(&self) -> Result<Affine3A, InvalidValue> {
+    /// Object to world: `translate * rotate * scale`, in f64 so that a geo-referenced
+    /// translation keeps its precision until the scene is recentred.
+    pub(crate) fn to_daffine(&self) -> Result<DAffine3, InvalidValue> {
         let translation = match self.translate {
-            Some(t) => checks::finite_vec3("translate", t)?,
-            None => Vec3::ZERO,
+            Some(t) => checks::finite_dvec3("translate", t)?,
+            None => DVec3::ZERO,
         };
         let rotation = match &self.rotate {
             Some(rotation) => rotation.to_quat()?,
@@ -72,7 +73,7 @@ impl TransformSpec {
             Some(scale) => scale.to_vec3()?,
             None => Vec3::ONE,
         };
-        Ok(Affine3A::from_scale_rotation_translation(scale, rotation, translation))
+        Ok(DAffine3::from_scale_rotation_translation(scale.as_dvec3(), rotation.as_dquat(), translation))
     }
 }
 

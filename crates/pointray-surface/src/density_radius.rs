@@ -26,8 +26,8 @@
 use glam::Vec2;
 use rayon::prelude::*;
 
-use crate::frame::TangentFrame;
 use crate::neighbors::Neighbors;
+use pointray_kernels::TangentFrame;
 
 /// How `prep` chooses each patch's support radius `d_i`.
 ///
@@ -296,7 +296,7 @@ mod tests {
     fn the_cell_radius_reaches_the_cells_corner_and_never_past_the_papers() {
         let points: Vec<glam::Vec3> =
             (0..9).map(|i| glam::Vec3::new((i % 3) as f32, (i / 3) as f32, 0.0)).collect();
-        let frames = vec![TangentFrame::from_normal(glam::Vec3::Z); points.len()];
+        let frames = vec![TangentFrame::from_normal_and_angle(glam::Vec3::Z, 0.0); points.len()];
         let neighbors = crate::neighbors::k_nearest(&points, 8);
         let paper = vec![2.0; points.len()];
         let radii = cell_radii(&frames, &points, &neighbors, 8, &paper);

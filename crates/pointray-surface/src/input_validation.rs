@@ -4,11 +4,21 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use pointray_io::MemoryBudget;
+
+use crate::geometry_range::{CLOUD_EXTENTS, extent_problem};
+
+use crate::outlier_removal::OutlierFilter;
 use crate::patch_set::PrepParams;
+use crate::prep::PrepOptions;
 use crate::prep_error::PrepError;
 
 /// Fewer neighbours than this cannot give a PCA normal or a plane fit.
 const MIN_NEIGHBOURS: u32 = 3;
+
+/// More neighbours than this no longer describe a local surface, and the neighbour search
+/// grows with k squared.
+pub const MAX_NEIGHBOURS: u32 = 1024;
 
 /// Points within this fraction of the cloud's extent of one line are judged collinear:
 /// after recentring to f32 (24-bit mantissa) their offsets from the line are noise.
@@ -17,24 +27,70 @@ const COLLINEAR_TOLERANCE: f64 = 1e-6;
 /// Beyond this, patches reach past twice their farthest neighbour: no longer local.
 const MAX_DISK_SCALE: f32 = 2.0;
 
-pub fn validate_params(params: &PrepParams) -> Result<(), PrepError> {
-    let invalid = |problem: String| Err(PrepError::InvalidSettings { problem });
-    if params.k < MIN_NEIGHBOURS || params.normal_k < MIN_NEIGHBOURS {
-        return invalid(format!(
-            "k = {} and normal_k = {} must both be at least {MIN_NEIGHBOURS}",
-            params.k, params.normal_k
-        ));
+/// What `prep` holds per point at its peak, beyond 8 bytes per neighbour: the input and
+/// recentred positions, the sort, normals, frames, radii, the hot, cold and box records and
+/// the colour neighbours (about 330 bytes), with room for the search tree.
+const PREP_BYTES_PER_POINT: u64 = 400;
+
+/// Every prep setting, whichever route it came by (flags, a scene file, code): the one place
+/// they are checked.
+pub fn validate_options(options: &PrepOptions) -> Result<(), PrepError> {
+    validate_params(&options.params)?;
+    if let Some(sensor) = options.sensor.filter(|sensor| !sensor.is_finite()) {
+        return invalid("sensor", format!("must be a finite position, got {sensor}"));
     }
-    if !(params.duplicate_tolerance >= 0.0 && params.duplicate_tolerance.is_finite()) {
-        return invalid(format!(
-            "duplicate tolerance {} must be finite and >= 0",
-            params.duplicate_tolerance
-        ));
-    }
-    if !(params.disk_scale > 0.0 && params.disk_scale <= MAX_DISK_SCALE) {
-        return invalid(format!("disk scale {} must be in (0, {MAX_DISK_SCALE}]", params.disk_scale));
+    if let Some(filter) = &options.remove_outliers {
+        validate_outlier_filter(filter)?;
     }
     Ok(())
+}
+
+pub fn validate_params(params: &PrepParams) -> Result<(), PrepError> {
+    for (name, value) in [("k", params.k), ("normal_k", params.normal_k)] {
+        if !(MIN_NEIGHBOURS..=MAX_NEIGHBOURS).contains(&value) {
+            return invalid(
+                name,
+                format!("must be between {MIN_NEIGHBOURS} and {MAX_NEIGHBOURS}, got {value}"),
+            );
+        }
+    }
+    if !(params.duplicate_tolerance >= 0.0 && params.duplicate_tolerance.is_finite()) {
+        return invalid(
+            "duplicate_tolerance",
+            format!("must be finite and >= 0, got {}", params.duplicate_tolerance),
+        );
+    }
+    if !(params.disk_scale > 0.0 && params.disk_scale <= MAX_DISK_SCALE) {
+        return invalid("disk_scale", format!("must be in (0, {MAX_DISK_SCALE}], got {}", params.disk_scale));
+    }
+    Ok(())
+}
+
+fn validate_outlier_filter(filter: &OutlierFilter) -> Result<(), PrepError> {
+    let OutlierFilter { neighbors, sigmas } = *filter;
+    if !(1..=MAX_NEIGHBOURS).contains(&neighbors) {
+        return invalid(
+            "remove_outliers.neighbors",
+            format!("must be between 1 and {MAX_NEIGHBOURS}, got {neighbors}"),
+        );
+    }
+    if !(sigmas.is_finite() && sigmas >= 0.0) {
+        return invalid("remove_outliers.sigmas", format!("must be a finite number >= 0, got {sigmas}"));
+    }
+    Ok(())
+}
+
+/// Whether prepping `points` points with `params` fits in `budget`, checked before any stage
+/// allocates.
+pub fn validate_size(points: usize, params: &PrepParams, budget: &MemoryBudget) -> Result<(), PrepError> {
+    let neighbours = u64::from(params.k.max(params.normal_k));
+    budget
+        .check(points as u64, PREP_BYTES_PER_POINT + 8 * neighbours, "points to prep")
+        .map_err(|shortfall| PrepError::TooLarge { problem: shortfall.to_string() })
+}
+
+fn invalid(setting: &'static str, problem: String) -> Result<(), PrepError> {
+    Err(PrepError::InvalidSetting { setting, problem })
 }
 
 /// Checks, in order: finite coordinates, enough points, not all identical, not all on
@@ -52,6 +108,10 @@ pub fn validate_positions(positions: &[DVec3], k: usize) -> Result<(), PrepError
     let extent = (farthest - anchor).length();
     if extent == 0.0 {
         return Err(PrepError::AllPointsIdentical { count });
+    }
+    // Measured from one point, the extent is at least half the bounding box's diagonal.
+    if let Some(problem) = extent_problem("the cloud", extent, &CLOUD_EXTENTS) {
+        return Err(PrepError::ExtentOutOfRange { problem });
     }
     let direction = (farthest - anchor) / extent;
     let off_line = positions
@@ -103,11 +163,55 @@ mod tests {
     }
 
     #[test]
+    fn refuses_clouds_too_small_or_too_large_for_f32() {
+        for scale in [1e-25, 1e-30, 1e15, 1e30] {
+            let points: Vec<DVec3> = grid(5).into_iter().map(|p| p * scale).collect();
+            let error = validate_positions(&points, 9).unwrap_err();
+            assert!(matches!(error, PrepError::ExtentOutOfRange { .. }), "scale {scale}: {error}");
+        }
+        let millimetres: Vec<DVec3> = grid(5).into_iter().map(|p| p * 1e-3 + DVec3::splat(5e6)).collect();
+        assert_eq!(validate_positions(&millimetres, 9), Ok(()));
+    }
+
+    #[test]
     fn refuses_bad_settings() {
         let few = PrepParams { k: 2, ..PrepParams::default() };
-        assert!(matches!(validate_params(&few), Err(PrepError::InvalidSettings { .. })));
+        assert!(matches!(validate_params(&few), Err(PrepError::InvalidSetting { setting: "k", .. })));
+        let many = PrepParams { normal_k: 4_000_000_000, ..PrepParams::default() };
+        assert!(matches!(validate_params(&many), Err(PrepError::InvalidSetting { setting: "normal_k", .. })));
         let nan = PrepParams { duplicate_tolerance: f32::NAN, ..PrepParams::default() };
-        assert!(matches!(validate_params(&nan), Err(PrepError::InvalidSettings { .. })));
+        assert!(matches!(validate_params(&nan), Err(PrepError::InvalidSetting { .. })));
         assert_eq!(validate_params(&PrepParams::default()), Ok(()));
+    }
+
+    #[test]
+    fn refuses_a_sensor_off_the_map_and_a_bad_outlier_filter() {
+        let nan_sensor =
+            PrepOptions { sensor: Some(DVec3::new(f64::NAN, 0.0, 0.0)), ..PrepOptions::default() };
+        assert!(matches!(
+            validate_options(&nan_sensor),
+            Err(PrepError::InvalidSetting { setting: "sensor", .. })
+        ));
+        for (neighbors, sigmas) in [(0, 1.0), (8, f32::NAN), (8, -1.0)] {
+            let filter = PrepOptions {
+                remove_outliers: Some(OutlierFilter { neighbors, sigmas }),
+                ..PrepOptions::default()
+            };
+            assert!(validate_options(&filter).is_err(), "K = {neighbors}, N = {sigmas}");
+        }
+        let fine = PrepOptions {
+            remove_outliers: Some(OutlierFilter { neighbors: 8, sigmas: 2.0 }),
+            sensor: Some(DVec3::ONE),
+            ..PrepOptions::default()
+        };
+        assert_eq!(validate_options(&fine), Ok(()));
+    }
+
+    #[test]
+    fn refuses_a_cloud_too_large_for_memory_and_says_what_fits() {
+        let budget = MemoryBudget { bytes: 1 << 30 };
+        assert_eq!(validate_size(1_000_000, &PrepParams::default(), &budget), Ok(()));
+        let error = validate_size(4_000_000_000, &PrepParams::default(), &budget).unwrap_err().to_string();
+        assert!(error.contains("4000000000 points to prep") && error.contains("at most about"), "{error}");
     }
 }

@@ -55,7 +55,7 @@ const MAX_JACOBI_SWEEPS: usize = 16;
 /// The unit eigenvector of the smallest eigenvalue of a symmetric matrix, by cyclic
 /// Jacobi rotations: slower than the closed form but accurate for nearly equal or zero
 /// eigenvalues, which flat and noise-free neighbourhoods produce.
-fn smallest_eigenvector(matrix: DMat3) -> DVec3 {
+pub(crate) fn smallest_eigenvector(matrix: DMat3) -> DVec3 {
     let mut a = matrix.to_cols_array_2d();
     let mut v = DMat3::IDENTITY.to_cols_array_2d();
     for _ in 0..MAX_JACOBI_SWEEPS {

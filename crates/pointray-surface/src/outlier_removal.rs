@@ -7,7 +7,6 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::neighbors::k_nearest;
-use crate::prep_error::PrepError;
 
 /// The settings of the filter (PCL's `StatisticalOutlierRemoval`, with the same meaning).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,18 +18,6 @@ pub struct OutlierFilter {
 }
 
 impl OutlierFilter {
-    pub fn validate(&self) -> Result<(), PrepError> {
-        if self.neighbors == 0 || !(self.sigmas.is_finite() && self.sigmas >= 0.0) {
-            return Err(PrepError::InvalidSettings {
-                problem: format!(
-                    "outlier removal needs K >= 1 neighbours and a finite N >= 0 sigmas, got K = {}, N = {}",
-                    self.neighbors, self.sigmas
-                ),
-            });
-        }
-        Ok(())
-    }
-
     /// `true` for every point to keep. Needs more than `neighbors` points (prep has
     /// checked that there are more than its own `k`); with fewer, it keeps them all.
     pub fn inliers(&self, points: &[Vec3]) -> Vec<bool> {
@@ -64,14 +51,6 @@ mod tests {
     fn limit_is_mean_plus_sigmas_deviations() {
         // mean 2, population deviation 1
         assert_eq!(mean_plus_sigmas(&[1.0, 3.0, 1.0, 3.0], 2.0), 4.0);
-    }
-
-    #[test]
-    fn settings_are_checked() {
-        assert!(OutlierFilter { neighbors: 0, sigmas: 1.0 }.validate().is_err());
-        assert!(OutlierFilter { neighbors: 8, sigmas: f32::NAN }.validate().is_err());
-        assert!(OutlierFilter { neighbors: 8, sigmas: -1.0 }.validate().is_err());
-        assert!(OutlierFilter { neighbors: 8, sigmas: 2.0 }.validate().is_ok());
     }
 
     #[test]

@@ -1,8 +1,8 @@
 //! The axis-aligned box of a patch (SPEC.md §2.4): the paper's cube, or a tight box
-//! around the patch surface over its disk.
+//! around the patch surface over its support ellipse.
 
 use glam::{Vec2, Vec3};
-use pointray_kernels::{Aabb, PatchHot};
+use pointray_kernels::{Aabb, Patch, PatchHot};
 
 use crate::quadratic_fit::evaluate;
 
@@ -11,7 +11,7 @@ use crate::quadratic_fit::evaluate;
 pub enum BoxKind {
     /// The cube of half-size `d_i` around `p_i`, as in the paper.
     Cube,
-    /// The box around the patch surface `w = f(u, v)` over the disk `u² + v² <= d_i²`: the
+    /// The box around the patch surface `w = f(u, v)` over its support ellipse: the
     /// default, since every hit the disk test accepts lies inside it (the same hits as the
     /// cube's, bench/FIDELITY.md) and rays test fewer boxes (bench/RESULTS.md).
     #[default]
@@ -40,27 +40,26 @@ impl BoxKind {
 const RIM_SAMPLES: usize = 24;
 
 /// Padding of the tight box, as a fraction of `d_i`. It covers what the samples miss:
-/// the rim polygon falls short of the circle by `d_i (1 - cos(π/24)) ≈ 0.0086 d_i`, and
-/// the height between rim samples deviates by a similar fraction of the height range.
+/// the rim polygon falls short of the ellipse by at most `d_u (1 - cos(π/24)) ≈ 0.0086 d_u`,
+/// and the height between rim samples deviates by a similar fraction of the height range.
 const TIGHT_PADDING: f32 = 0.02;
 
 pub fn patch_box(patch: &PatchHot, kind: BoxKind) -> Aabb {
     match kind {
         BoxKind::Cube => Aabb::cube(patch.origin(), patch.radius()),
-        BoxKind::Tight => tight_box(patch),
+        BoxKind::Tight => tight_box(&patch.decode()),
     }
 }
 
-/// The box around the centre, the rim and (when inside the disk) the critical point
-/// of `f`, where an interior extremum lies, padded by `TIGHT_PADDING d_i`.
-fn tight_box(patch: &PatchHot) -> Aabb {
-    let radius = patch.radius();
-    let coefficients = patch.coefficients();
+/// The box around the centre, the rim and (when over the support) the critical point
+/// of `f`, where an interior extremum lies, padded by `TIGHT_PADDING d_u`.
+fn tight_box(patch: &Patch) -> Aabb {
+    let coefficients = patch.coefficients;
     let rim = (0..RIM_SAMPLES).map(|i| {
         let angle = std::f32::consts::TAU * i as f32 / RIM_SAMPLES as f32;
-        Vec2::new(angle.cos(), angle.sin()) * radius
+        Vec2::new(angle.cos(), angle.sin()) * patch.radii
     });
-    let interior = [Some(Vec2::ZERO), critical_point(&coefficients).filter(|c| c.length() <= radius)];
+    let interior = [Some(Vec2::ZERO), critical_point(&coefficients).filter(|&c| patch.supports(c))];
     let (min, max) = rim.chain(interior.into_iter().flatten()).fold(
         (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
         |(min, max), uv| {
@@ -68,7 +67,7 @@ fn tight_box(patch: &PatchHot) -> Aabb {
             (min.min(world), max.max(world))
         },
     );
-    let pad = Vec3::splat(TIGHT_PADDING * radius);
+    let pad = Vec3::splat(TIGHT_PADDING * patch.radii.x);
     Aabb::new(min - pad, max + pad)
 }
 
@@ -92,8 +91,13 @@ mod tests {
 
     fn sample_patch() -> PatchHot {
         let n = Vec3::new(0.3, -0.2, 1.0).normalize();
-        let frame = crate::frame::TangentFrame::from_normal(n);
-        PatchHot::new(Vec3::new(1.0, 2.0, 3.0), frame.t1, n, [0.01, 0.2, -0.1, 1.5, -0.7, 2.0], 0.3)
+        let frame = pointray_kernels::PackedFrame::new(n, n.any_orthonormal_vector());
+        PatchHot::new(
+            Vec3::new(1.0, 2.0, 3.0),
+            frame,
+            Vec2::new(0.3, 0.12),
+            [0.01, 0.2, -0.1, 1.5, -0.7, 2.0],
+        )
     }
 
     #[test]
@@ -104,21 +108,22 @@ mod tests {
     }
 
     #[test]
-    fn tight_box_contains_the_whole_patch_surface_over_its_disk() {
-        let patch = sample_patch();
-        let tight = patch_box(&patch, BoxKind::Tight);
-        let coefficients = patch.coefficients();
+    fn tight_box_contains_the_whole_patch_surface_over_its_support() {
+        let hot = sample_patch();
+        let tight = patch_box(&hot, BoxKind::Tight);
+        let patch = hot.decode();
+        let coefficients = patch.coefficients;
         for ring in 0..=20 {
             for step in 0..97 {
-                let r = patch.radius() * ring as f32 / 20.0;
+                let scale = ring as f32 / 20.0;
                 let angle = step as f32 * std::f32::consts::TAU / 97.0;
-                let (u, v) = (r * angle.cos(), r * angle.sin());
+                let (u, v) = (patch.radii.x * scale * angle.cos(), patch.radii.y * scale * angle.sin());
                 let world = patch.to_world(Vec3::new(u, v, evaluate(&coefficients, u, v)));
                 assert!(tight.contains(world), "{world} outside {tight:?}");
             }
         }
         let extent = Vec3::from(tight.max) - Vec3::from(tight.min);
-        assert!(extent.max_element() < 2.2 * patch.radius());
+        assert!(extent.max_element() < 2.2 * patch.radii.x);
     }
 
     #[test]

@@ -1,11 +1,11 @@
 //! The patch store: the versioned binary file that caches a `PatchSet`.
 //!
-//! All numbers are little-endian. Version 3 layout:
+//! All numbers are little-endian. Version 4 layout:
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRPATCH\0"` |
-//! | 8 | 4 | format version, u32 = 3 |
+//! | 8 | 4 | format version, u32 = 4 |
 //! | 12 | 4 | header size in bytes, u32 = 160 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
 //! | 24 | 4 | `k`, u32 |
@@ -18,7 +18,7 @@
 //! | 152 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
 //! | 156 | 4 | disk scale, f32 (`PrepParams::disk_scale`) |
 //! | 160 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
-//! | 16-aligned | 64 n | hot: `PatchHot` (origin+d_i, t1+c0, n+c1, c2..c5; f32 x 16) |
+//! | 16-aligned | 36 n | hot: `PatchHot` (origin, d_u: f32 x 4; octahedral normal, tangent angle and d_v/d_u, c0..c5 as scaled halves: u32 x 5) |
 //! | 16-aligned | 12 n | cold: `PatchCold` (RGBA8 u32, intensity f32, colour reach f32) |
 //! | 16-aligned | 4 m n | neighbours: `m` patch indices per patch (u32, `NO_NEIGHBOR` = unused) |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
@@ -27,19 +27,18 @@
 //! those of `pointray_kernels::layout`, so the sections can be uploaded to the GPU as
 //! they are. `docs/PATCH_STORE.md` describes the same format.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
-use pointray_kernels::{Aabb, COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot};
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 
 use crate::patch_bounds::BoxKind;
 use crate::patch_set::{PatchSet, PrepParams};
 
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 const SECTION_COUNT: usize = 4;
 const HEADER_BYTES: usize = std::mem::size_of::<Header>();
 const CHECKSUM_BYTES: usize = 4;
@@ -114,17 +113,19 @@ impl Layout {
     }
 }
 
-/// Writes `patches` to `path` atomically: a temporary file in the same directory,
-/// renamed over `path` only once complete.
+/// Writes `patches` to `path` atomically (`pointray_io::write_atomically`): a temporary file
+/// in the same directory, renamed over `path` only once complete.
 pub fn write(path: &Path, patches: &PatchSet) -> Result<(), StoreError> {
-    let io_error = |source| StoreError::Io { path: path.to_path_buf(), source };
-    let directory = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let neighbor_slots = neighbor_slots(patches)
         .map_err(|problem| StoreError::InconsistentPatchSet { path: path.to_path_buf(), problem })?;
-    let temporary = tempfile::NamedTempFile::new_in(directory).map_err(io_error)?;
-    write_contents(temporary.as_file(), patches, neighbor_slots).map_err(io_error)?;
-    temporary.persist(path).map_err(|e| io_error(e.error))?;
-    Ok(())
+    pointray_io::write_atomically(path, |file| write_contents(file, patches, neighbor_slots)).map_err(
+        |error| match error {
+            pointray_io::IoError::Os { path, source } => StoreError::Io { path, source },
+            other => {
+                StoreError::Io { path: path.to_path_buf(), source: std::io::Error::other(other.to_string()) }
+            }
+        },
+    )
 }
 
 /// How many colour neighbours each patch has (0 or `COLOR_NEIGHBORS`), or why the record
@@ -145,14 +146,11 @@ fn neighbor_slots(patches: &PatchSet) -> Result<u32, String> {
 }
 
 /// The header and the sections, then the checksum of both.
-fn write_contents(file: &File, patches: &PatchSet, neighbor_slots: u32) -> std::io::Result<()> {
-    let mut writer = ChecksummedWriter::new(BufWriter::with_capacity(1 << 20, file));
+fn write_contents(file: &mut impl Write, patches: &PatchSet, neighbor_slots: u32) -> std::io::Result<()> {
+    let mut writer = ChecksummedWriter::new(file);
     write_body(&mut writer, patches, neighbor_slots)?;
     let checksum = writer.hasher.finalize();
-    let mut inner = writer.inner;
-    inner.write_all(&checksum.to_le_bytes())?;
-    inner.flush()?;
-    file.sync_all()
+    writer.inner.write_all(&checksum.to_le_bytes())
 }
 
 fn write_body(
@@ -220,7 +218,12 @@ impl<W: Write> ChecksummedWriter<W> {
 /// magic, the version, the length and the checksum.
 pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let bytes = std::fs::read(path).map_err(|source| StoreError::Io { path: path.to_path_buf(), source })?;
-    let header = checked_header(path, &bytes)?;
+    read_from(&bytes, path)
+}
+
+/// Reads a patch store held in memory; `path` names it in errors.
+pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
+    let header = checked_header(path, bytes)?;
     let malformed =
         |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
     let layout = Layout::new(header.point_count, header.neighbor_slots)
@@ -233,7 +236,7 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
         let Section { offset, length } = layout.sections[i];
         &bytes[offset as usize..(offset + length) as usize]
     };
-    Ok(PatchSet {
+    let patches = PatchSet {
         params: PrepParams {
             k: header.k,
             normal_k: header.normal_k,
@@ -245,24 +248,11 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
         aabbs: bytemuck::pod_collect_to_vec(section(0)),
         hot: bytemuck::pod_collect_to_vec(section(1)),
         cold: bytemuck::pod_collect_to_vec(section(2)),
-        color_neighbors: checked_neighbors(section(3), header.point_count)
-            .map_err(|problem| malformed(&problem))?,
-    })
-}
-
-/// The neighbour section, once every entry is a patch index or `NO_NEIGHBOR`: the GPU reads
-/// the patches they name without bounds checks.
-fn checked_neighbors(bytes: &[u8], point_count: u64) -> Result<Vec<u32>, String> {
-    let neighbors: Vec<u32> = bytemuck::pod_collect_to_vec(bytes);
-    match neighbors.iter().position(|&j| j != NO_NEIGHBOR && u64::from(j) >= point_count) {
-        Some(bad) => Err(format!(
-            "colour neighbour {} of patch {} is {}, beyond the {point_count} patches",
-            bad % COLOR_NEIGHBORS,
-            bad / COLOR_NEIGHBORS,
-            neighbors[bad]
-        )),
-        None => Ok(neighbors),
-    }
+        color_neighbors: bytemuck::pod_collect_to_vec(section(3)),
+    };
+    // A store can pass its checksum and still hold numbers no renderer can build on.
+    patches.check().map_err(|problem| malformed(&problem))?;
+    Ok(patches)
 }
 
 /// The header, once magic, version, length and checksum have been verified.
@@ -313,13 +303,13 @@ mod tests {
         let layout = Layout::new(3, COLOR_NEIGHBORS as u32).unwrap();
         assert!(layout.sections.iter().all(|s| s.offset % 16 == 0));
         assert_eq!(layout.sections[0], Section { offset: 160, length: 72 });
-        assert_eq!(layout.sections[1], Section { offset: 240, length: 192 });
-        assert_eq!(layout.sections[2], Section { offset: 432, length: 36 });
-        assert_eq!(layout.sections[3], Section { offset: 480, length: 144 });
-        assert_eq!(layout.total_bytes, 628);
+        assert_eq!(layout.sections[1], Section { offset: 240, length: 108 });
+        assert_eq!(layout.sections[2], Section { offset: 352, length: 36 });
+        assert_eq!(layout.sections[3], Section { offset: 400, length: 144 });
+        assert_eq!(layout.total_bytes, 548);
         let without = Layout::new(3, 0).unwrap();
-        assert_eq!(without.sections[3], Section { offset: 480, length: 0 });
-        assert_eq!(without.total_bytes, 484);
+        assert_eq!(without.sections[3], Section { offset: 400, length: 0 });
+        assert_eq!(without.total_bytes, 404);
         assert!(Layout::new(u64::MAX, 0).is_none());
     }
 }

@@ -1,18 +1,16 @@
 //! `prep`: from a point cloud to a `PatchSet` (SPEC.md §2), stage by stage.
 
-use std::time::{Duration, Instant};
-
-use glam::{DVec3, Vec3};
-use pointray_io::PointCloud;
+use glam::{DVec3, Vec2, Vec3};
+use pointray_io::{MemoryBudget, PointCloud};
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
-use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_kernels::packed_frame::normal_basis;
+use pointray_kernels::{Aabb, PackedFrame, PatchCold, PatchHot, TangentFrame};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
 use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii, cell_radii};
 use crate::duplicates::merge_duplicates;
-use crate::frame::TangentFrame;
-use crate::input_validation::{validate_params, validate_positions};
+use crate::input_validation::{validate_options, validate_positions, validate_size};
 use crate::morton::morton_order;
 use crate::neighbors::{Neighbors, k_nearest};
 use crate::normals::pca_normals;
@@ -24,6 +22,9 @@ use crate::prep_error::PrepError;
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::prep_report::{FitCounts, PrepReport, RadiusFallbacks};
 use crate::quadratic_fit::{FitKind, PatchFit, fit_patch};
+use crate::scan_prep::{scan_shaped, scan_structure};
+use crate::shaped_patches::{ShapedPatches, count_fits};
+use crate::stage_clock::StageClock;
 use crate::support_radius::{RadiusSource, support_radius};
 
 /// The Wendland scale `h_i` is this multiple of the farthest neighbour's distance, so
@@ -35,8 +36,9 @@ const PROGRESS_CHUNK: usize = 16_384;
 
 /// Changes whenever `prep` makes different patches from the same input and options (the
 /// cell margin went from 1.15 to 1.5 in revision 2), so that caches keyed on the options also
-/// key on this and never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 2;
+/// key on this and never serve patches of an older rule (revision 3: scan-aware patches and
+/// the packed record).
+pub const PREP_REVISION: u32 = 3;
 
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PrepOptions {
@@ -48,8 +50,21 @@ pub struct PrepOptions {
     pub sensor: Option<DVec3>,
     /// Drop statistical outliers before fitting; `None` keeps every point.
     pub remove_outliers: Option<OutlierFilter>,
-    /// How the support radius `d_i` is chosen.
+    /// How the support radius `d_i` is chosen where the scan structure is not used.
     pub radius_mode: RadiusMode,
+    /// Whether a LiDAR scan's line structure shapes the patches.
+    pub scan: ScanMode,
+}
+
+/// Whether `prep` uses a LiDAR scan's structure (`scan_lines`): scan lines from a ring field
+/// or recovered from elevations, seen from a known sensor.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ScanMode {
+    /// Scan-aware patches whenever the sensor is known and its lines can be found.
+    #[default]
+    Auto,
+    /// Every cloud as unstructured points.
+    Off,
 }
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
@@ -62,7 +77,7 @@ pub fn prep(
     let (k, normal_k) = (params.k as usize, params.normal_k as usize);
     let mut clock = StageClock { progress, times: Vec::new() };
     let count = cloud.len();
-    clock.run(Stage::Validate, count, || validate(cloud, &params))?;
+    clock.run(Stage::Validate, count, || validate(cloud, options))?;
     let (offset, recentred) = clock.run(Stage::Recentre, count, || recentre(&cloud.positions));
     let order = clock.run(Stage::MortonSort, count, || morton_order(&recentred));
     let sorted = gather(&recentred, &order);
@@ -87,33 +102,31 @@ pub fn prep(
     drop(sorted);
     let patches = points.len();
     let neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
-    let (mut normals, replaced_input_normals) =
-        clock.run(Stage::Normals, patches, || normals_for(&points, &neighbors, cloud, &source, options));
-    clock.run(Stage::Orientation, patches, || {
-        orient(&points, &mut normals, &neighbors, cloud, options, offset)
-    });
-    let frames: Vec<TangentFrame> = clock
-        .run(Stage::Frames, patches, || normals.par_iter().map(|&n| TangentFrame::from_normal(n)).collect());
-    let radii = clock.run(Stage::SupportRadii, patches, || {
-        support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode)
-    });
-    let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
-        fit_patches(&points, &frames, &radii.chosen, &neighbors, k, params.disk_scale, progress)
-    });
+    let scan =
+        clock.run(Stage::ScanLines, patches, || scan_structure(&points, cloud, &source, options, offset));
+    let shaped = match scan {
+        Some(scan) => scan_shaped(&points, scan, params.disk_scale, &mut clock),
+        None => unstructured_shaped(&points, &neighbors, cloud, &source, options, offset, &mut clock),
+    };
+    let hot = shaped.hot;
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
     let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
-        (gather_cold(cloud, &source, &radii.paper), color_neighbor_table(&neighbors, has_point_colors(cloud)))
+        (
+            gather_cold(cloud, &source, &shaped.color_radii),
+            color_neighbor_table(&neighbors, has_point_colors(cloud)),
+        )
     });
     let report = PrepReport {
         input_points: count,
         merged_duplicates: merge.merged_count,
         removed_outliers,
         patches,
-        replaced_input_normals,
-        fits,
-        radius_fallbacks: radii.fallbacks,
-        radius_adjustments: radii.adjustments,
+        replaced_input_normals: shaped.replaced_input_normals,
+        fits: shaped.fits,
+        radius_fallbacks: shaped.radius_fallbacks,
+        radius_adjustments: shaped.radius_adjustments,
+        scan: shaped.scan,
         offset,
         patch_sources: source,
         stage_times: clock.times,
@@ -121,26 +134,53 @@ pub fn prep(
     Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors }, report))
 }
 
-/// Times each stage and tells `progress` about it.
-struct StageClock<'a> {
-    progress: &'a dyn PrepProgress,
-    times: Vec<(Stage, Duration)>,
-}
-
-impl StageClock<'_> {
-    fn run<T>(&mut self, stage: Stage, items: usize, work: impl FnOnce() -> T) -> T {
-        self.progress.stage_started(stage, items as u64);
-        let start = Instant::now();
-        let result = work();
-        let elapsed = start.elapsed();
-        self.progress.stage_finished(stage, elapsed);
-        self.times.push((stage, elapsed));
-        result
+/// Patches of unstructured points: PCA normals oriented over the neighbour graph or toward a
+/// sensor, round supports of the chosen radius mode, and quadratic fits (SPEC.md §2).
+fn unstructured_shaped(
+    points: &[Vec3],
+    neighbors: &Neighbors,
+    cloud: &PointCloud,
+    source: &[u32],
+    options: &PrepOptions,
+    offset: DVec3,
+    clock: &mut StageClock,
+) -> ShapedPatches {
+    let params = options.params;
+    let (k, patches) = (params.k as usize, points.len());
+    let (mut normals, replaced_input_normals) =
+        clock.run(Stage::Normals, patches, || normals_for(points, neighbors, cloud, source, options));
+    clock
+        .run(Stage::Orientation, patches, || orient(points, &mut normals, neighbors, cloud, options, offset));
+    let (packed_frames, frames) = clock.run(Stage::Frames, patches, || stored_frames(&normals));
+    let radii = clock.run(Stage::SupportRadii, patches, || {
+        support_radii(points, &normals, &frames, neighbors, k, options.radius_mode)
+    });
+    let progress = clock.progress;
+    let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
+        fit_patches(
+            points,
+            (&packed_frames, &frames),
+            &radii.chosen,
+            neighbors,
+            k,
+            params.disk_scale,
+            progress,
+        )
+    });
+    ShapedPatches {
+        hot,
+        fits,
+        color_radii: radii.paper,
+        radius_fallbacks: radii.fallbacks,
+        radius_adjustments: radii.adjustments,
+        replaced_input_normals,
+        scan: None,
     }
 }
 
-fn validate(cloud: &PointCloud, params: &PrepParams) -> Result<(), PrepError> {
-    validate_params(params)?;
+fn validate(cloud: &PointCloud, options: &PrepOptions) -> Result<(), PrepError> {
+    validate_options(options)?;
+    validate_size(cloud.len(), &options.params, &MemoryBudget::of_this_machine())?;
     let expected = cloud.len();
     let lengths = [
         ("normals", cloud.normals.as_ref().map(Vec::len)),
@@ -152,7 +192,7 @@ fn validate(cloud: &PointCloud, params: &PrepParams) -> Result<(), PrepError> {
             return Err(PrepError::AttributeLength { attribute, found, expected });
         }
     }
-    validate_positions(&cloud.positions, params.k as usize)
+    validate_positions(&cloud.positions, options.params.k as usize)
 }
 
 /// Recentres on the bounding-box centre in f64, then drops to f32: geo-referenced
@@ -227,7 +267,6 @@ fn keep_inliers(
     kept: &[u32],
     k: usize,
 ) -> Result<Vec<u32>, PrepError> {
-    filter.validate()?;
     let inliers = filter.inliers(&gather(sorted, kept));
     let survivors: Vec<u32> =
         kept.iter().zip(inliers).filter(|(_, inlier)| *inlier).map(|(&i, _)| i).collect();
@@ -287,9 +326,20 @@ fn paper_radii(
     )
 }
 
+/// Each patch's frame as stored, and what it decodes to: the frame the fit works in.
+fn stored_frames(normals: &[Vec3]) -> (Vec<PackedFrame>, Vec<TangentFrame>) {
+    normals
+        .par_iter()
+        .map(|&n| {
+            let packed = PackedFrame::new(n, normal_basis(n).0);
+            (packed, packed.decode())
+        })
+        .unzip()
+}
+
 fn fit_patches(
     points: &[Vec3],
-    frames: &[TangentFrame],
+    (packed_frames, frames): (&[PackedFrame], &[TangentFrame]),
     radii: &[f32],
     neighbors: &Neighbors,
     k: usize,
@@ -304,17 +354,11 @@ fn fit_patches(
                 progress.advanced(PROGRESS_CHUNK.min(points.len() - i) as u64);
             }
             let fit = fit_one(points, &frames[i], radii[i], neighbors, k, i);
-            let frame = &frames[i];
-            (PatchHot::new(points[i], frame.t1, frame.n, fit.coefficients, radii[i] * disk_scale), fit.kind)
+            let support = Vec2::splat(radii[i] * disk_scale);
+            (PatchHot::new(points[i], packed_frames[i], support, fit.coefficients), fit.kind)
         })
         .unzip();
-    let count = |wanted| kinds.par_iter().filter(|&&kind| kind == wanted).count();
-    let fits = FitCounts {
-        quadratic: count(FitKind::Quadratic),
-        plane: count(FitKind::Plane),
-        flat: count(FitKind::Flat),
-    };
-    (hot, fits)
+    (hot, count_fits(&kinds))
 }
 
 /// The patch of point `i` from the point itself and its `k` nearest neighbours.

@@ -12,8 +12,12 @@ pub enum PrepError {
     AllPointsIdentical { count: usize },
     #[error("all {count} points lie on one line: there is no surface to fit")]
     AllPointsCollinear { count: usize },
+    #[error("{problem}")]
+    ExtentOutOfRange { problem: String },
     #[error("the cloud has {found} {attribute} for {expected} points")]
     AttributeLength { attribute: &'static str, found: usize, expected: usize },
-    #[error("invalid settings: {problem}")]
-    InvalidSettings { problem: String },
+    #[error("invalid setting `{setting}`: {problem}")]
+    InvalidSetting { setting: &'static str, problem: String },
+    #[error("too large: {problem}")]
+    TooLarge { problem: String },
 }

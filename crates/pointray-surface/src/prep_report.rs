@@ -38,6 +38,8 @@ pub struct PrepReport {
     pub radius_fallbacks: RadiusFallbacks,
     /// How the adaptive radius mode changed the paper's radii (all 0 in paper mode).
     pub radius_adjustments: RadiusAdjustments,
+    /// The scan structure the patches followed, when one was used.
+    pub scan: Option<ScanSummary>,
     /// The recentring offset (`input = local + offset`), also stored in the patch store.
     pub offset: DVec3,
     /// For each patch, the index of the input point it was made from (patches are in
@@ -45,6 +47,16 @@ pub struct PrepReport {
     pub patch_sources: Vec<u32>,
     /// Wall time of each stage, in the order they ran.
     pub stage_times: Vec<(Stage, Duration)>,
+}
+
+/// How a LiDAR scan's structure shaped the patches.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ScanSummary {
+    /// Scan lines found (beams or grid rows, over all stations).
+    pub lines: usize,
+    /// Patches over a surface their neighbours agree on; the rest are small disks facing the
+    /// sensor.
+    pub surface_patches: usize,
 }
 
 impl PrepReport {
@@ -71,6 +83,13 @@ impl fmt::Display for PrepReport {
         let RadiusAdjustments { widened, capped, raised } = self.radius_adjustments;
         if widened + capped + raised > 0 {
             writeln!(f, "adaptive radii: {widened} widened to their cell, {capped} capped, {raised} raised")?;
+        }
+        if let Some(ScanSummary { lines, surface_patches }) = self.scan {
+            let disks = self.patches - surface_patches;
+            writeln!(
+                f,
+                "scan-aware: {lines} scan lines, {surface_patches} surface patches, {disks} footprint disks"
+            )?;
         }
         if self.replaced_input_normals > 0 {
             writeln!(f, "input normals replaced: {}", self.replaced_input_normals)?;

@@ -11,6 +11,13 @@ use rand_chacha::ChaCha8Rng;
 /// Blue noise draws this many uniform candidates per wanted point, then thins them.
 const BLUE_NOISE_OVERSAMPLING: usize = 5;
 
+/// The memory `sample_mesh` and writing its points take per point wanted: the f64 position
+/// and its f32 copy for writing, and with blue noise the candidates and their search tree.
+pub fn bytes_per_sample(blue_noise: bool) -> u64 {
+    let plain = 48;
+    if blue_noise { plain + BLUE_NOISE_OVERSAMPLING as u64 * 64 } else { plain }
+}
+
 /// `count` points spread uniformly by area over `mesh`, the same for the same `seed`.
 /// With `blue_noise`, the points are thinned from more candidates so that no two lie
 /// closer than a radius close to the densest packing, as real scans are far more even

@@ -41,6 +41,7 @@ pub use controls::KEY_HELP;
 pub use error::ViewerError;
 pub use frame_source::{Presentation, RenderBackend};
 pub use orbit::orbit_camera;
+pub use screenshots::sequence_path;
 
 use app::App;
 use frame_source::FrameSource;

@@ -14,7 +14,7 @@ pub(crate) fn save(frame: &Frame, path: &Path) -> Result<(), ViewerError> {
 }
 
 /// `DIR/frame-00012.png`: zero-padded so the files sort in frame order.
-pub(crate) fn sequence_path(dir: &Path, index: u32) -> PathBuf {
+pub fn sequence_path(dir: &Path, index: u32) -> PathBuf {
     dir.join(format!("frame-{index:05}.png"))
 }
 

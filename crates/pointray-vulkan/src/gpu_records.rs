@@ -3,22 +3,21 @@
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use pointray_kernels::{PatchCold, PatchHot};
-use pointray_scene::{AcceptanceTest, Background, BufferLayout, Camera, Light, Material, RenderSettings};
+use pointray_scene::{Background, BufferLayout, Camera, Light, Material, RenderSettings};
 
 use crate::trace_target::PixelOutput;
 
-/// Hot and cold data of one patch interleaved (`BufferLayout::Combined`); std430 pads it to 80.
+/// Hot and cold data of one patch interleaved (`BufferLayout::Combined`): 48 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub(crate) struct PatchCombined {
     hot: PatchHot,
     cold: PatchCold,
-    pad: u32,
 }
 
 impl PatchCombined {
     pub(crate) fn new(hot: PatchHot, cold: PatchCold) -> Self {
-        Self { hot, cold, pad: 0 }
+        Self { hot, cold }
     }
 }
 
@@ -135,10 +134,7 @@ impl TraceSettings {
             samples_per_pixel: settings.samples_per_pixel,
             max_depth: settings.max_depth,
             shadows: settings.shadows.into(),
-            acceptance: match settings.acceptance {
-                AcceptanceTest::Box => 0,
-                AcceptanceTest::Disk => 1,
-            },
+            acceptance: settings.acceptance.code(),
             buffer_layout: match settings.buffer_layout {
                 BufferLayout::Split => 0,
                 BufferLayout::Combined => 1,
@@ -168,7 +164,7 @@ mod tests {
 
     #[test]
     fn records_have_the_glsl_sizes() {
-        assert_eq!(std::mem::size_of::<PatchCombined>(), 80);
+        assert_eq!(std::mem::size_of::<PatchCombined>(), 48);
         assert_eq!(std::mem::size_of::<ObjectRecord>(), 80);
         assert_eq!(std::mem::size_of::<LightRecord>(), 32);
         assert_eq!(std::mem::size_of::<FrameUniforms>(), 96);

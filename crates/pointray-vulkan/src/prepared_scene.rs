@@ -9,6 +9,7 @@ use pointray_io::TriangleMesh;
 use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR};
 use pointray_scene::{Background, Camera, Geometry, Light, Scene};
 use pointray_surface::PatchSet;
+use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
 
 use crate::acceleration::{
     AccelerationStructure, BlasLayout, aabb_input, build, instance_input, triangle_input,
@@ -248,6 +249,22 @@ impl PreparedScene {
     }
 }
 
+/// Why an object cannot go into an acceleration structure, if it cannot: the device's build
+/// is undefined for NaN or infinite boxes.
+fn out_of_range(object: &pointray_scene::SceneObject) -> Option<String> {
+    let problem = match &object.geometry {
+        _ if !object.transform.is_finite() => "its transform is not finite".to_string(),
+        Geometry::Patches(patches) => {
+            let bad = patches.aabbs.iter().position(|aabb| !box_in_range(aabb))?;
+            format!("patch box {bad} is not finite or out of range")
+        }
+        Geometry::Mesh(mesh) => {
+            format!("vertex {} is not finite or out of range", first_vertex_out_of_range(mesh)?)
+        }
+    };
+    Some(format!("object {:?}: {problem}", object.name))
+}
+
 /// Uploads `scene` and builds its acceleration structures.
 pub(crate) fn prepare(
     context: &Arc<GpuContext>,
@@ -259,6 +276,9 @@ pub(crate) fn prepare(
             "{} objects; at most {MAX_OBJECTS} fit",
             scene.objects.len()
         )));
+    }
+    if let Some(problem) = scene.objects.iter().find_map(out_of_range) {
+        return Err(VulkanError::InvalidScene(problem));
     }
     let mut records = Vec::with_capacity(scene.objects.len());
     let mut instances = Vec::new();

@@ -1,11 +1,15 @@
 //! `pointray bench`: time a scene file or a suite (`table1`) on the Vulkan renderer.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
 use pointray_bench::{BenchOptions, CaseResult, FrameCounts, Suite, run_scene_file, run_suite};
+use pointray_io::MemoryBudget;
+use pointray_scene::{RenderSetting, RenderSettings, SceneFile};
 use pointray_vulkan::{DeviceSelector, VulkanRenderer, validation_requested_by_env};
+
+use crate::setting_flag::setting_flag;
 
 /// Time frames with GPU timestamps: FPS, frame and trace times, rays/s, build costs.
 #[derive(Args)]
@@ -19,9 +23,9 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 10)]
     warmup: u32,
     /// Replace every size (both flags are needed).
-    #[arg(long, requires = "height")]
+    #[arg(long, requires = "height", value_parser = setting_flag(RenderSetting::Width))]
     width: Option<u32>,
-    #[arg(long, requires = "width")]
+    #[arg(long, requires = "width", value_parser = setting_flag(RenderSetting::Height))]
     height: Option<u32>,
     /// Only these models of the suite (repeatable).
     #[arg(long = "model")]
@@ -47,6 +51,39 @@ pub struct BenchArgs {
     device: DeviceSelector,
 }
 
+/// What `bench` times: a suite of models, or one scene file.
+enum Target {
+    Suite(Suite),
+    Scene(SceneFile),
+}
+
+impl Target {
+    fn read(target: &str) -> anyhow::Result<Self> {
+        if target == "table1" {
+            return Ok(Self::Suite(Suite::table1()?));
+        }
+        let path = PathBuf::from(target);
+        pointray_io::ensure_readable_file(&path)?;
+        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+        // A suite lists models; anything else is a scene file.
+        Ok(if text.contains("[[models]]") {
+            Self::Suite(Suite::parse(&text, &path)?)
+        } else {
+            Self::Scene(SceneFile::parse(&text, &path)?)
+        })
+    }
+
+    /// Every file the run reads; the reports must not replace any of them.
+    fn input_files(&self, data: &Path) -> Vec<PathBuf> {
+        match self {
+            Self::Suite(suite) => std::iter::once(suite.path.clone())
+                .chain(suite.models.iter().flat_map(|model| model.input_files(data)))
+                .collect(),
+            Self::Scene(file) => file.input_files(),
+        }
+    }
+}
+
 fn print_case(case: &CaseResult) {
     let paper = case.paper_fps.map(|p| format!(" (paper {p:.0}, x{:.2})", case.fps / p)).unwrap_or_default();
     println!(
@@ -65,6 +102,14 @@ fn print_case(case: &CaseResult) {
 
 pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     anyhow::ensure!(args.frames > 0, "--frames must be at least 1");
+    let data = args.data.clone().unwrap_or_else(pointray_bench::data::default_data_dir);
+    let target = Target::read(&args.target)?;
+    let outputs: Vec<PathBuf> = args.json.iter().chain(&args.markdown).cloned().collect();
+    pointray_io::ensure_outputs_spare_inputs(&target.input_files(&data), &outputs)?;
+    if let Some((width, height)) = args.width.zip(args.height) {
+        let size = RenderSettings { width, height, ..RenderSettings::default() };
+        size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
+    }
     let renderer = VulkanRenderer::new(args.device.clone()).context("opening the Vulkan backend")?;
     println!("device: {}", renderer.device_info());
     let reordering = (args.ablations && renderer.device_info().hit_reordering)
@@ -72,7 +117,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         .transpose()
         .context("opening a second renderer with hit reordering")?;
     let options = BenchOptions {
-        data: args.data.clone().unwrap_or_else(pointray_bench::data::default_data_dir),
+        data,
         cache: args.cache.clone(),
         frames: FrameCounts { warmup: args.warmup, timed: args.frames },
         size: args.width.zip(args.height),
@@ -82,17 +127,9 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         models: args.models.clone(),
         on_case: &print_case,
     };
-    let report = if args.target == "table1" {
-        run_suite(&renderer, &Suite::table1()?, &options)?
-    } else {
-        let path = PathBuf::from(&args.target);
-        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
-        // A suite lists models; anything else is a scene file.
-        if text.contains("[[models]]") {
-            run_suite(&renderer, &Suite::parse(&text, &path)?, &options)?
-        } else {
-            run_scene_file(&renderer, &path, &options)?
-        }
+    let report = match &target {
+        Target::Suite(suite) => run_suite(&renderer, suite, &options)?,
+        Target::Scene(file) => run_scene_file(&renderer, &file.path, &options)?,
     };
     if let Some(path) = &args.json {
         pointray_bench::write_json(&report, path)?;

@@ -6,16 +6,18 @@ use std::sync::Arc;
 use anyhow::Context;
 use clap::Args;
 use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, measure_fidelity};
-use pointray_scene::{Frame, RenderSettings, Scene};
+use pointray_io::MemoryBudget;
+use pointray_scene::{Frame, PatchAcceptance, RenderSetting, RenderSettings, Scene};
+use pointray_surface::input_validation::validate_options;
 use pointray_surface::{PatchSet, PrepOptions, PrepParams, prep};
 use pointray_vulkan::DeviceSelector;
 
-use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendChoice};
 use crate::boxes_arg::Boxes;
 use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
 use crate::radius_arg::Radius;
+use crate::setting_flag::setting_flag;
 
 /// Render the points' patches and the mesh from cameras around the model and report holes,
 /// false surfaces, depth and normal error and PSNR, as a table (and JSON with `--json`).
@@ -29,14 +31,15 @@ pub struct FidelityArgs {
     #[arg(long, default_value_t = 6)]
     views: usize,
     /// Square images of this many pixels a side.
-    #[arg(long, default_value_t = 512)]
+    #[arg(long, default_value_t = 512, value_parser = setting_flag(RenderSetting::Width))]
     size: u32,
     /// Neighbours for the support radius and the quadratic fit.
     #[arg(long, default_value_t = 9)]
     k: u32,
-    /// Which hits on a patch count: inside its box (the paper) or also over its disk.
-    #[arg(long, value_enum, default_value_t = Acceptance::Disk)]
-    acceptance: Acceptance,
+    /// Which hits on a patch count: `box` (inside its box, the paper) or `disk` (also over
+    /// its support).
+    #[arg(long, default_value = "disk")]
+    acceptance: PatchAcceptance,
     /// The box around each patch.
     #[arg(long, value_enum, default_value_t = Boxes::Tight)]
     boxes: Boxes,
@@ -73,26 +76,24 @@ impl FrameRenderer for ChosenBackend {
 }
 
 pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
-    if let Some(json) = &args.json {
-        pointray_io::ensure_not_same_file(&args.points, json)?;
-        pointray_io::ensure_not_same_file(&args.mesh, json)?;
-    }
-    let options = FidelityOptions::around(args.views, args.size, args.acceptance.into())?;
-    let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
-    let patches = prep_points(
-        &args.points,
-        &args.columns,
-        PrepOptions {
-            params: PrepParams {
-                k: args.k,
-                box_kind: args.boxes.into(),
-                disk_scale: args.disk_scale,
-                ..PrepParams::default()
-            },
-            radius_mode: args.radius.into(),
-            ..PrepOptions::default()
+    let inputs = [args.points.clone(), args.mesh.clone()];
+    pointray_io::ensure_outputs_spare_inputs(&inputs, args.json.as_slice())?;
+    let options = FidelityOptions::around(args.views, args.size, args.acceptance)?;
+    let size = RenderSettings { width: args.size, height: args.size, ..RenderSettings::default() };
+    size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
+    let prep_options = PrepOptions {
+        params: PrepParams {
+            k: args.k,
+            box_kind: args.boxes.into(),
+            disk_scale: args.disk_scale,
+            ..PrepParams::default()
         },
-    )?;
+        radius_mode: args.radius.into(),
+        ..PrepOptions::default()
+    };
+    validate_options(&prep_options).map_err(crate::commands::prep::flag_error)?;
+    let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
+    let patches = prep_points(&args.points, &args.columns, prep_options)?;
     let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);
     println!("backend: {}", backend.name());
     let mut report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &backend)

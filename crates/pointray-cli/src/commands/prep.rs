@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::DVec3;
-use pointray_surface::{OutlierFilter, PrepOptions, PrepParams, prep};
+use pointray_surface::input_validation::validate_options;
+use pointray_surface::{OutlierFilter, PrepError, PrepOptions, PrepParams, ScanMode, prep};
 
 use crate::boxes_arg::Boxes;
 use crate::columns_arg::ColumnsArg;
@@ -50,13 +51,36 @@ pub struct PrepArgs {
     /// data, more false surface (bench/FIDELITY.md).
     #[arg(long, value_enum, default_value_t = Radius::Cell)]
     radius: Radius,
+    /// LiDAR scans: `auto` shapes elliptical patches along the scan lines (from a ring field,
+    /// or beams recovered from elevations) whenever the sensor position is known (the file's,
+    /// or `--sensor`); `off` treats every cloud as unstructured points.
+    #[arg(long, value_enum, default_value_t = Scan::Auto)]
+    scan: Scan,
     #[command(flatten)]
     columns: ColumnsArg,
 }
 
+/// Whether `prep` uses a scan's line structure.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Scan {
+    Auto,
+    Off,
+}
+
+impl From<Scan> for ScanMode {
+    fn from(scan: Scan) -> Self {
+        match scan {
+            Scan::Auto => ScanMode::Auto,
+            Scan::Off => ScanMode::Off,
+        }
+    }
+}
+
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {
-    pointray_io::ensure_not_same_file(&args.points, &args.output)?;
-    let cloud = args.columns.read_point_cloud(&args.points)?;
+    pointray_io::ensure_outputs_spare_inputs(
+        std::slice::from_ref(&args.points),
+        std::slice::from_ref(&args.output),
+    )?;
     let params = PrepParams {
         k: args.k,
         normal_k: args.normal_k,
@@ -70,7 +94,10 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         sensor: args.sensor,
         remove_outliers: args.remove_outliers,
         radius_mode: args.radius.into(),
+        scan: args.scan.into(),
     };
+    validate_options(&options).map_err(flag_error)?;
+    let cloud = args.columns.read_point_cloud(&args.points)?;
     let bar = PrepBar::default();
     let (patches, report) =
         prep(&cloud, &options, &bar).map_err(|e| anyhow::anyhow!("{}: {e}", args.points.display()))?;
@@ -78,6 +105,17 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     println!("{report}");
     println!("wrote {} patches to {} (offset stored in its header)", patches.len(), args.output.display());
     Ok(())
+}
+
+/// A prep setting's error, named by the flag that sets it.
+pub fn flag_error(error: PrepError) -> anyhow::Error {
+    match error {
+        PrepError::InvalidSetting { setting, problem } => {
+            let flag = setting.split('.').next().unwrap_or(setting).replace('_', "-");
+            anyhow::anyhow!("--{flag}: {problem}")
+        }
+        other => other.into(),
+    }
 }
 
 /// Parses `x,y,z`.
@@ -99,6 +137,5 @@ fn parse_outlier_filter(text: &str) -> Result<OutlierFilter, String> {
         neighbors: neighbors.trim().parse().map_err(|e| format!("K `{neighbors}`: {e}"))?,
         sigmas: sigmas.trim().parse().map_err(|e| format!("N `{sigmas}`: {e}"))?,
     };
-    filter.validate().map_err(|e| e.to_string())?;
     Ok(filter)
 }

@@ -3,17 +3,16 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::Context;
 use clap::{Args, ValueEnum};
-use pointray_scene::SceneFile;
-use pointray_scene::frame_output::{AovSelection, write_frame};
+use pointray_io::MemoryBudget;
+use pointray_scene::frame_output::{AovSelection, check_frame_outputs, write_frame};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
-use pointray_scene::{BufferLayout, RenderSettings};
+use pointray_scene::{BufferLayout, PatchAcceptance, RenderSetting, RenderSettings, SceneFile};
 
-use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendArgs};
 use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
+use crate::setting_flag::setting_flag;
 
 /// Render a scene (TOML) to PNG (8-bit sRGB) or EXR (linear float).
 #[derive(Args)]
@@ -23,22 +22,23 @@ pub struct RenderArgs {
     /// The image to write; `.png` or `.exr`.
     #[arg(short, long)]
     output: PathBuf,
-    #[arg(long)]
+    #[arg(long, value_parser = setting_flag(RenderSetting::Width))]
     width: Option<u32>,
-    #[arg(long)]
+    #[arg(long, value_parser = setting_flag(RenderSetting::Height))]
     height: Option<u32>,
     /// Samples per pixel (jittered supersampling).
-    #[arg(long)]
+    #[arg(long, value_parser = setting_flag(RenderSetting::SamplesPerPixel))]
     spp: Option<u32>,
     /// Ray depth: 1 = primary only, 2 = one reflection bounce (the paper's setting).
-    #[arg(long)]
+    #[arg(long, value_parser = setting_flag(RenderSetting::MaxDepth))]
     max_depth: Option<u32>,
     /// Turn shadow rays off.
     #[arg(long)]
     no_shadows: bool,
-    /// Which hits on a patch count: inside its box (the paper) or also over its disk.
-    #[arg(long, value_enum, default_value_t = Acceptance::Disk)]
-    acceptance: Acceptance,
+    /// Which hits on a patch count: `box` (inside its box, the paper) or `disk` (also over
+    /// its support).
+    #[arg(long, default_value = "disk")]
+    acceptance: PatchAcceptance,
     /// Per-patch data in split hot/cold buffers or one combined buffer (Vulkan only).
     #[arg(long, value_enum, default_value_t = Buffers::Split)]
     buffers: Buffers,
@@ -58,19 +58,21 @@ enum Buffers {
 }
 
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
+    let file = args.columns.apply_to(SceneFile::read(&args.scene)?);
+    let settings = apply_flags(&args, file.render_settings()?);
+    let aovs = if args.aovs { AovSelection::ALL } else { AovSelection::default() };
+    check_frame_outputs(&args.output, &aovs, &file.input_files())?;
+    settings.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     let cache_dir = cache_dir_for(&args.output);
-    std::fs::create_dir_all(&cache_dir).with_context(|| format!("creating {}", cache_dir.display()))?;
     let bar = PrepBar::default();
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar };
-    let file = args.columns.apply_to(SceneFile::read(&args.scene)?);
-    let LoadedScene { scene, settings, .. } = load_scene_file(&file, &options)?;
-    let settings = apply_flags(&args, settings);
+    let LoadedScene { scene, frame: render_frame, .. } = load_scene_file(&file, &options)?;
     let backend = Backend::open(args.backend.backend, &args.backend.device)?;
     println!("backend: {}", backend.describe());
     let started = Instant::now();
-    let frame = backend.render(&scene, &settings)?;
+    let mut frame = backend.render(&scene, &settings)?;
     let elapsed = started.elapsed();
-    let aovs = if args.aovs { AovSelection::ALL } else { AovSelection::default() };
+    frame.scale_depth(render_frame.scale as f32);
     let written = write_frame(&frame, &args.output, &aovs)?;
     println!("rendered {}x{} in {:.2?}", settings.width, settings.height, elapsed);
     for path in written {
@@ -85,7 +87,7 @@ fn apply_flags(args: &RenderArgs, mut settings: RenderSettings) -> RenderSetting
     settings.samples_per_pixel = args.spp.unwrap_or(settings.samples_per_pixel);
     settings.max_depth = args.max_depth.unwrap_or(settings.max_depth);
     settings.shadows &= !args.no_shadows;
-    settings.acceptance = args.acceptance.into();
+    settings.acceptance = args.acceptance;
     settings.buffer_layout = match args.buffers {
         Buffers::Split => BufferLayout::Split,
         Buffers::Combined => BufferLayout::Combined,

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use pointray_io::MemoryBudget;
 
 /// Sample points uniformly (by area) on a triangle mesh's surface.
 #[derive(Args)]
@@ -14,7 +15,7 @@ pub struct SampleArgs {
     output: PathBuf,
     /// How many points.
     #[arg(long)]
-    count: usize,
+    count: u64,
     /// The same seed always gives the same points.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -25,14 +26,21 @@ pub struct SampleArgs {
 
 pub fn run(args: SampleArgs) -> anyhow::Result<()> {
     anyhow::ensure!(args.count > 0, "--count must be at least 1");
-    pointray_io::ensure_not_same_file(&args.mesh, &args.output)?;
+    pointray_io::ensure_outputs_spare_inputs(
+        std::slice::from_ref(&args.mesh),
+        std::slice::from_ref(&args.output),
+    )?;
+    let bytes_each = pointray_surface::sampling::bytes_per_sample(args.blue_noise);
+    MemoryBudget::of_this_machine()
+        .check(args.count, bytes_each, "points")
+        .map_err(|shortfall| anyhow::anyhow!("--count {}: {shortfall}", args.count))?;
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
     anyhow::ensure!(
         !mesh.triangles.is_empty(),
         "{}: the mesh has no triangles to sample",
         args.mesh.display()
     );
-    let cloud = pointray_surface::sample_mesh(&mesh, args.count, args.seed, args.blue_noise);
+    let cloud = pointray_surface::sample_mesh(&mesh, args.count as usize, args.seed, args.blue_noise);
     pointray_io::formats::ply::write_point_cloud(&args.output, &cloud)?;
     println!("wrote {} points to {}", cloud.len(), args.output.display());
     Ok(())

@@ -2,16 +2,18 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use clap::Args;
-use pointray_scene::SceneFile;
+use pointray_io::MemoryBudget;
+use pointray_scene::frame_output::check_frame_outputs;
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
-use pointray_viewer::{RenderBackend, Script, ViewerOptions, run_viewer};
+use pointray_scene::{AovSelection, RenderSetting, SceneFile};
+use pointray_viewer::{RenderBackend, Script, ViewerOptions, run_viewer, sequence_path};
 use pointray_vulkan::validation_requested_by_env;
 
 use crate::backend::{BackendArgs, BackendChoice};
 use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
+use crate::setting_flag::setting_flag;
 
 /// Open a window on a scene (TOML) or a points file, and fly around it.
 #[derive(Args)]
@@ -19,12 +21,12 @@ pub struct ViewArgs {
     /// A scene file (`.toml`), or a points file shown on a floor with one light.
     scene: PathBuf,
     /// Window size in pixels (defaults: the scene's render size).
-    #[arg(long)]
+    #[arg(long, value_parser = setting_flag(RenderSetting::Width))]
     width: Option<u32>,
-    #[arg(long)]
+    #[arg(long, value_parser = setting_flag(RenderSetting::Height))]
     height: Option<u32>,
     /// Samples per pixel of the first pass (more accumulate while the view is still).
-    #[arg(long)]
+    #[arg(long, value_parser = setting_flag(RenderSetting::SamplesPerPixel))]
     spp: Option<u32>,
     #[command(flatten)]
     backend: BackendArgs,
@@ -48,10 +50,14 @@ pub struct ViewArgs {
 }
 
 pub fn run(args: ViewArgs) -> anyhow::Result<()> {
-    let LoadedScene { scene, mut settings, .. } = load(&args.scene, &args.columns)?;
+    let file = args.columns.apply_to(scene_file(&args.scene)?);
+    let mut settings = file.render_settings()?;
     settings.width = args.width.unwrap_or(settings.width);
     settings.height = args.height.unwrap_or(settings.height);
     settings.samples_per_pixel = args.spp.unwrap_or(settings.samples_per_pixel);
+    check_outputs(&args, &file.input_files())?;
+    settings.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
+    let LoadedScene { scene, .. } = load(&file)?;
     let script = args.frames.map(|frames| Script {
         frames,
         arc_degrees: args.arc,
@@ -78,14 +84,48 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// A `.toml` is a scene; anything else is a points file given the default scene. Prepared
-/// point sets are cached in `.pointray-cache` in the working directory.
-fn load(path: &Path, columns: &ColumnsArg) -> anyhow::Result<LoadedScene> {
+/// A `.toml` is a scene; anything else is a points file given the default scene.
+fn scene_file(path: &Path) -> anyhow::Result<SceneFile> {
+    let is_scene = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    Ok(if is_scene { SceneFile::read(path)? } else { SceneFile::for_points_file(path) })
+}
+
+/// The screenshot and every frame of the sequence that would replace an existing file, against
+/// the scene's inputs, before anything is loaded.
+fn check_outputs(args: &ViewArgs, inputs: &[PathBuf]) -> anyhow::Result<()> {
+    if let Some(screenshot) = &args.screenshot {
+        check_frame_outputs(screenshot, &AovSelection::default(), inputs)?;
+    }
+    if let (Some(dir), Some(frames)) = (&args.sequence, args.frames) {
+        if dir.exists() && !dir.is_dir() {
+            anyhow::bail!("{}: is not a folder; --sequence names the folder for the frames", dir.display());
+        }
+        if dir.is_dir() {
+            let existing: Vec<PathBuf> = std::fs::read_dir(dir)
+                .map_err(|e| pointray_io::IoError::os(dir, e))?
+                .flatten()
+                .map(|entry| entry.path())
+                .filter(|path| is_sequence_frame(dir, path, frames))
+                .collect();
+            pointray_io::ensure_outputs_spare_inputs(inputs, &existing)?;
+        }
+    }
+    Ok(())
+}
+
+/// Whether `path` is one of the `frames` files the sequence writes into `dir`.
+fn is_sequence_frame(dir: &Path, path: &Path, frames: u32) -> bool {
+    let index = path
+        .file_name()
+        .and_then(|name| name.to_str())
+        .and_then(|name| name.strip_prefix("frame-")?.strip_suffix(".png")?.parse::<u32>().ok());
+    index.is_some_and(|index| index < frames && sequence_path(dir, index) == path)
+}
+
+/// Prepared point sets are cached in `.pointray-cache` in the working directory.
+fn load(file: &SceneFile) -> anyhow::Result<LoadedScene> {
     let cache_dir = PathBuf::from(".pointray-cache");
-    std::fs::create_dir_all(&cache_dir).with_context(|| format!("creating {}", cache_dir.display()))?;
     let bar = PrepBar::default();
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar };
-    let is_scene = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
-    let file = if is_scene { SceneFile::read(path)? } else { SceneFile::for_points_file(path) };
-    Ok(load_scene_file(&columns.apply_to(file), &options)?)
+    Ok(load_scene_file(file, &options)?)
 }

@@ -143,3 +143,49 @@ fn a_damaged_patch_store_is_refused_by_render() {
         assert!(stderr.to_lowercase().contains(expected), "expected `{expected}` in: {stderr}");
     }
 }
+
+#[test]
+fn errors_never_print_the_contents_of_a_file_named_by_mistake() {
+    let dir = tempfile::tempdir().unwrap();
+    let secret = "root:x:0:0:SECRET-MARKER:/root:/bin/bash\n";
+    let system_file = write(dir.path(), "passwd", secret.as_bytes());
+    let scene = write(
+        dir.path(),
+        "scene.toml",
+        format!("[[objects]]\ntype = \"points\"\npath = \"{}\"\n", system_file.display()).as_bytes(),
+    );
+    let image = dir.path().join("out.png");
+    for input in [scene, system_file] {
+        let (ok, stderr) = pointray(&["render", input.to_str().unwrap(), "-o", image.to_str().unwrap()]);
+        assert!(!ok && stderr.contains("passwd"), "the error names the file: {stderr}");
+        assert!(!stderr.contains("SECRET-MARKER"), "the file's contents were printed: {stderr}");
+    }
+    let lookalikes = [
+        ("mesh.obj", "v 0 0 0\nv SECRET-MARKER 1 1\nf 1 2 3\n"),
+        ("corner.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 SECRET-MARKER\n"),
+        ("header.ply", "ply\nformat ascii 1.0\nelement vertex 2 SECRET-MARKER\nend_header\n"),
+    ];
+    for (name, text) in lookalikes {
+        let input = write(dir.path(), name, text.as_bytes());
+        let output = dir.path().join("out.patches");
+        let (ok, stderr) = pointray(&["prep", input.to_str().unwrap(), "-o", output.to_str().unwrap()]);
+        assert!(!ok && stderr.contains(name), "{name}: {stderr}");
+        assert!(!stderr.contains("SECRET-MARKER"), "{name}: the file's contents were printed: {stderr}");
+    }
+}
+
+#[test]
+fn folders_and_devices_are_named_as_such() {
+    let dir = tempfile::tempdir().unwrap();
+    let image = dir.path().join("out.png");
+    let (ok, stderr) = pointray(&["render", dir.path().to_str().unwrap(), "-o", image.to_str().unwrap()]);
+    assert!(!ok && stderr.contains("is a folder, not a file"), "{stderr}");
+    let (ok, stderr) = pointray(&["prep", dir.path().to_str().unwrap(), "-o", image.to_str().unwrap()]);
+    assert!(!ok && stderr.contains("is a folder, not a file"), "{stderr}");
+    #[cfg(unix)]
+    {
+        let (ok, stderr) =
+            pointray(&["prep", "/dev/zero", "-o", dir.path().join("z.patches").to_str().unwrap()]);
+        assert!(!ok && stderr.contains("is a device, not a file"), "{stderr}");
+    }
+}

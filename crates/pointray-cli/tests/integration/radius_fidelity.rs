@@ -18,7 +18,7 @@ use std::sync::Arc;
 
 use pointray_fidelity::{CpuFrameRenderer, FidelityMetrics, FidelityOptions, measure_fidelity};
 use pointray_io::PointCloud;
-use pointray_scene::AcceptanceTest;
+use pointray_scene::PatchAcceptance;
 use pointray_surface::uneven_sampling::{Unevenness, sample_mesh_unevenly};
 use pointray_surface::{NoProgress, PrepOptions, RadiusMode, prep};
 
@@ -41,7 +41,7 @@ fn measure(
     let mut options = PrepOptions { radius_mode: mode, ..PrepOptions::default() };
     options.params.disk_scale = disk_scale;
     let (patches, _) = prep(cloud, &options, &NoProgress).expect("the samples prep");
-    let fidelity = FidelityOptions::around(6, size, AcceptanceTest::Disk).unwrap();
+    let fidelity = FidelityOptions::around(6, size, PatchAcceptance::Disk).unwrap();
     measure_fidelity(Arc::new(patches), mesh.clone(), &fidelity, &CpuFrameRenderer).unwrap().overall
 }
 

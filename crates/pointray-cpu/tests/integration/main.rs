@@ -3,6 +3,8 @@
 mod bad_input;
 mod camera_and_light_updates;
 mod common;
+mod first_hit;
+mod hostile_coordinates;
 mod plane_and_sphere;
 mod point_colors;
 mod shadows_and_reflections;

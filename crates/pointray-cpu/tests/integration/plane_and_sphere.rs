@@ -6,7 +6,7 @@ use crate::common;
 use common::*;
 use glam::{Affine3A, Quat, Vec3};
 use pointray_cpu::{CpuRenderer, render};
-use pointray_scene::{AcceptanceTest, Frame, RenderSettings};
+use pointray_scene::{Frame, PatchAcceptance, RenderSettings};
 
 fn settings(width: u32, height: u32) -> RenderSettings {
     RenderSettings { width, height, ..RenderSettings::default() }
@@ -19,7 +19,7 @@ fn a_point_set_plane_renders_without_holes() {
     let plane = patches_object("plane", plane_patches(half, 41), Affine3A::IDENTITY, matte());
     let scene = scene(camera, vec![], vec![plane]);
     let (width, height) = (96, 80);
-    for acceptance in [AcceptanceTest::Box, AcceptanceTest::Disk] {
+    for acceptance in [PatchAcceptance::Box, PatchAcceptance::Disk] {
         let frame = render(&scene, &RenderSettings { acceptance, ..settings(width, height) });
         let mut inside = 0;
         for y in 0..height {

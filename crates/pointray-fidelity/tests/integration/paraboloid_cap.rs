@@ -7,7 +7,7 @@ use std::sync::Arc;
 use glam::{DVec3, Vec3};
 use pointray_fidelity::{CpuFrameRenderer, FidelityOptions, FidelityReport, measure_fidelity};
 use pointray_io::{PointCloud, TriangleMesh};
-use pointray_scene::AcceptanceTest;
+use pointray_scene::PatchAcceptance;
 use pointray_surface::{NoProgress, PrepOptions, prep};
 
 /// z = CURVATURE * (x² + y²) over the unit disc.
@@ -58,8 +58,11 @@ fn views_that_see_the_cap() -> Vec<Vec3> {
 
 fn measure(points: &PointCloud, mesh: TriangleMesh) -> FidelityReport {
     let (patches, _) = prep(points, &PrepOptions::default(), &NoProgress).expect("prep of the cap");
-    let options =
-        FidelityOptions { directions: views_that_see_the_cap(), size: SIZE, acceptance: AcceptanceTest::Box };
+    let options = FidelityOptions {
+        directions: views_that_see_the_cap(),
+        size: SIZE,
+        acceptance: PatchAcceptance::Box,
+    };
     let report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &CpuFrameRenderer).unwrap();
     println!("{report}");
     report

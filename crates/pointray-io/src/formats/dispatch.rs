@@ -95,6 +95,7 @@ impl FileFormat {
 
 /// The format of the file at `path`, judged as the module doc says.
 pub fn detect_file_format(path: &Path) -> Result<FileFormat, IoError> {
+    crate::ensure_readable_file(path)?;
     let mut head = Vec::new();
     File::open(path)
         .and_then(|file| file.take(HEAD_BYTES).read_to_end(&mut head))

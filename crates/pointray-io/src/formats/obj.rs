@@ -84,7 +84,8 @@ fn parse(text: &str) -> Result<ParsedObj, String> {
 fn vertex<'a>(mut words: impl Iterator<Item = &'a str>) -> Result<DVec3, String> {
     let mut coordinate = |axis| -> Result<f64, String> {
         let word = words.next().ok_or_else(|| format!("vertex without a {axis} coordinate"))?;
-        let value: f64 = word.parse().map_err(|_| format!("'{word}' is not a number"))?;
+        // The word itself is not quoted: a file named by mistake must not have its contents printed.
+        let value: f64 = word.parse().map_err(|_| format!("the {axis} coordinate is not a number"))?;
         if value.is_finite() { Ok(value) } else { Err(format!("non-finite {axis} coordinate '{word}'")) }
     };
     Ok(DVec3::new(coordinate("x")?, coordinate("y")?, coordinate("z")?))
@@ -94,7 +95,7 @@ fn vertex<'a>(mut words: impl Iterator<Item = &'a str>) -> Result<DVec3, String>
 /// counts back from the latest vertex (-1 is the last one defined so far).
 fn corner_index(corner: &str, defined: usize) -> Result<u32, String> {
     let word = corner.split('/').next().unwrap_or_default();
-    let index: i64 = word.parse().map_err(|_| format!("'{corner}' is not a face corner"))?;
+    let index: i64 = word.parse().map_err(|_| "a face corner is not a vertex index".to_string())?;
     let resolved = match index {
         0 => return Err("vertex index 0 (OBJ counts from 1)".into()),
         positive if positive > 0 => positive - 1,

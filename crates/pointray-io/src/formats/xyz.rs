@@ -104,8 +104,8 @@ impl TextTable {
                     format!("line {number}: {problem}{layout}")
                 })
             }
-            Err(_) if self.rows.is_none() && !self.header_seen => self.use_header(&fields, trimmed, number),
-            Err(error) => Err(format!("line {number}: {error} in {trimmed:?}")),
+            Err(_) if self.rows.is_none() && !self.header_seen => self.use_header(&fields, number),
+            Err(error) => Err(format!("line {number}: {error}")),
         }
     }
 
@@ -143,11 +143,13 @@ impl TextTable {
     }
 
     /// A header line sets the layout, unless the caller gave one (theirs wins).
-    fn use_header(&mut self, names: &[&str], line: &str, number: usize) -> Result<(), String> {
+    fn use_header(&mut self, names: &[&str], number: usize) -> Result<(), String> {
         self.header_seen = true;
         if self.spec.is_none() {
             let spec =
-                ColumnSpec::from_header(names, line).map_err(|error| format!("line {number}: {error}"))?;
+                ColumnSpec::from_header(names, &format!("header on line {number}")).map_err(|error| {
+                    format!("line {number} is neither numbers nor a header naming x, y and z: {error}")
+                })?;
             self.spec = Some(spec);
         }
         Ok(())

@@ -79,3 +79,19 @@ fn links_to_the_input_are_recognised() {
         assert!(error.contains("refusing to write over the input"), "{error}");
     }
 }
+
+#[cfg(target_os = "linux")]
+#[test]
+fn temporaries_of_dead_processes_are_removed_and_live_ones_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    // Above Linux's largest process id (2^22), so no process can have it.
+    let dead = dir.path().join(".pointray-4194305-AbCdEf.tmp");
+    let live = dir.path().join(format!(".pointray-{}-GhIjKl.tmp", std::process::id()));
+    let foreign = dir.path().join(".tmpXyZ123");
+    for path in [&dead, &live, &foreign] {
+        std::fs::write(path, b"partial").unwrap();
+    }
+    write_atomically(&dir.path().join("out.txt"), |out| out.write_all(b"x")).unwrap();
+    assert!(!dead.exists(), "a dead writer's temporary is removed");
+    assert!(live.exists() && foreign.exists(), "a running writer's and other programs' files stay");
+}

@@ -25,6 +25,7 @@ fn full_cloud(offset: f64) -> PointCloud {
         ),
         positions,
         sensor_position: None,
+        ..PointCloud::default()
     }
 }
 

@@ -34,10 +34,31 @@ fn a_missing_file_is_named_with_the_scene_and_the_object() {
     let scene = write_scene(dir.path(), "[[objects]]\ntype = \"mesh\"\npath = \"models/nope.ply\"\n");
     let error = load_scene(&scene, &LoadOptions::default()).unwrap_err();
     let message = error.to_string();
-    assert!(matches!(error, SceneError::MissingFile { .. }), "{error:?}");
-    assert!(message.contains("scene.toml"), "{message}");
+    assert!(matches!(error, SceneError::Input { .. }), "{error:?}");
+    assert!(message.contains("file not found") && message.contains("scene.toml"), "{message}");
     assert!(message.contains("objects[0]"), "{message}");
     assert!(message.contains(&dir.path().join("models/nope.ply").display().to_string()), "{message}");
+}
+
+#[test]
+fn a_folder_named_as_a_points_file_is_called_a_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("cloud.ply")).unwrap();
+    let scene = write_scene(dir.path(), "[[objects]]\ntype = \"points\"\npath = \"cloud.ply\"\n");
+    let message = load_scene(&scene, &LoadOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("cloud.ply: is a folder, not a file"), "{message}");
+}
+
+#[test]
+fn the_scene_lists_every_file_it_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_scene(
+        dir.path(),
+        "[[objects]]\ntype = \"points\"\npath = \"a.ply\"\n[[objects]]\ntype = \"mesh\"\npath = \"m/b.obj\"\n\
+         [[objects]]\ntype = \"ground\"\n",
+    );
+    let file = pointray_scene::SceneFile::read(&scene).unwrap();
+    assert_eq!(file.input_files(), vec![scene.clone(), dir.path().join("a.ply"), dir.path().join("m/b.obj")]);
 }
 
 #[test]

@@ -3,6 +3,7 @@
 mod color_sources;
 mod common;
 mod frame_output;
+mod fuzz_regressions;
 mod loading;
 mod point_set_cache;
 mod procedural;

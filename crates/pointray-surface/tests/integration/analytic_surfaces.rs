@@ -10,14 +10,15 @@ fn prep_default(cloud: &pointray_io::PointCloud) -> (PatchSet, PrepReport) {
 }
 
 /// Every patch's surface over its disk lies on `z = height(x, y)` to within
-/// `1e-4 d_i`, and every fit kept all six coefficients.
+/// `5e-4 d_i` (the coefficients are stored as half floats, good to about 2.4e-4 of each), and
+/// every fit kept all six coefficients.
 fn assert_reproduces_height_field(patches: &PatchSet, report: &PrepReport, height: impl Fn(f64, f64) -> f64) {
     assert_eq!(report.fits.quadratic, patches.len(), "fallbacks: {:?}", report.fits);
     for (i, patch) in patches.hot.iter().enumerate() {
         for p in common::surface_over_disk(patch, patches.offset) {
             let error = (p.z - height(p.x, p.y)).abs();
             assert!(
-                error < 1e-4 * f64::from(patch.radius()),
+                error < 5e-4 * f64::from(patch.radius()),
                 "patch {i}: error {error} at {p}, d_i {}",
                 patch.radius()
             );
@@ -76,8 +77,9 @@ fn sphere_patches_stay_within_one_percent_and_one_degree() {
         let normal = patch.normal().as_dvec3();
         let degrees = normal.dot(radial).abs().min(1.0).acos().to_degrees();
         assert!(degrees < 1.0, "patch {i}: normal {degrees}° off");
-        let [_, c1, c2, ..] = patch.coefficients();
-        let surface_normal = patch.direction_to_world(Vec3::new(-c1, -c2, 1.0).normalize()).as_dvec3();
+        let [_, c1, c2, ..] = patch.decode().coefficients;
+        let surface_normal =
+            patch.decode().direction_to_world(Vec3::new(-c1, -c2, 1.0).normalize()).as_dvec3();
         let surface_degrees = surface_normal.dot(radial).abs().min(1.0).acos().to_degrees();
         assert!(surface_degrees < 1.0, "patch {i}: surface normal {surface_degrees}° off");
         outward += usize::from(normal.dot(radial) > 0.0);
@@ -94,8 +96,8 @@ fn fits_fall_back_on_a_line_of_scanlines() {
     let (patches, report) = prep_default(&pointray_io::PointCloud::from_positions(positions));
     assert!(report.fits.quadratic < patches.len(), "{:?}", report.fits);
     for patch in &patches.hot {
-        assert!(patch.coefficients().iter().all(|c| c.is_finite()));
-        assert!(patch.coefficients()[0].abs() <= patch.radius());
+        assert!(patch.decode().coefficients.iter().all(|c| c.is_finite()));
+        assert!(patch.decode().coefficients[0].abs() <= patch.radius());
     }
     assert_eq!(report.fits.quadratic + report.fits.plane + report.fits.flat, patches.len());
 }

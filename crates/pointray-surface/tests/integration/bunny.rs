@@ -14,7 +14,7 @@ fn bunny_patches_are_finite_and_normals_agree_with_the_mesh() {
     let mesh = ply::read_triangle_mesh(&mesh).expect("the bunny mesh reads");
     let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoProgress).expect("the bunny preps");
     for (i, patch) in patches.hot.iter().enumerate() {
-        assert!(patch.coefficients().iter().all(|c| c.is_finite()), "patch {i}: {patch:?}");
+        assert!(patch.decode().coefficients.iter().all(|c| c.is_finite()), "patch {i}: {patch:?}");
         assert!(patch.radius() > 0.0 && patch.radius().is_finite(), "patch {i}: {patch:?}");
     }
     let mesh_normals = area_weighted_vertex_normals(&mesh);

@@ -40,7 +40,9 @@ fn every_patch_a_ray_meets_gives_the_same_colour() {
         let ray = Ray::new(start, Vec3::NEG_Z);
         let (mut at_point, mut per_patch) = (Vec::new(), Vec::new());
         for (i, patch) in patches.hot.iter().enumerate() {
-            let Some(hit) = intersect_patch(&ray, patch, 0.0, 100.0, PatchAcceptance::Disk) else { continue };
+            let Some(hit) = intersect_patch(&ray, &patch.decode(), 0.0, 100.0, PatchAcceptance::Disk) else {
+                continue;
+            };
             let color = interpolate_color(
                 ray.at(hit.t),
                 i as u32,

@@ -19,7 +19,11 @@ fn a_smaller_disk_scales_the_radii_and_keeps_the_fits() {
     let smaller = prepped(&cloud, 0.7).expect("preps");
     assert_eq!(smaller.params.disk_scale, 0.7);
     for (i, (a, b)) in paper.hot.iter().zip(&smaller.hot).enumerate() {
-        assert_eq!(a.coefficients(), b.coefficients(), "patch {i}: the fit changed");
+        // The coefficients are stored as half floats scaled by the radius, so they agree to a
+        // half float's precision.
+        for (x, y) in a.decode().coefficients.iter().zip(b.decode().coefficients) {
+            assert!((x - y).abs() <= 1e-3 * x.abs().max(1e-3), "patch {i}: the fit changed: {x} vs {y}");
+        }
         assert_eq!(a.origin(), b.origin(), "patch {i}");
         assert!((b.radius() - 0.7 * a.radius()).abs() <= 1e-6 * a.radius(), "patch {i}: radius not scaled");
     }
@@ -34,6 +38,6 @@ fn disk_scales_outside_the_range_are_refused() {
     let cloud = common::height_field(10, DVec3::ZERO, |_, _| 0.0);
     for bad in [0.0, -0.5, 2.5, f32::NAN] {
         let error = prepped(&cloud, bad).expect_err("a bad disk scale must be refused");
-        assert!(error.to_string().contains("disk scale"), "{error}");
+        assert!(error.to_string().contains("disk_scale"), "{error}");
     }
 }

@@ -14,3 +14,4 @@ mod outlier_removal;
 mod patch_store_files;
 mod prep_attributes;
 mod prep_bad_input;
+mod scan_aware;

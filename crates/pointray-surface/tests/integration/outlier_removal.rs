@@ -52,5 +52,5 @@ fn bad_filter_settings_are_refused() {
         ..PrepOptions::default()
     };
     let error = prep(&plane_with_outliers(), &options, &NoProgress).unwrap_err();
-    assert!(error.to_string().contains("outlier removal"), "{error}");
+    assert!(error.to_string().contains("remove_outliers.neighbors"), "{error}");
 }

@@ -126,11 +126,11 @@ fn damaged(damage: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, StoreError, tempfile:
 
 #[test]
 fn another_version_is_refused_by_name() {
-    // Version 2 stores (before the colour reach) are refused with the way out.
-    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&2u32.to_le_bytes()));
-    assert!(matches!(error, StoreError::WrongVersion { found: 2, .. }), "{error:?}");
+    // Version 3 stores (before the packed record) are refused with the way out.
+    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&3u32.to_le_bytes()));
+    assert!(matches!(error, StoreError::WrongVersion { found: 3, .. }), "{error:?}");
     let message = error.to_string();
-    assert!(message.contains("version 2, this build reads version 3: re-run `pointray prep`"), "{message}");
+    assert!(message.contains("version 3, this build reads version 4: re-run `pointray prep`"), "{message}");
     assert!(message.contains(&path.display().to_string()), "{message}");
 }
 
@@ -164,4 +164,41 @@ fn other_files_are_not_patch_stores() {
     assert!(matches!(patch_store::read(&ply), Err(StoreError::NotAPatchStore { .. })));
     let missing = patch_store::read(&directory.path().join("missing.patches")).unwrap_err();
     assert!(matches!(missing, StoreError::Io { .. }));
+}
+
+/// A change to a patch set that its store must not survive.
+type Damage = fn(&mut PatchSet);
+
+#[test]
+fn numbers_no_renderer_can_build_on_are_malformed_despite_a_good_checksum() {
+    let directory = tempfile::tempdir().unwrap();
+    let good = sample_patches(BoxKind::Tight);
+    let damages: [(&str, Damage); 5] = [
+        ("box 7", |p| p.aabbs[7].max[0] = f32::NAN),
+        ("box 0", |p| {
+            p.aabbs[0] = pointray_kernels::Aabb::new(glam::Vec3::splat(-1e38), glam::Vec3::splat(1e38))
+        }),
+        ("offset", |p| p.offset.y = f64::NAN),
+        ("patch 3", |p| p.hot[3].coefficients[1] = 0x7c00_7c00), // two half-float infinities
+        ("cold record 5", |p| p.cold[5].color_reach = f32::NAN),
+    ];
+    for (expected, damage) in damages {
+        let mut patches = good.clone();
+        damage(&mut patches);
+        let error = patch_store::read(&written(directory.path(), &patches)).unwrap_err();
+        assert!(matches!(error, StoreError::Malformed { .. }), "{expected}: {error:?}");
+        assert!(error.to_string().contains(expected), "{expected}: {error}");
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn stores_are_written_with_the_usual_permissions_not_0600() {
+    use std::os::unix::fs::PermissionsExt;
+    let directory = tempfile::tempdir().unwrap();
+    let store = written(directory.path(), &PatchSet::default());
+    let reference = directory.path().join("reference");
+    std::fs::write(&reference, b"x").unwrap();
+    let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+    assert_eq!(mode(&store), mode(&reference) & 0o644, "0644 less the umask, like any output");
 }

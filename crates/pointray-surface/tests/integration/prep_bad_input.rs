@@ -72,8 +72,9 @@ fn exact_and_near_duplicates_are_merged_without_nans_or_zero_radii() {
     assert_eq!(report.merged_duplicates, 400);
     assert_eq!(patches.len(), 400);
     for patch in &patches.hot {
+        let decoded = patch.decode();
         let values =
-            patch.origin_radius.iter().chain(&patch.tangent_c0).chain(&patch.normal_c1).chain(&patch.c2_c5);
+            decoded.origin.to_array().into_iter().chain(decoded.coefficients).chain(decoded.radii.to_array());
         assert!(values.into_iter().all(|v| v.is_finite()), "{patch:?}");
         assert!(patch.radius() > 0.0, "{patch:?}");
     }

@@ -8,7 +8,7 @@ use common::{
     assert_no_validation_messages, data_file, model_on_floor, prepped_points_with_boxes, renderer, settings,
     sphere_on_floor,
 };
-use pointray_scene::{AcceptanceTest, Frame, Geometry, Material, RenderSettings, Scene, demo_scene};
+use pointray_scene::{Frame, Geometry, Material, PatchAcceptance, RenderSettings, Scene, demo_scene};
 use pointray_surface::BoxKind;
 
 struct Agreement {
@@ -81,7 +81,7 @@ fn a_reflective_floor_under_a_sphere_matches() {
 fn the_bunny_on_a_floor_matches_with_both_acceptance_tests() {
     let Some(path) = data_file("points/bunny.ply") else { return };
     for (acceptance, box_kind) in
-        [(AcceptanceTest::Box, BoxKind::Cube), (AcceptanceTest::Disk, BoxKind::Tight)]
+        [(PatchAcceptance::Box, BoxKind::Cube), (PatchAcceptance::Disk, BoxKind::Tight)]
     {
         let material = Material { reflectivity: 0.0, ..Material::default() };
         let bunny = prepped_points_with_boxes("bunny", &path, material, box_kind);

@@ -1,11 +1,13 @@
 //! The vulkan crate's integration tests, in one binary so that CI links it once.
 
 mod against_cpu;
+mod bad_geometry;
 mod bench_hooks;
 mod common;
 mod demo_scene;
 mod devices;
 mod hit_reordering;
+mod large_coordinates;
 mod layouts;
 mod point_colors;
 mod reflection;

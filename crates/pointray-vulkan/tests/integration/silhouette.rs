@@ -12,7 +12,7 @@ use common::{
     settings,
 };
 use pointray_io::formats::ply::read_triangle_mesh;
-use pointray_scene::{AcceptanceTest, Frame, Material, RenderSettings};
+use pointray_scene::{Frame, Material, PatchAcceptance, RenderSettings};
 
 const MODEL: u32 = 0;
 
@@ -39,7 +39,7 @@ fn bunny_points_and_bunny_mesh_have_the_same_silhouette() {
     let covered = mesh_mask.iter().filter(|m| **m).count();
     assert!(covered > 5000, "the bunny covers only {covered} pixels");
     let prepared = renderer.prepare(&model_on_floor(points, bounds, 0.0)).expect("the points upload");
-    for (acceptance, required) in [(AcceptanceTest::Disk, 0.98), (AcceptanceTest::Box, 0.97)] {
+    for (acceptance, required) in [(PatchAcceptance::Disk, 0.98), (PatchAcceptance::Box, 0.97)] {
         let settings = RenderSettings { acceptance, ..base };
         let points_mask = model_mask(&renderer.trace(&prepared, &settings).expect("the points render"));
         let overlap = iou(&points_mask, &mesh_mask);

@@ -3,11 +3,11 @@
 use crate::common;
 
 use common::{assert_no_validation_messages, primary_ray, renderer, settings, sphere_on_floor};
-use pointray_scene::AcceptanceTest;
+use pointray_scene::PatchAcceptance;
 
 const SPHERE: u32 = 0;
 
-fn mean_normal_error_degrees(acceptance: AcceptanceTest) -> Option<(f64, usize)> {
+fn mean_normal_error_degrees(acceptance: PatchAcceptance) -> Option<(f64, usize)> {
     let renderer = renderer()?;
     let scene = sphere_on_floor(0.0, 1.0);
     let settings = pointray_scene::RenderSettings { acceptance, ..settings(128) };
@@ -27,7 +27,7 @@ fn mean_normal_error_degrees(acceptance: AcceptanceTest) -> Option<(f64, usize)>
 
 #[test]
 fn sphere_normals_are_within_two_degrees_on_average() {
-    for acceptance in [AcceptanceTest::Box, AcceptanceTest::Disk] {
+    for acceptance in [PatchAcceptance::Box, PatchAcceptance::Disk] {
         let Some((error, hits)) = mean_normal_error_degrees(acceptance) else { return };
         // The sphere covers a good part of a 128x128 view.
         assert!(hits > 2000, "only {hits} sphere pixels with {acceptance:?}");

@@ -29,7 +29,7 @@ pub fn plane_patches(half: f32, count: u32) -> PatchSet {
         .map(|i| {
             let (ix, iz) = (i % count, i / count);
             let origin = Vec3::new(-half + ix as f32 * spacing, 0.0, -half + iz as f32 * spacing);
-            PatchHot::new(origin, Vec3::X, Vec3::Y, [0.0; 6], spacing)
+            PatchHot::isotropic(origin, Vec3::X, Vec3::Y, [0.0; 6], spacing)
         })
         .collect();
     patch_set(hot)
@@ -47,7 +47,7 @@ pub fn sphere_patches(radius: f32, count: u32) -> PatchSet {
             let azimuth = std::f32::consts::TAU * (i as f32 * 0.618_034).fract();
             let normal = Vec3::new(ring * azimuth.cos(), y, ring * azimuth.sin());
             let tangent = normal.any_orthonormal_vector();
-            PatchHot::new(
+            PatchHot::isotropic(
                 normal * radius,
                 tangent,
                 normal,

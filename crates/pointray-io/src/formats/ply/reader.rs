@@ -80,7 +80,10 @@ fn open_checked(path: &Path) -> Result<FileReader, IoError> {
 }
 
 /// ply-rs-bw messages span several lines; ours stay on one.
+/// The parser's message on one line, without the text it quotes (`String: '...'`): a file named
+/// by mistake must not have its contents printed.
 fn one_line(message: &str) -> String {
+    let message = message.split("String: ").next().unwrap_or_default();
     message.split(['\n', '\t']).map(str::trim).filter(|part| !part.is_empty()).collect::<Vec<_>>().join("; ")
 }
 

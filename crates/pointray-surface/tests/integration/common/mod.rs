@@ -46,7 +46,7 @@ pub fn sphere(n: usize, radius: f64, centre: DVec3) -> PointCloud {
 /// Points of patch `patch`'s surface over its support disk (centre and rings), in the
 /// input's coordinates.
 pub fn surface_over_disk(patch: &PatchHot, offset: DVec3) -> Vec<DVec3> {
-    let coefficients = patch.coefficients();
+    let coefficients = patch.decode().coefficients;
     let f = |u: f32, v: f32| {
         let [c0, c1, c2, c3, c4, c5] = coefficients;
         c0 + c1 * u + c2 * v + c3 * u * u + c4 * u * v + c5 * v * v
@@ -59,5 +59,7 @@ pub fn surface_over_disk(patch: &PatchHot, offset: DVec3) -> Vec<DVec3> {
             uv.push((r * angle.cos(), r * angle.sin()));
         }
     }
-    uv.into_iter().map(|(u, v)| patch.to_world(glam::Vec3::new(u, v, f(u, v))).as_dvec3() + offset).collect()
+    uv.into_iter()
+        .map(|(u, v)| patch.decode().to_world(glam::Vec3::new(u, v, f(u, v))).as_dvec3() + offset)
+        .collect()
 }

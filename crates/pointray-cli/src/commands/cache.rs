@@ -1,0 +1,36 @@
+//! `pointray cache clean`: removes the point sets that `render` and `view` cached.
+
+use std::path::PathBuf;
+
+use clap::{Args, Subcommand};
+
+/// Manage the cache of prepared point sets.
+#[derive(Args)]
+pub struct CacheArgs {
+    #[command(subcommand)]
+    action: CacheAction,
+}
+
+#[derive(Subcommand)]
+enum CacheAction {
+    /// Remove every cached point set in the folder (stale entries are never pruned on their own).
+    Clean {
+        /// The cache folder: `.pointray-cache` beside the images `render` wrote.
+        #[arg(default_value = ".pointray-cache")]
+        dir: PathBuf,
+    },
+}
+
+pub fn run(args: CacheArgs) -> anyhow::Result<()> {
+    match args.action {
+        CacheAction::Clean { dir } => {
+            let (files, bytes) = pointray_scene::clean_cache(&dir)?;
+            println!(
+                "removed {files} cached point sets ({:.1} MiB) from {}",
+                bytes as f64 / (1 << 20) as f64,
+                dir.display()
+            );
+            Ok(())
+        }
+    }
+}

@@ -1,0 +1,131 @@
+//! Geometry no renderer can build on is refused with a clear error before any BVH build:
+//! patch stores that pass their checksum but hold NaN or 1e38 boxes or a NaN offset, cache
+//! entries like them (which are regenerated, not kept), procedural objects and transforms
+//! beyond the f32 range, and clouds too small to resolve.
+
+use std::path::Path;
+
+use pointray_surface::{PatchSet, patch_store};
+
+use crate::common::{pointray_in, write_grid_ply, write_points_scene};
+
+fn render(dir: &Path, scene: &str) -> (bool, String) {
+    let (ok, _, stderr) = pointray_in(
+        dir,
+        &["render", scene, "-o", "out.png", "--backend", "cpu", "--width", "24", "--height", "24"],
+    );
+    assert!(!stderr.contains("panicked"), "render panicked: {stderr}");
+    (ok, stderr)
+}
+
+/// `grid.patches` in `dir`, prepped from a grid.
+fn grid_store(dir: &Path) -> PatchSet {
+    write_grid_ply(&dir.join("grid.ply"));
+    let (ok, _, stderr) = pointray_in(dir, &["prep", "grid.ply", "-o", "grid.patches"]);
+    assert!(ok, "{stderr}");
+    patch_store::read(&dir.join("grid.patches")).unwrap()
+}
+
+#[test]
+fn stores_with_bad_numbers_and_a_good_checksum_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = grid_store(dir.path());
+    write_points_scene(dir.path(), "scene.toml", "grid.patches");
+    let mut damaged: Vec<(&str, PatchSet)> = Vec::new();
+    let mut nan_box = good.clone();
+    nan_box.aabbs[3].min[1] = f32::NAN;
+    damaged.push(("NaN box", nan_box));
+    let mut huge_box = good.clone();
+    huge_box.aabbs[0].min = [-1e38; 3];
+    huge_box.aabbs[0].max = [1e38; 3];
+    damaged.push(("1e38 box", huge_box));
+    let mut nan_offset = good.clone();
+    nan_offset.offset.x = f64::NAN;
+    damaged.push(("NaN offset", nan_offset));
+    for (what, patches) in damaged {
+        patch_store::write(&dir.path().join("grid.patches"), &patches).unwrap();
+        let (ok, stderr) = render(dir.path(), "scene.toml");
+        assert!(!ok, "a store with a {what} must be refused");
+        assert!(
+            stderr.contains("grid.patches") && stderr.contains("malformed patch store"),
+            "{what}: {stderr}"
+        );
+    }
+}
+
+#[test]
+fn a_poisoned_cache_entry_is_regenerated_not_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    write_points_scene(dir.path(), "scene.toml", "grid.ply");
+    assert!(render(dir.path(), "scene.toml").0, "the first render succeeds");
+    let cache =
+        std::fs::read_dir(dir.path().join(".pointray-cache")).unwrap().next().unwrap().unwrap().path();
+    let mut poisoned = patch_store::read(&cache).unwrap();
+    poisoned.aabbs[0].max = [f32::INFINITY; 3];
+    patch_store::write(&cache, &poisoned).unwrap();
+    for _ in 0..2 {
+        let (ok, stderr) = render(dir.path(), "scene.toml");
+        assert!(ok, "a bad cache entry must not fail the render: {stderr}");
+    }
+    patch_store::read(&cache).expect("the entry was replaced by a good one");
+}
+
+#[test]
+fn transforms_and_shapes_beyond_f32_are_refused_clearly() {
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    // Scaled far beyond f32's comfort, a scene still renders: the loader scales it back. A
+    // point light 2.5 units from a cloud 1e-26 across lies beyond f32 in the scene's own units.
+    let directional = "[[lights]]\ntype = \"directional\"\ndirection = [-0.4, -1.0, -0.5]\n";
+    let cases = [
+        ("scale = 1e19", None, None),
+        ("scale = 1e-25", Some(directional), None),
+        ("scale = 1e-25", None, Some("lights[0].position: lies")),
+        ("scale = 3e38", None, Some("scale the coordinates down")),
+    ];
+    for (scale, lights, expected) in cases {
+        let scene = write_points_scene(dir.path(), "scene.toml", "grid.ply");
+        let mut text = std::fs::read_to_string(&scene).unwrap();
+        if let Some(lights) = lights {
+            text = format!("{lights}{}", &text[text.find("[[objects]]").unwrap()..]);
+        }
+        // The transform belongs to the points object, which precedes the ground.
+        let ground = "[[objects]]\ntype = \"ground\"";
+        text = text.replacen(ground, &format!("[objects.transform]\n{scale}\n\n{ground}"), 1);
+        std::fs::write(&scene, text).unwrap();
+        let (ok, stderr) = render(dir.path(), "scene.toml");
+        match expected {
+            Some(expected) => assert!(!ok && stderr.contains(expected), "{scale}: {stderr}"),
+            None => assert!(ok, "{scale}: {stderr}"),
+        }
+    }
+    std::fs::write(
+        dir.path().join("sphere.toml"),
+        "[[objects]]\ntype = \"sphere_points\"\nradius = 1e30\ncount = 500\n[[objects]]\ntype = \"ground\"\nauto = true\n",
+    )
+    .unwrap();
+    let (ok, stderr) = render(dir.path(), "sphere.toml");
+    assert!(
+        !ok && stderr.contains("objects[0]") && stderr.contains("scale the coordinates down"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn tiny_clouds_are_refused_at_once_instead_of_hanging() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut text = String::from(
+        "ply\nformat ascii 1.0\nelement vertex 400\nproperty double x\nproperty double y\nproperty double z\nend_header\n",
+    );
+    for i in 0..400 {
+        let (x, z) = ((i % 20) as f64 * 0.05e-25, (i / 20) as f64 * 0.05e-25);
+        text += &format!("{x:e} {:e} {z:e}\n", 0.02e-25 * (x * 7e25).sin());
+    }
+    std::fs::write(dir.path().join("tiny.ply"), text).unwrap();
+    let (ok, _, stderr) = pointray_in(dir.path(), &["prep", "tiny.ply", "-o", "tiny.patches"]);
+    assert!(!ok && stderr.contains("tiny.ply") && stderr.contains("scale the coordinates up"), "{stderr}");
+    write_points_scene(dir.path(), "scene.toml", "tiny.ply");
+    let (ok, stderr) = render(dir.path(), "scene.toml");
+    assert!(!ok && stderr.contains("scale the coordinates up"), "{stderr}");
+}

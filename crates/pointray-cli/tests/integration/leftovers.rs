@@ -1,0 +1,82 @@
+//! What runs leave behind: SIGTERM and SIGINT end a command through its handler, which removes
+//! any temporary file of a write in progress (`pointray_io::temporaries`), and stale ones of
+//! killed runs go with the next write into their folder; warnings piped to a file carry no
+//! colour codes; `pointray cache clean` empties the point-set cache.
+
+use crate::common::{pointray_in, write_grid_ply};
+
+#[cfg(target_os = "linux")]
+#[test]
+fn sigterm_ends_prep_through_the_cleanup_handler() {
+    use std::process::{Command, Stdio};
+
+    let dir = tempfile::tempdir().unwrap();
+    // Large enough that prep is still running when the signal comes.
+    let mut text = String::from(
+        "ply\nformat ascii 1.0\nelement vertex 250000\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
+    );
+    for i in 0..250_000 {
+        let (x, z) = ((i % 500) as f32 * 0.01, (i / 500) as f32 * 0.01);
+        text += &format!("{x} {} {z}\n", (x * 3.0).sin() * 0.1);
+    }
+    std::fs::write(dir.path().join("big.ply"), text).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_pointray"))
+        .current_dir(dir.path())
+        .args(["prep", "big.ply", "-o", "big.patches"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    // Signal only once the handler catches SIGTERM (bit 14 of the caught-signal mask).
+    let status_file = format!("/proc/{}/status", child.id());
+    let catches_sigterm = || {
+        let status = std::fs::read_to_string(&status_file).unwrap_or_default();
+        let mask = status.lines().find_map(|line| line.strip_prefix("SigCgt:")).unwrap_or("0");
+        u64::from_str_radix(mask.trim(), 16).is_ok_and(|mask| mask & (1 << 14) != 0)
+    };
+    while !catches_sigterm() {
+        assert!(child.try_wait().unwrap().is_none(), "prep ended before its handler was seen");
+        std::thread::yield_now();
+    }
+    Command::new("kill").args(["-TERM", &child.id().to_string()]).status().unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "the handler ends the process: {status}");
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().flatten().map(|e| e.file_name()).collect();
+    assert_eq!(left, vec![std::ffi::OsString::from("big.ply")], "nothing but the input is left");
+}
+
+#[test]
+fn warnings_carry_no_colour_codes_when_piped() {
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    std::fs::write(dir.path().join("grid.patches"), b"PRPATCH\0 not really").unwrap();
+    std::fs::write(dir.path().join("scene.toml"), "[[objects]]\ntype = \"points\"\npath = \"grid.ply\"\n")
+        .unwrap();
+    let args = ["render", "scene.toml", "-o", "out.png", "--backend", "cpu", "--width", "8", "--height", "8"];
+    assert!(pointray_in(dir.path(), &args).0);
+    let cache =
+        std::fs::read_dir(dir.path().join(".pointray-cache")).unwrap().next().unwrap().unwrap().path();
+    std::fs::write(&cache, b"PRPATCH\0 damaged").unwrap();
+    let (ok, _, stderr) = pointray_in(dir.path(), &args);
+    assert!(ok && stderr.contains("regenerating"), "a warning is printed: {stderr}");
+    assert!(!stderr.contains('\u{1b}'), "no ANSI escape codes: {stderr:?}");
+}
+
+#[test]
+fn cache_clean_removes_cached_point_sets_and_nothing_else() {
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    crate::common::write_points_scene(dir.path(), "scene.toml", "grid.ply");
+    let args = ["render", "scene.toml", "-o", "out.png", "--backend", "cpu", "--width", "8", "--height", "8"];
+    assert!(pointray_in(dir.path(), &args).0);
+    let cache = dir.path().join(".pointray-cache");
+    std::fs::write(cache.join("notes.txt"), b"mine").unwrap();
+    let (ok, stdout, stderr) = pointray_in(dir.path(), &["cache", "clean"]);
+    assert!(ok && stdout.contains("removed 1 cached point sets"), "{stdout}{stderr}");
+    let left: Vec<_> = std::fs::read_dir(&cache).unwrap().flatten().map(|e| e.file_name()).collect();
+    assert_eq!(left, vec![std::ffi::OsString::from("notes.txt")]);
+    std::fs::remove_file(cache.join("notes.txt")).unwrap();
+    assert!(pointray_in(dir.path(), &args).0);
+    assert!(pointray_in(dir.path(), &["cache", "clean"]).0);
+    assert!(!cache.exists(), "an emptied cache folder goes too");
+}

@@ -1,0 +1,40 @@
+// Twin of src/packed_frame.rs: a patch's tangent frame from a normal and an angle.
+#ifndef POINTRAY_PACKED_FRAME_GLSL
+#define POINTRAY_PACKED_FRAME_GLSL
+
+struct TangentFrame {
+    vec3 t1;
+    vec3 t2;
+    vec3 n;
+};
+
+// Duff et al. 2017: two unit tangents of unit normal n, without a branch that loses precision.
+void normal_basis(vec3 n, out vec3 b1, out vec3 b2) {
+    float sign_z = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (sign_z + n.z);
+    float b = n.x * n.y * a;
+    b1 = vec3(1.0 + sign_z * n.x * n.x * a, sign_z * b, -sign_z * n.x);
+    b2 = vec3(b, sign_z + n.y * n.y * a, -n.y);
+}
+
+vec3 octahedral_decode(vec2 e) {
+    float z = 1.0 - abs(e.x) - abs(e.y);
+    float fold = max(-z, 0.0);
+    float x = e.x + (e.x >= 0.0 ? -fold : fold);
+    float y = e.y + (e.y >= 0.0 ? -fold : fold);
+    return normalize(vec3(x, y, z));
+}
+
+vec3 unpack_normal(uint word) {
+    return octahedral_decode(unpackSnorm2x16(word));
+}
+
+TangentFrame tangent_frame_from_normal_and_angle(vec3 n, float angle) {
+    vec3 b1;
+    vec3 b2;
+    normal_basis(n, b1, b2);
+    vec3 t1 = normalize(cos(angle) * b1 + sin(angle) * b2);
+    return TangentFrame(t1, cross(n, t1), n);
+}
+
+#endif

@@ -1,0 +1,137 @@
+//! A patch's tangent frame in a normal and an angle. Twin of `shaders/packed_frame.glsl`.
+//!
+//! The normal is stored octahedrally (two snorm16) and the first tangent as its angle from
+//! a fixed basis of the normal (unorm16 over half a turn: an elliptical support is symmetric
+//! under a half turn). `prep` fits every patch in the frame these decode to, so the
+//! quantisation moves the frame but never puts the fit out of step with it.
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+
+use crate::packing::{pack_snorm2x16, unpack_snorm2x16};
+
+/// The right-handed orthonormal frame `(t1, t2, n)` of a patch, with `t2 = n × t1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TangentFrame {
+    pub t1: Vec3,
+    pub t2: Vec3,
+    pub n: Vec3,
+}
+
+impl TangentFrame {
+    /// The frame of unit normal `n` whose first tangent lies `angle` radians from the
+    /// normal's fixed basis vector (`normal_basis`).
+    pub fn from_normal_and_angle(n: Vec3, angle: f32) -> Self {
+        let (b1, b2) = normal_basis(n);
+        let t1 = (angle.cos() * b1 + angle.sin() * b2).normalize();
+        Self { t1, t2: n.cross(t1), n }
+    }
+
+    /// A world offset from the frame's origin to local `(u, v, w)`.
+    pub fn to_local(&self, offset: Vec3) -> Vec3 {
+        Vec3::new(offset.dot(self.t1), offset.dot(self.t2), offset.dot(self.n))
+    }
+
+    /// Local `(u, v, w)` to a world offset from the frame's origin.
+    pub fn to_world(&self, local: Vec3) -> Vec3 {
+        local.x * self.t1 + local.y * self.t2 + local.z * self.n
+    }
+}
+
+/// Two unit tangents of unit normal `n`, without any branch on its direction that could lose
+/// precision (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
+pub fn normal_basis(n: Vec3) -> (Vec3, Vec3) {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3::new(b, sign + n.y * n.y * a, -n.y))
+}
+
+/// A unit vector to the octahedral square `[-1, 1]²`.
+pub fn octahedral_encode(n: Vec3) -> Vec2 {
+    let p = Vec2::new(n.x, n.y) / (n.x.abs() + n.y.abs() + n.z.abs());
+    if n.z >= 0.0 { p } else { (Vec2::ONE - Vec2::new(p.y, p.x).abs()) * sign_not_zero(p) }
+}
+
+/// The inverse of `octahedral_encode`, unit length.
+pub fn octahedral_decode(e: Vec2) -> Vec3 {
+    let z = 1.0 - e.x.abs() - e.y.abs();
+    let fold = (-z).max(0.0);
+    let x = e.x + if e.x >= 0.0 { -fold } else { fold };
+    let y = e.y + if e.y >= 0.0 { -fold } else { fold };
+    Vec3::new(x, y, z).normalize()
+}
+
+fn sign_not_zero(v: Vec2) -> Vec2 {
+    Vec2::new(if v.x >= 0.0 { 1.0 } else { -1.0 }, if v.y >= 0.0 { 1.0 } else { -1.0 })
+}
+
+/// The stored normal word of unit normal `n`.
+pub fn pack_normal(n: Vec3) -> u32 {
+    pack_snorm2x16(octahedral_encode(n))
+}
+
+/// The normal a stored normal word decodes to.
+pub fn unpack_normal(word: u32) -> Vec3 {
+    octahedral_decode(unpack_snorm2x16(word))
+}
+
+/// The angle in `[0, π)` of tangent `t` (in the plane of `n`) from `normal_basis(n).0`,
+/// as a fraction of π: what the record stores.
+pub fn tangent_angle_fraction(n: Vec3, t: Vec3) -> f32 {
+    let (b1, b2) = normal_basis(n);
+    let angle = t.dot(b2).atan2(t.dot(b1)).rem_euclid(PI);
+    (angle / PI).min(1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fibonacci_directions(count: usize) -> impl Iterator<Item = Vec3> {
+        (0..count).map(move |i| {
+            let z = 1.0 - 2.0 * (i as f32 + 0.5) / count as f32;
+            let phi = i as f32 * 2.399_963;
+            let r = (1.0 - z * z).sqrt();
+            Vec3::new(r * phi.cos(), r * phi.sin(), z)
+        })
+    }
+
+    fn assert_orthonormal(frame: TangentFrame) {
+        for (a, b) in [(frame.t1, frame.t2), (frame.t1, frame.n), (frame.t2, frame.n)] {
+            assert!(a.dot(b).abs() < 1e-5, "{frame:?} not orthogonal");
+        }
+        for axis in [frame.t1, frame.t2, frame.n] {
+            assert!((axis.length() - 1.0).abs() < 1e-5, "{frame:?} not unit");
+        }
+        assert!((frame.t1.cross(frame.t2) - frame.n).length() < 1e-5, "{frame:?} not right-handed");
+    }
+
+    #[test]
+    fn stored_normals_stay_within_a_hundredth_of_a_degree() {
+        for n in fibonacci_directions(5000).chain([Vec3::Z, -Vec3::Z, Vec3::X, -Vec3::Y]) {
+            let error = unpack_normal(pack_normal(n)).cross(n).length().asin().to_degrees();
+            assert!(error < 0.01, "{n} came back {error}° off");
+        }
+    }
+
+    #[test]
+    fn frames_are_orthonormal_for_every_direction_and_angle() {
+        for (i, n) in fibonacci_directions(2000).chain([Vec3::Z, -Vec3::Z, -Vec3::X]).enumerate() {
+            assert_orthonormal(TangentFrame::from_normal_and_angle(n, i as f32 * 0.37));
+        }
+    }
+
+    #[test]
+    fn a_tangent_angle_round_trips_to_the_same_axis() {
+        let n = Vec3::new(0.3, -0.4, 0.8).normalize();
+        let (b1, b2) = normal_basis(n);
+        let t = (0.6 * b1 + 0.8 * b2).normalize();
+        let frame = TangentFrame::from_normal_and_angle(n, tangent_angle_fraction(n, t) * PI);
+        assert!(frame.t1.dot(t).abs() > 0.999_999);
+        // A tangent a half turn away gives the same axis.
+        let opposite = TangentFrame::from_normal_and_angle(n, tangent_angle_fraction(n, -t) * PI);
+        assert!(opposite.t1.dot(t).abs() > 0.999_999);
+    }
+}

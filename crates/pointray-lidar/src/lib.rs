@@ -1,0 +1,39 @@
+//! A LiDAR simulator: a sensor's rays cast into a scene of meshes (and point sets) with the
+//! CPU renderer's BVHs, each first hit recorded as a return with its intensity, ring,
+//! azimuth, time, class and sensor origin, as real spinning and terrestrial scanners record
+//! them.
+//!
+//! - `sensor.rs`, `presets.rs`: the ray grid of a sensor (rings × azimuth columns), its
+//!   ranges, noise and dropout; the Velodyne HDL-64E, HDL-32E and VLP-16, the Ouster OS1-128
+//!   and a terrestrial scanner with their published angles.
+//! - `pose.rs`: stations (position and yaw) and the scene's up axis.
+//! - `lidar_scene.rs`, `surface.rs`, `classification.rs`: what is scanned, how bright and of
+//!   which ASPRS class each object's returns are.
+//! - `street.rs`: a procedural street, the ground truth for `pointray fidelity`.
+//! - `scan.rs`: the casting, deterministic for a seed; `returns.rs`: what it records;
+//!   `ply_output.rs`: the points file.
+//!
+//! Positions are in the scene's frame: Z up for the street (as KITTI and nuScenes frames are),
+//! Y up for pointray scene files.
+
+pub mod classification;
+pub mod error;
+pub mod lidar_scene;
+pub mod ply_output;
+pub mod pose;
+pub mod presets;
+pub mod returns;
+pub mod scan;
+pub mod sensor;
+pub mod street;
+pub mod surface;
+
+pub use classification::Classification;
+pub use error::LidarError;
+pub use lidar_scene::LidarScene;
+pub use pose::{SensorPose, UpAxis};
+pub use presets::SensorPreset;
+pub use returns::{Return, ScanStats, to_point_cloud};
+pub use scan::{NoProgress, Scan, ScanProgress, scan};
+pub use sensor::{Elevations, Sensor};
+pub use surface::{Surface, merged_mesh};
