@@ -28,6 +28,7 @@ enum Command {
     Fidelity(commands::fidelity::FidelityArgs),
     Bench(commands::bench::BenchArgs),
     View(commands::view::ViewArgs),
+    Scan(commands::scan::ScanArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -41,6 +42,7 @@ fn main() -> std::process::ExitCode {
         Command::Fidelity(args) => commands::fidelity::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::View(args) => commands::view::run(args),
+        Command::Scan(args) => commands::scan::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
