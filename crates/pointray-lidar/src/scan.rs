@@ -43,6 +43,8 @@ struct Column<'a> {
     time: f64,
 }
 
+/// Scans `scene` from every station with one sweep of `sensor`, the stations' sweeps one
+/// after the other in time. Every setting is checked first.
 pub fn scan(
     scene: &LidarScene,
     sensor: &Sensor,

@@ -85,13 +85,24 @@ pub fn run(args: ScanArgs) -> anyhow::Result<()> {
         sensor.min_range,
         sensor.max_range
     );
+    println!("{}", summary(&scanned, &sensor, stations.len(), &world.description, elapsed));
+    write_outputs(&args, &world, &scanned, &sensor, stations.len())
+}
+
+/// The points file, and the street's mesh when asked for.
+fn write_outputs(
+    args: &ScanArgs,
+    world: &World,
+    scanned: &Scan,
+    sensor: &Sensor,
+    stations: usize,
+) -> anyhow::Result<()> {
     let up = world.scene.up().name();
     let comments = [
-        format!("pointray scan: {}, {} station(s), seed {}", sensor.name, stations.len(), args.seed),
+        format!("pointray scan: {}, {stations} station(s), seed {}", sensor.name, args.seed),
         format!("scene: {}; up axis {up}", world.description),
     ];
     pointray_lidar::ply_output::write_returns(&args.output, &scanned.returns, &comments)?;
-    println!("{}", summary(&scanned, &sensor, stations.len(), &world.description, elapsed));
     println!("wrote {} (up axis {up})", args.output.display());
     if let (Some(mesh_out), Some(surfaces)) = (&args.mesh_out, &world.street) {
         let mesh = pointray_lidar::merged_mesh(surfaces);
