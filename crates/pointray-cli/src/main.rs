@@ -32,6 +32,7 @@ enum Command {
     Bench(commands::bench::BenchArgs),
     View(commands::view::ViewArgs),
     Cache(commands::cache::CacheArgs),
+    Scan(commands::scan::ScanArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -47,6 +48,7 @@ fn main() -> std::process::ExitCode {
         Command::Bench(args) => commands::bench::run(args),
         Command::View(args) => commands::view::run(args),
         Command::Cache(args) => commands::cache::run(args),
+        Command::Scan(args) => commands::scan::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

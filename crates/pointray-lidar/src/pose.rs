@@ -2,8 +2,6 @@
 
 use glam::DVec3;
 
-use crate::LidarError;
-
 /// The scene's vertical axis, about which sensors turn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum UpAxis {
@@ -35,18 +33,6 @@ impl UpAxis {
 pub struct SensorPose {
     pub position: DVec3,
     pub yaw_deg: f64,
-}
-
-impl SensorPose {
-    pub fn validate(&self) -> Result<(), LidarError> {
-        if !self.position.is_finite() {
-            return Err(LidarError::invalid("position", format!("must be finite, got {}", self.position)));
-        }
-        if !self.yaw_deg.is_finite() {
-            return Err(LidarError::invalid("yaw", format!("must be finite, got {}", self.yaw_deg)));
-        }
-        Ok(())
-    }
 }
 
 /// The sensor's axes in the world: forward (azimuth 0), left (azimuth 90°) and up.

@@ -36,36 +36,20 @@ impl SensorPreset {
 
     pub fn sensor(self) -> Sensor {
         match self {
-            Self::Hdl64 => {
-                spinning("Velodyne HDL-64E", Elevations::Beams(hdl64_elevations()), 0.1728, 120.0, 0.02)
-            }
+            Self::Hdl64 => spinning("Velodyne HDL-64E", hdl64_elevations(), 0.1728, 120.0, 0.02),
             // HDL-32E user manual (Velodyne 63-9113), laser vertical angles: −30.67° to +10.67° in
             // steps of 1.33° (exactly 4/3°).
-            Self::Hdl32 => spinning(
-                "Velodyne HDL-32E",
-                Elevations::Beams(uniform_beams(32, -92.0 / 3.0, 32.0 / 3.0)),
-                0.16,
-                100.0,
-                0.02,
-            ),
+            Self::Hdl32 => {
+                spinning("Velodyne HDL-32E", uniform_beams(32, -92.0 / 3.0, 32.0 / 3.0), 0.16, 100.0, 0.02)
+            }
             // VLP-16 user manual (Velodyne 63-9243), laser vertical angles: −15° to +15° in
             // steps of 2°.
-            Self::Vlp16 => spinning(
-                "Velodyne VLP-16",
-                Elevations::Beams(uniform_beams(16, -15.0, 15.0)),
-                0.2,
-                100.0,
-                0.03,
-            ),
+            Self::Vlp16 => spinning("Velodyne VLP-16", uniform_beams(16, -15.0, 15.0), 0.2, 100.0, 0.03),
             // Ouster OS1 data sheet (rev 6 and 7): 128 channels uniformly spread over a 45°
             // vertical field of view, +22.5° to −22.5°; 1024 columns at 10 Hz.
-            Self::Os128 => spinning(
-                "Ouster OS1-128",
-                Elevations::Beams(uniform_beams(128, -22.5, 22.5)),
-                360.0 / 1024.0,
-                120.0,
-                0.03,
-            ),
+            Self::Os128 => {
+                spinning("Ouster OS1-128", uniform_beams(128, -22.5, 22.5), 360.0 / 1024.0, 120.0, 0.03)
+            }
             Self::Terrestrial => terrestrial(),
         }
     }
@@ -83,16 +67,12 @@ fn hdl64_elevations() -> Vec<f64> {
     lower.chain(upper).collect()
 }
 
-fn spinning(
-    name: &str,
-    elevations: Elevations,
-    azimuth_step_deg: f64,
-    max_range: f64,
-    range_noise: f64,
-) -> Sensor {
+/// A spinning sensor turning at 10 Hz: its beams' elevations (degrees, lowest first), its
+/// azimuth step (degrees), its maximum range and its range noise (metres).
+fn spinning(name: &str, beams: Vec<f64>, azimuth_step_deg: f64, max_range: f64, range_noise: f64) -> Sensor {
     Sensor {
         name: name.into(),
-        elevations,
+        elevations: Elevations::Beams(beams),
         azimuth_step_deg,
         sweep_seconds: 0.1,
         min_range: 1.0,

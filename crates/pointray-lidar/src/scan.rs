@@ -43,6 +43,8 @@ struct Column<'a> {
     time: f64,
 }
 
+/// Scans `scene` from every station with one sweep of `sensor`, the stations' sweeps one
+/// after the other in time. Every setting is checked first.
 pub fn scan(
     scene: &LidarScene,
     sensor: &Sensor,
@@ -88,7 +90,16 @@ fn check_request(sensor: &Sensor, stations: &[SensorPose]) -> Result<(), LidarEr
     if stations.is_empty() {
         return Err(LidarError::invalid("stations", "a scan needs at least one station"));
     }
-    stations.iter().try_for_each(SensorPose::validate)?;
+    let position_flag = if stations.len() > 1 { "stations" } else { "position" };
+    for (index, pose) in stations.iter().enumerate() {
+        if !pose.position.is_finite() {
+            let problem = format!("station {index} must stand at a finite position, not {}", pose.position);
+            return Err(LidarError::invalid(position_flag, problem));
+        }
+        if !pose.yaw_deg.is_finite() {
+            return Err(LidarError::invalid("yaw", format!("must be finite, got {}", pose.yaw_deg)));
+        }
+    }
     let rays = sensor.rays_per_sweep().saturating_mul(stations.len() as u64);
     let limit = crate::sensor::MAX_RAYS;
     if rays > limit {

@@ -89,7 +89,22 @@ impl Sensor {
             return Err(LidarError::TooManyRays { rays, limit: MAX_RAYS });
         }
         self.validate_elevations()?;
-        let (min, max) = (self.min_range, self.max_range);
+        self.validate_ranges()?;
+        let dropout = self.dropout;
+        if !(0.0..1.0).contains(&dropout) {
+            let problem =
+                format!("must be a probability in [0, 1) (1 would drop every return), got {dropout}");
+            return Err(LidarError::invalid("dropout", problem));
+        }
+        if !(self.sweep_seconds.is_finite() && self.sweep_seconds > 0.0) {
+            let problem = format!("its sweep must last a positive time, not {} s", self.sweep_seconds);
+            return Err(LidarError::invalid("sensor", problem));
+        }
+        Ok(())
+    }
+
+    fn validate_ranges(&self) -> Result<(), LidarError> {
+        let (min, max, noise) = (self.min_range, self.max_range, self.range_noise);
         if !(min.is_finite() && min >= 0.0) {
             return Err(LidarError::invalid(
                 "min-range",
@@ -97,32 +112,14 @@ impl Sensor {
             ));
         }
         if !(max.is_finite() && max > min) {
-            return Err(LidarError::invalid(
-                "max-range",
-                format!("must be finite and beyond the minimum range {min}, got {max}"),
-            ));
+            let problem = format!("must be finite and beyond the minimum range {min}, got {max}");
+            return Err(LidarError::invalid("max-range", problem));
         }
-        let noise = self.range_noise;
         if !(noise.is_finite() && noise >= 0.0 && noise < max) {
-            return Err(LidarError::invalid(
-                "noise",
-                format!(
-                    "the range noise's sigma must be at least 0 and below the maximum range {max}, got {noise}"
-                ),
-            ));
-        }
-        let dropout = self.dropout;
-        if !(0.0..1.0).contains(&dropout) {
-            return Err(LidarError::invalid(
-                "dropout",
-                format!("must be a probability in [0, 1) (1 would drop every return), got {dropout}"),
-            ));
-        }
-        if !(self.sweep_seconds.is_finite() && self.sweep_seconds > 0.0) {
-            return Err(LidarError::invalid(
-                "sweep",
-                format!("must be positive, got {}", self.sweep_seconds),
-            ));
+            let problem = format!(
+                "the range noise's sigma must be at least 0 and below the maximum range {max}, got {noise}"
+            );
+            return Err(LidarError::invalid("noise", problem));
         }
         Ok(())
     }

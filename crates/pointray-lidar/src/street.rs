@@ -17,6 +17,7 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::LidarError;
 use crate::surface::Surface;
+pub use models::model_files;
 use shapes::{push_bevelled_box, push_box, push_cylinder, push_face};
 
 /// The street runs from x = −HALF_LENGTH to +HALF_LENGTH.

@@ -7,4 +7,5 @@ pub mod fidelity;
 pub mod prep;
 pub mod render;
 pub mod sample;
+pub mod scan;
 pub mod view;

@@ -14,5 +14,6 @@ mod leftovers;
 mod outputs_spare_inputs;
 mod prep_robustness_flags;
 mod radius_fidelity;
+mod scan_command;
 mod scene_prep_keys;
 mod size_limits;

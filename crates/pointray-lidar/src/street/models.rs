@@ -1,7 +1,7 @@
 //! The scanned models that stand on the street when the shared data has them: the Stanford
 //! bunny and the Cyberware horse, each scaled so that its largest side is a metre.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::{Affine3A, Quat, Vec2, Vec3};
 use pointray_io::TriangleMesh;
@@ -33,6 +33,11 @@ const MODELS: [Model; 2] = [
         reflectance: 0.45,
     },
 ];
+
+/// The model files under `data_dir` that the street will stand on its road.
+pub fn model_files(data_dir: &Path) -> Vec<PathBuf> {
+    MODELS.iter().map(|model| data_dir.join(model.file)).filter(|path| path.is_file()).collect()
+}
 
 /// The models found under `data_dir`, placed on the road; a missing file leaves its model out,
 /// a file that cannot be read is an error.
