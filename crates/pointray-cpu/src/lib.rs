@@ -9,6 +9,7 @@
 mod instance;
 mod object_bvh;
 mod path;
+mod ray_cast;
 mod ray_counts;
 mod renderer;
 mod scene_updates;
@@ -16,6 +17,7 @@ mod shading;
 mod top_level;
 mod triangle;
 
+pub use ray_cast::RayHit;
 pub use ray_counts::RayCounts;
 pub use renderer::CpuRenderer;
 

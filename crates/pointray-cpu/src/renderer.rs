@@ -71,7 +71,7 @@ impl CpuRenderer {
     }
 
     fn render_tile(&self, corner: UVec2, settings: &RenderSettings, counts: &mut RayCounts) -> Vec<Pixel> {
-        let camera = self.pinhole_camera();
+        let camera = self.scene.camera.pinhole();
         let size = UVec2::new(settings.width, settings.height);
         tile_pixels(corner, settings.width, settings.height)
             .map(|pixel| self.render_pixel(&camera, size, pixel, settings, counts))
@@ -95,26 +95,16 @@ impl CpuRenderer {
         Pixel { color: (first_color + rest) / samples as f32, aov }
     }
 
-    fn pinhole_camera(&self) -> PinholeCamera {
-        let camera = &self.scene.camera;
-        PinholeCamera {
-            position: camera.position,
-            look_at: camera.look_at,
-            up: camera.up,
-            vertical_fov_degrees: camera.vertical_fov_degrees,
-        }
-    }
-
     pub(crate) fn closest_hit(&self, ray: &Ray, t_min: f32, settings: &RenderSettings) -> Option<SceneHit> {
-        self.top.closest_hit(ray, t_min, f32::INFINITY, acceptance(settings.acceptance))
+        self.top.closest_hit(ray, t_min, f32::INFINITY, patch_acceptance(settings.acceptance))
     }
 
     pub(crate) fn occluded(&self, ray: &Ray, t_min: f32, distance: f32, settings: &RenderSettings) -> bool {
-        self.top.occluded(ray, t_min, distance, acceptance(settings.acceptance))
+        self.top.occluded(ray, t_min, distance, patch_acceptance(settings.acceptance))
     }
 }
 
-fn acceptance(test: AcceptanceTest) -> PatchAcceptance {
+pub(crate) fn patch_acceptance(test: AcceptanceTest) -> PatchAcceptance {
     match test {
         AcceptanceTest::Box => PatchAcceptance::Box,
         AcceptanceTest::Disk => PatchAcceptance::Disk,

@@ -5,4 +5,5 @@ mod camera_and_light_updates;
 mod common;
 mod plane_and_sphere;
 mod point_colors;
+mod ray_cast;
 mod shadows_and_reflections;
