@@ -4,8 +4,10 @@ mod acceptance_arg;
 mod backend;
 mod boxes_arg;
 mod commands;
+mod patch_args;
 mod progress;
 mod radius_arg;
+mod view_args;
 
 use clap::{Parser, Subcommand};
 
@@ -26,6 +28,7 @@ enum Command {
     Render(commands::render::RenderArgs),
     Devices(commands::devices::DevicesArgs),
     Fidelity(commands::fidelity::FidelityArgs),
+    Consistency(commands::consistency::ConsistencyArgs),
     Bench(commands::bench::BenchArgs),
     View(commands::view::ViewArgs),
 }
@@ -39,6 +42,7 @@ fn main() -> std::process::ExitCode {
         Command::Render(args) => commands::render::run(args),
         Command::Devices(args) => commands::devices::run(args),
         Command::Fidelity(args) => commands::fidelity::run(args),
+        Command::Consistency(args) => commands::consistency::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::View(args) => commands::view::run(args),
     };

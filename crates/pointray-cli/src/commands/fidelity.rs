@@ -1,51 +1,40 @@
-//! `pointray fidelity`: a points file against the mesh it came from, as numbers (issue 4).
+//! `pointray fidelity`: a points file against the mesh it came from, as numbers.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use anyhow::Context;
 use clap::Args;
-use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, measure_fidelity};
+use glam::DVec3;
+use pointray_fidelity::view_placement::validate_setting;
+use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, SensorPose, measure_fidelity};
 use pointray_scene::{Frame, RenderSettings, Scene};
-use pointray_surface::{PatchSet, PrepOptions, PrepParams, prep};
 use pointray_vulkan::DeviceSelector;
 
-use crate::acceptance_arg::Acceptance;
 use crate::backend::{Backend, BackendChoice};
-use crate::boxes_arg::Boxes;
-use crate::progress::PrepBar;
-use crate::radius_arg::Radius;
+use crate::patch_args::PatchArgs;
+use crate::view_args::{ViewArgs, parse_finite};
 
-/// Render the points' patches and the mesh from cameras around the model and report holes,
-/// false surfaces, depth and normal error and PSNR, as a table (and JSON with `--json`).
+/// Render the points' patches and the mesh from the same cameras and report holes, false
+/// surfaces, depth and normal error (against the mesh's interpolated vertex normals) and
+/// PSNR, as a table (and JSON with `--json`).
 #[derive(Args)]
 pub struct FidelityArgs {
     /// The points file (any format `prep` reads), in the mesh's coordinates.
     points: PathBuf,
-    /// The mesh the points were sampled from (PLY or OBJ).
+    /// The mesh the points were sampled or scanned from (PLY or OBJ).
     mesh: PathBuf,
-    /// Cameras around the model: 6 looks along the axes, more are spread evenly.
-    #[arg(long, default_value_t = 6)]
-    views: usize,
-    /// Square images of this many pixels a side.
+    #[command(flatten)]
+    views: ViewArgs,
+    /// Where the scan's sensor stood, `x,y,z`, for sensor views and for orienting normals;
+    /// overrides the file's.
+    #[arg(long, value_parser = parse_finite, allow_hyphen_values = true)]
+    sensor: Option<DVec3>,
+    /// Images of this many pixels a side (sensor views: this wide).
     #[arg(long, default_value_t = 512)]
     size: u32,
-    /// Neighbours for the support radius and the quadratic fit.
-    #[arg(long, default_value_t = 9)]
-    k: u32,
-    /// Which hits on a patch count: inside its box (the paper) or also over its disk.
-    #[arg(long, value_enum, default_value_t = Acceptance::Disk)]
-    acceptance: Acceptance,
-    /// The box around each patch.
-    #[arg(long, value_enum, default_value_t = Boxes::Tight)]
-    boxes: Boxes,
-    /// The support radius: the point's Voronoi cell (the default), the paper's, or adapted
-    /// to the local density.
-    #[arg(long, value_enum, default_value_t = Radius::Cell)]
-    radius: Radius,
-    /// How far each patch reaches, as a fraction of the paper's support radius.
-    #[arg(long, default_value_t = PrepParams::default().disk_scale)]
-    disk_scale: f32,
+    #[command(flatten)]
+    patches: PatchArgs,
     /// Also write the report as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
@@ -74,21 +63,20 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
         pointray_io::ensure_not_same_file(&args.points, json)?;
         pointray_io::ensure_not_same_file(&args.mesh, json)?;
     }
-    let options = FidelityOptions::around(args.views, args.size, args.acceptance.into())?;
+    let mut options = FidelityOptions::with_views(args.views.specs()?, args.size, args.patches.acceptance());
+    options.up = args.views.up;
+    options.fov_degrees = args.views.fov;
+    // Before the prep, which can take minutes.
+    validate_setting(options.up, options.fov_degrees, options.size)?;
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
-    let patches = prep_points(
-        &args.points,
-        PrepOptions {
-            params: PrepParams {
-                k: args.k,
-                box_kind: args.boxes.into(),
-                disk_scale: args.disk_scale,
-                ..PrepParams::default()
-            },
-            radius_mode: args.radius.into(),
-            ..PrepOptions::default()
-        },
-    )?;
+    let cloud = pointray_io::formats::read_point_cloud(&args.points)?;
+    if args.views.wants_sensor() {
+        let pose = SensorPose::of_cloud(&cloud, options.up, args.sensor)
+            .with_context(|| format!("{}: placing the sensor views", args.points.display()))?;
+        options.sensor = Some(pose);
+    }
+    let (patches, _) = args.patches.prep(&args.points, &cloud, args.sensor)?;
+    drop(cloud);
     let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);
     println!("backend: {}", backend.name());
     let mut report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &backend)
@@ -101,11 +89,4 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
         println!("wrote {}", json.display());
     }
     Ok(())
-}
-
-fn prep_points(path: &Path, options: PrepOptions) -> anyhow::Result<PatchSet> {
-    let cloud = pointray_io::formats::read_point_cloud(path)?;
-    let (patches, _) = prep(&cloud, &options, &PrepBar::default())
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    Ok(patches)
 }

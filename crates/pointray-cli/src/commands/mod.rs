@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod bench;
+pub mod consistency;
 pub mod devices;
 pub mod fidelity;
 pub mod prep;

@@ -8,4 +8,5 @@ mod geo_offset;
 mod intensity_material;
 mod prep_robustness_flags;
 mod radius_fidelity;
+mod scan_measures;
 mod scene_prep_keys;
