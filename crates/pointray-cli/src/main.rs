@@ -4,9 +4,12 @@ mod backend;
 mod boxes_arg;
 mod columns_arg;
 mod commands;
+mod patch_args;
 mod progress;
 mod radius_arg;
+mod scan_arg;
 mod setting_flag;
+mod view_args;
 
 use std::io::IsTerminal;
 
@@ -29,6 +32,7 @@ enum Command {
     Render(commands::render::RenderArgs),
     Devices(commands::devices::DevicesArgs),
     Fidelity(commands::fidelity::FidelityArgs),
+    Consistency(commands::consistency::ConsistencyArgs),
     Bench(commands::bench::BenchArgs),
     View(commands::view::ViewArgs),
     Cache(commands::cache::CacheArgs),
@@ -45,6 +49,7 @@ fn main() -> std::process::ExitCode {
         Command::Render(args) => commands::render::run(args),
         Command::Devices(args) => commands::devices::run(args),
         Command::Fidelity(args) => commands::fidelity::run(args),
+        Command::Consistency(args) => commands::consistency::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::View(args) => commands::view::run(args),
         Command::Cache(args) => commands::cache::run(args),

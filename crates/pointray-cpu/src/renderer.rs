@@ -71,7 +71,7 @@ impl CpuRenderer {
     }
 
     fn render_tile(&self, corner: UVec2, settings: &RenderSettings, counts: &mut RayCounts) -> Vec<Pixel> {
-        let camera = self.pinhole_camera();
+        let camera = self.scene.camera.pinhole();
         let size = UVec2::new(settings.width, settings.height);
         tile_pixels(corner, settings.width, settings.height)
             .map(|pixel| self.render_pixel(&camera, size, pixel, settings, counts))
@@ -93,16 +93,6 @@ impl CpuRenderer {
         let (first_color, aov) = sample(0);
         let rest: Vec3 = (1..samples).map(|s| sample(s).0).sum();
         Pixel { color: (first_color + rest) / samples as f32, aov }
-    }
-
-    fn pinhole_camera(&self) -> PinholeCamera {
-        let camera = &self.scene.camera;
-        PinholeCamera {
-            position: camera.position,
-            look_at: camera.look_at,
-            up: camera.up,
-            vertical_fov_degrees: camera.vertical_fov_degrees,
-        }
     }
 
     pub(crate) fn closest_hit(&self, ray: &Ray, t_min: f32, settings: &RenderSettings) -> Option<SceneHit> {

@@ -6,14 +6,11 @@ use std::sync::Arc;
 use glam::{Affine3A, Vec3};
 use pointray_io::TriangleMesh;
 use pointray_kernels::Aabb;
-use pointray_scene::bounds::{bounds_of_points, diagonal};
+use pointray_scene::bounds::{bounds_of_points, center, diagonal};
 use pointray_scene::{Background, Camera, Geometry, Light, Material, Scene, SceneObject};
 use pointray_surface::PatchSet;
 
 use crate::FidelityError;
-
-/// A moderate lens: wide lenses stretch the silhouette pixels that dominate the hole count.
-const VERTICAL_FOV_DEGREES: f32 = 40.0;
 
 /// The light comes from over the camera's shoulder (up and to the right of the view), so
 /// every view is lit from the front and the shadows it casts fall where the camera sees them.
@@ -27,6 +24,7 @@ pub struct ComparisonScenes {
     mesh: SceneObject,
     points: SceneObject,
     bounds: Aabb,
+    points_centre: Vec3,
 }
 
 /// One view's pair of scenes.
@@ -46,10 +44,14 @@ impl ComparisonScenes {
             .filter(|_| !mesh.triangles.is_empty())
             .ok_or(FidelityError::EmptyMesh)?;
         let offset = Affine3A::from_translation(patches.offset.as_vec3());
+        let local_bounds = bounds_of_points(patches.hot.iter().map(|patch| patch.origin()));
+        let points_centre =
+            (local_bounds.map_or(Vec3::ZERO, |b| center(&b)).as_dvec3() + patches.offset).as_vec3();
         Ok(Self {
             mesh: object("mesh", Affine3A::IDENTITY, Geometry::Mesh(mesh)),
             points: object("points", offset, Geometry::Patches(patches)),
             bounds,
+            points_centre,
         })
     }
 
@@ -58,15 +60,19 @@ impl ComparisonScenes {
         self.bounds
     }
 
+    /// The centre of the box around the points (the patches' origins), in the mesh's
+    /// coordinates.
+    pub fn points_centre(&self) -> Vec3 {
+        self.points_centre
+    }
+
     /// The mesh's bounding-box diagonal: the unit of the depth error.
     pub fn diagonal(&self) -> f32 {
         diagonal(&self.bounds)
     }
 
-    /// Both scenes seen from `direction` (from the model's centre toward the camera) on a
-    /// square image.
-    pub fn for_view(&self, direction: Vec3) -> ViewScenes {
-        let camera = Scene::framing_camera(&self.bounds, direction, VERTICAL_FOV_DEGREES, 1.0);
+    /// Both scenes seen by `camera`.
+    pub fn for_camera(&self, camera: Camera) -> ViewScenes {
         let scene_of = |object: &SceneObject| Scene {
             camera,
             lights: vec![shoulder_light(&camera)],

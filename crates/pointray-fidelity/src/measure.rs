@@ -8,33 +8,52 @@ use pointray_io::TriangleMesh;
 use pointray_scene::{PatchAcceptance, RenderSettings};
 use pointray_surface::PatchSet;
 
-use crate::view_directions::view_directions;
+use crate::vertex_normals::VertexNormals;
+use crate::view_placement::{View, ViewSetting, place_views, validate_setting};
 use crate::{
     ComparisonScenes, FidelityError, FidelityReport, FidelitySetup, FrameRenderer, PixelComparison,
-    ViewReport,
+    SensorPose, ViewReport, ViewSpec,
 };
+
+/// LiDAR scans (KITTI, nuScenes, LAS, E57) have z up.
+pub const DEFAULT_UP: Vec3 = Vec3::Z;
+/// The lens of explicit and `above` views: from 20 m up it takes in a street 23 m across.
+pub const DEFAULT_FOV_DEGREES: f32 = 60.0;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct FidelityOptions {
-    /// From the model's centre toward each camera.
-    pub directions: Vec<Vec3>,
-    /// Square images of this many pixels a side.
+    pub views: Vec<ViewSpec>,
+    /// Images are this many pixels wide, and square but for sensor views.
     pub size: u32,
     pub acceptance: PatchAcceptance,
+    /// The scan's up axis: `above` looks down it, sensor views level with it, and explicit
+    /// views keep it up in the image.
+    pub up: Vec3,
+    /// The vertical field of view of explicit and `above` views.
+    pub fov_degrees: f32,
+    /// The scan's sensor, for sensor views.
+    pub sensor: Option<SensorPose>,
 }
 
 impl FidelityOptions {
     /// `views` cameras spread around the model (see `view_directions`).
     pub fn around(views: usize, size: u32, acceptance: PatchAcceptance) -> Result<Self, FidelityError> {
-        Ok(Self { directions: view_directions(views)?, size, acceptance })
+        let options = Self::with_views(vec![ViewSpec::Around { count: views }], size, acceptance);
+        options.views[0].validate()?;
+        Ok(options)
+    }
+
+    /// `views`, with the default up axis and lens and no sensor.
+    pub fn with_views(views: Vec<ViewSpec>, size: u32, acceptance: PatchAcceptance) -> Self {
+        Self { views, size, acceptance, up: DEFAULT_UP, fov_degrees: DEFAULT_FOV_DEGREES, sensor: None }
     }
 
     /// Primary hits plus shadows: reflections would mix other parts of the model into a
     /// pixel and blur what the PSNR says about the surface under it.
-    fn render_settings(&self) -> RenderSettings {
+    fn render_settings(&self, view: &View) -> RenderSettings {
         RenderSettings {
-            width: self.size,
-            height: self.size,
+            width: view.width,
+            height: view.height,
             samples_per_pixel: 1,
             max_depth: 1,
             shadows: true,
@@ -45,50 +64,60 @@ impl FidelityOptions {
 }
 
 /// Renders `mesh` and `patches` (prepped from points in the mesh's coordinates) from every
-/// direction in `options` with `renderer`, and compares them per view and pooled.
+/// view in `options` with `renderer`, and compares them per view and pooled. Normals are
+/// compared against the mesh's interpolated vertex normals (`VertexNormals`).
 pub fn measure_fidelity(
     patches: Arc<PatchSet>,
     mesh: Arc<TriangleMesh>,
     options: &FidelityOptions,
     renderer: &dyn FrameRenderer,
 ) -> Result<FidelityReport, FidelityError> {
-    if options.directions.is_empty() {
-        return Err(FidelityError::TooFewViews { requested: 0, minimum: 1 });
-    }
-    if options.size == 0 {
-        return Err(FidelityError::EmptyImage(options.size));
-    }
+    validate_setting(options.up, options.fov_degrees, options.size)?;
     let started = Instant::now();
     let setup = FidelitySetup::describe(&patches, &mesh, options, renderer.name());
-    let scenes = ComparisonScenes::new(patches, mesh)?;
-    let settings = options.render_settings();
+    let scenes = ComparisonScenes::new(patches, mesh.clone())?;
+    let setting = ViewSetting {
+        mesh_bounds: &scenes.bounds(),
+        points_centre: scenes.points_centre(),
+        up: options.up.normalize(),
+        fov_degrees: options.fov_degrees,
+        size: options.size,
+        sensor: options.sensor.as_ref(),
+    };
+    let views = place_views(&options.views, &setting)?;
+    if views.is_empty() {
+        return Err(FidelityError::NoViews);
+    }
+    let normals = VertexNormals::angle_weighted(&mesh);
     let mut pooled = PixelComparison::default();
-    let mut views = Vec::with_capacity(options.directions.len());
-    for (index, &direction) in options.directions.iter().enumerate() {
-        let comparison = compare_view(&scenes, direction, index, &settings, renderer)?;
-        views.push(ViewReport { direction: direction.to_array(), metrics: comparison.metrics() });
+    let mut reports = Vec::with_capacity(views.len());
+    for (index, view) in views.into_iter().enumerate() {
+        let comparison = compare_view(&scenes, &mesh, &normals, &view, index, options, renderer)?;
+        reports.push(ViewReport::new(view, comparison.metrics()));
         pooled.merge(comparison);
     }
-    Ok(FidelityReport { setup, views, overall: pooled.metrics(), seconds: started.elapsed().as_secs_f64() })
+    Ok(FidelityReport {
+        setup,
+        views: reports,
+        overall: pooled.metrics(),
+        seconds: started.elapsed().as_secs_f64(),
+    })
 }
 
 fn compare_view(
     scenes: &ComparisonScenes,
-    direction: Vec3,
-    view: usize,
-    settings: &RenderSettings,
+    mesh: &TriangleMesh,
+    normals: &VertexNormals,
+    view: &View,
+    index: usize,
+    options: &FidelityOptions,
     renderer: &dyn FrameRenderer,
 ) -> Result<PixelComparison, FidelityError> {
-    let pair = scenes.for_view(direction);
-    let mesh = renderer.render(&pair.mesh, settings).map_err(|source| FidelityError::Render {
-        what: "mesh",
-        view,
-        source,
-    })?;
-    let points = renderer.render(&pair.points, settings).map_err(|source| FidelityError::Render {
-        what: "points",
-        view,
-        source,
-    })?;
-    PixelComparison::of_frames(&mesh, &points, scenes.diagonal())
+    let pair = scenes.for_camera(view.camera);
+    let settings = options.render_settings(view);
+    let render_error = |what| move |source| FidelityError::Render { what, view: index, source };
+    let mut mesh_frame = renderer.render(&pair.mesh, &settings).map_err(render_error("mesh"))?;
+    normals.smooth_frame(&mut mesh_frame, mesh, &view.camera)?;
+    let points_frame = renderer.render(&pair.points, &settings).map_err(render_error("points"))?;
+    PixelComparison::of_frames(&mesh_frame, &points_frame, scenes.diagonal())
 }

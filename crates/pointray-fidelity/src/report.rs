@@ -6,6 +6,7 @@ use pointray_io::TriangleMesh;
 use pointray_surface::PatchSet;
 use serde::Serialize;
 
+use crate::view_placement::View;
 use crate::{FidelityMetrics, FidelityOptions};
 
 /// What was compared, and how.
@@ -18,16 +19,40 @@ pub struct FidelitySetup {
     /// The neighbour count the patches were fitted with.
     pub k: u32,
     pub acceptance: &'static str,
+    /// The images' width.
     pub size: u32,
+    pub up: [f32; 3],
+    /// The lens of explicit and `above` views.
+    pub fov_degrees: f32,
+    /// What the points' normals are compared against.
+    pub mesh_normals: &'static str,
     pub patches: usize,
     pub triangles: usize,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ViewReport {
-    /// From the model's centre toward the camera.
-    pub direction: [f32; 3],
+    pub label: String,
+    pub position: [f32; 3],
+    pub look_at: [f32; 3],
+    pub vertical_fov_degrees: f32,
+    pub width: u32,
+    pub height: u32,
     pub metrics: FidelityMetrics,
+}
+
+impl ViewReport {
+    pub(crate) fn new(view: View, metrics: FidelityMetrics) -> Self {
+        Self {
+            label: view.label,
+            position: view.camera.position.to_array(),
+            look_at: view.camera.look_at.to_array(),
+            vertical_fov_degrees: view.camera.vertical_fov_degrees,
+            width: view.width,
+            height: view.height,
+            metrics,
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -54,6 +79,9 @@ impl FidelitySetup {
             k: patches.params.k,
             acceptance: options.acceptance.name(),
             size: options.size,
+            up: options.up.to_array(),
+            fov_degrees: options.fov_degrees,
+            mesh_normals: "angle-weighted vertex normals, interpolated",
             patches: patches.len(),
             triangles: mesh.triangles.len(),
         }

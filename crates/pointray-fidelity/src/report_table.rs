@@ -12,11 +12,10 @@ impl fmt::Display for FidelityReport {
         let setup = &self.setup;
         writeln!(
             f,
-            "backend {}, k = {}, acceptance {}, {}x{}, {} patches, {} triangles, {:.1} s",
+            "backend {}, k = {}, acceptance {}, {} px wide, {} patches, {} triangles, {:.1} s",
             setup.backend,
             setup.k,
             setup.acceptance,
-            setup.size,
             setup.size,
             setup.patches,
             setup.triangles,
@@ -25,8 +24,7 @@ impl fmt::Display for FidelityReport {
         writeln!(f)?;
         writeln!(f, "{HEADER}")?;
         for view in &self.views {
-            let [x, y, z] = view.direction;
-            write_row(f, &format!("({x:+.2}, {y:+.2}, {z:+.2})"), &view.metrics)?;
+            write_row(f, &view.label, &view.metrics)?;
         }
         write_row(f, "**all**", &self.overall)
     }

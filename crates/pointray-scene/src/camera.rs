@@ -1,6 +1,7 @@
 //! A pinhole camera.
 
 use glam::Vec3;
+use pointray_kernels::PinholeCamera;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
@@ -9,4 +10,16 @@ pub struct Camera {
     pub up: Vec3,
     /// Vertical field of view in degrees.
     pub vertical_fov_degrees: f32,
+}
+
+impl Camera {
+    /// The camera as the shared camera-ray maths takes it.
+    pub fn pinhole(&self) -> PinholeCamera {
+        PinholeCamera {
+            position: self.position,
+            look_at: self.look_at,
+            up: self.up,
+            vertical_fov_degrees: self.vertical_fov_degrees,
+        }
+    }
 }

@@ -1,55 +1,42 @@
-//! `pointray fidelity`: a points file against the mesh it came from, as numbers (issue 4).
+//! `pointray fidelity`: a points file against the mesh it came from, as numbers.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use anyhow::Context;
 use clap::Args;
-use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, measure_fidelity};
+use glam::DVec3;
+use pointray_fidelity::view_placement::validate_setting;
+use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, SensorPose, measure_fidelity};
 use pointray_io::MemoryBudget;
-use pointray_scene::{Frame, PatchAcceptance, RenderSetting, RenderSettings, Scene};
-use pointray_surface::input_validation::validate_options;
-use pointray_surface::{PatchSet, PrepOptions, PrepParams, prep};
+use pointray_scene::{Frame, RenderSetting, RenderSettings, Scene};
 use pointray_vulkan::DeviceSelector;
 
 use crate::backend::{Backend, BackendChoice};
-use crate::boxes_arg::Boxes;
-use crate::columns_arg::ColumnsArg;
-use crate::progress::PrepBar;
-use crate::radius_arg::Radius;
+use crate::patch_args::PatchArgs;
 use crate::setting_flag::setting_flag;
+use crate::view_args::{ViewArgs, parse_finite};
 
-/// Render the points' patches and the mesh from cameras around the model and report holes,
-/// false surfaces, depth and normal error and PSNR, as a table (and JSON with `--json`).
+/// Render the points' patches and the mesh from the same cameras and report holes, false
+/// surfaces, depth and normal error (against the mesh's interpolated vertex normals) and
+/// PSNR, as a table (and JSON with `--json`).
 #[derive(Args)]
 pub struct FidelityArgs {
     /// The points file (any format `prep` reads), in the mesh's coordinates.
     points: PathBuf,
-    /// The mesh the points were sampled from (PLY or OBJ).
+    /// The mesh the points were sampled or scanned from (PLY or OBJ).
     mesh: PathBuf,
-    /// Cameras around the model: 6 looks along the axes, more are spread evenly.
-    #[arg(long, default_value_t = 6)]
-    views: usize,
-    /// Square images of this many pixels a side.
+    #[command(flatten)]
+    views: ViewArgs,
+    /// Where the scan's sensor stood, `x,y,z`, for sensor views and for orienting normals;
+    /// overrides the file's.
+    #[arg(long, value_parser = parse_finite, allow_hyphen_values = true)]
+    sensor: Option<DVec3>,
+    /// Images of this many pixels a side (sensor views: this wide).
     #[arg(long, default_value_t = 512, value_parser = setting_flag(RenderSetting::Width))]
     size: u32,
-    /// Neighbours for the support radius and the quadratic fit.
-    #[arg(long, default_value_t = 9)]
-    k: u32,
-    /// Which hits on a patch count: `box` (inside its box, the paper) or `disk` (also over
-    /// its support).
-    #[arg(long, default_value = "disk")]
-    acceptance: PatchAcceptance,
-    /// The box around each patch.
-    #[arg(long, value_enum, default_value_t = Boxes::Tight)]
-    boxes: Boxes,
-    /// The support radius: the point's Voronoi cell (the default), the paper's, or adapted
-    /// to the local density.
-    #[arg(long, value_enum, default_value_t = Radius::Cell)]
-    radius: Radius,
-    /// How far each patch reaches, as a fraction of the paper's support radius.
-    #[arg(long, default_value_t = PrepParams::default().disk_scale)]
-    disk_scale: f32,
+    #[command(flatten)]
+    patches: PatchArgs,
     /// Also write the report as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
@@ -78,22 +65,23 @@ impl FrameRenderer for ChosenBackend {
 pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     let inputs = [args.points.clone(), args.mesh.clone()];
     pointray_io::ensure_outputs_spare_inputs(&inputs, args.json.as_slice())?;
-    let options = FidelityOptions::around(args.views, args.size, args.acceptance)?;
+    let mut options = FidelityOptions::with_views(args.views.specs()?, args.size, args.patches.acceptance());
+    options.up = args.views.up;
+    options.fov_degrees = args.views.fov;
+    // Before the prep, which can take minutes.
+    validate_setting(options.up, options.fov_degrees, options.size)?;
     let size = RenderSettings { width: args.size, height: args.size, ..RenderSettings::default() };
     size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
-    let prep_options = PrepOptions {
-        params: PrepParams {
-            k: args.k,
-            box_kind: args.boxes.into(),
-            disk_scale: args.disk_scale,
-            ..PrepParams::default()
-        },
-        radius_mode: args.radius.into(),
-        ..PrepOptions::default()
-    };
-    validate_options(&prep_options).map_err(crate::commands::prep::flag_error)?;
+    let prep_options = args.patches.prep_options(args.sensor)?;
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
-    let patches = prep_points(&args.points, &args.columns, prep_options)?;
+    let cloud = args.patches.read(&args.points)?;
+    if args.views.wants_sensor() {
+        let pose = SensorPose::of_cloud(&cloud, options.up, args.sensor)
+            .with_context(|| format!("{}: placing the sensor views", args.points.display()))?;
+        options.sensor = Some(pose);
+    }
+    let (patches, _) = args.patches.prep(&args.points, &cloud, &prep_options)?;
+    drop(cloud);
     let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);
     println!("backend: {}", backend.name());
     let mut report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &backend)
@@ -106,11 +94,4 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
         println!("wrote {}", json.display());
     }
     Ok(())
-}
-
-fn prep_points(path: &Path, columns: &ColumnsArg, options: PrepOptions) -> anyhow::Result<PatchSet> {
-    let cloud = columns.read_point_cloud(path)?;
-    let (patches, _) = prep(&cloud, &options, &PrepBar::default())
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    Ok(patches)
 }

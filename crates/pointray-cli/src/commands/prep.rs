@@ -5,12 +5,13 @@ use std::path::PathBuf;
 use clap::Args;
 use glam::DVec3;
 use pointray_surface::input_validation::validate_options;
-use pointray_surface::{OutlierFilter, PrepError, PrepOptions, PrepParams, ScanMode, prep};
+use pointray_surface::{OutlierFilter, PrepError, PrepOptions, PrepParams, prep};
 
 use crate::boxes_arg::Boxes;
 use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
 use crate::radius_arg::Radius;
+use crate::scan_arg::Scan;
 
 /// Fit an MLS quadratic patch to every point and write the patch store.
 #[derive(Args)]
@@ -58,22 +59,6 @@ pub struct PrepArgs {
     scan: Scan,
     #[command(flatten)]
     columns: ColumnsArg,
-}
-
-/// Whether `prep` uses a scan's line structure.
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum Scan {
-    Auto,
-    Off,
-}
-
-impl From<Scan> for ScanMode {
-    fn from(scan: Scan) -> Self {
-        match scan {
-            Scan::Auto => ScanMode::Auto,
-            Scan::Off => ScanMode::Off,
-        }
-    }
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {

@@ -15,5 +15,6 @@ mod outputs_spare_inputs;
 mod prep_robustness_flags;
 mod radius_fidelity;
 mod scan_command;
+mod scan_measures;
 mod scene_prep_keys;
 mod size_limits;

@@ -1,4 +1,8 @@
 //! The fidelity crate's integration tests, in one binary so that CI links it once.
 
+mod chosen_views;
 mod hand_made_frames;
 mod paraboloid_cap;
+mod ring_scan;
+mod sensor_rays;
+mod sphere_normals;

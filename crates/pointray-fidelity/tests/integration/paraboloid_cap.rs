@@ -5,15 +5,16 @@
 use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
-use pointray_fidelity::{CpuFrameRenderer, FidelityOptions, FidelityReport, measure_fidelity};
+use pointray_fidelity::{CpuFrameRenderer, FidelityOptions, FidelityReport, ViewSpec, measure_fidelity};
 use pointray_io::{PointCloud, TriangleMesh};
 use pointray_scene::PatchAcceptance;
 use pointray_surface::{NoProgress, PrepOptions, prep};
 
 /// z = CURVATURE * (x² + y²) over the unit disc.
 const CURVATURE: f64 = 0.5;
-/// Grid samples along the [-1, 1] square; the mesh's flat facets differ from the smooth
-/// surface by about `2 * CURVATURE * spacing` radians at most, well under 0.5° on average.
+/// Grid samples along the [-1, 1] square. The mesh's flat facets differ from the smooth
+/// surface by up to `2 * CURVATURE * spacing` radians (0.7°); its interpolated vertex
+/// normals, which fidelity compares against, follow the smooth surface between vertices.
 const GRID: usize = 161;
 const SIZE: u32 = 128;
 
@@ -58,24 +59,21 @@ fn views_that_see_the_cap() -> Vec<Vec3> {
 
 fn measure(points: &PointCloud, mesh: TriangleMesh) -> FidelityReport {
     let (patches, _) = prep(points, &PrepOptions::default(), &NoProgress).expect("prep of the cap");
-    let options = FidelityOptions {
-        directions: views_that_see_the_cap(),
-        size: SIZE,
-        acceptance: PatchAcceptance::Box,
-    };
+    let views = views_that_see_the_cap().into_iter().map(ViewSpec::Direction).collect();
+    let options = FidelityOptions::with_views(views, SIZE, PatchAcceptance::Box);
     let report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &CpuFrameRenderer).unwrap();
     println!("{report}");
     report
 }
 
 #[test]
-fn the_cap_has_no_holes_and_normals_within_half_a_degree() {
+fn the_cap_has_no_holes_and_normals_within_a_twentieth_of_a_degree() {
     let mesh = paraboloid_cap();
     let report = measure(&points_of(&mesh, |_| true), mesh);
     let overall = &report.overall;
     assert!(overall.mesh_pixels > 6 * (SIZE * SIZE / 10) as u64, "the cap fills too little: {overall:?}");
     assert_eq!(overall.hole_rate, Some(0.0), "{overall:?}");
-    assert!(overall.normal_error_mean_degrees.unwrap() < 0.5, "{overall:?}");
+    assert!(overall.normal_error_mean_degrees.unwrap() < 0.05, "{overall:?}");
     assert!(report.views.iter().all(|view| view.metrics.hole_rate == Some(0.0)));
     assert_json_carries_the_numbers(&report);
 }
