@@ -1,7 +1,9 @@
 //! From a point set to MLS quadratic patches (SPEC.md §2): the offline half of pointray.
 
 pub mod cold_records;
+mod component_signs;
 pub mod density_radius;
+mod duplicate_clusters;
 pub mod duplicates;
 pub mod frame;
 pub mod input_validation;
@@ -9,6 +11,7 @@ pub mod morton;
 pub mod neighbors;
 pub mod normals;
 pub mod orientation;
+mod orientation_tree;
 pub mod outlier_removal;
 pub mod patch_bounds;
 pub mod patch_set;
