@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use pointray_io::PointCloud;
 use pointray_surface::patch_store::{self, StoreError};
-use pointray_surface::{OutlierFilter, PatchSet, PrepError, PrepOptions, RadiusMode, prep};
+use pointray_surface::{OutlierFilter, PatchSet, PrepError, PrepOptions, RadiusMode, prep, prep_owned};
 
 use crate::error::SceneError;
 use crate::load::LoadOptions;
@@ -121,7 +121,7 @@ fn prep_file(
     options: &LoadOptions,
 ) -> Result<PatchSet, PointSetError> {
     let cloud = pointray_io::formats::read_point_cloud(path).map_err(PointSetError::Input)?;
-    let (patches, report) = prep(&cloud, prep_options, options.progress)
+    let (patches, report) = prep_owned(cloud, prep_options, options.progress)
         .map_err(|source| PointSetError::Prep { file: path.to_path_buf(), source })?;
     tracing::info!("prepped {}:\n{report}", path.display());
     Ok(patches)

@@ -1,11 +1,12 @@
 //! `prep`: from a point cloud to a `PatchSet` (SPEC.md §2), stage by stage.
 
+use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
-use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
@@ -58,12 +59,38 @@ pub fn prep(
     options: &PrepOptions,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
+    prep_cloud(Cow::Borrowed(cloud), options, progress)
+}
+
+/// As `prep`, taking the cloud so that its f64 positions (24 bytes a point) are freed as
+/// soon as the recentred f32 copy exists: the way to prep the largest clouds.
+pub fn prep_owned(
+    cloud: PointCloud,
+    options: &PrepOptions,
+    progress: &dyn PrepProgress,
+) -> Result<(PatchSet, PrepReport), PrepError> {
+    prep_cloud(Cow::Owned(cloud), options, progress)
+}
+
+/// Each array is dropped as soon as its last stage is done, so that the peak (in the
+/// support radii and the fit) holds little more than the neighbour table, the frames and
+/// the patches.
+fn prep_cloud(
+    mut cloud: Cow<'_, PointCloud>,
+    options: &PrepOptions,
+    progress: &dyn PrepProgress,
+) -> Result<(PatchSet, PrepReport), PrepError> {
     let params = options.params;
     let (k, normal_k) = (params.k as usize, params.normal_k as usize);
     let mut clock = StageClock { progress, times: Vec::new() };
     let count = cloud.len();
-    clock.run(Stage::Validate, count, || validate(cloud, &params))?;
+    clock.run(Stage::Validate, count, || validate(&cloud, &params))?;
     let (offset, recentred) = clock.run(Stage::Recentre, count, || recentre(&cloud.positions));
+    // Only the attributes are read from here on (gathered through `source`).
+    if let Cow::Owned(owned) = &mut cloud {
+        owned.positions = Vec::new();
+    }
+    let cloud = &*cloud;
     let order = clock.run(Stage::MortonSort, count, || morton_order(&recentred));
     let sorted = gather(&recentred, &order);
     drop(recentred);
@@ -73,7 +100,7 @@ pub fn prep(
     if merge.kept.len() < k + 1 {
         return Err(PrepError::TooFewDistinctPoints { found: merge.kept.len(), k });
     }
-    let distinct = merge.kept.len();
+    let (distinct, merged_duplicates) = (merge.kept.len(), merge.merged_count);
     let kept = match &options.remove_outliers {
         Some(filter) => clock
             .run(Stage::OutlierRemoval, merge.kept.len(), || keep_inliers(filter, &sorted, &merge.kept, k))?,
@@ -83,10 +110,11 @@ pub fn prep(
     // `source[i]` is the input index of patch `i`: every per-point attribute is gathered
     // through it once.
     let source = gather(&order, &kept);
+    drop(order);
     let points = gather(&sorted, &kept);
-    drop(sorted);
+    drop((sorted, kept));
     let patches = points.len();
-    let neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
+    let mut neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
     let (mut normals, replaced_input_normals) =
         clock.run(Stage::Normals, patches, || normals_for(&points, &neighbors, cloud, &source, options));
     clock.run(Stage::Orientation, patches, || {
@@ -97,17 +125,21 @@ pub fn prep(
     let radii = clock.run(Stage::SupportRadii, patches, || {
         support_radii(&points, &normals, &frames, &neighbors, k, options.radius_mode)
     });
+    drop(normals); // the frames hold them
+    let colors = has_point_colors(cloud);
+    neighbors.narrow(if colors { k.max(COLOR_NEIGHBORS) } else { k });
     let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
         fit_patches(&points, &frames, &radii.chosen, &neighbors, k, params.disk_scale, progress)
     });
+    drop((frames, points));
+    let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
+        (gather_cold(cloud, &source, &radii.paper), color_neighbor_table(neighbors, colors))
+    });
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
-    let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
-        (gather_cold(cloud, &source, &radii.paper), color_neighbor_table(&neighbors, has_point_colors(cloud)))
-    });
     let report = PrepReport {
         input_points: count,
-        merged_duplicates: merge.merged_count,
+        merged_duplicates,
         removed_outliers,
         patches,
         replaced_input_normals,

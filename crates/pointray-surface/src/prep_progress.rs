@@ -17,8 +17,8 @@ pub enum Stage {
     Frames,
     SupportRadii,
     QuadraticFit,
-    Boxes,
     ColdRecords,
+    Boxes,
 }
 
 impl Stage {
