@@ -35,9 +35,10 @@ const WENDLAND_SCALE: f32 = 1.1;
 const PROGRESS_CHUNK: usize = 16_384;
 
 /// Changes whenever `prep` makes different patches from the same input and options (the
-/// cell margin went from 1.15 to 1.5 in revision 2), so that caches keyed on the options also
-/// key on this and never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 2;
+/// cell margin went from 1.15 to 1.5 in revision 2; in revision 3 orientation joins blocks,
+/// which can turn a different set of normals), so that caches keyed on the options also key
+/// on this and never serve patches of an older rule.
+pub const PREP_REVISION: u32 = 3;
 
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PrepOptions {
