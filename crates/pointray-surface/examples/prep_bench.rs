@@ -4,16 +4,17 @@
 //! cargo run --release -p pointray-surface --example prep_bench -- MESH.ply [COUNT] [SEED] [blue]
 //! ```
 //!
-//! Prints `prep`'s per-stage wall times and peak resident memory (the whole process's, so the
-//! sampled cloud is included), then the store's write time and its load time (median of 5
-//! loads). A measurement, not a test: bench/PREP.md records its output.
+//! Prints `prep`'s per-stage wall times and peak resident memory (the whole process's, with the
+//! mesh; `prep_owned` frees the sampled positions once recentred, as `pointray prep` does),
+//! then the store's write time and its load time (median of 5 loads). A measurement, not a
+//! test: bench/PREP.md records its output.
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use pointray_io::formats::ply;
 use pointray_surface::peak_memory::{StagePeaks, current_rss};
-use pointray_surface::{NoProgress, PrepOptions, patch_store, prep, sample_mesh};
+use pointray_surface::{NoProgress, PrepOptions, patch_store, prep_owned, sample_mesh};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
@@ -28,11 +29,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let elapsed = seconds(start.elapsed());
     println!("sampled {} {kind} points from {} in {elapsed:.3} s", cloud.len(), mesh_path.display());
     println!("rayon threads: {}", rayon::current_num_threads());
-    let before = current_rss().unwrap_or(0);
+    let (before, points) = (current_rss().unwrap_or(0), cloud.len());
     let peaks = StagePeaks::new(&NoProgress);
-    let (patches, report) = prep(&cloud, &PrepOptions::default(), &peaks)?;
+    let (patches, report) = prep_owned(cloud, &PrepOptions::default(), &peaks)?;
     println!("{report}");
-    print_peaks(&peaks, before, cloud.len());
+    print_peaks(&peaks, before, points);
     let directory = tempfile::tempdir()?;
     let store = directory.path().join("bench.patches");
     let start = Instant::now();
