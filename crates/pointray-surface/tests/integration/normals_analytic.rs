@@ -136,8 +136,8 @@ fn standing_torus(n: usize, big_r: f32, r: f32) -> (Vec<Vec3>, Vec<Vec3>) {
 
 #[test]
 fn closed_torus_is_oriented_outward_across_many_blocks() {
-    // 160,000 points make ten orientation blocks. Standing on its rim, the torus is cut by
-    // the Morton order into pieces whose own highest points face down, so only agreeing
+    // 160,000 points make three orientation blocks. Standing on its rim, the torus is cut
+    // by the Morton order into pieces whose own highest points face down, so only agreeing
     // with the pieces beside them orients those outward.
     let (points, outward) = standing_torus(400, 1.0, 0.3);
     let order = pointray_surface::morton::morton_order(&points);
