@@ -12,6 +12,10 @@ use pointray_vulkan::DeviceInfo;
 /// store afterwards need less.
 pub const PREP_BYTES_PER_POINT: u64 = 220;
 
+/// Peak resident memory per point of loading the store and rendering on the CPU backend:
+/// the store read, the patches and the BVH build; measured at 361 bytes on 10M points.
+pub const CPU_RENDER_BYTES_PER_POINT: u64 = 380;
+
 /// A stand-in's points file: binary PLY with float positions.
 pub const POINTS_FILE_BYTES_PER_POINT: u64 = 12;
 
@@ -32,6 +36,8 @@ pub fn gpu_build_bytes_per_point() -> u64 {
 pub struct MachineLimits {
     /// `MemAvailable` of `/proc/meminfo`, in bytes.
     pub available_memory: Option<u64>,
+    /// The most memory per point any step takes: prep, or rendering on the CPU.
+    pub memory_per_point: u64,
     /// Free bytes on the cache folder's file system.
     pub free_disk: Option<u64>,
     /// The Vulkan device, when the suite renders on one.
@@ -51,20 +57,25 @@ impl From<&DeviceInfo> for DeviceLimits {
 }
 
 impl MachineLimits {
-    /// This machine's limits now, for a suite caching in `cache` (which must exist).
+    /// This machine's limits now, for a suite caching in `cache` (which must exist) and
+    /// rendering on `device`, or on the CPU when there is none.
     pub fn now(cache: &Path, device: Option<DeviceLimits>) -> Self {
-        Self { available_memory: available_memory(), free_disk: free_disk(cache), device }
+        let memory_per_point =
+            if device.is_some() { PREP_BYTES_PER_POINT } else { CPU_RENDER_BYTES_PER_POINT };
+        Self { available_memory: available_memory(), memory_per_point, free_disk: free_disk(cache), device }
     }
 
     /// Why a rung of `points` points cannot run here; `None` when it fits. `cached_bytes` is
     /// what the rung already has in the cache (its points file), which needs no new room.
     pub fn why_not(&self, points: u64, cached_bytes: u64) -> Option<String> {
         let gigabytes = |bytes: u64| bytes as f64 / 1e9;
-        let memory = points.saturating_mul(PREP_BYTES_PER_POINT);
+        let memory = points.saturating_mul(self.memory_per_point);
         if let Some(available) = self.available_memory.filter(|&available| memory > available) {
+            let step = if self.device.is_some() { "prep" } else { "rendering on the CPU" };
             return Some(format!(
-                "prep needs about {:.1} GB of memory ({PREP_BYTES_PER_POINT} B a point), {:.1} GB is available",
+                "{step} needs about {:.1} GB of memory ({} B a point), {:.1} GB is available",
                 gigabytes(memory),
+                self.memory_per_point,
                 gigabytes(available)
             ));
         }
@@ -113,15 +124,25 @@ mod tests {
     use super::*;
 
     fn machine(memory: u64, disk: u64, device: Option<DeviceLimits>) -> MachineLimits {
-        MachineLimits { available_memory: Some(memory), free_disk: Some(disk), device }
+        let memory_per_point =
+            if device.is_some() { PREP_BYTES_PER_POINT } else { CPU_RENDER_BYTES_PER_POINT };
+        MachineLimits { available_memory: Some(memory), memory_per_point, free_disk: Some(disk), device }
     }
 
     #[test]
     fn each_limit_names_itself() {
         let roomy = machine(1 << 40, 1 << 40, None);
         assert_eq!(roomy.why_not(1_000_000, 0), None);
-        let reason = machine(24e9 as u64, 1 << 40, None).why_not(300_000_000, 0).expect("too little memory");
-        assert!(reason.contains("memory") && reason.contains("66.0 GB"), "{reason}");
+        let reason = machine(24e9 as u64, 1 << 40, None).why_not(100_000_000, 0).expect("too little memory");
+        assert!(reason.contains("rendering on the CPU needs about 38.0 GB"), "{reason}");
+        let gpu = Some(DeviceLimits { device_local_bytes: 1 << 40, max_blas_primitives: u64::MAX });
+        assert_eq!(
+            machine(24e9 as u64, 1 << 40, gpu).why_not(100_000_000, 0),
+            None,
+            "prep fits, the GPU renders"
+        );
+        let reason = machine(24e9 as u64, 1 << 40, gpu).why_not(300_000_000, 0).expect("too little memory");
+        assert!(reason.contains("prep needs about 66.0 GB"), "{reason}");
         let reason = machine(1 << 40, 64e9 as u64, None).why_not(1_000_000_000, 0).expect("too little disk");
         assert!(reason.contains("disk"), "{reason}");
         let cached = 1_000_000_000 * POINTS_FILE_BYTES_PER_POINT;
