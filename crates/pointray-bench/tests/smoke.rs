@@ -197,7 +197,7 @@ fn scale_suite_skips_what_does_not_fit_and_stays_out_of_checkouts() {
         RungOutcome::Skipped { reason } => assert!(reason.contains("GB of memory"), "{reason}"),
         RungOutcome::Measured(_) => panic!("a petapoint cloud cannot fit"),
     }
-    assert!(scale_markdown(&report).contains("| 1P | skipped: prep needs"));
+    assert!(scale_markdown(&report).contains("| 1P | skipped: rendering on the CPU needs"));
     std::fs::create_dir(cache.path().join(".git")).expect("a fake checkout");
     let inside = cache.path().join("cache");
     let error = run_scale(ScaleBackend::Cpu, &scale_options(data, &inside, &[])).expect_err("refused");
