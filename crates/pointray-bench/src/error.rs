@@ -14,12 +14,18 @@ pub enum BenchError {
     MissingData { path: PathBuf },
     #[error("{path}: cannot create the cache folder: {source}")]
     CacheDir { path: PathBuf, source: std::io::Error },
+    #[error(
+        "{path}: the cache folder lies in the git checkout {checkout}; the scale suite writes gigabytes, give --cache a folder outside it"
+    )]
+    CacheInRepository { path: PathBuf, checkout: PathBuf },
     #[error(transparent)]
     Io(#[from] pointray_io::IoError),
     #[error(transparent)]
     Scene(#[from] pointray_scene::SceneError),
     #[error("{case}: prep failed: {source}")]
     Prep { case: String, source: pointray_surface::PrepError },
+    #[error("{case}: {source}")]
+    Store { case: String, source: pointray_surface::patch_store::StoreError },
     #[error("{case}: {source}")]
     Vulkan { case: String, source: pointray_vulkan::VulkanError },
     #[error("{path}: cannot write the report: {message}")]

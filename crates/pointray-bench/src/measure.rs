@@ -4,7 +4,9 @@
 use std::time::{Duration, Instant};
 
 use pointray_scene::{RenderSettings, Scene};
-use pointray_vulkan::{BlasLayout, BuildReport, PixelOutput, VulkanError, VulkanRenderer};
+use pointray_vulkan::{
+    BlasLayout, BuildReport, PixelOutput, PreparedScene, SceneLayout, VulkanError, VulkanRenderer,
+};
 
 use crate::stats::{median, p90};
 
@@ -45,18 +47,29 @@ pub fn measure(
     output: PixelOutput,
     frames: FrameCounts,
 ) -> Result<Measurement, VulkanError> {
-    let prepared = renderer.prepare_with_layout(scene, layout)?;
+    let layout = SceneLayout { blas: layout, buffers: settings.buffer_layout };
+    measure_prepared(renderer, &renderer.prepare_with_layout(scene, layout)?, settings, output, frames)
+}
+
+/// As `measure`, on a scene already on the GPU (prepared for `settings`' buffers).
+pub fn measure_prepared(
+    renderer: &VulkanRenderer,
+    prepared: &PreparedScene,
+    settings: &RenderSettings,
+    output: PixelOutput,
+    frames: FrameCounts,
+) -> Result<Measurement, VulkanError> {
     if frames.warmup > 0 {
         let start = Instant::now();
         loop {
-            renderer.trace_frames(&prepared, settings, frames.warmup, output)?;
+            renderer.trace_frames(prepared, settings, frames.warmup, output)?;
             if start.elapsed() >= MIN_WARMUP {
                 break;
             }
         }
     }
-    let times = renderer.trace_frames(&prepared, settings, frames.timed, output)?;
-    let rays_per_frame = renderer.count_rays(&prepared, settings)?;
+    let times = renderer.trace_frames(prepared, settings, frames.timed, output)?;
+    let rays_per_frame = renderer.count_rays(prepared, settings)?;
     Ok(Measurement {
         trace_median: median(&times.trace),
         trace_p90: p90(&times.trace),

@@ -46,8 +46,23 @@ pub fn load_model_scene(
             None => return Ok(None),
         },
     };
-    let mut table = model.scene.clone();
-    let path_text = std::path::absolute(&path).unwrap_or(path).to_string_lossy().into_owned();
+    let scene_path = cache.join(format!("{}-{kind}.toml", model.name));
+    load_with_model(&model.name, &model.scene, kind, &path, &scene_path, cache).map(Some)
+}
+
+/// Loads the scene `table` with `path` (of `kind`, "points" or "mesh") as its first object,
+/// the model `name`; `scene_path` stands for the scene file in messages. Points files are
+/// prepped through `cache`.
+pub fn load_with_model(
+    name: &str,
+    table: &toml::Table,
+    kind: &str,
+    path: &Path,
+    scene_path: &Path,
+    cache: &Path,
+) -> Result<LoadedScene, BenchError> {
+    let mut table = table.clone();
+    let path_text = std::path::absolute(path).unwrap_or(path.to_path_buf()).to_string_lossy().into_owned();
     if let Some(object) = table
         .get_mut("objects")
         .and_then(|o| o.as_array_mut())
@@ -57,13 +72,12 @@ pub fn load_model_scene(
         object.insert("type".into(), kind.into());
         object.insert("path".into(), path_text.into());
     }
-    let scene_path = cache.join(format!("{}-{kind}.toml", model.name));
     let text = toml::to_string(&table).map_err(|e| BenchError::InvalidModel {
-        path: scene_path.clone(),
-        model: model.name.clone(),
+        path: scene_path.to_path_buf(),
+        model: name.to_string(),
         problem: e.to_string(),
     })?;
-    let file = SceneFile::parse(&text, &scene_path)?;
+    let file = SceneFile::parse(&text, scene_path)?;
     let options = LoadOptions { cache_dir: Some(cache), progress: &NoProgress };
-    Ok(Some(load_scene_file(&file, &options)?))
+    Ok(load_scene_file(&file, &options)?)
 }

@@ -3,21 +3,19 @@
 use std::io::Write;
 use std::path::Path;
 
-use crate::error::BenchError;
-use crate::markdown::markdown;
-use crate::report::Report;
+use serde::Serialize;
 
-pub fn write_json(report: &Report, path: &Path) -> Result<(), BenchError> {
+use crate::error::BenchError;
+
+/// Any report (`Report`, `ScaleReport`) as pretty JSON.
+pub fn write_json(report: &impl Serialize, path: &Path) -> Result<(), BenchError> {
     let text = serde_json::to_string_pretty(report)
         .map_err(|e| BenchError::WriteReport { path: path.to_path_buf(), message: e.to_string() })?;
     write_text(&text, path)
 }
 
-pub fn write_markdown(report: &Report, path: &Path) -> Result<(), BenchError> {
-    write_text(&markdown(report), path)
-}
-
-fn write_text(text: &str, path: &Path) -> Result<(), BenchError> {
+/// A report as text: its markdown (`markdown::markdown`, `scale_markdown`).
+pub fn write_text(text: &str, path: &Path) -> Result<(), BenchError> {
     pointray_io::write_atomically(path, |writer| writer.write_all(text.as_bytes()))
         .map_err(|e| BenchError::WriteReport { path: path.to_path_buf(), message: e.to_string() })
 }

@@ -1,10 +1,17 @@
 //! CI smoke test (lavapipe is enough): the table1 suite runs end to end on one small model and
-//! its numbers are sane; the GPU ray count is exact where it can be computed by hand. It
-//! asserts that the benchmark works, not how fast anything is.
+//! its numbers are sane; the GPU ray count is exact where it can be computed by hand; the
+//! scale suite runs a small rung on both backends and skips one that cannot fit. It asserts
+//! that the benchmark works, not how fast anything is.
 
 use std::path::{Path, PathBuf};
 
-use pointray_bench::{BenchOptions, FrameCounts, Suite, Variant, run_suite};
+use pointray_bench::scale::Rung;
+use pointray_bench::scale_report::{RungMeasurement, RungOutcome};
+use pointray_bench::{
+    BenchError, BenchOptions, FrameCounts, ScaleBackend, ScaleOptions, ScaleReport, Suite, Variant,
+    run_scale, run_suite, scale_markdown,
+};
+use pointray_surface::NoProgress;
 use pointray_vulkan::{DeviceSelector, VulkanRenderer};
 
 fn in_ci() -> bool {
@@ -113,4 +120,87 @@ fn primary_rays_only_are_counted_exactly() {
     let report = run_suite(&renderer, &suite, &options).expect("runs");
     assert_eq!(report.cases.len(), 1);
     assert_eq!(report.cases[0].rays_per_frame, 24 * 16 * 2);
+}
+
+fn scale_options<'a>(data: PathBuf, cache: &Path, rungs: &[(&str, u64)]) -> ScaleOptions<'a> {
+    ScaleOptions {
+        data,
+        cache: cache.to_path_buf(),
+        rungs: rungs.iter().map(|&(label, points)| Rung { label: label.into(), points }).collect(),
+        sizes: vec![(48, 27), (16, 16)],
+        frames: FrameCounts { warmup: 1, timed: 2 },
+        progress: &NoProgress,
+        on_row: &|_| {},
+    }
+}
+
+/// The one rung of `report`, which must have been measured.
+fn measured(report: &ScaleReport) -> &RungMeasurement {
+    match &report.rows[..] {
+        [row] => match &row.outcome {
+            RungOutcome::Measured(measurement) => measurement,
+            RungOutcome::Skipped { reason } => panic!("{} was skipped: {reason}", row.label),
+        },
+        rows => panic!("{} rows", rows.len()),
+    }
+}
+
+fn assert_sane(measurement: &RungMeasurement, points: u64) {
+    let m = measurement;
+    assert!(m.prep_seconds > 0.0 && m.prep_points_per_second > 0.0, "{m:?}");
+    // 24 + 64 + 12 bytes a patch; a few points may merge as duplicates.
+    assert!(m.store_bytes > 99 * points && m.store_bytes < 101 * points, "{m:?}");
+    assert!(m.prep_peak_rss_bytes.is_some_and(|bytes| bytes > 0), "{m:?}");
+    assert!(m.load_seconds >= m.blas_build_seconds && m.blas_build_seconds > 0.0, "{m:?}");
+    let sizes: Vec<(u32, u32)> = m.fps.iter().map(|s| (s.width, s.height)).collect();
+    assert_eq!(sizes, [(48, 27), (16, 16)]);
+    assert!(m.fps.iter().all(|s| s.fps > 0.0 && (s.fps * s.frame_ms - 1000.0).abs() < 1e-6), "{m:?}");
+}
+
+#[test]
+fn scale_suite_runs_a_rung_on_the_cpu_backend() {
+    let Some(data) = data_dir() else { return };
+    let cache = tempfile::tempdir().expect("a temporary folder");
+    let options = scale_options(data, cache.path(), &[("20K", 20_000)]);
+    let report = run_scale(ScaleBackend::Cpu, &options).expect("runs");
+    let m = measured(&report);
+    assert_sane(m, 20_000);
+    assert_eq!(m.gpu_bytes_per_point, None, "no GPU on the CPU backend");
+    assert!(report.rows[0].stand_in.contains("20000 points sampled on meshes/dragon_res2.ply"));
+    assert!(cache.path().join("dragon_res2-standin-20000-seed1.ply").is_file(), "the points are cached");
+    let table = scale_markdown(&report);
+    assert!(table.contains("| 20K |") && table.contains("FPS 48x27"), "{table}");
+    serde_json::to_string(&report).expect("serialises");
+}
+
+#[test]
+fn scale_suite_reports_gpu_bytes_on_vulkan() {
+    let (Some(renderer), Some(data)) = (renderer(), data_dir()) else { return };
+    let cache = tempfile::tempdir().expect("a temporary folder");
+    let options = scale_options(data, cache.path(), &[("20K", 20_000)]);
+    let report = run_scale(ScaleBackend::Vulkan(&renderer), &options).expect("runs");
+    let m = measured(&report);
+    assert_sane(m, 20_000);
+    // The hot and cold records (76 bytes a patch) and the BLAS; no boxes, no combined records.
+    let bytes = m.gpu_bytes_per_point.expect("GPU bytes on Vulkan");
+    assert!(bytes > 76.0 && bytes < 180.0, "{bytes} B/point");
+    assert_eq!(renderer.validation_messages(), 0, "the validation layer reported messages");
+}
+
+#[test]
+fn scale_suite_skips_what_does_not_fit_and_stays_out_of_checkouts() {
+    let Some(data) = data_dir() else { return };
+    let cache = tempfile::tempdir().expect("a temporary folder");
+    let options = scale_options(data.clone(), cache.path(), &[("1P", 1_000_000_000_000_000)]);
+    let report = run_scale(ScaleBackend::Cpu, &options).expect("runs");
+    match &report.rows[0].outcome {
+        RungOutcome::Skipped { reason } => assert!(reason.contains("GB of memory"), "{reason}"),
+        RungOutcome::Measured(_) => panic!("a petapoint cloud cannot fit"),
+    }
+    assert!(scale_markdown(&report).contains("| 1P | skipped: rendering on the CPU needs"));
+    std::fs::create_dir(cache.path().join(".git")).expect("a fake checkout");
+    let inside = cache.path().join("cache");
+    let error = run_scale(ScaleBackend::Cpu, &scale_options(data, &inside, &[])).expect_err("refused");
+    assert!(matches!(error, BenchError::CacheInRepository { .. }), "{error}");
+    assert!(!inside.exists(), "nothing was written");
 }

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use pointray_io::PointCloud;
 use pointray_io::formats::ColumnSpec;
 use pointray_surface::patch_store::{self, StoreError};
-use pointray_surface::{OutlierFilter, PatchSet, PrepError, PrepOptions, RadiusMode, prep};
+use pointray_surface::{OutlierFilter, PatchSet, PrepError, PrepOptions, RadiusMode, prep, prep_owned};
 
 use crate::classification_palette::classification_color;
 use crate::error::SceneError;
@@ -159,7 +159,7 @@ fn prep_file(
             .ok_or(PointSetError::NoClassifications { file: path.to_path_buf() })?;
         cloud.colors = Some(classes.iter().map(|&class| classification_color(class)).collect());
     }
-    let (patches, report) = prep(&cloud, prep_options, options.progress)
+    let (patches, report) = prep_owned(cloud, prep_options, options.progress)
         .map_err(|source| PointSetError::Prep { file: path.to_path_buf(), source })?;
     tracing::info!("prepped {}:\n{report}", path.display());
     Ok(patches)

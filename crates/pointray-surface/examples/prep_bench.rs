@@ -4,14 +4,17 @@
 //! cargo run --release -p pointray-surface --example prep_bench -- MESH.ply [COUNT] [SEED] [blue]
 //! ```
 //!
-//! Prints `prep`'s per-stage wall times, then the store's write time and its load time
-//! (median of 5 loads). A measurement, not a test: bench/PREP.md records its output.
+//! Prints `prep`'s per-stage wall times and peak resident memory (the whole process's, with the
+//! mesh; `prep_owned` frees the sampled positions once recentred, as `pointray prep` does),
+//! then the store's write time and its load time (median of 5 loads). A measurement, not a
+//! test: bench/PREP.md records its output.
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use pointray_io::formats::ply;
-use pointray_surface::{NoProgress, PrepOptions, patch_store, prep, sample_mesh};
+use pointray_surface::peak_memory::{StagePeaks, current_rss};
+use pointray_surface::{NoProgress, PrepOptions, patch_store, prep_owned, sample_mesh};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
@@ -26,8 +29,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let elapsed = seconds(start.elapsed());
     println!("sampled {} {kind} points from {} in {elapsed:.3} s", cloud.len(), mesh_path.display());
     println!("rayon threads: {}", rayon::current_num_threads());
-    let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoProgress)?;
+    let (before, points) = (current_rss().unwrap_or(0), cloud.len());
+    let peaks = StagePeaks::new(&NoProgress);
+    let (patches, report) = prep_owned(cloud, &PrepOptions::default(), &peaks)?;
     println!("{report}");
+    print_peaks(&peaks, before, points);
     let directory = tempfile::tempdir()?;
     let store = directory.path().join("bench.patches");
     let start = Instant::now();
@@ -45,6 +51,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     loads.sort();
     println!("store load (median of 5, file in page cache): {:.3} s", seconds(loads[2]));
     Ok(())
+}
+
+/// Each stage's peak resident memory, in MB and bytes per input point.
+fn print_peaks(peaks: &StagePeaks, before: u64, points: usize) {
+    let megabytes = |bytes: u64| bytes as f64 / 1e6;
+    let per_point = |bytes: u64| bytes as f64 / points.max(1) as f64;
+    println!("peak resident memory (whole process; {:.0} MB before prep):", megabytes(before));
+    for (stage, bytes) in peaks.peaks() {
+        println!("  {:<22} {:>9.0} MB {:>6.0} B/point", stage.name(), megabytes(bytes), per_point(bytes));
+    }
+    if let Some(bytes) = peaks.overall() {
+        println!("  {:<22} {:>9.0} MB {:>6.0} B/point", "overall", megabytes(bytes), per_point(bytes));
+    }
 }
 
 fn seconds(duration: Duration) -> f64 {

@@ -31,10 +31,14 @@ pub fn cold_records(colors: Option<&[[u8; 3]]>, intensities: Option<&[f32]>, cou
 /// Each patch's `COLOR_NEIGHBORS` nearest neighbours, padded with `NO_NEIGHBOR` where the
 /// table is narrower; empty for points with no colour (nor intensity to colour them by),
 /// where blending would only repeat white and the list would add half to the patch set's
-/// memory (48 bytes a patch beside 96).
-pub fn color_neighbor_table(neighbors: &Neighbors, has_colors: bool) -> Vec<u32> {
+/// memory (48 bytes a patch beside 96). A table exactly `COLOR_NEIGHBORS` wide becomes the
+/// list as it is, without a copy.
+pub fn color_neighbor_table(neighbors: Neighbors, has_colors: bool) -> Vec<u32> {
     if !has_colors {
         return Vec::new();
+    }
+    if neighbors.k == COLOR_NEIGHBORS {
+        return neighbors.indices;
     }
     (0..neighbors.point_count())
         .flat_map(|i| {
@@ -51,14 +55,17 @@ mod tests {
     #[test]
     fn colour_neighbours_are_the_nearest_padded_and_only_with_colours() {
         let wide = Neighbors { k: 16, indices: (0..32).collect(), distances: vec![0.0; 32] };
-        let table = color_neighbor_table(&wide, true);
+        let table = color_neighbor_table(wide.clone(), true);
         assert_eq!(table.len(), 2 * COLOR_NEIGHBORS);
         assert_eq!(&table[COLOR_NEIGHBORS..], &(16..16 + COLOR_NEIGHBORS as u32).collect::<Vec<_>>()[..]);
         let narrow = Neighbors { k: 3, indices: vec![4, 5, 6], distances: vec![0.0; 3] };
-        let padded = color_neighbor_table(&narrow, true);
+        let padded = color_neighbor_table(narrow, true);
         assert_eq!(&padded[..4], &[4, 5, 6, NO_NEIGHBOR]);
         assert!(padded[3..].iter().all(|&j| j == NO_NEIGHBOR));
-        assert!(color_neighbor_table(&wide, false).is_empty());
+        assert!(color_neighbor_table(wide.clone(), false).is_empty());
+        let mut exact = wide;
+        exact.narrow(COLOR_NEIGHBORS);
+        assert_eq!(color_neighbor_table(exact, true), table, "a table of the list's width is the list");
     }
 
     #[test]

@@ -6,6 +6,8 @@ use std::collections::HashMap;
 use glam::{IVec3, Vec3};
 use rayon::prelude::*;
 
+use crate::duplicate_clusters::Clusters;
+
 /// The points that survive merging, as indices into the input, in input order.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct DuplicateMerge {
@@ -96,13 +98,13 @@ impl Grid {
     }
 }
 
-/// The points that might have a duplicate, in input order: those sharing a coarse cell,
-/// and those near a coarse cell's face. Every other point is certainly unique.
+/// The points that might have a duplicate: those sharing a coarse cell, and those near a
+/// coarse cell's face. Every other point is certainly unique.
 fn possible_duplicates(points: &[Vec3], grid: &Grid) -> Vec<u32> {
     let mut keyed: Vec<([u32; 3], u32)> =
         points.par_iter().enumerate().map(|(i, &p)| (grid.coarse_key(p), i as u32)).collect();
     keyed.par_sort_unstable();
-    let mut candidates: Vec<u32> = keyed
+    keyed
         .par_iter()
         .enumerate()
         .filter(|&(position, &(key, i))| {
@@ -112,27 +114,40 @@ fn possible_duplicates(points: &[Vec3], grid: &Grid) -> Vec<u32> {
                 || grid.near_coarse_face(points[i as usize])
         })
         .map(|(_, &(_, i))| i)
-        .collect();
-    candidates.par_sort_unstable();
-    candidates
+        .collect()
 }
 
-/// The sequential greedy pass over the candidates; returns which points were dropped.
+/// The greedy merge over the candidates, one cluster of touching fine cells at a time (in
+/// parallel): a point only ever meets points of its own cluster, so each cluster's greedy
+/// pass gives what one pass over all candidates in input order gives. Returns which points
+/// were dropped.
 fn greedy_merge(points: &[Vec3], grid: &Grid, candidates: &[u32]) -> Vec<bool> {
-    let mut kept_by_cell: HashMap<IVec3, Vec<u32>> = HashMap::new();
+    let keyed = candidates.par_iter().map(|&i| (grid.fine_cell(points[i as usize]).to_array(), i)).collect();
+    let clusters = Clusters::of(keyed, grid.tolerance > 0.0);
+    let dropped_points: Vec<u32> =
+        clusters.par_iter().flat_map_iter(|members| greedy_in_order(points, grid, members)).collect();
     let mut dropped = vec![false; points.len()];
-    for &i in candidates {
+    for i in dropped_points {
+        dropped[i as usize] = true;
+    }
+    dropped
+}
+
+/// The sequential greedy pass over `members` (in input order); returns the dropped ones.
+fn greedy_in_order(points: &[Vec3], grid: &Grid, members: &[u32]) -> Vec<u32> {
+    let mut kept_by_cell: HashMap<IVec3, Vec<u32>> = HashMap::new();
+    let mut dropped = Vec::new();
+    for &i in members {
         let p = points[i as usize];
         let cell = grid.fine_cell(p);
         if has_kept_duplicate(points, grid, &kept_by_cell, cell, p) {
-            dropped[i as usize] = true;
+            dropped.push(i);
         } else {
             kept_by_cell.entry(cell).or_default().push(i);
         }
     }
     dropped
 }
-
 fn has_kept_duplicate(
     points: &[Vec3],
     grid: &Grid,
@@ -148,4 +163,130 @@ fn has_kept_duplicate(
         .filter_map(|offset| kept_by_cell.get(&(cell + offset)))
         .flatten()
         .any(|&k| grid.is_duplicate(points[k as usize], p))
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use super::*;
+
+    /// The merge as it was before clusters: one sequential greedy pass over every candidate
+    /// in input order.
+    fn merge_in_one_pass(points: &[Vec3], tolerance: f32) -> DuplicateMerge {
+        let grid = Grid::over(points, tolerance);
+        let mut candidates = possible_duplicates(points, &grid);
+        candidates.sort_unstable();
+        let mut dropped = vec![false; points.len()];
+        for i in greedy_in_order(points, &grid, &candidates) {
+            dropped[i as usize] = true;
+        }
+        let kept: Vec<u32> = (0..points.len() as u32).filter(|&i| !dropped[i as usize]).collect();
+        DuplicateMerge { merged_count: points.len() - kept.len(), kept }
+    }
+
+    /// The definition, point against point.
+    fn merge_by_brute_force(points: &[Vec3], tolerance: f32) -> Vec<u32> {
+        let mut kept: Vec<u32> = Vec::new();
+        for (i, p) in points.iter().enumerate() {
+            if !kept.iter().any(|&k| points[k as usize].distance_squared(*p) <= tolerance * tolerance) {
+                kept.push(i as u32);
+            }
+        }
+        kept
+    }
+
+    fn random_direction(rng: &mut ChaCha8Rng) -> Vec3 {
+        loop {
+            let v = Vec3::new(rng.random(), rng.random(), rng.random()) * 2.0 - Vec3::ONE;
+            if let Some(unit) = v.try_normalize().filter(|_| v.length() <= 1.0) {
+                return unit;
+            }
+        }
+    }
+
+    /// Random points in a box with planted duplicates of every kind, shuffled: exact
+    /// copies, copies moved by up to 1.5 tolerances (so some are not duplicates), chains
+    /// with links shorter than the tolerance (greedy keeps every other link) and dense
+    /// blobs of a few tolerances.
+    fn cloud_with_planted_duplicates(seed: u64, count: usize, tolerance: f32) -> Vec<Vec3> {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut points: Vec<Vec3> =
+            (0..count).map(|_| Vec3::new(rng.random(), rng.random(), rng.random())).collect();
+        for _ in 0..count / 10 {
+            let original = points[rng.random_range(0..count)];
+            let moved = random_direction(&mut rng) * rng.random_range(0.0..1.5) * tolerance;
+            points.push(if rng.random_bool(0.3) { original } else { original + moved });
+        }
+        for _ in 0..count / 200 {
+            let mut link = points[rng.random_range(0..count)];
+            for _ in 0..rng.random_range(2..30) {
+                link += random_direction(&mut rng) * rng.random_range(0.6..0.99) * tolerance;
+                points.push(link);
+            }
+        }
+        for _ in 0..3 {
+            let centre = points[rng.random_range(0..count)];
+            points.extend(
+                (0..300)
+                    .map(|_| centre + random_direction(&mut rng) * rng.random_range(0.0..3.0) * tolerance),
+            );
+        }
+        for i in (1..points.len()).rev() {
+            points.swap(i, rng.random_range(0..=i));
+        }
+        points
+    }
+
+    #[test]
+    fn clusters_merge_what_one_pass_merges_on_random_clouds() {
+        for seed in 0..6 {
+            let tolerance = [1e-3, 4e-3, 2e-2][seed as usize % 3];
+            let points = cloud_with_planted_duplicates(seed, 20_000, tolerance);
+            let merge = merge_duplicates(&points, tolerance);
+            assert_eq!(merge, merge_in_one_pass(&points, tolerance), "seed {seed}");
+            assert!(merge.merged_count > 2_000, "seed {seed}: only {} merged", merge.merged_count);
+        }
+    }
+
+    #[test]
+    fn clusters_merge_what_one_pass_merges_with_zero_tolerance() {
+        let mut points = cloud_with_planted_duplicates(7, 20_000, 1e-3);
+        points.extend_from_within(..500);
+        points.push(-Vec3::ZERO);
+        points.push(Vec3::ZERO);
+        let merge = merge_duplicates(&points, 0.0);
+        assert_eq!(merge, merge_in_one_pass(&points, 0.0));
+        assert!(merge.merged_count > 500);
+    }
+
+    #[test]
+    fn clusters_merge_what_one_pass_merges_on_coarse_cell_faces() {
+        // A lattice whose points sit exactly on coarse-cell faces, with near copies across them.
+        let tolerance = 1.0 / COARSE_CELLS_PER_TOLERANCE;
+        let mut points: Vec<Vec3> =
+            (0..4096).map(|i| Vec3::new((i % 16) as f32, ((i / 16) % 16) as f32, (i / 256) as f32)).collect();
+        let shifts = [
+            Vec3::new(-0.012, 0.0, 0.0),
+            Vec3::new(0.006, -0.009, 0.004),
+            Vec3::new(0.011, 0.0, -0.011),
+            Vec3::splat(0.02),
+        ];
+        for (i, shift) in shifts.iter().cycle().take(4000).enumerate() {
+            points.push(points[i * 7 % 4096] + *shift);
+        }
+        let merge = merge_duplicates(&points, tolerance);
+        assert_eq!(merge, merge_in_one_pass(&points, tolerance));
+        assert!(merge.merged_count > 1000);
+    }
+
+    #[test]
+    fn merge_is_the_greedy_definition_on_small_clouds() {
+        for seed in 10..14 {
+            let points = cloud_with_planted_duplicates(seed, 1_500, 1e-2);
+            let merge = merge_duplicates(&points, 1e-2);
+            assert_eq!(merge.kept, merge_by_brute_force(&points, 1e-2), "seed {seed}");
+        }
+    }
 }

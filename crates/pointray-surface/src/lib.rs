@@ -1,7 +1,9 @@
 //! From a point set to MLS quadratic patches (SPEC.md §2): the offline half of pointray.
 
 pub mod cold_records;
+mod component_signs;
 pub mod density_radius;
+mod duplicate_clusters;
 pub mod duplicates;
 pub mod geometry_range;
 pub mod input_validation;
@@ -9,11 +11,13 @@ pub mod morton;
 pub mod neighbors;
 pub mod normals;
 pub mod orientation;
+mod orientation_tree;
 pub mod outlier_removal;
 pub mod patch_bounds;
 mod patch_checks;
 pub mod patch_set;
 pub mod patch_store;
+pub mod peak_memory;
 pub mod prep;
 pub mod prep_error;
 pub mod prep_progress;
@@ -34,7 +38,7 @@ pub use density_radius::RadiusMode;
 pub use outlier_removal::OutlierFilter;
 pub use patch_bounds::BoxKind;
 pub use patch_set::{PatchSet, PrepParams};
-pub use prep::{PREP_REVISION, PrepOptions, ScanMode, prep};
+pub use prep::{PREP_REVISION, PrepOptions, ScanMode, prep, prep_owned};
 pub use prep_error::PrepError;
 pub use prep_progress::{NoProgress, PrepProgress, Stage};
 pub use prep_report::{FitCounts, PrepReport, RadiusFallbacks, ScanSummary};

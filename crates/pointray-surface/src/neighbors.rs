@@ -29,6 +29,26 @@ impl Neighbors {
     pub fn point_count(&self) -> usize {
         self.indices.len().checked_div(self.k).unwrap_or(0)
     }
+
+    /// Keeps only the nearest `k` of each row (no change when rows are not wider), and
+    /// gives the rest of the memory back: the later stages need fewer neighbours than the
+    /// normals did.
+    pub fn narrow(&mut self, k: usize) {
+        if k >= self.k {
+            return;
+        }
+        let rows = self.point_count();
+        // Row `i` moves down to `i * k`, never past a row not yet moved.
+        for i in 0..rows {
+            self.indices.copy_within(i * self.k..i * self.k + k, i * k);
+            self.distances.copy_within(i * self.k..i * self.k + k, i * k);
+        }
+        self.indices.truncate(rows * k);
+        self.indices.shrink_to_fit();
+        self.distances.truncate(rows * k);
+        self.distances.shrink_to_fit();
+        self.k = k;
+    }
 }
 
 /// Points per rayon task: large enough to amortise scheduling, small enough to balance.

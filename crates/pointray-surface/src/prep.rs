@@ -1,10 +1,12 @@
 //! `prep`: from a point cloud to a `PatchSet` (SPEC.md §2), stage by stage.
 
+use std::borrow::Cow;
+
 use glam::{DVec3, Vec2, Vec3};
 use pointray_io::{MemoryBudget, PointCloud};
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
 use pointray_kernels::packed_frame::normal_basis;
-use pointray_kernels::{Aabb, PackedFrame, PatchCold, PatchHot, TangentFrame};
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PackedFrame, PatchCold, PatchHot, TangentFrame};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
@@ -35,10 +37,11 @@ const WENDLAND_SCALE: f32 = 1.1;
 const PROGRESS_CHUNK: usize = 16_384;
 
 /// Changes whenever `prep` makes different patches from the same input and options (the
-/// cell margin went from 1.15 to 1.5 in revision 2), so that caches keyed on the options also
-/// key on this and never serve patches of an older rule (revision 3: scan-aware patches and
-/// the packed record).
-pub const PREP_REVISION: u32 = 3;
+/// cell margin went from 1.15 to 1.5 in revision 2; revision 3 brought scan-aware patches
+/// and the packed record; in revision 4 orientation joins blocks, which can turn a different
+/// set of normals), so that caches keyed on the options also key on this and never serve
+/// patches of an older rule.
+pub const PREP_REVISION: u32 = 4;
 
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PrepOptions {
@@ -73,12 +76,38 @@ pub fn prep(
     options: &PrepOptions,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
+    prep_cloud(Cow::Borrowed(cloud), options, progress)
+}
+
+/// As `prep`, taking the cloud so that its f64 positions (24 bytes a point) are freed as
+/// soon as the recentred f32 copy exists: the way to prep the largest clouds.
+pub fn prep_owned(
+    cloud: PointCloud,
+    options: &PrepOptions,
+    progress: &dyn PrepProgress,
+) -> Result<(PatchSet, PrepReport), PrepError> {
+    prep_cloud(Cow::Owned(cloud), options, progress)
+}
+
+/// Each array is dropped as soon as its last stage is done, so that the peak (in the
+/// support radii and the fit) holds little more than the neighbour table, the frames and
+/// the patches.
+fn prep_cloud(
+    mut cloud: Cow<'_, PointCloud>,
+    options: &PrepOptions,
+    progress: &dyn PrepProgress,
+) -> Result<(PatchSet, PrepReport), PrepError> {
     let params = options.params;
     let (k, normal_k) = (params.k as usize, params.normal_k as usize);
     let mut clock = StageClock { progress, times: Vec::new() };
     let count = cloud.len();
-    clock.run(Stage::Validate, count, || validate(cloud, options))?;
+    clock.run(Stage::Validate, count, || validate(&cloud, options))?;
     let (offset, recentred) = clock.run(Stage::Recentre, count, || recentre(&cloud.positions));
+    // Only the attributes are read from here on (gathered through `source`).
+    if let Cow::Owned(owned) = &mut cloud {
+        owned.positions = Vec::new();
+    }
+    let cloud = &*cloud;
     let order = clock.run(Stage::MortonSort, count, || morton_order(&recentred));
     let sorted = gather(&recentred, &order);
     drop(recentred);
@@ -88,7 +117,7 @@ pub fn prep(
     if merge.kept.len() < k + 1 {
         return Err(PrepError::TooFewDistinctPoints { found: merge.kept.len(), k });
     }
-    let distinct = merge.kept.len();
+    let (distinct, merged_duplicates) = (merge.kept.len(), merge.merged_count);
     let kept = match &options.remove_outliers {
         Some(filter) => clock
             .run(Stage::OutlierRemoval, merge.kept.len(), || keep_inliers(filter, &sorted, &merge.kept, k))?,
@@ -98,28 +127,29 @@ pub fn prep(
     // `source[i]` is the input index of patch `i`: every per-point attribute is gathered
     // through it once.
     let source = gather(&order, &kept);
+    drop(order);
     let points = gather(&sorted, &kept);
-    drop(sorted);
+    drop((sorted, kept));
     let patches = points.len();
-    let neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
+    let mut neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
     let scan =
         clock.run(Stage::ScanLines, patches, || scan_structure(&points, cloud, &source, options, offset));
     let shaped = match scan {
         Some(scan) => scan_shaped(&points, scan, params.disk_scale, &mut clock),
-        None => unstructured_shaped(&points, &neighbors, cloud, &source, options, offset, &mut clock),
+        None => unstructured_shaped(&points, &mut neighbors, cloud, &source, options, offset, &mut clock),
     };
+    drop(points);
     let hot = shaped.hot;
+    let colors = has_point_colors(cloud);
+    neighbors.narrow(color_table_width(colors, k));
+    let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
+        (gather_cold(cloud, &source, &shaped.color_radii), color_neighbor_table(neighbors, colors))
+    });
     let aabbs: Vec<Aabb> =
         clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
-    let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
-        (
-            gather_cold(cloud, &source, &shaped.color_radii),
-            color_neighbor_table(&neighbors, has_point_colors(cloud)),
-        )
-    });
     let report = PrepReport {
         input_points: count,
-        merged_duplicates: merge.merged_count,
+        merged_duplicates,
         removed_outliers,
         patches,
         replaced_input_normals: shaped.replaced_input_normals,
@@ -138,7 +168,7 @@ pub fn prep(
 /// sensor, round supports of the chosen radius mode, and quadratic fits (SPEC.md §2).
 fn unstructured_shaped(
     points: &[Vec3],
-    neighbors: &Neighbors,
+    neighbors: &mut Neighbors,
     cloud: &PointCloud,
     source: &[u32],
     options: &PrepOptions,
@@ -155,6 +185,9 @@ fn unstructured_shaped(
     let radii = clock.run(Stage::SupportRadii, patches, || {
         support_radii(points, &normals, &frames, neighbors, k, options.radius_mode)
     });
+    drop(normals); // the frames hold them
+    // The fit reads only k neighbours: the rest of the table is freed before its peak.
+    neighbors.narrow(color_table_width(has_point_colors(cloud), k));
     let progress = clock.progress;
     let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
         fit_patches(
@@ -176,6 +209,12 @@ fn unstructured_shaped(
         replaced_input_normals,
         scan: None,
     }
+}
+
+/// The neighbours kept past the fit: `k` for the fit, and the colour table's width when the
+/// points carry colours.
+fn color_table_width(colors: bool, k: usize) -> usize {
+    if colors { k.max(COLOR_NEIGHBORS) } else { k }
 }
 
 fn validate(cloud: &PointCloud, options: &PrepOptions) -> Result<(), PrepError> {

@@ -18,8 +18,8 @@ pub enum Stage {
     Frames,
     SupportRadii,
     QuadraticFit,
-    Boxes,
     ColdRecords,
+    Boxes,
 }
 
 impl Stage {

@@ -17,7 +17,7 @@ use pointray_io::formats::ply::read_triangle_mesh;
 use pointray_io::image_output::write_png_srgb;
 use pointray_io::write_atomically;
 use pointray_scene::{BufferLayout, Frame, Material, RenderSettings, Scene, demo_scene};
-use pointray_vulkan::{BlasLayout, DeviceSelector, PreparedScene, VulkanRenderer};
+use pointray_vulkan::{BlasLayout, DeviceSelector, PreparedScene, SceneLayout, VulkanRenderer};
 
 type Error = Box<dyn std::error::Error>;
 
@@ -173,11 +173,13 @@ fn main() -> Result<(), Error> {
                 time_traces(&renderer, &prepared, &settings, args.frames)?
             );
             let combined = RenderSettings { buffer_layout: BufferLayout::Combined, ..settings };
+            let combined_scene = renderer.prepare_with_layout(scene, SceneLayout::for_settings(&combined))?;
             println!(
                 "{name} 640x640 combined buffer: {}",
-                time_traces(&renderer, &prepared, &combined, args.frames)?
+                time_traces(&renderer, &combined_scene, &combined, args.frames)?
             );
-            let per_box = renderer.prepare_with_layout(scene, BlasLayout::GeometryPerAabb)?;
+            let per_box_layout = SceneLayout { blas: BlasLayout::GeometryPerAabb, ..SceneLayout::default() };
+            let per_box = renderer.prepare_with_layout(scene, per_box_layout)?;
             println!(
                 "{name} 640x640 geometry per box: {}",
                 time_traces(&renderer, &per_box, &settings, args.frames)?

@@ -56,6 +56,11 @@ pub struct DeviceInfo {
     pub rejection: Option<String>,
     /// Whether it offers shader execution reordering (`VK_NV_ray_tracing_invocation_reorder`).
     pub hit_reordering: bool,
+    /// Bytes of its largest device-local memory heap.
+    pub device_local_bytes: u64,
+    /// The most primitives one bottom-level structure may hold (`maxPrimitiveCount`); 0 for
+    /// an unusable device.
+    pub max_blas_primitives: u64,
 }
 
 impl std::fmt::Display for DeviceInfo {
@@ -112,15 +117,39 @@ pub(crate) fn describe(instance: &ash::Instance, device: vk::PhysicalDevice, ind
         .driver_info_as_c_str()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
+    let rejection = rejection(instance, device, base.api_version).err();
     DeviceInfo {
         index,
         name,
         device_type: format!("{:?}", base.device_type),
         api_version: version_text(base.api_version),
         driver: format!("{driver_name} {driver_info}").trim().to_owned(),
-        rejection: rejection(instance, device, base.api_version).err(),
+        max_blas_primitives: if rejection.is_none() { max_blas_primitives(instance, device) } else { 0 },
+        rejection,
         hit_reordering: supports_hit_reordering(instance, device),
+        device_local_bytes: device_local_bytes(instance, device),
     }
+}
+
+fn device_local_bytes(instance: &ash::Instance, device: vk::PhysicalDevice) -> u64 {
+    // SAFETY: `device` came from this instance.
+    let memory = unsafe { instance.get_physical_device_memory_properties(device) };
+    let heaps = &memory.memory_heaps[..memory.memory_heap_count as usize];
+    heaps
+        .iter()
+        .filter(|h| h.flags.contains(vk::MemoryHeapFlags::DEVICE_LOCAL))
+        .map(|h| h.size)
+        .max()
+        .unwrap_or(0)
+}
+
+/// Only for a device with `VK_KHR_acceleration_structure`, whose properties these are.
+fn max_blas_primitives(instance: &ash::Instance, device: vk::PhysicalDevice) -> u64 {
+    let mut acceleration = vk::PhysicalDeviceAccelerationStructurePropertiesKHR::default();
+    let mut properties = vk::PhysicalDeviceProperties2::default().push_next(&mut acceleration);
+    // SAFETY: `device` came from this instance and has the extension; the chain outlives the call.
+    unsafe { instance.get_physical_device_properties2(device, &mut properties) };
+    acceleration.max_primitive_count
 }
 
 /// Whether `device` has the extension and the feature of shader execution reordering.
@@ -232,6 +261,8 @@ mod tests {
             driver: String::new(),
             rejection: rejection.map(Into::into),
             hit_reordering: false,
+            device_local_bytes: 0,
+            max_blas_primitives: 0,
         }
     }
 

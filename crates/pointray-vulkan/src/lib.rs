@@ -40,7 +40,7 @@ pub use device::{DeviceInfo, DeviceSelector, list_devices};
 pub use error::VulkanError;
 pub use frame_loop::FrameLoopTimes;
 pub use memory_report::BuildReport;
-pub use prepared_scene::PreparedScene;
+pub use prepared_scene::{PreparedScene, SceneLayout};
 pub use present_loop::{PresentLoop, Presented};
 pub use renderer::{TraceTiming, VulkanRenderer};
 pub use swapchain::{Swapchain, SwapchainDevice, record_copy_to_present_image};

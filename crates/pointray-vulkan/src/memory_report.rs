@@ -15,9 +15,17 @@ pub struct BuildReport {
     /// GPU bytes of the bottom levels (after compaction) and of the top level.
     pub blas_bytes: u64,
     pub tlas_bytes: u64,
-    /// GPU bytes of every geometry buffer: boxes, hot/cold/combined records, mesh vertices and
-    /// indices, TLAS instances.
+    /// GPU bytes of the buffers the traces read: the hot and cold (or the combined) patch
+    /// records, colour neighbour lists, mesh vertices and indices. The build inputs (patch
+    /// boxes, TLAS instances) are freed once built.
     pub geometry_bytes: u64,
+}
+
+impl BuildReport {
+    /// Everything the scene keeps on the GPU: buffers and acceleration structures.
+    pub fn gpu_bytes(&self) -> u64 {
+        self.geometry_bytes + self.blas_bytes + self.tlas_bytes
+    }
 }
 
 impl PreparedScene {

@@ -7,7 +7,7 @@ use ash::vk;
 use glam::{Affine3A, Vec4};
 use pointray_io::TriangleMesh;
 use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR};
-use pointray_scene::{Background, Camera, Geometry, Light, Scene};
+use pointray_scene::{Background, BufferLayout, Camera, Geometry, Light, RenderSettings, Scene};
 use pointray_surface::PatchSet;
 use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
 
@@ -33,10 +33,27 @@ pub struct PreparedScene {
     pub(crate) objects: Buffer,
     pub(crate) lights: Buffer,
     pub(crate) tlas: AccelerationStructure,
+    /// Which per-patch buffers were uploaded; a trace must read those.
+    pub(crate) buffer_layout: BufferLayout,
     // Kept alive for the TLAS and the shaders' buffer addresses (and measured by
     // `memory_report.rs`).
     pub(crate) _bottom_levels: Vec<AccelerationStructure>,
     pub(crate) _geometry: Vec<Buffer>,
+}
+
+/// How a scene goes onto the GPU: its BLAS layout and which per-patch buffers the traces
+/// of it will read (only those are uploaded).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneLayout {
+    pub blas: BlasLayout,
+    pub buffers: BufferLayout,
+}
+
+impl SceneLayout {
+    /// The layout whose buffers a trace with `settings` reads, with one BLAS geometry.
+    pub fn for_settings(settings: &RenderSettings) -> Self {
+        Self { buffers: settings.buffer_layout, ..Self::default() }
+    }
 }
 
 /// One object's contribution: its record and, unless it is empty, its BLAS.
@@ -60,7 +77,7 @@ fn build_input_usage() -> vk::BufferUsageFlags {
 fn prepare_patches(
     context: &Arc<GpuContext>,
     patches: &PatchSet,
-    layout: BlasLayout,
+    layout: SceneLayout,
 ) -> Result<PreparedObject, VulkanError> {
     let count = patches.len();
     if patches.aabbs.len() != count || patches.cold.len() != count {
@@ -72,57 +89,66 @@ fn prepare_patches(
         )));
     }
     check_color_neighbors(patches)?;
-    let combined: Vec<PatchCombined> =
-        patches.hot.iter().zip(&patches.cold).map(|(&hot, &cold)| PatchCombined::new(hot, cold)).collect();
-    let aabbs = Buffer::device_with_data(
-        context,
-        "patch boxes",
-        bytemuck::cast_slice(&patches.aabbs),
-        build_input_usage(),
-    )?;
-    let hot = Buffer::device_with_data(
-        context,
-        "hot patch records",
-        bytemuck::cast_slice(&patches.hot),
-        storage_usage(),
-    )?;
-    let cold = Buffer::device_with_data(
-        context,
-        "cold patch records",
-        bytemuck::cast_slice(&patches.cold),
-        storage_usage(),
-    )?;
-    let combined = Buffer::device_with_data(
-        context,
-        "combined patch records",
-        bytemuck::cast_slice(&combined),
-        storage_usage(),
-    )?;
+    let (mut record, mut buffers) = patch_records(context, patches, layout.buffers)?;
     // Only coloured clouds carry neighbour lists; the others keep address 0, which the
     // closest-hit shader never dereferences.
-    let color_neighbors = (!patches.color_neighbors.is_empty())
-        .then(|| {
-            Buffer::device_with_data(
-                context,
-                "colour neighbour lists",
-                bytemuck::cast_slice(&patches.color_neighbors),
-                storage_usage(),
-            )
-        })
-        .transpose()?;
+    if !patches.color_neighbors.is_empty() {
+        let lists = Buffer::device_with_data(
+            context,
+            "colour neighbour lists",
+            bytemuck::cast_slice(&patches.color_neighbors),
+            storage_usage(),
+        )?;
+        record.color_neighbors = lists.device_address();
+        buffers.push(lists);
+    }
+    // The boxes are only the build's input: the structure keeps its own copy, and no shader
+    // reads them, so their buffer goes as soon as the build is done.
     let blas = (count > 0)
-        .then(|| build(context, &aabb_input(aabbs.device_address(), count as u32, layout)))
+        .then(|| {
+            let aabbs = Buffer::device_with_data(
+                context,
+                "patch boxes",
+                bytemuck::cast_slice(&patches.aabbs),
+                build_input_usage(),
+            )?;
+            build(context, &aabb_input(aabbs.device_address(), count as u32, layout.blas))
+        })
         .transpose()?
         .map(|blas| (blas, HIT_GROUP_PATCHES));
-    let record = ObjectRecord {
-        hot: hot.device_address(),
-        cold: cold.device_address(),
-        combined: combined.device_address(),
-        color_neighbors: color_neighbors.as_ref().map_or(0, Buffer::device_address),
-        ..ObjectRecord::default()
-    };
-    let buffers = [aabbs, hot, cold, combined].into_iter().chain(color_neighbors).collect();
     Ok(PreparedObject { record, blas, buffers })
+}
+
+/// The per-patch records the trace reads, in `buffers`' layout only: the hot and cold
+/// buffers, or the combined one.
+fn patch_records(
+    context: &Arc<GpuContext>,
+    patches: &PatchSet,
+    buffers: BufferLayout,
+) -> Result<(ObjectRecord, Vec<Buffer>), VulkanError> {
+    let upload = |name, bytes: &[u8]| Buffer::device_with_data(context, name, bytes, storage_usage());
+    Ok(match buffers {
+        BufferLayout::Split => {
+            let hot = upload("hot patch records", bytemuck::cast_slice(&patches.hot))?;
+            let cold = upload("cold patch records", bytemuck::cast_slice(&patches.cold))?;
+            let record = ObjectRecord {
+                hot: hot.device_address(),
+                cold: cold.device_address(),
+                ..ObjectRecord::default()
+            };
+            (record, vec![hot, cold])
+        }
+        BufferLayout::Combined => {
+            let combined: Vec<PatchCombined> = patches
+                .hot
+                .iter()
+                .zip(&patches.cold)
+                .map(|(&hot, &cold)| PatchCombined::new(hot, cold))
+                .collect();
+            let combined = upload("combined patch records", bytemuck::cast_slice(&combined))?;
+            (ObjectRecord { combined: combined.device_address(), ..ObjectRecord::default() }, vec![combined])
+        }
+    })
 }
 
 /// The shader follows neighbour indices without bounds checks: each list must have its
@@ -234,6 +260,28 @@ fn light_buffer(context: &Arc<GpuContext>, lights: &[Light]) -> Result<Buffer, V
 }
 
 impl PreparedScene {
+    /// Which per-patch buffers this scene holds on the GPU.
+    pub fn buffer_layout(&self) -> BufferLayout {
+        self.buffer_layout
+    }
+
+    /// A trace must read the per-patch buffers that were uploaded; any other address is 0.
+    pub(crate) fn check_buffers_for(&self, settings: &RenderSettings) -> Result<(), VulkanError> {
+        if settings.buffer_layout == self.buffer_layout {
+            return Ok(());
+        }
+        let name = |layout| match layout {
+            BufferLayout::Split => "split hot and cold",
+            BufferLayout::Combined => "combined",
+        };
+        Err(VulkanError::InvalidSettings(format!(
+            "the trace reads the {} patch buffers, but the scene was prepared with the {} ones only; \
+             prepare it with the trace's layout (SceneLayout::for_settings)",
+            name(settings.buffer_layout),
+            name(self.buffer_layout)
+        )))
+    }
+
     /// Replaces the scene's lights; the next trace shades with them. Geometry, and so every
     /// acceleration structure, stays as it is.
     pub fn set_lights(&mut self, lights: &[Light]) -> Result<(), VulkanError> {
@@ -269,7 +317,7 @@ fn out_of_range(object: &pointray_scene::SceneObject) -> Option<String> {
 pub(crate) fn prepare(
     context: &Arc<GpuContext>,
     scene: &Scene,
-    layout: BlasLayout,
+    layout: SceneLayout,
 ) -> Result<PreparedScene, VulkanError> {
     if scene.objects.len() > MAX_OBJECTS {
         return Err(VulkanError::InvalidScene(format!(
@@ -296,10 +344,11 @@ pub(crate) fn prepare(
         }
         geometry.extend(prepared.buffers);
     }
+    // Like the boxes, the instances are only the build's input.
     let instance_buffer =
         Buffer::device_with_data(context, "TLAS instances", instance_bytes(&instances), build_input_usage())?;
     let tlas = build(context, &instance_input(instance_buffer.device_address(), instances.len() as u32))?;
-    geometry.push(instance_buffer);
+    drop(instance_buffer);
     let record_bytes =
         if records.is_empty() { vec![0u8; 80] } else { bytemuck::cast_slice(&records).to_vec() };
     Ok(PreparedScene {
@@ -311,6 +360,7 @@ pub(crate) fn prepare(
         objects: Buffer::device_with_data(context, "object records", &record_bytes, storage_usage())?,
         lights: light_buffer(context, &scene.lights)?,
         tlas,
+        buffer_layout: layout.buffers,
         _bottom_levels: bottom_levels,
         _geometry: geometry,
     })

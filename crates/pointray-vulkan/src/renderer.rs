@@ -6,13 +6,12 @@ use std::time::{Duration, Instant};
 use pointray_scene::{Frame, RenderSettings, Scene};
 use raw_window_handle::RawDisplayHandle;
 
-use crate::acceleration::BlasLayout;
 use crate::binding_table::ShaderBindingTable;
 use crate::context::GpuContext;
 use crate::device::{DeviceInfo, DeviceSelector};
 use crate::error::VulkanError;
 use crate::pipeline::RayTracingPipeline;
-use crate::prepared_scene::{PreparedScene, prepare};
+use crate::prepared_scene::{PreparedScene, SceneLayout, prepare};
 use crate::shaders;
 use crate::trace::trace_into;
 use crate::trace_target::{PixelOutput, TraceTarget};
@@ -97,16 +96,17 @@ impl VulkanRenderer {
         self.context.message_counter()
     }
 
-    /// Uploads `scene` and builds its acceleration structures (one geometry per point set).
+    /// Uploads `scene` for traces with split hot and cold buffers (the default) and builds
+    /// its acceleration structures (one geometry per point set).
     pub fn prepare(&self, scene: &Scene) -> Result<PreparedScene, VulkanError> {
-        self.prepare_with_layout(scene, BlasLayout::OneGeometry)
+        self.prepare_with_layout(scene, SceneLayout::default())
     }
 
-    /// As `prepare`, with a chosen BLAS layout (the benchmark's ablation).
+    /// As `prepare`, with a chosen BLAS and buffer layout (the benchmark's ablations).
     pub fn prepare_with_layout(
         &self,
         scene: &Scene,
-        layout: BlasLayout,
+        layout: SceneLayout,
     ) -> Result<PreparedScene, VulkanError> {
         prepare(&self.context, scene, layout)
     }
@@ -152,6 +152,6 @@ impl VulkanRenderer {
 
     /// Prepares and traces in one go.
     pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<Frame, VulkanError> {
-        self.trace(&self.prepare(scene)?, settings)
+        self.trace(&self.prepare_with_layout(scene, SceneLayout::for_settings(settings))?, settings)
     }
 }

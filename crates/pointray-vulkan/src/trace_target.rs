@@ -108,6 +108,7 @@ impl TraceTarget {
         scene: &PreparedScene,
         settings: &RenderSettings,
     ) -> Result<&TargetBuffers, VulkanError> {
+        scene.check_buffers_for(settings)?;
         let buffers = self.buffers_for(context, pipeline, settings.width, settings.height)?;
         buffers.bind(scene);
         Ok(buffers)

@@ -1,20 +1,27 @@
-//! `pointray bench`: time a scene file or a suite (`table1`) on the Vulkan renderer.
+//! `pointray bench`: time a scene file or a suite (`table1`) on the Vulkan renderer, or run
+//! the scale suite (`scale`) on either backend.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
-use pointray_bench::{BenchOptions, CaseResult, FrameCounts, Suite, run_scene_file, run_suite};
+use pointray_bench::{
+    BenchError, BenchOptions, CaseResult, FrameCounts, ScaleBackend, ScaleOptions, ScaleRow, Suite,
+    run_scale, run_scene_file, run_suite,
+};
 use pointray_io::MemoryBudget;
 use pointray_scene::{RenderSetting, RenderSettings, SceneFile};
 use pointray_vulkan::{DeviceSelector, VulkanRenderer, validation_requested_by_env};
 
+use crate::backend::{Backend, BackendChoice};
+use crate::progress::PrepBar;
 use crate::setting_flag::setting_flag;
 
 /// Time frames with GPU timestamps: FPS, frame and trace times, rays/s, build costs.
 #[derive(Args)]
 pub struct BenchArgs {
-    /// A scene file (.toml), a suite file (bench/suites/*.toml), or `table1`.
+    /// A scene file (.toml), a suite file (bench/suites/*.toml), `table1`, or `scale` (1M to
+    /// 1B points sampled on the dragon: prep, memory, store, load and FPS; give it --cache).
     target: String,
     /// Timed frames per case.
     #[arg(long, default_value_t = 100)]
@@ -39,9 +46,17 @@ pub struct BenchArgs {
     /// The data folder (default: POINTRAY_DATA, else ../shared/data).
     #[arg(long)]
     data: Option<PathBuf>,
-    /// Where stand-ins and prepped point sets are cached.
+    /// Where stand-ins and prepped point sets are cached. `scale` writes gigabytes there and
+    /// refuses a folder inside a git checkout.
     #[arg(long, default_value = ".pointray-cache/bench")]
     cache: PathBuf,
+    /// `scale` only: the renderer; `auto` takes a hardware ray-tracing GPU, else the CPU.
+    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
+    backend: BackendChoice,
+    /// `scale` only: the rungs to run, e.g. `1M,10M` (default: all; a rung that does not fit
+    /// the machine is skipped with the reason).
+    #[arg(long, value_delimiter = ',')]
+    rungs: Vec<String>,
     #[arg(long)]
     json: Option<PathBuf>,
     #[arg(long)]
@@ -102,6 +117,10 @@ fn print_case(case: &CaseResult) {
 
 pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     anyhow::ensure!(args.frames > 0, "--frames must be at least 1");
+    if args.target == "scale" {
+        return run_scale_suite(&args);
+    }
+    anyhow::ensure!(args.backend != BackendChoice::Cpu, "only the scale suite runs on the CPU backend");
     let data = args.data.clone().unwrap_or_else(pointray_bench::data::default_data_dir);
     let target = Target::read(&args.target)?;
     let outputs: Vec<PathBuf> = args.json.iter().chain(&args.markdown).cloned().collect();
@@ -131,16 +150,54 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         Target::Suite(suite) => run_suite(&renderer, suite, &options)?,
         Target::Scene(file) => run_scene_file(&renderer, &file.path, &options)?,
     };
+    emit(
+        &args,
+        &|path| pointray_bench::write_json(&report, path),
+        &pointray_bench::markdown::markdown(&report),
+    )
+}
+
+/// Writes the report where asked (`write_json`, its `markdown`), else prints the markdown.
+fn emit(
+    args: &BenchArgs,
+    write_json: &dyn Fn(&Path) -> Result<(), BenchError>,
+    markdown: &str,
+) -> anyhow::Result<()> {
     if let Some(path) = &args.json {
-        pointray_bench::write_json(&report, path)?;
+        write_json(path)?;
         println!("wrote {}", path.display());
     }
     if let Some(path) = &args.markdown {
-        pointray_bench::write_markdown(&report, path)?;
+        pointray_bench::write_text(markdown, path)?;
         println!("wrote {}", path.display());
     }
     if args.json.is_none() && args.markdown.is_none() {
-        print!("{}", pointray_bench::markdown::markdown(&report));
+        print!("{markdown}");
     }
     Ok(())
+}
+
+fn print_row(row: &ScaleRow) {
+    println!("{}", row.summary());
+}
+
+fn run_scale_suite(args: &BenchArgs) -> anyhow::Result<()> {
+    let backend = Backend::open(args.backend, &args.device)?;
+    let scale_backend = match &backend {
+        Backend::Vulkan(renderer) => ScaleBackend::Vulkan(renderer),
+        Backend::Cpu => ScaleBackend::Cpu,
+    };
+    println!("backend: {}", scale_backend.describe());
+    let progress = PrepBar::default();
+    let options = ScaleOptions {
+        data: args.data.clone().unwrap_or_else(pointray_bench::data::default_data_dir),
+        cache: args.cache.clone(),
+        rungs: pointray_bench::scale::chosen_rungs(&args.rungs).map_err(anyhow::Error::msg)?,
+        sizes: pointray_bench::scale::SCALE_SIZES.to_vec(),
+        frames: FrameCounts { warmup: args.warmup, timed: args.frames },
+        progress: &progress,
+        on_row: &print_row,
+    };
+    let report = run_scale(scale_backend, &options)?;
+    emit(args, &|path| pointray_bench::write_json(&report, path), &pointray_bench::scale_markdown(&report))
 }

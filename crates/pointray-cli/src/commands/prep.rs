@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use glam::DVec3;
 use pointray_surface::input_validation::validate_options;
-use pointray_surface::{OutlierFilter, PrepError, PrepOptions, PrepParams, prep};
+use pointray_surface::{OutlierFilter, PrepError, PrepOptions, PrepParams, prep_owned};
 
 use crate::boxes_arg::Boxes;
 use crate::columns_arg::ColumnsArg;
@@ -85,7 +85,7 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     let cloud = args.columns.read_point_cloud(&args.points)?;
     let bar = PrepBar::default();
     let (patches, report) =
-        prep(&cloud, &options, &bar).map_err(|e| anyhow::anyhow!("{}: {e}", args.points.display()))?;
+        prep_owned(cloud, &options, &bar).map_err(|e| anyhow::anyhow!("{}: {e}", args.points.display()))?;
     pointray_surface::patch_store::write(&args.output, &patches)?;
     println!("{report}");
     println!("wrote {} patches to {} (offset stored in its header)", patches.len(), args.output.display());

@@ -119,3 +119,37 @@ fn each_component_is_oriented_outward() {
         &inward[..inward.len().min(5)]
     );
 }
+
+/// A torus around the x axis (tube radius `r` around a circle of radius `big_r` in the yz
+/// plane), on a jittered `n x n` grid of its angles, with each point's outward normal.
+fn standing_torus(n: usize, big_r: f32, r: f32) -> (Vec<Vec3>, Vec<Vec3>) {
+    let tau = std::f32::consts::TAU;
+    (0..n * n)
+        .map(|i| {
+            let u = tau * ((i % n) as f32 + 0.5 + 0.4 * jitter(2 * i)) / n as f32;
+            let v = tau * ((i / n) as f32 + 0.5 + 0.4 * jitter(2 * i + 1)) / n as f32;
+            let outward = Vec3::new(v.sin(), v.cos() * u.cos(), v.cos() * u.sin());
+            (Vec3::new(0.0, big_r * u.cos(), big_r * u.sin()) + r * outward, outward)
+        })
+        .unzip()
+}
+
+#[test]
+fn closed_torus_is_oriented_outward_across_many_blocks() {
+    // 160,000 points make three orientation blocks. Standing on its rim, the torus is cut
+    // by the Morton order into pieces whose own highest points face down, so only agreeing
+    // with the pieces beside them orients those outward.
+    let (points, outward) = standing_torus(400, 1.0, 0.3);
+    let order = pointray_surface::morton::morton_order(&points);
+    let sorted: Vec<Vec3> = order.iter().map(|&i| points[i as usize]).collect();
+    let neighbors = k_nearest(&sorted, NORMAL_K);
+    let mut normals = pca_normals(&sorted, &neighbors, NORMAL_K);
+    for (i, n) in normals.iter_mut().enumerate() {
+        if jitter(i + 77) < 0.0 {
+            *n = -*n;
+        }
+    }
+    orient_consistently(&sorted, &mut normals, &neighbors);
+    let inward = (0..sorted.len()).filter(|&i| normals[i].dot(outward[order[i] as usize]) <= 0.0).count();
+    assert_eq!(inward, 0, "{inward} of {} normals point into the torus", sorted.len());
+}

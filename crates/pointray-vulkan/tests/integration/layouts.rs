@@ -1,11 +1,13 @@
 //! The ablation switches change speed, not pictures: one geometry per box renders as one
-//! geometry for all, and the combined patch buffer as the hot/cold split.
+//! geometry for all, and the combined patch buffer as the hot/cold split. A scene holds only
+//! the buffers of its layout on the GPU.
 
 use crate::common;
 
 use common::{assert_no_validation_messages, renderer, settings, sphere_on_floor};
-use pointray_scene::{BufferLayout, Frame, RenderSettings};
-use pointray_vulkan::BlasLayout;
+use pointray_kernels::{PatchCold, PatchHot};
+use pointray_scene::{BufferLayout, Frame, Geometry, RenderSettings, Scene};
+use pointray_vulkan::{BlasLayout, SceneLayout};
 
 fn largest_difference(a: &Frame, b: &Frame) -> f32 {
     a.color.iter().zip(&b.color).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0, f32::max)
@@ -17,11 +19,14 @@ fn blas_and_buffer_layouts_render_the_same_image() {
     let scene = sphere_on_floor(0.5, 1.0);
     let split = settings(96);
     let combined = RenderSettings { buffer_layout: BufferLayout::Combined, ..split };
-    let one = renderer.prepare_with_layout(&scene, BlasLayout::OneGeometry).expect("prepares");
-    let per_box = renderer.prepare_with_layout(&scene, BlasLayout::GeometryPerAabb).expect("prepares");
+    let one = renderer.prepare(&scene).expect("prepares");
+    let one_combined =
+        renderer.prepare_with_layout(&scene, SceneLayout::for_settings(&combined)).expect("prepares");
+    let per_box_layout = SceneLayout { blas: BlasLayout::GeometryPerAabb, ..SceneLayout::default() };
+    let per_box = renderer.prepare_with_layout(&scene, per_box_layout).expect("prepares");
     let reference = renderer.trace(&one, &split).expect("traces");
     for (name, frame) in [
-        ("combined buffer", renderer.trace(&one, &combined).expect("traces")),
+        ("combined buffer", renderer.trace(&one_combined, &combined).expect("traces")),
         ("geometry per box", renderer.trace(&per_box, &split).expect("traces")),
     ] {
         assert_eq!(frame.instance_id, reference.instance_id, "{name}: hit objects differ");
@@ -42,5 +47,55 @@ fn bad_settings_are_errors_not_panics() {
         let error = renderer.trace(&prepared, &bad).expect_err("invalid settings must be refused");
         assert!(error.to_string().contains("invalid"), "{error}");
     }
+    assert_no_validation_messages(&renderer);
+}
+
+/// The bytes of every buffer a trace of `scene` reads, besides the patch records: the meshes'
+/// vertices (vec4) and indices.
+fn mesh_bytes(scene: &Scene) -> u64 {
+    let bytes = |geometry: &Geometry| match geometry {
+        Geometry::Mesh(mesh) => mesh.positions.len() * 16 + mesh.triangles.len() * 12,
+        Geometry::Patches(_) => 0,
+    };
+    scene.objects.iter().map(|object| bytes(&object.geometry) as u64).sum()
+}
+
+#[test]
+fn only_the_traced_layout_stays_on_the_gpu() {
+    let Some(renderer) = renderer() else { return };
+    let scene = sphere_on_floor(0.5, 1.0);
+    let patches: u64 = scene
+        .objects
+        .iter()
+        .map(|object| match &object.geometry {
+            Geometry::Patches(set) => set.len() as u64,
+            Geometry::Mesh(_) => 0,
+        })
+        .sum();
+    assert!(patches > 0);
+    let hot_and_cold = (size_of::<PatchHot>() + size_of::<PatchCold>()) as u64;
+    let split = renderer.prepare(&scene).expect("prepares").build_report();
+    assert_eq!(split.geometry_bytes, patches * hot_and_cold + mesh_bytes(&scene), "no boxes, no combined");
+    let combined = SceneLayout { buffers: BufferLayout::Combined, ..SceneLayout::default() };
+    let report = renderer.prepare_with_layout(&scene, combined).expect("prepares").build_report();
+    // std430 pads the combined record to a multiple of 16 bytes.
+    let combined_record = hot_and_cold.next_multiple_of(16);
+    assert_eq!(
+        report.geometry_bytes,
+        patches * combined_record + mesh_bytes(&scene),
+        "combined records only"
+    );
+    assert_eq!(report.gpu_bytes(), report.geometry_bytes + report.blas_bytes + report.tlas_bytes);
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn tracing_buffers_the_scene_lacks_is_an_error() {
+    let Some(renderer) = renderer() else { return };
+    let prepared = renderer.prepare(&sphere_on_floor(0.0, 1.0)).expect("prepares");
+    let combined = RenderSettings { buffer_layout: BufferLayout::Combined, ..settings(8) };
+    let error = renderer.trace(&prepared, &combined).expect_err("the combined buffer was not uploaded");
+    assert!(error.to_string().contains("prepared with the split hot and cold ones only"), "{error}");
+    assert!(renderer.render(&sphere_on_floor(0.0, 1.0), &combined).is_ok(), "render prepares what it traces");
     assert_no_validation_messages(&renderer);
 }

@@ -1,0 +1,170 @@
+//! The `scale` suite: clouds of 1M to 1B points sampled on the dragon mesh (labelled
+//! stand-ins), each generated once into the cache, then prepped, stored, loaded and rendered
+//! on a reflective floor with shadows. Rungs that do not fit the machine are skipped with
+//! the reason (`scale_fit.rs`).
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use pointray_scene::RenderSettings;
+use pointray_surface::patch_store;
+use pointray_surface::peak_memory::StagePeaks;
+use pointray_surface::{PrepOptions, PrepProgress, prep_owned};
+
+use crate::data::ensure_cache_dir;
+use crate::error::BenchError;
+use crate::measure::FrameCounts;
+use crate::model_scene::load_with_model;
+use crate::scale_fit::MachineLimits;
+use crate::scale_render::ScaleBackend;
+use crate::scale_report::{RungMeasurement, RungOutcome, ScaleReport, ScaleRow, SizeFps};
+use crate::stand_in::{stand_in_label, stand_in_path, stand_in_points};
+use crate::suite::StandInSpec;
+
+/// The rungs, smallest first.
+pub const RUNGS: [(&str, u64); 5] = [
+    ("1M", 1_000_000),
+    ("10M", 10_000_000),
+    ("100M", 100_000_000),
+    ("300M", 300_000_000),
+    ("1B", 1_000_000_000),
+];
+
+/// The mesh the stand-ins are sampled on, in the data folder, and their seed.
+pub const SCALE_MESH: &str = "meshes/dragon_res2.ply";
+pub const SCALE_SEED: u64 = 1;
+
+/// The sizes each rung is rendered at.
+pub const SCALE_SIZES: [(u32, u32); 2] = [(1920, 1080), (640, 640)];
+
+/// One rung: its label and how many points it samples.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rung {
+    pub label: String,
+    pub points: u64,
+}
+
+/// The setting: the dragon on a reflective floor under one light (the paper's figures).
+const SCENE: &str = include_str!("../../../scenes/dragon_floor.toml");
+
+pub struct ScaleOptions<'a> {
+    pub data: PathBuf,
+    /// Where the points files, patch stores and scene files go; never the repository.
+    pub cache: PathBuf,
+    /// The rungs to run (`chosen_rungs`) and the sizes to render each at (`SCALE_SIZES`).
+    pub rungs: Vec<Rung>,
+    pub sizes: Vec<(u32, u32)>,
+    pub frames: FrameCounts,
+    /// Told about prep's stages (a progress bar).
+    pub progress: &'a dyn PrepProgress,
+    /// Called with each row as it completes.
+    pub on_row: &'a dyn Fn(&ScaleRow),
+}
+
+/// The rungs named by `labels` (all when empty); an error names an unknown one.
+pub fn chosen_rungs(labels: &[String]) -> Result<Vec<Rung>, String> {
+    let rung = |(label, points): (&str, u64)| Rung { label: label.into(), points };
+    if labels.is_empty() {
+        return Ok(RUNGS.into_iter().map(rung).collect());
+    }
+    labels
+        .iter()
+        .map(|label| {
+            let found = RUNGS.into_iter().find(|(name, _)| name.eq_ignore_ascii_case(label.trim()));
+            found.map(rung).ok_or_else(|| {
+                let known: Vec<&str> = RUNGS.iter().map(|(name, _)| *name).collect();
+                format!("no scale rung `{label}`; the rungs are {}", known.join(", "))
+            })
+        })
+        .collect()
+}
+
+pub fn run_scale(backend: ScaleBackend, options: &ScaleOptions) -> Result<ScaleReport, BenchError> {
+    refuse_repository(&options.cache)?;
+    ensure_cache_dir(&options.cache)?;
+    let mut rows = Vec::new();
+    for Rung { label, points } in options.rungs.iter().cloned() {
+        let spec = StandInSpec { mesh: SCALE_MESH.into(), count: points as usize, seed: SCALE_SEED };
+        let cached = stand_in_path(&options.data, &spec, &options.cache)
+            .ok()
+            .and_then(|path| std::fs::metadata(path).ok())
+            .map_or(0, |metadata| metadata.len());
+        let limits = MachineLimits::now(&options.cache, backend.device_limits());
+        let outcome = match limits.why_not(points, cached) {
+            Some(reason) => RungOutcome::Skipped { reason },
+            None => RungOutcome::Measured(measure_rung(backend, &label, &spec, options)?),
+        };
+        let row = ScaleRow { label, points, stand_in: stand_in_label(&spec), outcome };
+        (options.on_row)(&row);
+        rows.push(row);
+    }
+    Ok(ScaleReport { backend: backend.describe(), timing: backend.timing().into(), rows })
+}
+
+/// Generates (once), preps, stores, loads and renders one rung.
+fn measure_rung(
+    backend: ScaleBackend,
+    label: &str,
+    spec: &StandInSpec,
+    options: &ScaleOptions,
+) -> Result<RungMeasurement, BenchError> {
+    let points_file = stand_in_points(&options.data, spec, &options.cache)?;
+    let (cloud, read) = timed(|| pointray_io::formats::read_point_cloud(&points_file));
+    let cloud = cloud?;
+    let peaks = StagePeaks::new(options.progress);
+    let (prepped, prep) = timed(|| prep_owned(cloud, &PrepOptions::default(), &peaks));
+    let (patches, _) = prepped.map_err(|source| BenchError::Prep { case: label.into(), source })?;
+    let store = options.cache.join(format!("scale-{label}.patches"));
+    let (written, store_write) = timed(|| patch_store::write(&store, &patches));
+    written.map_err(|source| BenchError::Store { case: label.into(), source })?;
+    drop(patches);
+    let store_bytes = std::fs::metadata(&store).map_or(0, |metadata| metadata.len());
+    let started = Instant::now();
+    let table: toml::Table = toml::from_str(SCENE).map_err(|e| BenchError::ParseSuite {
+        path: PathBuf::from("scenes/dragon_floor.toml"),
+        message: e.to_string(),
+    })?;
+    let scene_path = options.cache.join(format!("scale-{label}.toml"));
+    let loaded = load_with_model(label, &table, "points", &store, &scene_path, &options.cache)?;
+    let (ready, costs) = backend.prepare(&loaded.scene, label)?;
+    let load = started.elapsed();
+    let fps = options
+        .sizes
+        .iter()
+        .map(|&(width, height)| {
+            let settings = RenderSettings { width, height, ..loaded.settings };
+            let frame = ready.frame_time(&settings, options.frames, &format!("{label} {width}x{height}"))?;
+            Ok(SizeFps { width, height, fps: 1.0 / frame.as_secs_f64(), frame_ms: frame.as_secs_f64() * 1e3 })
+        })
+        .collect::<Result<_, BenchError>>()?;
+    let points = spec.count as f64;
+    Ok(RungMeasurement {
+        read_seconds: read.as_secs_f64(),
+        prep_seconds: prep.as_secs_f64(),
+        prep_points_per_second: points / prep.as_secs_f64(),
+        prep_peak_rss_bytes: peaks.overall(),
+        store_bytes,
+        store_write_seconds: store_write.as_secs_f64(),
+        load_seconds: load.as_secs_f64(),
+        blas_build_seconds: costs.blas.as_secs_f64(),
+        gpu_bytes_per_point: costs.gpu_bytes.map(|bytes| bytes as f64 / points),
+        fps,
+    })
+}
+
+fn timed<T>(work: impl FnOnce() -> T) -> (T, Duration) {
+    let started = Instant::now();
+    let result = work();
+    (result, started.elapsed())
+}
+
+/// The suite writes gigabytes: it refuses a cache folder inside a git checkout.
+fn refuse_repository(cache: &Path) -> Result<(), BenchError> {
+    let absolute = std::path::absolute(cache).unwrap_or(cache.to_path_buf());
+    match absolute.ancestors().find(|folder| folder.join(".git").exists()) {
+        Some(checkout) => {
+            Err(BenchError::CacheInRepository { path: cache.to_path_buf(), checkout: checkout.to_path_buf() })
+        }
+        None => Ok(()),
+    }
+}

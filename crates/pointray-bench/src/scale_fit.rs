@@ -1,0 +1,163 @@
+//! Whether a rung of the scale suite fits this machine: enough memory to prep it, disk for
+//! its points and store, and a device that can hold and build it. A rung that does not fit
+//! is skipped with the reason, before anything is generated.
+
+use std::path::Path;
+
+use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_vulkan::DeviceInfo;
+
+/// Peak resident memory of `prep` per input point, with a margin: measured at 200 to 207
+/// bytes on 10M to 100M dragon points (bench/PREP.md). Reading the points and loading the
+/// store afterwards need less.
+pub const PREP_BYTES_PER_POINT: u64 = 220;
+
+/// Peak resident memory per point of loading the store and rendering on the CPU backend:
+/// the store read, the patches and the BVH build; measured at 361 bytes on 10M points.
+pub const CPU_RENDER_BYTES_PER_POINT: u64 = 380;
+
+/// A stand-in's points file: binary PLY with float positions.
+pub const POINTS_FILE_BYTES_PER_POINT: u64 = 12;
+
+/// What a patch store holds per patch when the cloud has no colours.
+pub fn store_bytes_per_point() -> u64 {
+    (size_of::<Aabb>() + size_of::<PatchHot>() + size_of::<PatchCold>()) as u64
+}
+
+/// GPU memory per patch while a scene is built: the records the trace reads, the boxes
+/// (freed after the build), and the BLAS with its uncompacted copy and scratch, which come
+/// to about 100 bytes a patch on the devices measured so far.
+pub fn gpu_build_bytes_per_point() -> u64 {
+    (size_of::<PatchHot>() + size_of::<PatchCold>() + size_of::<Aabb>()) as u64 + 100
+}
+
+/// The limits that decide which rungs run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MachineLimits {
+    /// `MemAvailable` of `/proc/meminfo`, in bytes.
+    pub available_memory: Option<u64>,
+    /// The most memory per point any step takes: prep, or rendering on the CPU.
+    pub memory_per_point: u64,
+    /// Free bytes on the cache folder's file system.
+    pub free_disk: Option<u64>,
+    /// The Vulkan device, when the suite renders on one.
+    pub device: Option<DeviceLimits>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DeviceLimits {
+    pub device_local_bytes: u64,
+    pub max_blas_primitives: u64,
+}
+
+impl From<&DeviceInfo> for DeviceLimits {
+    fn from(info: &DeviceInfo) -> Self {
+        Self { device_local_bytes: info.device_local_bytes, max_blas_primitives: info.max_blas_primitives }
+    }
+}
+
+impl MachineLimits {
+    /// This machine's limits now, for a suite caching in `cache` (which must exist) and
+    /// rendering on `device`, or on the CPU when there is none.
+    pub fn now(cache: &Path, device: Option<DeviceLimits>) -> Self {
+        let memory_per_point =
+            if device.is_some() { PREP_BYTES_PER_POINT } else { CPU_RENDER_BYTES_PER_POINT };
+        Self { available_memory: available_memory(), memory_per_point, free_disk: free_disk(cache), device }
+    }
+
+    /// Why a rung of `points` points cannot run here; `None` when it fits. `cached_bytes` is
+    /// what the rung already has in the cache (its points file), which needs no new room.
+    pub fn why_not(&self, points: u64, cached_bytes: u64) -> Option<String> {
+        let gigabytes = |bytes: u64| bytes as f64 / 1e9;
+        let memory = points.saturating_mul(self.memory_per_point);
+        if let Some(available) = self.available_memory.filter(|&available| memory > available) {
+            let step = if self.device.is_some() { "prep" } else { "rendering on the CPU" };
+            return Some(format!(
+                "{step} needs about {:.1} GB of memory ({} B a point), {:.1} GB is available",
+                gigabytes(memory),
+                self.memory_per_point,
+                gigabytes(available)
+            ));
+        }
+        let files = points.saturating_mul(POINTS_FILE_BYTES_PER_POINT + store_bytes_per_point());
+        let disk = files.saturating_sub(cached_bytes);
+        if let Some(free) = self.free_disk.filter(|&free| disk > free) {
+            return Some(format!(
+                "its points file and patch store need {:.1} GB more disk in the cache folder, {:.1} GB is free",
+                gigabytes(disk),
+                gigabytes(free)
+            ));
+        }
+        let device = self.device?;
+        if points > device.max_blas_primitives {
+            return Some(format!(
+                "one BLAS on this device holds at most {} primitives, and the scene is one BLAS",
+                device.max_blas_primitives
+            ));
+        }
+        let gpu = points.saturating_mul(gpu_build_bytes_per_point());
+        (gpu > device.device_local_bytes).then(|| {
+            format!(
+                "building it needs about {:.1} GB of GPU memory ({} B a point), the device has {:.1} GB",
+                gigabytes(gpu),
+                gpu_build_bytes_per_point(),
+                gigabytes(device.device_local_bytes)
+            )
+        })
+    }
+}
+
+fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|line| line.starts_with("MemAvailable:"))?;
+    let kib: u64 = line["MemAvailable:".len()..].trim().strip_suffix("kB")?.trim().parse().ok()?;
+    Some(kib * 1024)
+}
+
+fn free_disk(folder: &Path) -> Option<u64> {
+    let stats = rustix::fs::statvfs(folder).ok()?;
+    Some(stats.f_bavail.saturating_mul(stats.f_frsize))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn machine(memory: u64, disk: u64, device: Option<DeviceLimits>) -> MachineLimits {
+        let memory_per_point =
+            if device.is_some() { PREP_BYTES_PER_POINT } else { CPU_RENDER_BYTES_PER_POINT };
+        MachineLimits { available_memory: Some(memory), memory_per_point, free_disk: Some(disk), device }
+    }
+
+    #[test]
+    fn each_limit_names_itself() {
+        let roomy = machine(1 << 40, 1 << 40, None);
+        assert_eq!(roomy.why_not(1_000_000, 0), None);
+        let reason = machine(24e9 as u64, 1 << 40, None).why_not(100_000_000, 0).expect("too little memory");
+        assert!(reason.contains("rendering on the CPU needs about 38.0 GB"), "{reason}");
+        let gpu = Some(DeviceLimits { device_local_bytes: 1 << 40, max_blas_primitives: u64::MAX });
+        assert_eq!(
+            machine(24e9 as u64, 1 << 40, gpu).why_not(100_000_000, 0),
+            None,
+            "prep fits, the GPU renders"
+        );
+        let reason = machine(24e9 as u64, 1 << 40, gpu).why_not(300_000_000, 0).expect("too little memory");
+        assert!(reason.contains("prep needs about 66.0 GB"), "{reason}");
+        let reason = machine(1 << 40, 64e9 as u64, None).why_not(1_000_000_000, 0).expect("too little disk");
+        assert!(reason.contains("disk"), "{reason}");
+        let cached = 1_000_000_000 * POINTS_FILE_BYTES_PER_POINT;
+        let small_gpu = DeviceLimits { device_local_bytes: 1 << 40, max_blas_primitives: 16_777_215 };
+        let reason = machine(1 << 40, 1 << 40, Some(small_gpu)).why_not(100_000_000, cached).expect("BLAS");
+        assert!(reason.contains("16777215 primitives"), "{reason}");
+        let little_gpu = DeviceLimits { device_local_bytes: 1 << 30, max_blas_primitives: u64::MAX };
+        let reason = machine(1 << 40, 1 << 40, Some(little_gpu)).why_not(100_000_000, 0).expect("GPU");
+        assert!(reason.contains("GPU memory"), "{reason}");
+    }
+
+    #[test]
+    fn this_machine_reports_its_memory_and_disk() {
+        let limits = MachineLimits::now(Path::new("."), None);
+        assert!(limits.available_memory.is_some_and(|bytes| bytes > 0), "{limits:?}");
+        assert!(limits.free_disk.is_some(), "{limits:?}");
+    }
+}

@@ -1,0 +1,136 @@
+//! The scale suite's results: one row per rung, measured or skipped with its reason, as JSON
+//! and as a markdown table.
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+/// One rung: what it measured, or why it was skipped.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ScaleRow {
+    pub label: String,
+    pub points: u64,
+    /// How the points were made (a stand-in sampled on a mesh).
+    pub stand_in: String,
+    #[serde(flatten)]
+    pub outcome: RungOutcome,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "outcome")]
+pub enum RungOutcome {
+    Measured(RungMeasurement),
+    Skipped { reason: String },
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RungMeasurement {
+    /// Reading the points file.
+    pub read_seconds: f64,
+    /// `prep` itself, in memory.
+    pub prep_seconds: f64,
+    pub prep_points_per_second: f64,
+    /// The process's peak resident memory while `prep` ran (the read points included).
+    pub prep_peak_rss_bytes: Option<u64>,
+    pub store_bytes: u64,
+    pub store_write_seconds: f64,
+    /// Reading the store and making the scene ready to trace (upload and BLAS, or the CPU BVH).
+    pub load_seconds: f64,
+    /// Building the bottom level(s): GPU BLAS, or the CPU renderer's BVHs.
+    pub blas_build_seconds: f64,
+    /// Everything the scene keeps on the GPU, per patch; `None` on the CPU backend.
+    pub gpu_bytes_per_point: Option<f64>,
+    /// Frames per second by size, with shadows and one reflection bounce.
+    pub fps: Vec<SizeFps>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SizeFps {
+    pub width: u32,
+    pub height: u32,
+    pub fps: f64,
+    pub frame_ms: f64,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ScaleReport {
+    /// The backend and device that rendered.
+    pub backend: String,
+    /// How each frame was timed.
+    pub timing: String,
+    pub rows: Vec<ScaleRow>,
+}
+
+impl ScaleRow {
+    /// One line for the terminal as the rung completes.
+    pub fn summary(&self) -> String {
+        match &self.outcome {
+            RungOutcome::Skipped { reason } => format!("{}: skipped, {reason}", self.label),
+            RungOutcome::Measured(m) => {
+                let fps: Vec<String> =
+                    m.fps.iter().map(|s| format!("{:.1} FPS at {}x{}", s.fps, s.width, s.height)).collect();
+                format!(
+                    "{}: prep {:.2} s ({:.2} M points/s, peak {}), store {:.1} MB, load {:.2} s, BLAS {:.2} s, GPU {}, {}",
+                    self.label,
+                    m.prep_seconds,
+                    m.prep_points_per_second / 1e6,
+                    m.prep_peak_rss_bytes.map_or("unknown".into(), |b| format!("{:.2} GB", b as f64 / 1e9)),
+                    m.store_bytes as f64 / 1e6,
+                    m.load_seconds,
+                    m.blas_build_seconds,
+                    m.gpu_bytes_per_point.map_or("n/a".into(), |b| format!("{b:.0} B/point")),
+                    fps.join(", ")
+                )
+            }
+        }
+    }
+}
+
+/// The report as a markdown table, one row per rung.
+pub fn scale_markdown(report: &ScaleReport) -> String {
+    let mut text = format!("Backend: {}. {}\n\n", report.backend, report.timing);
+    let sizes: Vec<(u32, u32)> = report
+        .rows
+        .iter()
+        .find_map(|row| match &row.outcome {
+            RungOutcome::Measured(m) => Some(m.fps.iter().map(|s| (s.width, s.height)).collect()),
+            RungOutcome::Skipped { .. } => None,
+        })
+        .unwrap_or_default();
+    let size_columns: String = sizes.iter().map(|(w, h)| format!(" FPS {w}x{h} |")).collect();
+    let _ = writeln!(
+        text,
+        "| points | prep s | M points/s | prep peak RSS GB (B/point) | store GB | GPU B/point | load s | BLAS build s |{size_columns}"
+    );
+    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(sizes.len()));
+    for row in &report.rows {
+        let _ = writeln!(text, "{}", table_row(row, sizes.len()));
+    }
+    if let Some(stand_in) = report.rows.first().map(|row| &row.stand_in) {
+        let _ = writeln!(text, "\nPoints: {stand_in}.");
+    }
+    text
+}
+
+fn table_row(row: &ScaleRow, size_count: usize) -> String {
+    let m = match &row.outcome {
+        RungOutcome::Skipped { reason } => {
+            return format!("| {} | skipped: {reason} |{}", row.label, " |".repeat(6 + size_count));
+        }
+        RungOutcome::Measured(m) => m,
+    };
+    let peak = m.prep_peak_rss_bytes.map_or("–".into(), |bytes| {
+        format!("{:.2} ({:.0})", bytes as f64 / 1e9, bytes as f64 / row.points.max(1) as f64)
+    });
+    let fps: String = m.fps.iter().map(|s| format!(" {:.1} |", s.fps)).collect();
+    format!(
+        "| {} | {:.2} | {:.2} | {peak} | {:.2} | {} | {:.2} | {:.2} |{fps}",
+        row.label,
+        m.prep_seconds,
+        m.prep_points_per_second / 1e6,
+        m.store_bytes as f64 / 1e9,
+        m.gpu_bytes_per_point.map_or("–".into(), |b| format!("{b:.0}")),
+        m.load_seconds,
+        m.blas_build_seconds,
+    )
+}
