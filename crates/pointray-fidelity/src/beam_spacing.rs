@@ -128,7 +128,7 @@ mod tests {
         cloud.sensor_position = Some(DVec3::ZERO);
         let gap = 10f64.to_radians();
         let patch = |point: DVec3, radius: f64| {
-            PatchHot::new(point.as_vec3(), Vec3::X, Vec3::Z, [0.0; 6], radius as f32)
+            PatchHot::isotropic(point.as_vec3(), Vec3::X, Vec3::Z, [0.0; 6], radius as f32)
         };
         let hot = vec![patch(cloud.positions[0], 2.0 * gap * 10.0), patch(cloud.positions[3], gap * 20.0)];
         (cloud, PatchSet { hot, ..PatchSet::default() })

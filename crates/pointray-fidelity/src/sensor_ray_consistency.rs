@@ -10,7 +10,7 @@ use glam::{Affine3A, DVec3, Vec3};
 use pointray_cpu::CpuRenderer;
 use pointray_io::PointCloud;
 use pointray_kernels::Ray;
-use pointray_scene::{PatchAcceptance, Background, Camera, Geometry, Material, Scene, SceneObject};
+use pointray_scene::{Background, Camera, Geometry, Material, PatchAcceptance, Scene, SceneObject};
 use pointray_surface::PatchSet;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

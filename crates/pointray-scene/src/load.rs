@@ -256,11 +256,10 @@ fn intensities(patches: &PatchSet) -> Result<Vec<f32>, &'static str> {
 /// Each patch's height in the world (Y, after the object's transform) as a fraction of the
 /// object's vertical extent, 0 at its lowest point and 1 at its highest; computed in f64, as
 /// geo-referenced offsets are large. A flat object is all 0.5.
-fn heights(patches: &PatchSet, transform: &Affine3A) -> Vec<f32> {
+fn heights(patches: &PatchSet, transform: &DAffine3) -> Vec<f32> {
     let matrix = transform.matrix3;
-    let y_row = Vec3::new(matrix.x_axis.y, matrix.y_axis.y, matrix.z_axis.y).as_dvec3();
-    let world_y =
-        |local: Vec3| y_row.dot(local.as_dvec3() + patches.offset) + f64::from(transform.translation.y);
+    let y_row = DVec3::new(matrix.x_axis.y, matrix.y_axis.y, matrix.z_axis.y);
+    let world_y = |local: Vec3| y_row.dot(local.as_dvec3() + patches.offset) + transform.translation.y;
     let heights: Vec<f64> = patches.hot.iter().map(|hot| world_y(hot.origin())).collect();
     let (low, high) =
         heights.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &h| (low.min(h), high.max(h)));

@@ -50,9 +50,7 @@ pub struct ConsistencyArgs {
 }
 
 pub fn run(args: ConsistencyArgs) -> anyhow::Result<()> {
-    if let Some(json) = &args.json {
-        pointray_io::ensure_not_same_file(&args.points, json)?;
-    }
+    pointray_io::ensure_outputs_spare_inputs(std::slice::from_ref(&args.points), args.json.as_slice())?;
     let options = ConsistencyOptions {
         rays: args.rays,
         seed: args.seed,
@@ -66,10 +64,11 @@ pub fn run(args: ConsistencyArgs) -> anyhow::Result<()> {
     };
     let context = || format!("checking {} against its sensor's rays", args.points.display());
     options.tolerance.validate().with_context(context)?;
-    let cloud = pointray_io::formats::read_point_cloud(&args.points)?;
+    let prep_options = args.patches.prep_options(args.sensor)?;
+    let cloud = args.patches.read(&args.points)?;
     // Before the prep, which can take minutes: a scan with no sensor cannot be checked.
     let origins = ReturnOrigins::of_cloud(&cloud, args.sensor).with_context(context)?;
-    let (patches, prep_report) = args.patches.prep(&args.points, &cloud, args.sensor)?;
+    let (patches, prep_report) = args.patches.prep(&args.points, &cloud, &prep_options)?;
     let patches = Arc::new(patches);
     let mut report = sensor_ray_consistency(&cloud, patches.clone(), &options).with_context(context)?;
     if cloud.rings.is_some() {

@@ -45,8 +45,6 @@ pub struct FidelityArgs {
     /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
     #[arg(long, default_value = "auto")]
     device: DeviceSelector,
-    #[command(flatten)]
-    columns: ColumnsArg,
 }
 
 /// The CLI's backend choice (CPU or Vulkan) as the fidelity crate's renderer.

@@ -167,13 +167,8 @@ impl World {
 
 /// No output may replace an input or the other output.
 fn check_outputs(args: &ScanArgs, inputs: &[PathBuf]) -> anyhow::Result<()> {
-    let outputs: Vec<&Path> =
-        [Some(args.output.as_path()), args.mesh_out.as_deref()].into_iter().flatten().collect();
-    for output in &outputs {
-        for input in inputs {
-            pointray_io::ensure_not_same_file(input, output)?;
-        }
-    }
+    let outputs: Vec<PathBuf> = std::iter::once(args.output.clone()).chain(args.mesh_out.clone()).collect();
+    pointray_io::ensure_outputs_spare_inputs(inputs, &outputs)?;
     if let Some(mesh_out) = &args.mesh_out {
         anyhow::ensure!(
             !same_path(mesh_out, &args.output),

@@ -55,10 +55,12 @@ fn consistency_of_a_ground_sweep_is_near_total_and_written_as_json() {
 fn fidelity_from_the_sensor_and_from_above_names_its_views() {
     let dir = tempfile::tempdir().unwrap();
     let (sweep, mesh) = (write_ground_sweep(dir.path()), write_ground_mesh(dir.path()));
-    let args = [sweep.to_str().unwrap(), mesh.to_str().unwrap(), "--views", "sensor,above:15", "--size", "48"];
+    let args =
+        [sweep.to_str().unwrap(), mesh.to_str().unwrap(), "--views", "sensor,above:15", "--size", "48"];
     let (ok, stdout, stderr) = pointray(&[&["fidelity"], &args[..]].concat());
     assert!(ok, "{stderr}");
-    for label in ["sensor yaw +0°", "sensor yaw +90°", "sensor yaw +180°", "sensor yaw +270°", "above 15"] {
+    for label in ["sensor yaw +0°", "sensor yaw +90°", "sensor yaw +180°", "sensor yaw +270°", "above 15"]
+    {
         assert!(stdout.contains(label), "no `{label}` view in:\n{stdout}");
     }
 }

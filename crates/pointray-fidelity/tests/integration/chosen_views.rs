@@ -109,7 +109,8 @@ fn sensor_views_ring_the_horizon_over_the_band_the_beams_swept() {
 #[test]
 fn sensor_views_without_a_sensor_are_an_error() {
     let cloud = square_points(Vec3::ZERO, 1.0, 11);
-    let options = FidelityOptions::with_views(vec![ViewSpec::Sensor { yaws: 4 }], SIZE, PatchAcceptance::Disk);
+    let options =
+        FidelityOptions::with_views(vec![ViewSpec::Sensor { yaws: 4 }], SIZE, PatchAcceptance::Disk);
     let (patches, _) = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap();
     let result =
         measure_fidelity(Arc::new(patches), Arc::new(square(Vec3::ZERO, 1.0)), &options, &CpuFrameRenderer);
@@ -125,7 +126,8 @@ fn bad_lenses_up_axes_and_sizes_are_errors() {
     let cloud = square_points(Vec3::ZERO, 1.0, 11);
     let (patches, _) = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap();
     let (patches, mesh) = (Arc::new(patches), Arc::new(square(Vec3::ZERO, 1.0)));
-    let base = FidelityOptions::with_views(vec![ViewSpec::Above { height: 5.0 }], SIZE, PatchAcceptance::Disk);
+    let base =
+        FidelityOptions::with_views(vec![ViewSpec::Above { height: 5.0 }], SIZE, PatchAcceptance::Disk);
     let broken = [
         FidelityOptions { fov_degrees: 0.0, ..base.clone() },
         FidelityOptions { fov_degrees: 180.0, ..base.clone() },

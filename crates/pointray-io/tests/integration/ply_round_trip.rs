@@ -24,7 +24,6 @@ fn full_cloud(offset: f64) -> PointCloud {
             (0..50).map(|i| DVec3::new(f64::from(i % 3) * 12.5, -0.1, 1.75) + offset).collect(),
         ),
         positions,
-        sensor_position: None,
         ..PointCloud::default()
     }
 }
