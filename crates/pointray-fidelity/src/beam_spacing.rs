@@ -15,6 +15,10 @@ use crate::{FidelityError, ReturnOrigins};
 /// bound).
 pub const SUPPORT_LIMIT: f64 = 3.0;
 
+/// Grazing surfaces spread the beams' spacing by `1 / |cos(incidence)|`, bounded here (as
+/// the scan-aware prep bounds it).
+const MIN_INCIDENCE_COSINE: f64 = 0.05;
+
 /// Each patch's support radius over its local beam spacing, summarised.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SupportReport {
@@ -28,10 +32,11 @@ pub struct SupportReport {
 }
 
 /// For each patch of `patches` (prepped from `cloud`; `sources[i]` is patch `i`'s input
-/// point, `PrepReport::patch_sources`), its support radius divided by the beam spacing where
-/// it lies: the angle between its ring and the adjacent rings (the wider gap, above or
+/// point, `PrepReport::patch_sources`), its support radius divided by the beam spacing on
+/// its surface: the angle between its ring and the adjacent rings (the wider gap, above or
 /// below, each ring's elevation being the median over its returns, seen from their sensor
-/// along `up`) times its range.
+/// along `up`) times its range, over the cosine of the beam's incidence on the patch (a road
+/// seen at a grazing angle has its rings metres apart, and a patch must bridge them).
 pub fn support_against_beam_spacing(
     cloud: &PointCloud,
     patches: &PatchSet,
@@ -54,9 +59,12 @@ pub fn support_against_beam_spacing(
         if source >= cloud.len() {
             return Err(FidelityError::PatchSourceOutOfRange { source_index: source, points: cloud.len() });
         }
-        let range = (patch.origin().as_dvec3() + patches.offset - origins.of(source)).length();
-        let spacing = gaps.get(&rings[source]).copied().unwrap_or(0.0) * range;
-        if spacing > 0.0 {
+        let to_patch = patch.origin().as_dvec3() + patches.offset - origins.of(source);
+        let range = to_patch.length();
+        let incidence_cosine =
+            (to_patch.dot(patch.normal().as_dvec3()) / range).abs().max(MIN_INCIDENCE_COSINE);
+        let spacing = gaps.get(&rings[source]).copied().unwrap_or(0.0) * range / incidence_cosine;
+        if spacing > 0.0 && spacing.is_finite() {
             ratios.push((f64::from(patch.radius()) / spacing) as f32);
         }
     }
@@ -112,7 +120,7 @@ mod tests {
     use pointray_kernels::PatchHot;
 
     /// Two rings 10° apart seen from the origin, at ranges 10 and 20, and one patch on each,
-    /// of radius 2 beam spacings on the first and 1 on the second.
+    /// facing the sensor, of radius 2 beam spacings on the first and 1 on the second.
     fn two_rings() -> (PointCloud, PatchSet) {
         let at = |elevation: f64, range: f64, azimuth: f64| {
             let (e, a) = (elevation.to_radians(), azimuth.to_radians());
@@ -128,7 +136,14 @@ mod tests {
         cloud.sensor_position = Some(DVec3::ZERO);
         let gap = 10f64.to_radians();
         let patch = |point: DVec3, radius: f64| {
-            PatchHot::isotropic(point.as_vec3(), Vec3::X, Vec3::Z, [0.0; 6], radius as f32)
+            let facing = -point.normalize().as_vec3();
+            PatchHot::isotropic(
+                point.as_vec3(),
+                facing.any_orthonormal_vector(),
+                facing,
+                [0.0; 6],
+                radius as f32,
+            )
         };
         let hot = vec![patch(cloud.positions[0], 2.0 * gap * 10.0), patch(cloud.positions[3], gap * 20.0)];
         (cloud, PatchSet { hot, ..PatchSet::default() })
@@ -143,6 +158,20 @@ mod tests {
         assert!((report.max_ratio - 2.0).abs() < 1e-4, "{report:?}");
         assert!((report.p99_ratio - 2.0).abs() < 1e-4, "{report:?}");
         assert_eq!(report.over_limit_fraction, 0.0);
+    }
+
+    #[test]
+    fn a_patch_seen_at_a_grazing_angle_is_measured_against_the_spacing_on_its_surface() {
+        let (cloud, patches) = two_rings();
+        // The second patch laid flat (normal up), seen 10° below the horizon: the rings lie
+        // 1 / sin(10°) times farther apart on it than across the beam.
+        let seen = &patches.hot[1];
+        let flat = PatchHot::isotropic(seen.origin(), Vec3::X, Vec3::Z, [0.0; 6], seen.radius());
+        let patches = PatchSet { hot: vec![flat], ..PatchSet::default() };
+        let origins = ReturnOrigins::of_cloud(&cloud, None).unwrap();
+        let report = support_against_beam_spacing(&cloud, &patches, &[3], &origins, Vec3::Z).unwrap();
+        let expected = 10f64.to_radians().sin();
+        assert!((report.max_ratio - expected).abs() < 1e-3, "{report:?}");
     }
 
     #[test]

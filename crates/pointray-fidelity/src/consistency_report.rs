@@ -19,6 +19,9 @@ pub struct ConsistencyCounts {
     /// Rays cast (returns at their own sensor's position have no ray and are left out).
     pub rays: usize,
     pub consistent: usize,
+    /// Of the consistent, the rays that met the return's own surface early (`RayOutcome::
+    /// MetOwnSurfaceEarly`).
+    pub met_own_surface_early: usize,
     /// Floaters: surface well before the return.
     pub occluded_in_front: usize,
     /// Holes: surface well beyond the return, or none.
@@ -39,6 +42,10 @@ impl ConsistencyCounts {
             tolerances.push(tolerance as f32);
             match outcome {
                 RayOutcome::Consistent => counts.consistent += 1,
+                RayOutcome::MetOwnSurfaceEarly => {
+                    counts.consistent += 1;
+                    counts.met_own_surface_early += 1;
+                }
                 RayOutcome::OccludedInFront => counts.occluded_in_front += 1,
                 RayOutcome::PassedThrough { missed } => {
                     counts.passed_through += 1;
@@ -126,7 +133,12 @@ impl fmt::Display for ConsistencyReport {
             self.spacing_neighbor,
             counts.tolerance_median.map_or("-".to_owned(), |t| format!("{t:.4}"))
         )?;
-        writeln!(f, "consistent:          {}", percent(self.consistent_fraction))?;
+        writeln!(
+            f,
+            "consistent:          {} ({} rays met the return's own surface early)",
+            percent(self.consistent_fraction),
+            counts.met_own_surface_early
+        )?;
         writeln!(f, "occluded in front:   {} (floaters)", percent(self.occluded_in_front_fraction))?;
         writeln!(
             f,

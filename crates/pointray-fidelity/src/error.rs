@@ -11,6 +11,8 @@ use crate::range_tolerance::RangeTolerance;
 pub enum FidelityError {
     #[error("fidelity needs at least {minimum} views, got {requested}")]
     TooFewViews { requested: usize, minimum: usize },
+    #[error("writing {path}: {source}")]
+    Image { path: std::path::PathBuf, source: pointray_io::IoError },
     #[error("no views to render")]
     NoViews,
     #[error(

@@ -1,5 +1,6 @@
 //! One fidelity run: every view rendered twice (mesh, points) and compared.
 
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -9,10 +10,11 @@ use pointray_scene::{PatchAcceptance, RenderSettings};
 use pointray_surface::PatchSet;
 
 use crate::vertex_normals::VertexNormals;
+use crate::view_images::write_view_images;
 use crate::view_placement::{View, ViewSetting, place_views, validate_setting};
 use crate::{
     ComparisonScenes, FidelityError, FidelityReport, FidelitySetup, FrameRenderer, PixelComparison,
-    SensorPose, ViewReport, ViewSpec,
+    SensorPose, SensorVisibility, ViewReport, ViewSpec,
 };
 
 /// LiDAR scans (KITTI, nuScenes, LAS, E57) have z up.
@@ -31,8 +33,10 @@ pub struct FidelityOptions {
     pub up: Vec3,
     /// The vertical field of view of explicit and `above` views.
     pub fov_degrees: f32,
-    /// The scan's sensor, for sensor views.
+    /// The scan's sensor, for sensor views and for counting only what it could see.
     pub sensor: Option<SensorPose>,
+    /// Each view's images (`view_images`) go into this folder when given.
+    pub image_folder: Option<PathBuf>,
 }
 
 impl FidelityOptions {
@@ -45,7 +49,15 @@ impl FidelityOptions {
 
     /// `views`, with the default up axis and lens and no sensor.
     pub fn with_views(views: Vec<ViewSpec>, size: u32, acceptance: PatchAcceptance) -> Self {
-        Self { views, size, acceptance, up: DEFAULT_UP, fov_degrees: DEFAULT_FOV_DEGREES, sensor: None }
+        Self {
+            views,
+            size,
+            acceptance,
+            up: DEFAULT_UP,
+            fov_degrees: DEFAULT_FOV_DEGREES,
+            sensor: None,
+            image_folder: None,
+        }
     }
 
     /// Primary hits plus shadows: reflections would mix other parts of the model into a
@@ -89,10 +101,15 @@ pub fn measure_fidelity(
         return Err(FidelityError::NoViews);
     }
     let normals = VertexNormals::angle_weighted(&mesh);
+    let visibility = options.sensor.map(|sensor| {
+        let mesh_scene = scenes.for_camera(views[0].camera).mesh;
+        SensorVisibility::new(&mesh_scene, sensor, setting.up)
+    });
     let mut pooled = PixelComparison::default();
     let mut reports = Vec::with_capacity(views.len());
     for (index, view) in views.into_iter().enumerate() {
-        let comparison = compare_view(&scenes, &mesh, &normals, &view, index, options, renderer)?;
+        let truth = Truth { mesh: &mesh, normals: &normals, visibility: visibility.as_ref() };
+        let comparison = compare_view(&scenes, &truth, &view, index, options, renderer)?;
         reports.push(ViewReport::new(view, comparison.metrics()));
         pooled.merge(comparison);
     }
@@ -104,10 +121,17 @@ pub fn measure_fidelity(
     })
 }
 
+/// What the points are measured against: the mesh, its smooth normals and, for a scan, what
+/// its sensor could see of it.
+struct Truth<'a> {
+    mesh: &'a TriangleMesh,
+    normals: &'a VertexNormals,
+    visibility: Option<&'a SensorVisibility>,
+}
+
 fn compare_view(
     scenes: &ComparisonScenes,
-    mesh: &TriangleMesh,
-    normals: &VertexNormals,
+    truth: &Truth,
     view: &View,
     index: usize,
     options: &FidelityOptions,
@@ -117,7 +141,15 @@ fn compare_view(
     let settings = options.render_settings(view);
     let render_error = |what| move |source| FidelityError::Render { what, view: index, source };
     let mut mesh_frame = renderer.render(&pair.mesh, &settings).map_err(render_error("mesh"))?;
-    normals.smooth_frame(&mut mesh_frame, mesh, &view.camera)?;
+    truth.normals.smooth_frame(&mut mesh_frame, truth.mesh, &view.camera)?;
     let points_frame = renderer.render(&pair.points, &settings).map_err(render_error("points"))?;
-    PixelComparison::of_frames(&mesh_frame, &points_frame, scenes.diagonal())
+    let mut comparison = PixelComparison::of_frames(&mesh_frame, &points_frame, scenes.diagonal())?;
+    let seen = truth.visibility.map(|visibility| visibility.seen_pixels(&mesh_frame, &view.camera));
+    if let Some(seen) = &seen {
+        comparison.count_seen(&points_frame, seen);
+    }
+    if let Some(folder) = &options.image_folder {
+        write_view_images(folder, index, &mesh_frame, &points_frame, seen.as_deref())?;
+    }
+    Ok(comparison)
 }

@@ -16,6 +16,11 @@ pub struct FidelityMetrics {
     /// Of those, the ones inside the mesh's image (all eight neighbours covered): pinholes
     /// through the surface rather than a silhouette a pixel narrower.
     pub pinhole_rate: Option<f64>,
+    /// Mesh pixels the scan's sensor could have seen (`None` without a sensor), and the
+    /// fraction of them the points miss: the hole rate that measures the surface, not where
+    /// the sensor never looked.
+    pub seen_mesh_pixels: Option<u64>,
+    pub seen_hole_rate: Option<f64>,
     /// Pixels the points cover but the mesh misses.
     pub false_surface_rate: Option<f64>,
     /// `|d_points - d_mesh|` over the mesh's bounding-box diagonal, at pixels both hit.
@@ -36,6 +41,11 @@ impl PixelComparison {
             both_hit_pixels: self.depth_errors.len() as u64,
             hole_rate: rate(self.hole_pixels),
             pinhole_rate: rate(self.pinhole_pixels),
+            seen_mesh_pixels: self.seen.map(|seen| seen.mesh_pixels),
+            seen_hole_rate: self
+                .seen
+                .filter(|seen| seen.mesh_pixels > 0)
+                .map(|seen| seen.hole_pixels as f64 / seen.mesh_pixels as f64),
             false_surface_rate: rate(self.false_surface_pixels),
             depth_error_mean: mean(&self.depth_errors),
             depth_error_p99: percentile(&mut self.depth_errors.clone(), 0.99).map(f64::from),

@@ -26,6 +26,15 @@ pub struct PixelComparison {
     pub squared_color_error: f64,
     /// Pixels times channels summed in `squared_color_error`.
     pub color_samples: u64,
+    /// The same counts over the mesh pixels a scan's sensor could have seen, when it is known.
+    pub seen: Option<SeenCounts>,
+}
+
+/// Mesh pixels a sensor could have seen (`SensorVisibility`), and the holes among them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SeenCounts {
+    pub mesh_pixels: u64,
+    pub hole_pixels: u64,
 }
 
 impl PixelComparison {
@@ -46,6 +55,16 @@ impl PixelComparison {
         Ok(comparison)
     }
 
+    /// Counts the holes among the mesh pixels marked `seen` (one flag a pixel).
+    pub fn count_seen(&mut self, points: &Frame, seen: &[bool]) {
+        let mut counts = SeenCounts::default();
+        for (pixel, _) in seen.iter().enumerate().filter(|(_, seen)| **seen) {
+            counts.mesh_pixels += 1;
+            counts.hole_pixels += u64::from(points.instance_id[pixel] == Frame::MISS);
+        }
+        self.seen = Some(counts);
+    }
+
     /// Pools another view's pixels into this one.
     pub fn merge(&mut self, other: PixelComparison) {
         self.mesh_pixels += other.mesh_pixels;
@@ -56,6 +75,13 @@ impl PixelComparison {
         self.normal_errors_degrees.extend(other.normal_errors_degrees);
         self.squared_color_error += other.squared_color_error;
         self.color_samples += other.color_samples;
+        self.seen = match (self.seen, other.seen) {
+            (Some(a), Some(b)) => Some(SeenCounts {
+                mesh_pixels: a.mesh_pixels + b.mesh_pixels,
+                hole_pixels: a.hole_pixels + b.hole_pixels,
+            }),
+            (a, b) => a.or(b),
+        };
     }
 
     fn add_pixel(&mut self, mesh: &Frame, points: &Frame, pixel: usize, diagonal: f32) {

@@ -4,8 +4,8 @@ use std::fmt;
 
 use crate::{FidelityMetrics, FidelityReport};
 
-const HEADER: &str = "| view | mesh px | hole % | pinhole % | false surface % | depth mean | depth p99 | normal mean ° | normal p95 ° | PSNR dB |\n\
-                      |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|";
+const HEADER: &str = "| view | mesh px | hole % | seen hole % | pinhole % | false surface % | depth mean | depth p99 | normal mean ° | normal p95 ° | PSNR dB |\n\
+                      |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|";
 
 impl fmt::Display for FidelityReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -37,9 +37,10 @@ fn write_row(f: &mut fmt::Formatter<'_>, label: &str, m: &FidelityMetrics) -> fm
     let psnr = m.psnr_db.map_or("inf".to_owned(), |v| format!("{v:.1}"));
     writeln!(
         f,
-        "| {label} | {} | {} | {} | {} | {} | {} | {} | {} | {psnr} |",
+        "| {label} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {psnr} |",
         m.mesh_pixels,
         percent(m.hole_rate),
+        percent(m.seen_hole_rate),
         percent(m.pinhole_rate),
         percent(m.false_surface_rate),
         scientific(m.depth_error_mean),

@@ -14,6 +14,8 @@ pub struct SensorPose {
     /// The lowest and highest elevation in degrees, above the plane normal to the up axis, of
     /// any return seen from its own sensor origin.
     pub elevation_degrees: [f32; 2],
+    /// The farthest return from its own sensor origin.
+    pub max_range: f32,
 }
 
 impl SensorPose {
@@ -22,18 +24,26 @@ impl SensorPose {
     pub fn of_cloud(cloud: &PointCloud, up: Vec3, position: Option<DVec3>) -> Result<Self, FidelityError> {
         let origins = ReturnOrigins::of_cloud(cloud, position)?;
         let up = up.as_dvec3().try_normalize().ok_or(FidelityError::InvalidUp(up))?;
-        let elevations = cloud.positions.iter().enumerate().filter_map(|(i, &p)| {
+        let rays = cloud.positions.iter().enumerate().filter_map(|(i, &p)| {
             let ray = p - origins.of(i);
             let range = ray.length();
             (range > 0.0 && range.is_finite())
-                .then(|| (ray.dot(up) / range).clamp(-1.0, 1.0).asin().to_degrees())
+                .then(|| ((ray.dot(up) / range).clamp(-1.0, 1.0).asin().to_degrees(), range))
         });
-        let (low, high) =
-            elevations.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), e| (lo.min(e), hi.max(e)));
+        let (low, high, max_range) = rays.fold(
+            (f64::INFINITY, f64::NEG_INFINITY, 0.0),
+            |(lo, hi, far): (f64, f64, f64), (elevation, range)| {
+                (lo.min(elevation), hi.max(elevation), far.max(range))
+            },
+        );
         if low >= high {
             return Err(FidelityError::NoElevationBand);
         }
-        Ok(Self { position: origins.mean().as_vec3(), elevation_degrees: [low as f32, high as f32] })
+        Ok(Self {
+            position: origins.mean().as_vec3(),
+            elevation_degrees: [low as f32, high as f32],
+            max_range: max_range as f32,
+        })
     }
 }
 
@@ -53,6 +63,7 @@ mod tests {
         assert_eq!(pose.position, Vec3::new(0.0, 0.0, 2.0));
         let [low, high] = pose.elevation_degrees;
         assert!((low + 45.0).abs() < 1e-4 && (high - 45.0).abs() < 1e-4, "{low} {high}");
+        assert!((pose.max_range - 200f32.sqrt()).abs() < 1e-4, "{}", pose.max_range);
         // An explicit position wins over the file's.
         let moved = SensorPose::of_cloud(&cloud, Vec3::Z, Some(DVec3::new(0.0, 0.0, 12.0))).unwrap();
         assert_eq!(moved.position.z, 12.0);

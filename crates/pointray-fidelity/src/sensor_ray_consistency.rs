@@ -50,23 +50,43 @@ impl Default for ConsistencyOptions {
 pub enum RayOutcome {
     /// The first hit lies within the tolerance of the return.
     Consistent,
-    /// The first hit lies more than the tolerance before the return: a floater.
+    /// The first hit lies more than the tolerance before the return, but on the return's own
+    /// surface: within the tolerance of the return along the surface's normal. A ray that
+    /// grazes the road at 5° meets it 23 cm early for 2 cm of height; that is no floater.
+    MetOwnSurfaceEarly,
+    /// The first hit lies more than the tolerance before the return, off its surface: a
+    /// floater.
     OccludedInFront,
     /// The first hit lies more than the tolerance beyond the return (`missed: false`), or
     /// there is none: a hole.
     PassedThrough { missed: bool },
 }
 
+/// Where a ray first met the surface: its parameter, and the return's distance from the
+/// surface's tangent plane there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FirstHit {
+    pub t: f64,
+    pub return_off_surface: f64,
+}
+
 impl RayOutcome {
-    /// The outcome of a ray whose first hit is at `hit` (`None`: no hit) toward a return at
+    /// The outcome of a ray whose first hit is `hit` (`None`: no hit) toward a return at
     /// `range`, with `tolerance`.
-    pub fn classify(hit: Option<f64>, range: f64, tolerance: f64) -> Self {
+    pub fn classify(hit: Option<FirstHit>, range: f64, tolerance: f64) -> Self {
         match hit {
             None => RayOutcome::PassedThrough { missed: true },
-            Some(t) if t < range - tolerance => RayOutcome::OccludedInFront,
-            Some(t) if t > range + tolerance => RayOutcome::PassedThrough { missed: false },
-            Some(_) => RayOutcome::Consistent,
+            Some(hit) if (hit.t - range).abs() <= tolerance => RayOutcome::Consistent,
+            Some(hit) if hit.t < range && hit.return_off_surface <= tolerance => {
+                RayOutcome::MetOwnSurfaceEarly
+            }
+            Some(hit) if hit.t < range => RayOutcome::OccludedInFront,
+            Some(_) => RayOutcome::PassedThrough { missed: false },
         }
+    }
+
+    pub fn is_consistent(self) -> bool {
+        matches!(self, RayOutcome::Consistent | RayOutcome::MetOwnSurfaceEarly)
     }
 }
 
@@ -102,8 +122,12 @@ pub fn sensor_ray_consistency(
             (range > 0.0 && direction.is_finite()).then(|| {
                 let tolerance = options.tolerance.at(range, f64::from(spacing));
                 let ray = Ray::new(sensor.as_vec3(), direction);
-                let hit = renderer.first_hit(&ray, 0.0, f32::INFINITY, options.acceptance);
-                (RayOutcome::classify(hit.map(|h| f64::from(h.t)), range, tolerance), tolerance)
+                let hit = renderer.first_hit(&ray, 0.0, f32::INFINITY, options.acceptance).map(|hit| {
+                    let t = f64::from(hit.t);
+                    let off = (to_return - direction.as_dvec3() * t).dot(hit.normal.as_dvec3()).abs();
+                    FirstHit { t, return_off_surface: off }
+                });
+                (RayOutcome::classify(hit, range, tolerance), tolerance)
             })
         })
         .collect();
@@ -142,11 +166,23 @@ mod tests {
 
     #[test]
     fn outcomes_split_at_the_tolerance_on_either_side() {
-        assert_eq!(RayOutcome::classify(Some(10.05), 10.0, 0.1), RayOutcome::Consistent);
-        assert_eq!(RayOutcome::classify(Some(9.95), 10.0, 0.1), RayOutcome::Consistent);
-        assert_eq!(RayOutcome::classify(Some(9.5), 10.0, 0.1), RayOutcome::OccludedInFront);
-        assert_eq!(RayOutcome::classify(Some(11.0), 10.0, 0.1), RayOutcome::PassedThrough { missed: false });
+        let off_surface = |t: f64| Some(FirstHit { t, return_off_surface: 10.0 - t });
+        assert_eq!(RayOutcome::classify(off_surface(10.05), 10.0, 0.1), RayOutcome::Consistent);
+        assert_eq!(RayOutcome::classify(off_surface(9.95), 10.0, 0.1), RayOutcome::Consistent);
+        assert_eq!(RayOutcome::classify(off_surface(9.5), 10.0, 0.1), RayOutcome::OccludedInFront);
+        let late = RayOutcome::classify(off_surface(11.0), 10.0, 0.1);
+        assert_eq!(late, RayOutcome::PassedThrough { missed: false });
         assert_eq!(RayOutcome::classify(None, 10.0, 0.1), RayOutcome::PassedThrough { missed: true });
+    }
+
+    #[test]
+    fn an_early_hit_on_the_return_s_own_surface_is_consistent_and_counted_apart() {
+        let grazing = Some(FirstHit { t: 9.0, return_off_surface: 0.03 });
+        assert_eq!(RayOutcome::classify(grazing, 10.0, 0.1), RayOutcome::MetOwnSurfaceEarly);
+        assert!(RayOutcome::MetOwnSurfaceEarly.is_consistent());
+        // Beyond the return, off-surface distance does not excuse a hole.
+        let late = Some(FirstHit { t: 11.0, return_off_surface: 0.03 });
+        assert_eq!(RayOutcome::classify(late, 10.0, 0.1), RayOutcome::PassedThrough { missed: false });
     }
 
     #[test]

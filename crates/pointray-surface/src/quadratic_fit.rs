@@ -41,6 +41,22 @@ const RIM_SAMPLES: usize = 16;
 /// `r` to the patch's point. `h` is the Wendland scale, `disk_radius` is `d_i`: a fit
 /// whose height anywhere on the disk exceeds `d_i` is judged wild and falls back.
 pub fn fit_patch(samples: impl Iterator<Item = (Vec3, f32)>, h: f32, disk_radius: f32) -> PatchFit {
+    fit_models(samples, h, disk_radius, &[FitKind::Quadratic, FitKind::Plane])
+}
+
+/// As `fit_patch`, but a plane at most: for neighbourhoods too few and too noisy to carry a
+/// curvature (a LiDAR return and its handful of scan neighbours).
+pub fn fit_plane_patch(samples: impl Iterator<Item = (Vec3, f32)>, h: f32, disk_radius: f32) -> PatchFit {
+    fit_models(samples, h, disk_radius, &[FitKind::Plane])
+}
+
+/// The first of `models` whose system is well posed and whose fit stays within the disk.
+fn fit_models(
+    samples: impl Iterator<Item = (Vec3, f32)>,
+    h: f32,
+    disk_radius: f32,
+    models: &[FitKind],
+) -> PatchFit {
     if h.is_nan() || h <= 0.0 {
         return PatchFit { coefficients: [0.0; 6], kind: FitKind::Flat };
     }
@@ -52,7 +68,8 @@ pub fn fit_patch(samples: impl Iterator<Item = (Vec3, f32)>, h: f32, disk_radius
         equations.add(f64::from(local.x) / h, f64::from(local.y) / h, f64::from(local.z), weight);
     }
     let disk = f64::from(disk_radius);
-    for (unknowns, kind) in [(6, FitKind::Quadratic), (3, FitKind::Plane)] {
+    for &kind in models {
+        let unknowns = if kind == FitKind::Quadratic { 6 } else { 3 };
         if let Some(scaled) = equations.solve_leading(unknowns)
             && stays_within_disk(&scaled, disk / h, disk)
         {

@@ -30,6 +30,9 @@ pub struct ScanLine {
     pub elevation: f32,
     /// Point indices sorted by azimuth.
     pub members: Vec<u32>,
+    /// The median azimuth step between consecutive members, radians: the sensor's angular
+    /// spacing along the line.
+    pub azimuth_step: f32,
     /// The lines next below and above in elevation at the same station.
     pub below: Option<u32>,
     pub above: Option<u32>,
@@ -74,6 +77,11 @@ impl ScanLines {
             .into_iter()
             .flatten()
             .map(|l| &self.lines[l as usize])
+    }
+
+    /// The azimuth step along point `i`'s line, radians, when the line has one.
+    pub fn azimuth_step(&self, i: usize) -> Option<f32> {
+        Some(self.lines[self.line_of[i] as usize].azimuth_step).filter(|&step| step > 0.0)
     }
 
     /// The elevation step between point `i`'s line and the nearest line beside it, radians:
@@ -153,7 +161,14 @@ fn group_lines(
     for (i, (&station, &ring)) in station_of.iter().zip(rings).enumerate() {
         let next = lines.len() as u32;
         let line = *index.entry((station, ring)).or_insert_with(|| {
-            lines.push(ScanLine { station, elevation: 0.0, members: Vec::new(), below: None, above: None });
+            lines.push(ScanLine {
+                station,
+                elevation: 0.0,
+                members: Vec::new(),
+                azimuth_step: 0.0,
+                below: None,
+                above: None,
+            });
             elevation_sums.push(0.0);
             next
         });
@@ -164,9 +179,25 @@ fn group_lines(
     for (line, sum) in lines.iter_mut().zip(elevation_sums) {
         line.elevation = (sum / line.members.len() as f64) as f32;
         line.members.sort_by(|&a, &b| azimuth[a as usize].total_cmp(&azimuth[b as usize]));
+        line.azimuth_step = median_step(&line.members, azimuth);
     }
     link_by_elevation(&mut lines);
     (lines, line_of)
+}
+
+/// The median of the positive azimuth steps between consecutive `members` (sorted by
+/// azimuth); 0 when there are none.
+fn median_step(members: &[u32], azimuth: &[f32]) -> f32 {
+    let mut steps: Vec<f32> = members
+        .windows(2)
+        .map(|pair| azimuth[pair[1] as usize] - azimuth[pair[0] as usize])
+        .filter(|&step| step > 0.0)
+        .collect();
+    if steps.is_empty() {
+        return 0.0;
+    }
+    let middle = steps.len() / 2;
+    *steps.select_nth_unstable_by(middle, f32::total_cmp).1
 }
 
 fn link_by_elevation(lines: &mut [ScanLine]) {

@@ -7,7 +7,7 @@ use pointray_kernels::packed_frame::normal_basis;
 use pointray_kernels::{PackedFrame, TangentFrame};
 use rayon::prelude::*;
 
-use crate::quadratic_fit::{FitKind, PatchFit, fit_patch};
+use crate::quadratic_fit::{FitKind, PatchFit, fit_plane_patch};
 use crate::scan_lines::ScanLines;
 use crate::scan_neighborhood::{ScanNeighborhood, agreeing_neighborhood, candidates};
 
@@ -16,13 +16,23 @@ use crate::scan_neighborhood::{ScanNeighborhood, agreeing_neighborhood, candidat
 /// four returns and the curvature of the surface between them.
 const COVER: f32 = 1.0;
 
-/// A spacing across lines is trusted up to this multiple of what the beam spacing predicts
-/// for the surface's slope: beyond it the next line's return lies past a dropout or on
+/// A spacing between returns is trusted up to this multiple of what the sensor's angular step
+/// predicts for the surface's slope: beyond it the next return lies past a dropout or on
 /// another object.
 const PREDICTED_SPACING_TRUST: f32 = 2.0;
 
 /// Grazing surfaces spread the beams' spacing by `1 / |cos(incidence)|`, bounded here.
 const MIN_INCIDENCE_COSINE: f32 = 0.05;
+
+/// A plane that the sensor sees this nearly edge-on (|cos(incidence)| below it, about 1°)
+/// is not a surface the returns show: returns down a pole or a wall's edge, with one more
+/// along the line, span a plane through the sensor itself. A road 1.7 m below the sensor
+/// stays above it out to 85 m.
+const EDGE_ON_COSINE: f32 = 0.02;
+
+/// A footprint patch reaches this many angular steps from its return: 1/√2 would just meet
+/// the cell's corners on a regular grid; more covers the jitter of real azimuths.
+const FOOTPRINT_COVER: f32 = 0.75;
 
 /// The Wendland scale of the fit is this multiple of the farthest neighbour on each axis,
 /// as in the unstructured fit.
@@ -49,12 +59,11 @@ fn scan_patch(points: &[Vec3], scan: &ScanLines, i: usize) -> ScanPatch {
     let candidates = candidates(scan, i);
     let neighborhood = agreeing_neighborhood(points, scan, i, &candidates);
     let toward_sensor = (scan.sensor[i] - points[i]).normalize_or(Vec3::Z);
-    if neighborhood.crosses_lines && neighborhood.members.len() >= 3 {
+    let seen_face_on = neighborhood.normal.dot(toward_sensor).abs() >= EDGE_ON_COSINE;
+    if neighborhood.crosses_lines && neighborhood.members.len() >= 3 && seen_face_on {
         surface_patch(points, scan, i, &neighborhood, toward_sensor)
     } else {
-        let nearest =
-            candidates.iter().map(|&j| points[j as usize].distance(points[i])).fold(f32::INFINITY, f32::min);
-        footprint_disk(points, scan, i, nearest, toward_sensor)
+        footprint_patch(points, scan, i, toward_sensor)
     }
 }
 
@@ -78,8 +87,11 @@ fn surface_patch(
     let along_spacing = spacing(offsets.iter().filter(|(_, same)| *same).map(|(d, _)| axes.to_local(*d).x));
     let across_spacing = spacing(offsets.iter().filter(|(_, same)| !*same).map(|(d, _)| axes.to_local(*d).y));
     let range = scan.sensor[i].distance(points[i]);
-    let across_spacing = cap_by_beam_spacing(across_spacing, scan, i, range, normal.dot(toward_sensor));
+    let incidence = normal.dot(toward_sensor);
+    let across_spacing = cap_by_predicted(across_spacing, scan.beam_spacing(i), range, incidence);
     let along_spacing = if along_spacing > 0.0 { along_spacing } else { across_spacing };
+    let horizontal_range = (points[i] - scan.sensor[i]).truncate().length();
+    let along_spacing = cap_by_predicted(along_spacing, scan.azimuth_step(i), horizontal_range, incidence);
     let (major_axis, radii) = if along_spacing >= across_spacing {
         (axes.t1, Vec2::new(along_spacing, across_spacing) * COVER)
     } else {
@@ -125,17 +137,20 @@ fn spacing(coordinates: impl Iterator<Item = f32>) -> f32 {
     }
 }
 
-/// The spacing across lines, held to what the sensor's beam spacing predicts at this range
-/// and incidence.
-fn cap_by_beam_spacing(spacing: f32, scan: &ScanLines, i: usize, range: f32, incidence_cosine: f32) -> f32 {
-    let Some(beam_spacing) = scan.beam_spacing(i) else { return spacing };
+/// A spacing between returns held to what the sensor's angular step (between lines, or along
+/// one) predicts at this range (about the step's axis) and incidence: past it the next return
+/// lies beyond a dropout, an occluder or on another object.
+fn cap_by_predicted(spacing: f32, angular_step: Option<f32>, range: f32, incidence_cosine: f32) -> f32 {
+    let Some(step) = angular_step else { return spacing };
     let incidence = incidence_cosine.abs().max(MIN_INCIDENCE_COSINE);
-    spacing.min(PREDICTED_SPACING_TRUST * beam_spacing * range / incidence)
+    spacing.min(PREDICTED_SPACING_TRUST * step * range / incidence)
 }
 
-/// The quadratic fit with Wendland weights over the support's own ellipse, so that returns on
+/// The plane fit with Wendland weights over the support's own ellipse, so that returns on
 /// the next line, farther away than those along the line, weigh as much at the same fraction
-/// of the way to the edge.
+/// of the way to the edge. A plane, not a quadratic: a return has a dozen scan neighbours at
+/// most, mostly along one line, and their range noise (centimetres) would become curvature
+/// that bends the patch across the grazing rays of the ground.
 fn elliptical_fit(frame: &TangentFrame, offsets: &[(Vec3, bool)], major_radius: f32) -> PatchFit {
     let locals: Vec<Vec3> = offsets.iter().map(|(d, _)| frame.to_local(*d)).collect();
     let reach = locals.iter().fold(Vec2::ZERO, |reach, l| reach.max(Vec2::new(l.x.abs(), l.y.abs())));
@@ -144,22 +159,30 @@ fn elliptical_fit(frame: &TangentFrame, offsets: &[(Vec3, bool)], major_radius: 
         .max(Vec2::splat(f32::MIN_POSITIVE));
     let h = scales.max_element();
     let samples = locals.iter().map(|&l| (l, h * (Vec2::new(l.x, l.y) / scales).length()));
-    fit_patch(std::iter::once((Vec3::ZERO, 0.0)).chain(samples), h, major_radius)
+    fit_plane_patch(std::iter::once((Vec3::ZERO, 0.0)).chain(samples), h, major_radius)
 }
 
-/// A small flat disk facing the sensor, as wide as the return's footprint: where neighbours
-/// agree on no surface (vegetation, edges, isolated returns), nothing wider is justified.
-fn footprint_disk(
-    points: &[Vec3],
-    scan: &ScanLines,
-    i: usize,
-    nearest: f32,
-    toward_sensor: Vec3,
-) -> ScanPatch {
+/// A small flat ellipse facing the sensor over the return's own angular cell (the beam
+/// spacing across lines, the azimuth step along them): where neighbours agree on no surface
+/// (vegetation, edges, isolated returns), nothing wider is justified, and from the sensor
+/// these cells tile what it saw without gaps. Each radius is `FOOTPRINT_COVER` steps, so
+/// that the cell's corners are covered too.
+fn footprint_patch(points: &[Vec3], scan: &ScanLines, i: usize, toward_sensor: Vec3) -> ScanPatch {
     let range = scan.sensor[i].distance(points[i]);
-    let footprint = scan.beam_spacing(i).map_or(f32::INFINITY, |spacing| spacing * range);
-    let radius = (0.5 * nearest.min(footprint)).max(f32::MIN_POSITIVE);
-    let frame = PackedFrame::new(toward_sensor, normal_basis(toward_sensor).0);
+    let across = scan.beam_spacing(i).or(scan.azimuth_step(i)).unwrap_or(0.0);
+    let along = scan.azimuth_step(i).unwrap_or(across);
+    let radii = Vec2::new(across, along) * FOOTPRINT_COVER * range;
+    // Across the lines is up for a spinning sensor: the major axis lies in the vertical plane
+    // through the ray, unless that plane is undefined (a ray straight up or down).
+    let up_in_plane = Vec3::Z - Vec3::Z.dot(toward_sensor) * toward_sensor;
+    let across_axis = up_in_plane.try_normalize().unwrap_or_else(|| normal_basis(toward_sensor).0);
+    let (major_axis, radii) = if radii.x >= radii.y {
+        (across_axis, radii)
+    } else {
+        (toward_sensor.cross(across_axis), Vec2::new(radii.y, radii.x))
+    };
+    let radii = radii.max(Vec2::splat(f32::MIN_POSITIVE));
+    let frame = PackedFrame::new(toward_sensor, major_axis);
     let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Flat };
-    ScanPatch { normal: toward_sensor, frame, radii: Vec2::splat(radius), fit, on_surface: false }
+    ScanPatch { normal: toward_sensor, frame, radii, fit, on_surface: false }
 }

@@ -40,6 +40,10 @@ pub struct FidelityArgs {
     /// Also write the report as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
+    /// Write each view's mesh, points and difference images into this folder (made if
+    /// missing): holes red (dark red where the sensor never looked), false surface blue.
+    #[arg(long, value_name = "DIR")]
+    images: Option<PathBuf>,
     #[arg(long, value_enum, default_value_t = BackendChoice::Cpu)]
     backend: BackendChoice,
     /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
@@ -66,11 +70,15 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     let mut options = FidelityOptions::with_views(args.views.specs()?, args.size, args.patches.acceptance());
     options.up = args.views.up;
     options.fov_degrees = args.views.fov;
+    options.image_folder = args.images.clone();
     // Before the prep, which can take minutes.
     validate_setting(options.up, options.fov_degrees, options.size)?;
     let size = RenderSettings { width: args.size, height: args.size, ..RenderSettings::default() };
     size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     let prep_options = args.patches.prep_options(args.sensor)?;
+    if let Some(folder) = &args.images {
+        std::fs::create_dir_all(folder).map_err(|e| pointray_io::IoError::os(folder, e))?;
+    }
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
     let cloud = args.patches.read(&args.points)?;
     if args.views.wants_sensor() {

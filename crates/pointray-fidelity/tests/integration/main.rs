@@ -5,4 +5,5 @@ mod hand_made_frames;
 mod paraboloid_cap;
 mod ring_scan;
 mod sensor_rays;
+mod simulated_street;
 mod sphere_normals;

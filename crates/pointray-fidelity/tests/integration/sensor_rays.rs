@@ -110,7 +110,7 @@ fn a_scan_with_no_sensor_is_an_error_that_says_how_to_give_one() {
 }
 
 #[test]
-fn support_ratios_are_radii_over_the_one_degree_ring_gap_times_range() {
+fn support_ratios_are_radii_over_the_one_degree_ring_gap_on_the_ground() {
     let cloud = ground_scan();
     let (patches, prep_report) = patches_of(&cloud);
     let origins = ReturnOrigins::of_cloud(&cloud, None).unwrap();
@@ -118,14 +118,17 @@ fn support_ratios_are_radii_over_the_one_degree_ring_gap_times_range() {
     let support = support_against_beam_spacing(&cloud, &patches, sources, &origins, glam::Vec3::Z).unwrap();
     println!("{support:?}");
     assert_eq!((support.patches, support.rings), (patches.len(), 29));
-    // Every ring lies 1° from the next, so each patch's beam spacing is its range times 1°.
+    // Every ring lies 1° from the next, so each patch's beam spacing on the ground is its range
+    // times 1° over the cosine of the beam's incidence on the patch.
     let expected_max = patches
         .hot
         .iter()
         .zip(sources)
         .map(|(patch, &source)| {
-            let range = cloud.positions[source as usize].distance(SENSOR);
-            f64::from(patch.radius()) / (range * 1f64.to_radians())
+            let to_patch = patch.origin().as_dvec3() + patches.offset - SENSOR;
+            let range = to_patch.length();
+            let cosine = (to_patch.dot(patch.normal().as_dvec3()) / range).abs().max(0.05);
+            f64::from(patch.radius()) / (range * 1f64.to_radians() / cosine)
         })
         .fold(0.0, f64::max);
     assert!(

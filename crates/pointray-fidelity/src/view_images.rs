@@ -1,0 +1,51 @@
+//! A view's images, for a person to look at what the numbers count: the mesh and the points
+//! shaded alike, and where they differ.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use pointray_io::image_output::write_png_srgb;
+use pointray_scene::Frame;
+
+use crate::FidelityError;
+
+/// Holes where the sensor looked: red.
+const HOLE: Vec3 = Vec3::new(0.9, 0.05, 0.05);
+/// Holes where the sensor never looked (`seen` says so): dark red.
+const UNSEEN_HOLE: Vec3 = Vec3::new(0.25, 0.02, 0.02);
+/// Points where the mesh has nothing: blue.
+const FALSE_SURFACE: Vec3 = Vec3::new(0.05, 0.2, 0.9);
+
+/// Writes `view-<index>-mesh.png`, `-points.png` and `-difference.png` into `folder`; the
+/// difference is the points' image greyed, with holes and false surfaces coloured.
+pub fn write_view_images(
+    folder: &Path,
+    index: usize,
+    mesh: &Frame,
+    points: &Frame,
+    seen: Option<&[bool]>,
+) -> Result<Vec<PathBuf>, FidelityError> {
+    let difference: Vec<Vec3> = (0..mesh.pixel_count())
+        .map(|pixel| {
+            let mesh_hit = mesh.instance_id[pixel] != Frame::MISS;
+            let points_hit = points.instance_id[pixel] != Frame::MISS;
+            match (mesh_hit, points_hit) {
+                (true, false) if seen.is_none_or(|seen| seen[pixel]) => HOLE,
+                (true, false) => UNSEEN_HOLE,
+                (false, true) => FALSE_SURFACE,
+                _ => {
+                    Vec3::splat(points.color[pixel].clamp(Vec3::ZERO, Vec3::ONE).dot(Vec3::splat(1.0 / 3.0)))
+                }
+            }
+        })
+        .collect();
+    let images = [("mesh", &mesh.color), ("points", &points.color), ("difference", &difference)];
+    let mut written = Vec::with_capacity(images.len());
+    for (name, colors) in images {
+        let path = folder.join(format!("view-{index}-{name}.png"));
+        write_png_srgb(&path, mesh.width, mesh.height, colors)
+            .map_err(|source| FidelityError::Image { path: path.clone(), source })?;
+        written.push(path);
+    }
+    Ok(written)
+}
