@@ -123,8 +123,7 @@ fn support_ratios_are_radii_over_the_one_degree_ring_gap_on_the_ground() {
     let expected_max = patches
         .hot
         .iter()
-        .zip(sources)
-        .map(|(patch, &source)| {
+        .map(|patch| {
             let to_patch = patch.origin().as_dvec3() + patches.offset - SENSOR;
             let range = to_patch.length();
             let cosine = (to_patch.dot(patch.normal().as_dvec3()) / range).abs().max(0.05);
