@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Runs the Table 1 benchmark on a machine with an NVIDIA GPU and the Vulkan loader
-# (bench/RESULTS.md has the exact calls). Expects, carried from the workspace: .gl (the Vulkan loader packages),
+# (bench/RESULTS.md has the exact calls). Expects, carried from the workspace: .gl (the .deb
+# packages of the Vulkan loader and of libglvnd, which NVIDIA's Vulkan driver loads through:
+# libvulkan1 libglvnd0 libegl1 libgl1 libglx0 libopengl0 libgles2),
 # .devbin/bench/pointray (a release build of pointray-cli) and .devbin/data (the shared
 # meshes and points). Writes table1.json and table1.md to $OUT (or out/bench here).
 # FRAMES and WARMUP set the timed and warm-up frames (default 100 and 10); extra arguments
