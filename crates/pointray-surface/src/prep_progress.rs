@@ -13,6 +13,8 @@ pub enum Stage {
     OutlierRemoval,
     Neighbours,
     ScanLines,
+    /// The scan route's neighbourhoods and plane fits, in place of normals to the fit.
+    ScanPatches,
     Normals,
     Orientation,
     Frames,
@@ -32,6 +34,7 @@ impl Stage {
             Stage::OutlierRemoval => "outlier removal",
             Stage::Neighbours => "k nearest neighbours",
             Stage::ScanLines => "scan lines",
+            Stage::ScanPatches => "scan patches",
             Stage::Normals => "normals",
             Stage::Orientation => "orientation",
             Stage::Frames => "frames",

@@ -42,7 +42,7 @@ pub(crate) fn scan_shaped(
     disk_scale: f32,
     clock: &mut StageClock,
 ) -> ShapedPatches {
-    let scanned = clock.run(Stage::QuadraticFit, points.len(), || scan_patches(points, &scan));
+    let scanned = clock.run(Stage::ScanPatches, points.len(), || scan_patches(points, &scan));
     let summary = ScanSummary {
         lines: scan.lines.len(),
         surface_patches: scanned.iter().filter(|p| p.on_surface).count(),
