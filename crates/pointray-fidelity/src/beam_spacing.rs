@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
 use pointray_surface::PatchSet;
+use pointray_surface::scan_patches::MIN_INCIDENCE_COSINE;
 use serde::Serialize;
 
 use crate::percentile::percentile;
@@ -14,10 +15,6 @@ use crate::{FidelityError, ReturnOrigins};
 /// A patch reaching past this many beam spacings is suspect (and the scan-aware prep's
 /// bound).
 pub const SUPPORT_LIMIT: f64 = 3.0;
-
-/// Grazing surfaces spread the beams' spacing by `1 / |cos(incidence)|`, bounded here (as
-/// the scan-aware prep bounds it).
-const MIN_INCIDENCE_COSINE: f64 = 0.05;
 
 /// Each patch's support radius over its local beam spacing, summarised.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -62,7 +59,7 @@ pub fn support_against_beam_spacing(
         let to_patch = patch.origin().as_dvec3() + patches.offset - origins.of(source);
         let range = to_patch.length();
         let incidence_cosine =
-            (to_patch.dot(patch.normal().as_dvec3()) / range).abs().max(MIN_INCIDENCE_COSINE);
+            (to_patch.dot(patch.normal().as_dvec3()) / range).abs().max(f64::from(MIN_INCIDENCE_COSINE));
         let spacing = gaps.get(&rings[source]).copied().unwrap_or(0.0) * range / incidence_cosine;
         if spacing > 0.0 && spacing.is_finite() {
             ratios.push((f64::from(patch.radius()) / spacing) as f32);

@@ -13,6 +13,7 @@ pub mod measure;
 pub mod metrics;
 pub mod percentile;
 pub mod pixel_comparison;
+pub mod pixel_rays;
 pub mod range_tolerance;
 pub mod report;
 pub mod report_json;

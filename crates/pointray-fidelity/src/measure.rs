@@ -106,9 +106,9 @@ pub fn measure_fidelity(
         SensorVisibility::new(&mesh_scene, sensor, setting.up)
     });
     let mut pooled = PixelComparison::default();
+    let truth = Truth { mesh: &mesh, normals: &normals, visibility: visibility.as_ref() };
     let mut reports = Vec::with_capacity(views.len());
     for (index, view) in views.into_iter().enumerate() {
-        let truth = Truth { mesh: &mesh, normals: &normals, visibility: visibility.as_ref() };
         let comparison = compare_view(&scenes, &truth, &view, index, options, renderer)?;
         reports.push(ViewReport::new(view, comparison.metrics()));
         pooled.merge(comparison);

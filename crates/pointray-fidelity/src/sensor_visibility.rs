@@ -3,13 +3,14 @@
 //! holes measures the sensor, not the surface. A pixel counts as seen when its mesh point
 //! lies in the sensor's elevation band and range, and nothing of the mesh stands between.
 
-use glam::{UVec2, Vec3};
+use glam::Vec3;
 use pointray_cpu::CpuRenderer;
-use pointray_kernels::{Ray, camera_ray, sample_jitter};
+use pointray_kernels::Ray;
 use pointray_scene::{Camera, Frame, PatchAcceptance, Scene};
 use rayon::prelude::*;
 
 use crate::SensorPose;
+use crate::pixel_rays::PixelRays;
 
 /// A return's elevation may stray this far past the band the returns span (beam width).
 const ELEVATION_MARGIN_DEGREES: f32 = 0.5;
@@ -35,17 +36,14 @@ impl SensorVisibility {
     /// For each pixel of `frame` (the mesh rendered by `camera`), whether the sensor could
     /// have seen the mesh point there; pixels off the mesh are `false`.
     pub fn seen_pixels(&self, frame: &Frame, camera: &Camera) -> Vec<bool> {
-        let pinhole = camera.pinhole();
-        let size = UVec2::new(frame.width, frame.height);
+        let rays = PixelRays::new(camera, frame);
         (0..frame.pixel_count())
             .into_par_iter()
             .map(|pixel| {
                 if frame.instance_id[pixel] == Frame::MISS {
                     return false;
                 }
-                let coordinates = UVec2::new(pixel as u32 % frame.width, pixel as u32 / frame.width);
-                let ray = camera_ray(&pinhole, size, coordinates, sample_jitter(0));
-                self.sees(ray.at(frame.depth[pixel]))
+                self.sees(rays.ray(pixel).at(frame.depth[pixel]))
             })
             .collect()
     }

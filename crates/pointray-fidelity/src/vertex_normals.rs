@@ -2,12 +2,13 @@
 //! triangle. The mesh stands for a smooth surface, and its flat facets' normals jump at
 //! every edge by as much as the patches' own error, so errors are measured against this.
 
-use glam::{UVec2, Vec3};
+use glam::Vec3;
 use pointray_io::TriangleMesh;
-use pointray_kernels::{camera_ray, face_forward, sample_jitter};
+use pointray_kernels::face_forward;
 use pointray_scene::{Camera, Frame};
 
 use crate::FidelityError;
+use crate::pixel_rays::PixelRays;
 
 pub struct VertexNormals {
     normals: Vec<Vec3>,
@@ -55,8 +56,7 @@ impl VertexNormals {
         mesh: &TriangleMesh,
         camera: &Camera,
     ) -> Result<(), FidelityError> {
-        let pinhole = camera.pinhole();
-        let size = UVec2::new(frame.width, frame.height);
+        let rays = PixelRays::new(camera, frame);
         for pixel in 0..frame.pixel_count() {
             if frame.instance_id[pixel] == Frame::MISS {
                 continue;
@@ -65,8 +65,7 @@ impl VertexNormals {
             if triangle as usize >= mesh.triangles.len() {
                 return Err(FidelityError::TriangleOutOfRange { triangle, triangles: mesh.triangles.len() });
             }
-            let coordinates = UVec2::new(pixel as u32 % frame.width, pixel as u32 / frame.width);
-            let ray = camera_ray(&pinhole, size, coordinates, sample_jitter(0));
+            let ray = rays.ray(pixel);
             let normal = self.at(mesh, triangle as usize, ray.at(frame.depth[pixel]));
             frame.normal[pixel] = face_forward(normal, ray.direction);
         }

@@ -21,8 +21,9 @@ const COVER: f32 = 1.0;
 /// another object.
 const PREDICTED_SPACING_TRUST: f32 = 2.0;
 
-/// Grazing surfaces spread the beams' spacing by `1 / |cos(incidence)|`, bounded here.
-const MIN_INCIDENCE_COSINE: f32 = 0.05;
+/// Grazing surfaces spread the beams' spacing by `1 / |cos(incidence)|`, bounded here (and
+/// by `pointray-fidelity` where it measures supports against that spacing).
+pub const MIN_INCIDENCE_COSINE: f32 = 0.05;
 
 /// A plane that the sensor sees this nearly edge-on (|cos(incidence)| below it, about 1°)
 /// is not a surface the returns show: returns down a pole or a wall's edge, with one more

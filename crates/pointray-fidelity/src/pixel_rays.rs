@@ -1,0 +1,25 @@
+//! The primary ray of a frame's pixel, as both renderers cast it with one sample a pixel: the
+//! depth AOV is the distance along it, so it rebuilds each hit from the frame alone.
+
+use glam::UVec2;
+use pointray_kernels::{PinholeCamera, Ray, camera_ray, sample_jitter};
+use pointray_scene::{Camera, Frame};
+
+/// The primary rays of one frame rendered by one camera.
+pub struct PixelRays {
+    pinhole: PinholeCamera,
+    size: UVec2,
+}
+
+impl PixelRays {
+    pub fn new(camera: &Camera, frame: &Frame) -> Self {
+        Self { pinhole: camera.pinhole(), size: UVec2::new(frame.width, frame.height) }
+    }
+
+    /// The ray through `pixel`, an index in row order.
+    pub fn ray(&self, pixel: usize) -> Ray {
+        let width = self.size.x as usize;
+        let coordinates = UVec2::new((pixel % width) as u32, (pixel / width) as u32);
+        camera_ray(&self.pinhole, self.size, coordinates, sample_jitter(0))
+    }
+}
