@@ -16,6 +16,19 @@ const UNSEEN_HOLE: Vec3 = Vec3::new(0.25, 0.02, 0.02);
 /// Points where the mesh has nothing: blue.
 const FALSE_SURFACE: Vec3 = Vec3::new(0.05, 0.2, 0.9);
 
+/// The images of each view, by the name that ends each file's.
+const IMAGES: [&str; 3] = ["mesh", "points", "difference"];
+
+/// Whether `path` is named as one of the images `write_view_images` writes (which may then
+/// replace it).
+pub fn is_view_image(path: &Path) -> bool {
+    let name = path.file_name().and_then(|name| name.to_str()).and_then(|name| name.strip_suffix(".png"));
+    let Some((index, image)) = name.and_then(|name| name.strip_prefix("view-")?.split_once('-')) else {
+        return false;
+    };
+    index.parse::<usize>().is_ok() && IMAGES.contains(&image)
+}
+
 /// Writes `view-<index>-mesh.png`, `-points.png` and `-difference.png` into `folder`; the
 /// difference is the points' image greyed, with holes and false surfaces coloured.
 pub fn write_view_images(
@@ -39,7 +52,7 @@ pub fn write_view_images(
             }
         })
         .collect();
-    let images = [("mesh", &mesh.color), ("points", &points.color), ("difference", &difference)];
+    let images = [(IMAGES[0], &mesh.color), (IMAGES[1], &points.color), (IMAGES[2], &difference)];
     let mut written = Vec::with_capacity(images.len());
     for (name, colors) in images {
         let path = folder.join(format!("view-{index}-{name}.png"));
@@ -48,4 +61,19 @@ pub fn write_view_images(
         written.push(path);
     }
     Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn view_images_are_known_by_name() {
+        for name in ["view-0-mesh.png", "out/view-12-points.png", "view-3-difference.png"] {
+            assert!(is_view_image(Path::new(name)), "{name}");
+        }
+        for name in ["view-0-mesh.exr", "view-x-mesh.png", "view-0-depth.png", "mesh.png", "view-0.png"] {
+            assert!(!is_view_image(Path::new(name)), "{name}");
+        }
+    }
 }

@@ -1,11 +1,12 @@
 //! `pointray fidelity`: a points file against the mesh it came from, as numbers.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::Context;
 use clap::Args;
 use glam::DVec3;
+use pointray_fidelity::view_images::is_view_image;
 use pointray_fidelity::view_placement::validate_setting;
 use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, SensorPose, measure_fidelity};
 use pointray_io::MemoryBudget;
@@ -77,7 +78,7 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     let prep_options = args.patches.prep_options(args.sensor)?;
     if let Some(folder) = &args.images {
-        std::fs::create_dir_all(folder).map_err(|e| pointray_io::IoError::os(folder, e))?;
+        check_image_folder(folder, &inputs)?;
     }
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
     let cloud = args.patches.read(&args.points)?;
@@ -100,4 +101,17 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
         println!("wrote {}", json.display());
     }
     Ok(())
+}
+
+/// Makes the folder for `--images` and refuses it when an image it would write is one of the
+/// inputs (only existing files can be).
+fn check_image_folder(folder: &Path, inputs: &[PathBuf]) -> anyhow::Result<()> {
+    std::fs::create_dir_all(folder).map_err(|e| pointray_io::IoError::os(folder, e))?;
+    let existing: Vec<PathBuf> = std::fs::read_dir(folder)
+        .map_err(|e| pointray_io::IoError::os(folder, e))?
+        .flatten()
+        .map(|entry| entry.path())
+        .filter(|path| is_view_image(path))
+        .collect();
+    Ok(pointray_io::ensure_outputs_spare_inputs(inputs, &existing)?)
 }

@@ -83,6 +83,18 @@ fn view_refuses_a_screenshot_over_its_points_file() {
 }
 
 #[test]
+fn fidelity_refuses_an_image_folder_holding_its_points() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("images")).unwrap();
+    write_grid_ply(&dir.path().join("images/view-0-points.png"));
+    let before = snapshot(&dir.path().join("images"));
+    let args = ["fidelity", "images/view-0-points.png", "mesh.ply", "--images", "images"];
+    let (ok, _, stderr) = pointray_in(dir.path(), &args);
+    assert!(!ok && stderr.contains("refusing to write over the input file"), "{stderr}");
+    assert_eq!(snapshot(&dir.path().join("images")), before, "the image folder changed");
+}
+
+#[test]
 fn bench_refuses_reports_over_its_scene() {
     let dir = tempfile::tempdir().unwrap();
     write_grid_ply(&dir.path().join("grid.ply"));
