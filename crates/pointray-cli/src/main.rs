@@ -8,6 +8,7 @@ mod patch_args;
 mod progress;
 mod radius_arg;
 mod scan_arg;
+mod scene_input;
 mod setting_flag;
 mod view_args;
 

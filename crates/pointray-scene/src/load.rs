@@ -5,7 +5,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use glam::{DAffine3, DVec3, Vec3};
-use pointray_kernels::Aabb;
+use pointray_kernels::{Aabb, PatchCold};
 use pointray_surface::PatchSet;
 use pointray_surface::geometry_range::{self, SCENE_EXTENTS, extent_problem};
 use pointray_surface::prep_progress::{NoProgress, PrepProgress};
@@ -127,8 +127,7 @@ fn load_object(
     let transform =
         spec.transform.to_daffine().map_err(|e| e.within(&format!("{key}.transform")).in_file(&file.path))?;
     let in_material = |e: InvalidValue| e.within(&format!("{key}.material")).in_file(&file.path);
-    let material = spec.material.to_material().map_err(in_material)?;
-    let ramp = spec.material.ramp().map_err(in_material)?;
+    let mut material = spec.material.to_material().map_err(in_material)?;
     let source = spec.material.color_source().map_err(in_material)?;
     let color_error = |problem: String| SceneError::Invalid {
         path: file.path.clone(),
@@ -185,6 +184,9 @@ fn load_object(
             (Geometry::Mesh(Arc::new(mesh)), None, "ground".to_string())
         }
     };
+    let source = resolved_color_source(source, &geometry);
+    material.use_point_colors = source != ColorSource::Fixed;
+    let ramp = spec.material.ramp(source).map_err(in_material)?;
     // The ramp's colours go into the patches' cold records, where both renderers already
     // read point colours.
     let geometry = match (geometry, ramp) {
@@ -223,7 +225,7 @@ fn load_object(
 /// replace, and only points files have classifications.
 fn check_color_source(source: ColorSource, shape: &ShapeSpec) -> Result<(), String> {
     let name = match source {
-        ColorSource::Fixed | ColorSource::Points => return Ok(()),
+        ColorSource::Fixed | ColorSource::Points | ColorSource::Auto => return Ok(()),
         ColorSource::Intensity => "intensity",
         ColorSource::Height => "height",
         ColorSource::Classification => "classification",
@@ -244,9 +246,32 @@ fn check_color_source(source: ColorSource, shape: &ShapeSpec) -> Result<(), Stri
     }
 }
 
+/// `"auto"` as the geometry allows: colours where a point set has any (white everywhere is
+/// what prep stores for none), else intensities, else the material's own colour.
+fn resolved_color_source(source: ColorSource, geometry: &Geometry) -> ColorSource {
+    match (source, geometry) {
+        (ColorSource::Auto, Geometry::Patches(patches)) => {
+            let white = PatchCold::default().color_rgba8;
+            if patches.cold.iter().any(|record| record.color_rgba8 != white) {
+                ColorSource::Points
+            } else if has_intensities(patches) {
+                ColorSource::Intensity
+            } else {
+                ColorSource::Fixed
+            }
+        }
+        (ColorSource::Auto, _) => ColorSource::Fixed,
+        (source, _) => source,
+    }
+}
+
+/// The readers report an all-zero intensity field as absent, and prep stores 0 for absent.
+fn has_intensities(patches: &PatchSet) -> bool {
+    patches.cold.iter().any(|record| record.intensity != 0.0)
+}
+
 fn intensities(patches: &PatchSet) -> Result<Vec<f32>, &'static str> {
-    // The readers report an all-zero intensity field as absent, and prep stores 0 for absent.
-    if patches.cold.iter().all(|record| record.intensity == 0.0) {
+    if !has_intensities(patches) {
         return Err("the points have no intensity, which `color_source = \"intensity\"` needs; \
                     use \"points\", \"height\" or \"fixed\"");
     }

@@ -41,7 +41,21 @@ pub enum ColorSource {
     Height,
     /// The points' LAS classification, in the ASPRS palette.
     Classification,
+    /// The points' own colours where they have them, else their intensities through the
+    /// `ramp` (grey by default), else the material's `diffuse`: what a bare points file shows.
+    Auto,
 }
+
+impl std::str::FromStr for ColorSource {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        Self::deserialize(serde::de::value::StrDeserializer::<serde::de::value::Error>::new(text))
+            .map_err(|_| format!("unknown colour source `{text}`; the sources are {COLOR_SOURCE_NAMES:?}"))
+    }
+}
+
+const COLOR_SOURCE_NAMES: [&str; 6] = ["auto", "points", "intensity", "height", "classification", "fixed"];
 
 /// A named ramp or a list of colour stops.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -102,12 +116,22 @@ impl MaterialSpec {
         }
     }
 
-    /// The ramp that colours the points by a value; `None` unless `color_source` is
-    /// `"intensity"` or `"height"`. `ramp` is refused with any other source, and
-    /// `intensity_range` with any but `"intensity"`.
-    pub(crate) fn ramp(&self) -> Result<Option<ColorRamp>, InvalidValue> {
-        let source = self.color_source()?;
-        if source != ColorSource::Intensity && self.intensity_range.is_some() {
+    /// Checks the ramp as loading will use it: under `"auto"`, as for intensities.
+    pub(crate) fn checked_ramp(&self) -> Result<(), InvalidValue> {
+        let source = match self.color_source()? {
+            ColorSource::Auto => ColorSource::Intensity,
+            source => source,
+        };
+        self.ramp(source).map(drop)
+    }
+
+    /// The ramp that colours the points by a value under `source` (the `color_source`, or what
+    /// `"auto"` resolved to); `None` unless that is `"intensity"` or `"height"`. `ramp` is
+    /// refused with any other source but `"auto"`, and `intensity_range` with any but
+    /// `"intensity"` and `"auto"`.
+    pub(crate) fn ramp(&self, source: ColorSource) -> Result<Option<ColorRamp>, InvalidValue> {
+        let auto = self.color_source()? == ColorSource::Auto;
+        if source != ColorSource::Intensity && !auto && self.intensity_range.is_some() {
             return Err(InvalidValue::new(
                 "intensity_range",
                 "applies only with `color_source = \"intensity\"`",
@@ -116,7 +140,7 @@ impl MaterialSpec {
         let default = match source {
             ColorSource::Intensity => DEFAULT_INTENSITY_RAMP,
             ColorSource::Height => DEFAULT_HEIGHT_RAMP,
-            _ if self.ramp.is_some() => {
+            _ if self.ramp.is_some() && !auto => {
                 return Err(InvalidValue::new(
                     "ramp",
                     "applies only with `color_source = \"intensity\"` or `\"height\"`",

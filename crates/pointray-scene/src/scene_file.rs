@@ -34,11 +34,10 @@ use serde::{Deserialize, Deserializer};
 
 use crate::checks;
 use crate::error::{InvalidValue, SceneError};
-use crate::material_spec::MaterialSpec;
 use crate::object_spec::{ObjectSpec, ShapeSpec};
+use crate::points_scene::PointsScene;
 use crate::render_frame::RenderFrame;
 use crate::render_settings::RenderSetting;
-use crate::transform_spec::TransformSpec;
 use crate::{Background, Camera, Light, RenderSettings};
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -181,39 +180,10 @@ impl SceneFile {
         Ok(file)
     }
 
-    /// The default scene for a bare points file (or patch store): the model on a slightly
-    /// reflective automatic ground, lit by one directional light (which needs no knowledge of
-    /// the model's size), framed by the default camera.
+    /// The default scene for a bare points file (or patch store), with the file's
+    /// conventional up axis (`PointsScene::conventional`).
     pub fn for_points_file(points: &Path) -> Self {
-        let object =
-            |shape, material| ObjectSpec { name: None, transform: TransformSpec::default(), material, shape };
-        let floor = MaterialSpec { specular: Some(0.0), reflectivity: Some(0.3), ..MaterialSpec::default() };
-        Self {
-            camera: None,
-            lights: vec![LightSpec::Directional {
-                direction: [-0.4, -1.0, -0.5],
-                color: white(),
-                intensity: unit_intensity(),
-            }],
-            background: None,
-            objects: vec![
-                object(
-                    ShapeSpec::Points {
-                        path: points.to_path_buf(),
-                        k: None,
-                        normal_k: None,
-                        radius: None,
-                        remove_outliers: None,
-                        columns: None,
-                    },
-                    MaterialSpec::default(),
-                ),
-                object(ShapeSpec::Ground { auto: true, height: None, size: None }, floor),
-            ],
-            render: RenderSpec::default(),
-            // Relative paths stay relative to the working directory, as the user typed them.
-            path: PathBuf::from("(default scene)"),
-        }
+        PointsScene::conventional(points).scene_file(points)
     }
 
     /// Gives every points object without its own `columns` these (the command line's
@@ -273,12 +243,24 @@ impl SceneFile {
             object.shape.check().map_err(|e| e.within(&key))?;
             object.transform.to_daffine().map_err(|e| e.within(&format!("{key}.transform")))?;
             object.material.to_material().map_err(|e| e.within(&format!("{key}.material")))?;
+            object.material.checked_ramp().map_err(|e| e.within(&format!("{key}.material")))?;
         }
         Ok(())
     }
 }
 
 impl CameraSpec {
+    /// A camera at `position` looking at `look_at`, Y up, with a vertical field of view of
+    /// `vfov_degrees` or the default.
+    pub fn looking(position: [f64; 3], look_at: [f64; 3], vfov_degrees: Option<f32>) -> Self {
+        Self {
+            position,
+            look_at,
+            up: default_up(),
+            vfov_degrees: vfov_degrees.unwrap_or_else(default_vfov_degrees),
+        }
+    }
+
     /// The camera in the scene's render frame (`RenderFrame`).
     pub(crate) fn to_camera(&self, frame: &RenderFrame) -> Result<Camera, InvalidValue> {
         let position = frame.point(checks::finite_dvec3("position", self.position)?);

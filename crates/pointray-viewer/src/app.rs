@@ -18,12 +18,12 @@ use crate::controls::{self, Action};
 use crate::error::ViewerError;
 use crate::frame_source::{Drawn, FrameSource, Presentation};
 use crate::frame_stats::FrameStats;
-use crate::orbit::orbit_camera;
 use crate::refinement::{Pass, Refinement};
 use crate::render_times::RenderTimes;
 use crate::screenshots;
 use crate::view_state::ViewState;
 use crate::{Script, ViewerOptions};
+use pointray_scene::orbit_camera;
 
 /// The scripted run's progress.
 struct ScriptRun {

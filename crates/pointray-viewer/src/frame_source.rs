@@ -249,7 +249,7 @@ mod tests {
     use pointray_scene::{LoadOptions, load_demo};
 
     use super::*;
-    use crate::orbit::orbit_camera;
+    use pointray_scene::orbit_camera;
 
     /// The demo seen from a quarter turn round, lit by two lights from the other side.
     fn moved(scene: &Scene) -> Scene {

@@ -20,7 +20,6 @@ mod display_frame;
 mod error;
 mod frame_source;
 mod frame_stats;
-mod orbit;
 mod pixels;
 mod present;
 mod refinement;
@@ -40,7 +39,7 @@ pub use camera_rig::CameraRig;
 pub use controls::KEY_HELP;
 pub use error::ViewerError;
 pub use frame_source::{Presentation, RenderBackend};
-pub use orbit::orbit_camera;
+pub use pointray_scene::orbit_camera;
 pub use screenshots::sequence_path;
 
 use app::App;

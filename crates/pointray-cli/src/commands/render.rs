@@ -1,4 +1,5 @@
-//! `pointray render`: a scene file to an image, with optional AOVs.
+//! `pointray render`: a scene file or a bare points file to an image, with optional AOVs, or
+//! to a turntable of frames orbiting it.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -7,21 +8,25 @@ use clap::{Args, ValueEnum};
 use pointray_io::MemoryBudget;
 use pointray_scene::frame_output::{AovSelection, check_frame_outputs, write_frame};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
-use pointray_scene::{BufferLayout, PatchAcceptance, RenderSetting, RenderSettings, SceneFile};
+use pointray_scene::{BufferLayout, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera};
 
 use crate::backend::{Backend, BackendArgs};
-use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
+use crate::scene_input::SceneInputArgs;
 use crate::setting_flag::setting_flag;
 
-/// Render a scene (TOML) to PNG (8-bit sRGB) or EXR (linear float).
+/// Render a scene (TOML) or a points file to PNG (8-bit sRGB) or EXR (linear float).
 #[derive(Args)]
 pub struct RenderArgs {
-    /// The scene file.
+    /// A scene file (`.toml`), or a points file, shown framed on a floor with one light.
     scene: PathBuf,
-    /// The image to write; `.png` or `.exr`.
+    /// The image to write; `.png` or `.exr`. With `--turntable`, frames are numbered after it:
+    /// `out.png` gives `out-0000.png`, `out-0001.png`, ...
     #[arg(short, long)]
     output: PathBuf,
+    /// Render this many frames, the camera orbiting its look-at point once about its up axis.
+    #[arg(long, value_name = "FRAMES", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    turntable: Option<u32>,
     #[arg(long, value_parser = setting_flag(RenderSetting::Width))]
     width: Option<u32>,
     #[arg(long, value_parser = setting_flag(RenderSetting::Height))]
@@ -48,7 +53,7 @@ pub struct RenderArgs {
     #[arg(long)]
     aovs: bool,
     #[command(flatten)]
-    columns: ColumnsArg,
+    input: SceneInputArgs,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -58,27 +63,43 @@ enum Buffers {
 }
 
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
-    let file = args.columns.apply_to(SceneFile::read(&args.scene)?);
+    let file = args.input.scene_file(&args.scene)?;
     let settings = apply_flags(&args, file.render_settings()?);
     let aovs = if args.aovs { AovSelection::ALL } else { AovSelection::default() };
-    check_frame_outputs(&args.output, &aovs, &file.input_files())?;
+    let outputs = output_paths(&args.output, args.turntable);
+    for output in &outputs {
+        check_frame_outputs(output, &aovs, &file.input_files())?;
+    }
     settings.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     let cache_dir = cache_dir_for(&args.output);
     let bar = PrepBar::default();
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar };
-    let LoadedScene { scene, frame: render_frame, .. } = load_scene_file(&file, &options)?;
+    let LoadedScene { mut scene, frame: render_frame, .. } = load_scene_file(&file, &options)?;
     let backend = Backend::open(args.backend.backend, &args.backend.device)?;
     println!("backend: {}", backend.describe());
-    let started = Instant::now();
-    let mut frame = backend.render(&scene, &settings)?;
-    let elapsed = started.elapsed();
-    frame.scale_depth(render_frame.scale as f32);
-    let written = write_frame(&frame, &args.output, &aovs)?;
-    println!("rendered {}x{} in {:.2?}", settings.width, settings.height, elapsed);
-    for path in written {
-        println!("wrote {}", path.display());
+    let start = scene.camera;
+    let frames = outputs.len() as u32;
+    for (index, output) in (0..).zip(&outputs) {
+        scene.camera = orbit_camera(&start, index, frames, 360.0);
+        let started = Instant::now();
+        let mut frame = backend.render(&scene, &settings)?;
+        let elapsed = started.elapsed();
+        frame.scale_depth(render_frame.scale as f32);
+        let written = write_frame(&frame, output, &aovs)?;
+        println!("rendered {}x{} in {:.2?}", settings.width, settings.height, elapsed);
+        for path in written {
+            println!("wrote {}", path.display());
+        }
     }
     Ok(())
+}
+
+/// The image, or with a turntable of `frames` one numbered image a frame.
+fn output_paths(output: &Path, turntable: Option<u32>) -> Vec<PathBuf> {
+    let Some(frames) = turntable else { return vec![output.to_path_buf()] };
+    let stem = output.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let extension = output.extension().map(|e| format!(".{}", e.to_string_lossy())).unwrap_or_default();
+    (0..frames).map(|index| output.with_file_name(format!("{stem}-{index:04}{extension}"))).collect()
 }
 
 fn apply_flags(args: &RenderArgs, mut settings: RenderSettings) -> RenderSettings {

@@ -11,8 +11,8 @@ use pointray_viewer::{RenderBackend, Script, ViewerOptions, run_viewer, sequence
 use pointray_vulkan::validation_requested_by_env;
 
 use crate::backend::{BackendArgs, BackendChoice};
-use crate::columns_arg::ColumnsArg;
 use crate::progress::PrepBar;
+use crate::scene_input::SceneInputArgs;
 use crate::setting_flag::setting_flag;
 
 /// Open a window on a scene (TOML) or a points file, and fly around it.
@@ -46,11 +46,11 @@ pub struct ViewArgs {
     #[arg(long, requires = "frames")]
     sequence: Option<PathBuf>,
     #[command(flatten)]
-    columns: ColumnsArg,
+    input: SceneInputArgs,
 }
 
 pub fn run(args: ViewArgs) -> anyhow::Result<()> {
-    let file = args.columns.apply_to(scene_file(&args.scene)?);
+    let file = args.input.scene_file(&args.scene)?;
     let mut settings = file.render_settings()?;
     settings.width = args.width.unwrap_or(settings.width);
     settings.height = args.height.unwrap_or(settings.height);
@@ -82,12 +82,6 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
         println!("wrote {}", path.display());
     }
     Ok(())
-}
-
-/// A `.toml` is a scene; anything else is a points file given the default scene.
-fn scene_file(path: &Path) -> anyhow::Result<SceneFile> {
-    let is_scene = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
-    Ok(if is_scene { SceneFile::read(path)? } else { SceneFile::for_points_file(path) })
 }
 
 /// The screenshot and every frame of the sequence that would replace an existing file, against

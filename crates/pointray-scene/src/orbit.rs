@@ -1,8 +1,10 @@
-//! The scripted camera path: a turntable orbit around the look-at point about the camera's up
-//! axis. Deterministic, so a test can compute the camera of any frame.
+//! A turntable: the camera orbiting its look-at point about its up axis, for the viewer's
+//! scripted frames and `render --turntable`. Deterministic, so a test can compute the camera
+//! of any frame.
 
 use glam::{Quat, Vec3};
-use pointray_scene::Camera;
+
+use crate::Camera;
 
 /// The camera of frame `index` (from 0) of `frames`: `start` turned by
 /// `arc_degrees * index / frames` about `start.up` through `start.look_at`.

@@ -1,0 +1,124 @@
+//! The scene a bare points file gets (`render POINTS`, `view POINTS`): the cloud stood upright,
+//! coloured by what it carries, on an optional reflective floor, lit by one directional light
+//! (which needs no knowledge of the cloud's size), framed by the default camera.
+
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+use glam::DVec3;
+use pointray_io::formats::detect::PointFormat;
+use pointray_io::formats::{FileFormat, detect_file_format};
+
+use crate::material_spec::{ColorSource, MaterialSpec};
+use crate::object_spec::{ObjectSpec, ShapeSpec};
+use crate::scene_file::{LightSpec, RenderSpec, SceneFile};
+use crate::transform_spec::{RotationSpec, TransformSpec};
+
+/// Which of the file's axes points up. The scene is Y-up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UpAxis {
+    Y,
+    Z,
+}
+
+impl UpAxis {
+    /// Scans (LAS, LAZ, E57, PCD and raw sweeps) are Z-up by convention; models (PLY, OBJ and
+    /// text) are Y-up, like the scene. A file that cannot be read is taken as Y-up: loading
+    /// it reports the real problem.
+    pub fn conventional(path: &Path) -> Self {
+        match detect_file_format(path) {
+            Ok(FileFormat::Points(
+                PointFormat::Las
+                | PointFormat::Laz
+                | PointFormat::E57
+                | PointFormat::Pcd
+                | PointFormat::RawBin,
+            )) => UpAxis::Z,
+            _ => UpAxis::Y,
+        }
+    }
+
+    /// A point in the file's coordinates, stood upright as the default scene stands the cloud.
+    pub fn to_scene(self, file: DVec3) -> DVec3 {
+        match self {
+            UpAxis::Y => file,
+            UpAxis::Z => DVec3::new(file.x, file.z, -file.y),
+        }
+    }
+
+    fn upright(self) -> TransformSpec {
+        match self {
+            UpAxis::Y => TransformSpec::default(),
+            // A quarter turn about X takes +Z to +Y.
+            UpAxis::Z => TransformSpec {
+                rotate: Some(RotationSpec::EulerDegrees([-90.0, 0.0, 0.0])),
+                ..TransformSpec::default()
+            },
+        }
+    }
+}
+
+impl FromStr for UpAxis {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        match text.to_ascii_lowercase().as_str() {
+            "y" => Ok(UpAxis::Y),
+            "z" => Ok(UpAxis::Z),
+            _ => Err(format!("unknown up axis `{text}`; give y or z")),
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointsScene {
+    pub up: UpAxis,
+    pub floor: bool,
+    pub color_source: ColorSource,
+}
+
+impl PointsScene {
+    /// The file's conventional up axis, a floor, and colours by what the points carry.
+    pub fn conventional(path: &Path) -> Self {
+        Self { up: UpAxis::conventional(path), floor: true, color_source: ColorSource::Auto }
+    }
+
+    pub fn scene_file(&self, points: &Path) -> SceneFile {
+        let cloud = ObjectSpec {
+            name: None,
+            transform: self.up.upright(),
+            material: MaterialSpec { color_source: Some(self.color_source), ..MaterialSpec::default() },
+            shape: ShapeSpec::Points {
+                path: points.to_path_buf(),
+                k: None,
+                normal_k: None,
+                radius: None,
+                remove_outliers: None,
+                columns: None,
+            },
+        };
+        let floor = ObjectSpec {
+            name: None,
+            transform: TransformSpec::default(),
+            material: MaterialSpec {
+                specular: Some(0.0),
+                reflectivity: Some(0.3),
+                ..MaterialSpec::default()
+            },
+            shape: ShapeSpec::Ground { auto: true, height: None, size: None },
+        };
+        SceneFile {
+            camera: None,
+            lights: vec![LightSpec::Directional {
+                direction: [-0.4, -1.0, -0.5],
+                color: [1.0; 3],
+                intensity: 1.0,
+            }],
+            background: None,
+            objects: if self.floor { vec![cloud, floor] } else { vec![cloud] },
+            render: RenderSpec::default(),
+            // Relative paths stay relative to the working directory, as the user typed them.
+            path: PathBuf::from("(default scene)"),
+        }
+    }
+}
