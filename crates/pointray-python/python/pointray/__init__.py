@@ -1,0 +1,17 @@
+"""Point clouds as smooth, lit, ray-traced surfaces.
+
+Read a scan, turn its points into MLS patches, and render them to numpy images::
+
+    import pointray
+    cloud = pointray.read("scan.las")
+    image = pointray.render(cloud, width=800, height=600)   # (600, 800, 4) float32, linear RGBA
+
+Every function raises :class:`PointrayError` with the message the ``pointray`` command line
+prints for the same failure, and ``ValueError`` or ``TypeError`` for arrays of the wrong shape
+or kind.
+"""
+
+from ._native import PointrayError
+from ._point_cloud import PointCloud, read
+
+__all__ = ["PointCloud", "PointrayError", "read"]
