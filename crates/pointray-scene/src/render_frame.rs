@@ -82,6 +82,11 @@ impl RenderFrame {
         (file - self.origin) / self.scale
     }
 
+    /// A render-frame position in the file's coordinates (after the objects' transforms).
+    pub fn point_to_file(&self, render: DVec3) -> DVec3 {
+        self.origin + render * self.scale
+    }
+
     /// `local_to_file` seen from the render frame, in f32.
     pub(crate) fn transform(&self, local_to_file: &DAffine3) -> Affine3A {
         let to_render =

@@ -87,6 +87,10 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         frame.scale_depth(render_frame.scale as f32);
         let written = write_frame(&frame, output, &aovs)?;
         println!("rendered {}x{} in {:.2?}", settings.width, settings.height, elapsed);
+        if args.turntable.is_some() {
+            let at = render_frame.point_to_file(scene.camera.position.as_dvec3());
+            println!("frame {index}: camera at {:.6},{:.6},{:.6}", at.x, at.y, at.z);
+        }
         for path in written {
             println!("wrote {}", path.display());
         }

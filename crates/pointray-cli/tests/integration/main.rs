@@ -4,6 +4,7 @@ mod common;
 
 mod autzen_scene;
 mod bad_input;
+mod bare_points_render;
 mod classification_render;
 mod columns_flag;
 mod geo_offset;
