@@ -33,7 +33,7 @@ pub use frame_output::{AovSelection, write_frame};
 pub use light::Light;
 pub use load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
 pub use material::Material;
-pub use point_sets::{PointSetOrigin, PrepRequest, ReadRequest, clean_cache};
+pub use point_sets::{PointSetOrigin, ReadRequest, clean_cache};
 pub use pointray_kernels::PatchAcceptance;
 pub use render_frame::RenderFrame;
 pub use render_settings::{BufferLayout, RenderSetting, RenderSettings};

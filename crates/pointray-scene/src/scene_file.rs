@@ -198,14 +198,7 @@ impl SceneFile {
             background: None,
             objects: vec![
                 object(
-                    ShapeSpec::Points {
-                        path: points.to_path_buf(),
-                        k: None,
-                        normal_k: None,
-                        radius: None,
-                        remove_outliers: None,
-                        columns: None,
-                    },
+                    ShapeSpec::Points { path: points.to_path_buf(), prep: None, columns: None },
                     MaterialSpec::default(),
                 ),
                 object(ShapeSpec::Ground { auto: true, height: None, size: None }, floor),

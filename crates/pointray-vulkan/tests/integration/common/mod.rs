@@ -11,7 +11,7 @@ use pointray_kernels::{Aabb, PatchCold, PatchHot, PinholeCamera, camera_ray};
 use pointray_scene::{
     Background, Camera, Frame, Geometry, Light, Material, RenderSettings, Scene, SceneObject,
 };
-use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepOptions, PrepParams, prep};
+use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepSettings, prep};
 use pointray_vulkan::{DeviceSelector, VulkanRenderer};
 
 fn in_ci() -> bool {
@@ -168,8 +168,7 @@ pub fn prepped_points_with_boxes(
     box_kind: BoxKind,
 ) -> SceneObject {
     let cloud = read_point_cloud(path).unwrap_or_else(|e| panic!("{} does not load: {e}", path.display()));
-    let options =
-        PrepOptions { params: PrepParams { box_kind, ..PrepParams::default() }, ..PrepOptions::default() };
+    let options = PrepSettings { boxes: box_kind, ..PrepSettings::default() };
     let (patches, _) = prep(&cloud, &options, &NoProgress).expect("prep succeeds");
     SceneObject {
         name: name.into(),
