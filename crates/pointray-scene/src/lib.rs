@@ -2,7 +2,6 @@
 //! the settings of one render and the frame that comes back.
 
 pub mod bounds;
-pub mod camera;
 mod checks;
 pub mod classification_palette;
 pub mod color_ramp;
@@ -25,7 +24,6 @@ pub mod scene;
 pub mod scene_file;
 pub mod transform_spec;
 
-pub use camera::Camera;
 pub use demo::{demo_scene, load_demo};
 pub use error::SceneError;
 pub use frame::Frame;
@@ -34,6 +32,7 @@ pub use light::Light;
 pub use load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
 pub use material::Material;
 pub use point_sets::{PointSetOrigin, ReadRequest, clean_cache};
+pub use pointray_kernels::Camera;
 pub use pointray_kernels::PatchAcceptance;
 pub use render_frame::RenderFrame;
 pub use render_settings::{BufferLayout, RenderSetting, RenderSettings};
