@@ -29,7 +29,7 @@ pub enum Variant {
     HitReordering,
     /// Ablation: k = 6 neighbours instead of 9, so smaller, less overlapping patches.
     SixNeighbours,
-    /// Ablation: patches reaching 0.7 of the paper's support radius (`PrepParams::disk_scale`).
+    /// Ablation: patches reaching 0.7 of the paper's support radius (`PrepSettings::disk_scale`).
     SmallerDisks,
     /// Ablation: the paper's support radius instead of the cell radius (`RadiusMode::Paper`).
     PaperRadius,

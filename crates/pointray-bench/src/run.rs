@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use pointray_scene::load::{LoadOptions, load_scene};
 use pointray_scene::{BufferLayout, Geometry, PatchAcceptance, RenderSettings, Scene};
-use pointray_surface::{BoxKind, NoProgress, PrepOptions, PrepParams, RadiusMode};
+use pointray_surface::{BoxKind, NoProgress, PrepSettings, RadiusMode};
 use pointray_vulkan::{BlasLayout, PixelOutput, VulkanError, VulkanRenderer};
 
 use crate::case_result::{CaseLabel, CaseResult, Variant};
@@ -163,27 +163,27 @@ impl ModelRun<'_> {
         if let Some(reordering) = self.options.reordering {
             self.time_on(reordering, base, settings, Variant::HitReordering)?;
         }
-        let smaller =
-            self.reprepped(base, with_params(PrepParams { disk_scale: 0.7, ..PrepParams::default() }))?;
+        let smaller = self.reprepped(base, PrepSettings { disk_scale: 0.7, ..PrepSettings::default() })?;
         self.time(&smaller, settings, BlasLayout::OneGeometry, Variant::SmallerDisks)?;
-        let paper_radii = self.reprepped(base, paper_radius(PrepParams::default()))?;
+        let paper_radii = self.reprepped(base, paper_radius(PrepSettings::default()))?;
         self.time(&paper_radii, settings, BlasLayout::OneGeometry, Variant::PaperRadius)?;
         if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
             return Ok(());
         }
         self.time(base, settings, BlasLayout::GeometryPerAabb, Variant::GeometryPerAabb)?;
-        let cubes = self
-            .reprepped(base, with_params(PrepParams { box_kind: BoxKind::Cube, ..PrepParams::default() }))?;
+        let cubes = self.reprepped(base, PrepSettings { boxes: BoxKind::Cube, ..PrepSettings::default() })?;
         self.time(&cubes, settings, BlasLayout::OneGeometry, Variant::CubeBoxes)?;
-        let paper_cubes = self
-            .reprepped(base, paper_radius(PrepParams { box_kind: BoxKind::Cube, ..PrepParams::default() }))?;
+        let paper_cubes = self.reprepped(
+            base,
+            paper_radius(PrepSettings { boxes: BoxKind::Cube, ..PrepSettings::default() }),
+        )?;
         self.time(&paper_cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)?;
-        let six = self.reprepped(base, with_params(PrepParams { k: 6, ..PrepParams::default() }))?;
+        let six = self.reprepped(base, PrepSettings { k: 6, ..PrepSettings::default() })?;
         self.time(&six, settings, BlasLayout::OneGeometry, Variant::SixNeighbours)
     }
 
     /// The scene with the model re-prepped with `options`.
-    fn reprepped(&self, base: &Scene, options: PrepOptions) -> Result<Scene, BenchError> {
+    fn reprepped(&self, base: &Scene, options: PrepSettings) -> Result<Scene, BenchError> {
         let points = model_points(self.model, &self.options.data, &self.options.cache)?;
         let cloud = pointray_io::formats::read_point_cloud(&points)?;
         let (patches, _) = pointray_surface::prep(&cloud, &options, &NoProgress)
@@ -244,10 +244,6 @@ impl ModelRun<'_> {
     }
 }
 
-fn with_params(params: PrepParams) -> PrepOptions {
-    PrepOptions { params, ..PrepOptions::default() }
-}
-
-fn paper_radius(params: PrepParams) -> PrepOptions {
-    PrepOptions { radius_mode: RadiusMode::Paper, ..with_params(params) }
+fn paper_radius(settings: PrepSettings) -> PrepSettings {
+    PrepSettings { radius: RadiusMode::Paper, ..settings }
 }

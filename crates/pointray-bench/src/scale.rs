@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use pointray_scene::RenderSettings;
 use pointray_surface::patch_store;
 use pointray_surface::peak_memory::StagePeaks;
-use pointray_surface::{PrepOptions, PrepProgress, prep_owned};
+use pointray_surface::{PrepProgress, PrepSettings, prep_owned};
 
 use crate::data::ensure_cache_dir;
 use crate::error::BenchError;
@@ -112,7 +112,7 @@ fn measure_rung(
     let (cloud, read) = timed(|| pointray_io::formats::read_point_cloud(&points_file));
     let cloud = cloud?;
     let peaks = StagePeaks::new(options.progress);
-    let (prepped, prep) = timed(|| prep_owned(cloud, &PrepOptions::default(), &peaks));
+    let (prepped, prep) = timed(|| prep_owned(cloud, &PrepSettings::default(), &peaks));
     let (patches, _) = prepped.map_err(|source| BenchError::Prep { case: label.into(), source })?;
     let store = options.cache.join(format!("scale-{label}.patches"));
     let (written, store_write) = timed(|| patch_store::write(&store, &patches));

@@ -1,13 +1,12 @@
 //! `pointray`: point clouds rendered as smooth surfaces by ray tracing.
 
 mod backend;
-mod boxes_arg;
 mod columns_arg;
 mod commands;
 mod patch_args;
+mod point_arg;
+mod prep_settings_args;
 mod progress;
-mod radius_arg;
-mod scan_arg;
 mod scene_input;
 mod setting_flag;
 mod view_args;

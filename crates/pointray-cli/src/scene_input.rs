@@ -10,7 +10,7 @@ use pointray_scene::scene_file::CameraSpec;
 use pointray_scene::{PointsScene, SceneFile, UpAxis};
 
 use crate::columns_arg::ColumnsArg;
-use crate::view_args::parse_finite;
+use crate::point_arg::parse_finite;
 
 #[derive(Args)]
 pub struct SceneInputArgs {

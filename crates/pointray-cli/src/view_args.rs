@@ -1,11 +1,11 @@
 //! The `fidelity` flags that choose the cameras.
 
 use clap::Args;
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use pointray_fidelity::ViewSpec;
 use pointray_fidelity::measure::DEFAULT_FOV_DEGREES;
 
-use crate::commands::prep::parse_point;
+use crate::point_arg::parse_finite;
 
 #[derive(Args)]
 pub struct ViewArgs {
@@ -80,13 +80,4 @@ fn parse_points(text: &str) -> Result<Points, String> {
 
 fn parse_vector(text: &str) -> Result<Vec3, String> {
     parse_finite(text).map(|p| p.as_vec3())
-}
-
-/// `x,y,z` with finite coordinates.
-pub fn parse_finite(text: &str) -> Result<DVec3, String> {
-    let point = parse_point(text)?;
-    if !point.is_finite() {
-        return Err(format!("`{text}` is not a finite point"));
-    }
-    Ok(point)
 }

@@ -2,7 +2,7 @@
 //! over pixel tiles.
 
 use glam::{UVec2, Vec3};
-use pointray_kernels::{PinholeCamera, Ray, camera_ray, sample_jitter};
+use pointray_kernels::{Camera, Ray, camera_ray, sample_jitter};
 use pointray_scene::{Frame, RenderSettings, Scene};
 use rayon::prelude::*;
 
@@ -71,7 +71,7 @@ impl CpuRenderer {
     }
 
     fn render_tile(&self, corner: UVec2, settings: &RenderSettings, counts: &mut RayCounts) -> Vec<Pixel> {
-        let camera = self.scene.camera.pinhole();
+        let camera = self.scene.camera;
         let size = UVec2::new(settings.width, settings.height);
         tile_pixels(corner, settings.width, settings.height)
             .map(|pixel| self.render_pixel(&camera, size, pixel, settings, counts))
@@ -81,7 +81,7 @@ impl CpuRenderer {
     /// The average over the pixel's samples; AOVs from sample 0.
     fn render_pixel(
         &self,
-        camera: &PinholeCamera,
+        camera: &Camera,
         size: UVec2,
         pixel: UVec2,
         settings: &RenderSettings,

@@ -2,24 +2,24 @@
 //! depth AOV is the distance along it, so it rebuilds each hit from the frame alone.
 
 use glam::UVec2;
-use pointray_kernels::{PinholeCamera, Ray, camera_ray, sample_jitter};
+use pointray_kernels::{Ray, camera_ray, sample_jitter};
 use pointray_scene::{Camera, Frame};
 
 /// The primary rays of one frame rendered by one camera.
 pub struct PixelRays {
-    pinhole: PinholeCamera,
+    camera: Camera,
     size: UVec2,
 }
 
 impl PixelRays {
     pub fn new(camera: &Camera, frame: &Frame) -> Self {
-        Self { pinhole: camera.pinhole(), size: UVec2::new(frame.width, frame.height) }
+        Self { camera: *camera, size: UVec2::new(frame.width, frame.height) }
     }
 
     /// The ray through `pixel`, an index in row order.
     pub fn ray(&self, pixel: usize) -> Ray {
         let width = self.size.x as usize;
         let coordinates = UVec2::new((pixel % width) as u32, (pixel / width) as u32);
-        camera_ray(&self.pinhole, self.size, coordinates, sample_jitter(0))
+        camera_ray(&self.camera, self.size, coordinates, sample_jitter(0))
     }
 }

@@ -76,7 +76,7 @@ impl FidelitySetup {
             points_file: None,
             mesh_file: None,
             backend,
-            k: patches.params.k,
+            k: patches.settings.k,
             acceptance: options.acceptance.name(),
             size: options.size,
             up: options.up.to_array(),

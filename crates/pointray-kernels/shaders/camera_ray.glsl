@@ -12,7 +12,7 @@ vec2 sample_jitter(uint s) {
     return fract(vec2(0.5) + float(s) * vec2(0.7548777, 0.5698403));
 }
 
-struct PinholeCamera {
+struct Camera {
     vec3 position;
     vec3 look_at;
     vec3 up;
@@ -20,7 +20,7 @@ struct PinholeCamera {
 };
 
 // The primary ray through `pixel + jitter` of an image of `size` pixels (top row first).
-Ray camera_ray(PinholeCamera camera, uvec2 size, uvec2 pixel, vec2 jitter) {
+Ray camera_ray(Camera camera, uvec2 size, uvec2 pixel, vec2 jitter) {
     vec3 forward = normalize(camera.look_at - camera.position);
     vec3 right = normalize(cross(forward, camera.up));
     vec3 true_up = cross(right, forward);

@@ -19,9 +19,9 @@ pub fn sample_jitter(sample: u32) -> Vec2 {
     x.fract_gl()
 }
 
-/// A pinhole camera as its scene describes it.
+/// A pinhole camera: what a scene file's `[camera]` gives and both renderers shoot through.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PinholeCamera {
+pub struct Camera {
     pub position: Vec3,
     pub look_at: Vec3,
     pub up: Vec3,
@@ -30,7 +30,7 @@ pub struct PinholeCamera {
 
 /// The primary ray through `pixel + jitter` of an image of `size` pixels (top row first).
 /// The direction is unit length.
-pub fn camera_ray(camera: &PinholeCamera, size: UVec2, pixel: UVec2, jitter: Vec2) -> Ray {
+pub fn camera_ray(camera: &Camera, size: UVec2, pixel: UVec2, jitter: Vec2) -> Ray {
     let forward = (camera.look_at - camera.position).normalize();
     let right = forward.cross(camera.up).normalize();
     let true_up = right.cross(forward);
@@ -47,8 +47,8 @@ pub fn camera_ray(camera: &PinholeCamera, size: UVec2, pixel: UVec2, jitter: Vec
 mod tests {
     use super::*;
 
-    fn camera() -> PinholeCamera {
-        PinholeCamera {
+    fn camera() -> Camera {
+        Camera {
             position: Vec3::new(0.0, 0.0, 5.0),
             look_at: Vec3::ZERO,
             up: Vec3::Y,

@@ -21,7 +21,7 @@ pub mod self_clearance;
 pub mod srgb_encode;
 
 pub use background::background;
-pub use camera_ray::{PinholeCamera, camera_ray, sample_jitter};
+pub use camera_ray::{Camera, camera_ray, sample_jitter};
 pub use face_forward::face_forward;
 pub use interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
 pub use intersect_patch::{PatchAcceptance, PatchHit, intersect_patch};

@@ -34,7 +34,7 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
     ),
     (
         "camera_ray.glsl",
-        "PinholeCamera camera = PinholeCamera(vec3(0.0, 0.0, 5.0), vec3(0.0), vec3(0.0, 1.0, 0.0), 45.0);
+        "Camera camera = Camera(vec3(0.0, 0.0, 5.0), vec3(0.0), vec3(0.0, 1.0, 0.0), 45.0);
              Ray ray = camera_ray(camera, uvec2(640u, 480u), gl_GlobalInvocationID.xy, sample_jitter(3u));
              result = ray.direction;",
     ),

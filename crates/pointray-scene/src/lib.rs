@@ -2,7 +2,6 @@
 //! the settings of one render and the frame that comes back.
 
 pub mod bounds;
-pub mod camera;
 mod checks;
 pub mod classification_palette;
 pub mod color_ramp;
@@ -27,7 +26,6 @@ pub mod scene;
 pub mod scene_file;
 pub mod transform_spec;
 
-pub use camera::Camera;
 pub use demo::{demo_scene, load_demo};
 pub use error::SceneError;
 pub use frame::Frame;
@@ -36,7 +34,8 @@ pub use light::Light;
 pub use load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
 pub use material::Material;
 pub use orbit::orbit_camera;
-pub use point_sets::{PointSetOrigin, PrepRequest, ReadRequest, clean_cache};
+pub use point_sets::{PointSetOrigin, ReadRequest, clean_cache};
+pub use pointray_kernels::Camera;
 pub use pointray_kernels::PatchAcceptance;
 pub use points_scene::{PointsScene, UpAxis};
 pub use render_frame::RenderFrame;

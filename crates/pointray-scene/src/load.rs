@@ -149,14 +149,13 @@ fn load_object(
             }
             (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
         }
-        ShapeSpec::Points { path, columns, .. } => {
+        ShapeSpec::Points { path, prep, columns } => {
             let path = existing_file(file, &key, path)?;
-            let request = spec.shape.prep_request().expect("a points object");
             let read = point_sets::ReadRequest {
                 columns: columns.clone(),
                 classification_colors: source == ColorSource::Classification,
             };
-            let (patches, origin) = point_sets::load_points_file(&path, &request, &read, options)
+            let (patches, origin) = point_sets::load_points_file(&path, prep.as_ref(), &read, options)
                 .map_err(|e| e.in_scene(&file.path, &key))?;
             (Geometry::Patches(Arc::new(patches)), Some(origin), file_stem(&path))
         }

@@ -5,11 +5,12 @@
 //! [[objects]]
 //! type = "points"          # a points file (any format pointray-io reads) or a .patches store
 //! path = "../../shared/data/points/bunny.ply"
-//! k = 9                    # optional prep overrides
+//! columns = "x,y,z,intensity,ring"  # for text and raw .bin files: what each column holds
+//! [objects.prep]           # optional: `pointray prep`'s settings, with its flags' names
+//! k = 9
 //! normal_k = 16
 //! radius = "adaptive"      # support radius: "cell" (the default), "paper" or "adaptive"
 //! remove_outliers = { neighbors = 8, sigmas = 2.0 }  # drop statistical outliers first
-//! columns = "x,y,z,intensity,ring"  # for text and raw .bin files: what each column holds
 //!
 //! [[objects]]
 //! type = "mesh"            # PLY or OBJ
@@ -40,13 +41,12 @@ use pointray_io::formats::ColumnSpec;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
-use pointray_surface::PrepError;
-use pointray_surface::input_validation::validate_options;
+use pointray_surface::input_validation::validate_settings;
+use pointray_surface::{PrepError, PrepSettings};
 
 use crate::checks;
 use crate::error::InvalidValue;
 use crate::material_spec::MaterialSpec;
-use crate::point_sets::PrepRequest;
 use crate::transform_spec::TransformSpec;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -62,10 +62,8 @@ pub struct ObjectSpec {
 pub enum ShapeSpec {
     Points {
         path: PathBuf,
-        k: Option<u32>,
-        normal_k: Option<u32>,
-        radius: Option<RadiusSpec>,
-        remove_outliers: Option<OutlierSpec>,
+        /// Absent for a patch store, which is already prepped.
+        prep: Option<PrepSettings>,
         #[serde(default, deserialize_with = "column_spec")]
         columns: Option<ColumnSpec>,
     },
@@ -93,40 +91,6 @@ pub enum ShapeSpec {
     },
 }
 
-/// `radius` of a points object: how prep picks each patch's support radius.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum RadiusSpec {
-    Paper,
-    Adaptive,
-    Cell,
-}
-
-/// `remove_outliers` of a points object: drop points whose mean distance to their
-/// `neighbors` nearest is more than `sigmas` standard deviations above the mean.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct OutlierSpec {
-    pub neighbors: u32,
-    pub sigmas: f32,
-}
-
-impl RadiusSpec {
-    pub fn mode(self) -> pointray_surface::RadiusMode {
-        match self {
-            Self::Paper => pointray_surface::RadiusMode::Paper,
-            Self::Adaptive => pointray_surface::RadiusMode::Adaptive,
-            Self::Cell => pointray_surface::RadiusMode::Cell,
-        }
-    }
-}
-
-impl OutlierSpec {
-    pub fn filter(self) -> pointray_surface::OutlierFilter {
-        pointray_surface::OutlierFilter { neighbors: self.neighbors, sigmas: self.sigmas }
-    }
-}
-
 impl ShapeSpec {
     /// The `type` string as written in the scene file.
     pub fn type_name(&self) -> &'static str {
@@ -138,19 +102,12 @@ impl ShapeSpec {
             Self::TorusPoints { .. } => "torus_points",
         }
     }
-}
 
-impl ShapeSpec {
-    /// A points object's prep settings; `None` for other shapes.
-    pub fn prep_request(&self) -> Option<PrepRequest> {
+    /// A points object's prep settings, the defaults where the file gives none.
+    pub fn prep_settings(&self) -> PrepSettings {
         match self {
-            Self::Points { k, normal_k, radius, remove_outliers, .. } => Some(PrepRequest {
-                k: *k,
-                normal_k: *normal_k,
-                radius: radius.map(RadiusSpec::mode),
-                remove_outliers: remove_outliers.map(OutlierSpec::filter),
-            }),
-            _ => None,
+            Self::Points { prep: Some(settings), .. } => *settings,
+            _ => PrepSettings::default(),
         }
     }
 
@@ -161,10 +118,11 @@ impl ShapeSpec {
                 if path.as_os_str().is_empty() {
                     return Err(InvalidValue::new("path", "must not be empty"));
                 }
-                let request = self.prep_request().expect("a points object");
-                validate_options(&request.prep_options()).map_err(|error| match error {
-                    PrepError::InvalidSetting { setting, problem } => InvalidValue::new(setting, problem),
-                    other => InvalidValue::new("type", other.to_string()),
+                validate_settings(&self.prep_settings()).map_err(|error| match error {
+                    PrepError::InvalidSetting { setting, problem } => {
+                        InvalidValue::new(format!("prep.{setting}"), problem)
+                    }
+                    other => InvalidValue::new("prep", other.to_string()),
                 })?;
             }
             Self::Mesh { path } if path.as_os_str().is_empty() => {

@@ -14,20 +14,11 @@ use std::path::{Path, PathBuf};
 use pointray_io::PointCloud;
 use pointray_io::formats::ColumnSpec;
 use pointray_surface::patch_store::{self, StoreError};
-use pointray_surface::{OutlierFilter, PatchSet, PrepError, PrepOptions, RadiusMode, prep, prep_owned};
+use pointray_surface::{PatchSet, PrepError, PrepSettings, prep, prep_owned};
 
 use crate::classification_palette::classification_color;
 use crate::error::SceneError;
 use crate::load::LoadOptions;
-
-/// The file's prep settings; `None` keeps `PrepOptions::default()`'s.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct PrepRequest {
-    pub k: Option<u32>,
-    pub normal_k: Option<u32>,
-    pub radius: Option<RadiusMode>,
-    pub remove_outliers: Option<OutlierFilter>,
-}
 
 /// How a points file is read before prep; it changes the points, so it is part of the
 /// cache key.
@@ -77,9 +68,8 @@ impl PointSetError {
                 path: scene,
                 key,
                 problem: format!(
-                    "{}: is a patch store, already prepped: `k`, `normal_k`, `radius`, \
-                     `remove_outliers`, `columns` and `color_source = \"classification\"` apply \
-                     only to points files",
+                    "{}: is a patch store, already prepped: `prep`, `columns` and \
+                     `color_source = \"classification\"` apply only to points files",
                     file.display()
                 ),
             },
@@ -97,25 +87,25 @@ impl PointSetError {
     }
 }
 
-/// Loads a patch store, or reads a points file as `read` says and preps it through the
-/// cache in `options.cache_dir`.
+/// Loads a patch store, or reads a points file as `read` says and preps it with `settings`
+/// (the defaults when `None`) through the cache in `options.cache_dir`.
 pub(crate) fn load_points_file(
     path: &Path,
-    request: &PrepRequest,
+    settings: Option<&PrepSettings>,
     read: &ReadRequest,
     options: &LoadOptions,
 ) -> Result<(PatchSet, PointSetOrigin), PointSetError> {
     if is_patch_store(path) {
-        if *request != PrepRequest::default() || *read != ReadRequest::default() {
+        if settings.is_some() || *read != ReadRequest::default() {
             return Err(PointSetError::StoreWithPrepSettings { file: path.to_path_buf() });
         }
         return Ok((patch_store::read(path).map_err(PointSetError::Store)?, PointSetOrigin::PatchStore));
     }
-    let prep_options = request.prep_options();
+    let settings = settings.copied().unwrap_or_default();
     let Some(cache_dir) = options.cache_dir else {
-        return Ok((prep_file(path, &prep_options, read, options)?, PointSetOrigin::Prepped { cache: None }));
+        return Ok((prep_file(path, &settings, read, options)?, PointSetOrigin::Prepped { cache: None }));
     };
-    let cache = cache_dir.join(cache_file_name(path, &prep_options, read).map_err(PointSetError::Input)?);
+    let cache = cache_dir.join(cache_file_name(path, &settings, read).map_err(PointSetError::Input)?);
     let regenerated_because = match patch_store::read(&cache) {
         Ok(patches) => return Ok((patches, PointSetOrigin::CacheHit { cache })),
         Err(StoreError::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => None,
@@ -124,7 +114,7 @@ pub(crate) fn load_points_file(
             Some(problem.to_string())
         }
     };
-    let patches = prep_file(path, &prep_options, read, options)?;
+    let patches = prep_file(path, &settings, read, options)?;
     // Made only now, so that a failed load leaves no empty cache folder behind.
     std::fs::create_dir_all(cache_dir)
         .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
@@ -139,14 +129,14 @@ pub(crate) fn load_points_file(
 /// Preps a procedural cloud with default settings; nothing is cached, since sampling and prep
 /// are cheap at demo sizes.
 pub(crate) fn prep_in_memory(cloud: &PointCloud, options: &LoadOptions) -> Result<PatchSet, PointSetError> {
-    let (patches, _report) = prep(cloud, &PrepOptions::default(), options.progress)
+    let (patches, _report) = prep(cloud, &PrepSettings::default(), options.progress)
         .map_err(|source| PointSetError::Prep { file: PathBuf::from("(procedural points)"), source })?;
     Ok(patches)
 }
 
 fn prep_file(
     path: &Path,
-    prep_options: &PrepOptions,
+    settings: &PrepSettings,
     read: &ReadRequest,
     options: &LoadOptions,
 ) -> Result<PatchSet, PointSetError> {
@@ -159,21 +149,10 @@ fn prep_file(
             .ok_or(PointSetError::NoClassifications { file: path.to_path_buf() })?;
         cloud.colors = Some(classes.iter().map(|&class| classification_color(class)).collect());
     }
-    let (patches, report) = prep_owned(cloud, prep_options, options.progress)
+    let (patches, report) = prep_owned(cloud, settings, options.progress)
         .map_err(|source| PointSetError::Prep { file: path.to_path_buf(), source })?;
     tracing::info!("prepped {}:\n{report}", path.display());
     Ok(patches)
-}
-
-impl PrepRequest {
-    pub fn prep_options(&self) -> PrepOptions {
-        let mut options = PrepOptions::default();
-        options.params.k = self.k.unwrap_or(options.params.k);
-        options.params.normal_k = self.normal_k.unwrap_or(options.params.normal_k);
-        options.radius_mode = self.radius.unwrap_or(options.radius_mode);
-        options.remove_outliers = self.remove_outliers;
-        options
-    }
 }
 
 /// Recognised by content, so that a store renamed to any extension still loads as one.
@@ -185,7 +164,7 @@ fn is_patch_store(path: &Path) -> bool {
 
 fn cache_file_name(
     input: &Path,
-    prep_options: &PrepOptions,
+    settings: &PrepSettings,
     read: &ReadRequest,
 ) -> Result<String, pointray_io::IoError> {
     let os_error = |source| pointray_io::IoError::os(input, source);
@@ -200,8 +179,8 @@ fn cache_file_name(
     key.write(canonical.as_os_str().as_encoded_bytes());
     key.write(&metadata.len().to_le_bytes());
     key.write(&modified.to_le_bytes());
-    // Debug covers every option, including ones added later, without listing them here.
-    key.write(format!("{prep_options:?}").as_bytes());
+    // Debug covers every setting, including ones added later, without listing them here.
+    key.write(format!("{settings:?}").as_bytes());
     // Left out when default, so that caches of files read the plain way stay valid.
     if *read != ReadRequest::default() {
         key.write(format!("{read:?}").as_bytes());

@@ -88,14 +88,7 @@ impl PointsScene {
             name: None,
             transform: self.up.upright(),
             material: MaterialSpec { color_source: Some(self.color_source), ..MaterialSpec::default() },
-            shape: ShapeSpec::Points {
-                path: points.to_path_buf(),
-                k: None,
-                normal_k: None,
-                radius: None,
-                remove_outliers: None,
-                columns: None,
-            },
+            shape: ShapeSpec::Points { path: points.to_path_buf(), prep: None, columns: None },
         };
         let floor = ObjectSpec {
             name: None,

@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use pointray_io::formats::ply;
 use pointray_surface::peak_memory::{StagePeaks, current_rss};
-use pointray_surface::{NoProgress, PrepOptions, patch_store, prep_owned, sample_mesh};
+use pointray_surface::{NoProgress, PrepSettings, patch_store, prep_owned, sample_mesh};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
@@ -31,7 +31,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("rayon threads: {}", rayon::current_num_threads());
     let (before, points) = (current_rss().unwrap_or(0), cloud.len());
     let peaks = StagePeaks::new(&NoProgress);
-    let (patches, report) = prep_owned(cloud, &PrepOptions::default(), &peaks)?;
+    let (patches, report) = prep_owned(cloud, &PrepSettings::default(), &peaks)?;
     println!("{report}");
     print_peaks(&peaks, before, points);
     let directory = tempfile::tempdir()?;

@@ -36,7 +36,8 @@ use pointray_kernels::TangentFrame;
 /// It leaves no pinholes: the few pixels in 100,000 that the mesh covers and it does not all
 /// lie on the mesh's silhouette, where the paper's larger disks bulge past it instead
 /// (bench/FIDELITY.md, "Cell margin").
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum RadiusMode {
     /// SPEC.md §2.3: the tangential distance to the farthest of the `k` neighbours.
     Paper,
@@ -47,6 +48,26 @@ pub enum RadiusMode {
     /// and never more than the paper's radius.
     #[default]
     Cell,
+}
+
+impl RadiusMode {
+    /// The code stored in the patch store's header.
+    pub fn code(self) -> u32 {
+        match self {
+            Self::Paper => 0,
+            Self::Adaptive => 1,
+            Self::Cell => 2,
+        }
+    }
+
+    pub fn from_code(code: u32) -> Option<Self> {
+        match code {
+            0 => Some(Self::Paper),
+            1 => Some(Self::Adaptive),
+            2 => Some(Self::Cell),
+            _ => None,
+        }
+    }
 }
 
 /// The cell radius is this multiple of the cell's farthest corner: neighbouring patches lie

@@ -9,9 +9,8 @@ use pointray_io::MemoryBudget;
 use crate::geometry_range::{CLOUD_EXTENTS, extent_problem};
 
 use crate::outlier_removal::OutlierFilter;
-use crate::patch_set::PrepParams;
-use crate::prep::PrepOptions;
 use crate::prep_error::PrepError;
+use crate::prep_settings::PrepSettings;
 
 /// Fewer neighbours than this cannot give a PCA normal or a plane fit.
 const MIN_NEIGHBOURS: u32 = 3;
@@ -34,19 +33,8 @@ const PREP_BYTES_PER_POINT: u64 = 400;
 
 /// Every prep setting, whichever route it came by (flags, a scene file, code): the one place
 /// they are checked.
-pub fn validate_options(options: &PrepOptions) -> Result<(), PrepError> {
-    validate_params(&options.params)?;
-    if let Some(sensor) = options.sensor.filter(|sensor| !sensor.is_finite()) {
-        return invalid("sensor", format!("must be a finite position, got {sensor}"));
-    }
-    if let Some(filter) = &options.remove_outliers {
-        validate_outlier_filter(filter)?;
-    }
-    Ok(())
-}
-
-pub fn validate_params(params: &PrepParams) -> Result<(), PrepError> {
-    for (name, value) in [("k", params.k), ("normal_k", params.normal_k)] {
+pub fn validate_settings(settings: &PrepSettings) -> Result<(), PrepError> {
+    for (name, value) in [("k", settings.k), ("normal_k", settings.normal_k)] {
         if !(MIN_NEIGHBOURS..=MAX_NEIGHBOURS).contains(&value) {
             return invalid(
                 name,
@@ -54,14 +42,23 @@ pub fn validate_params(params: &PrepParams) -> Result<(), PrepError> {
             );
         }
     }
-    if !(params.duplicate_tolerance >= 0.0 && params.duplicate_tolerance.is_finite()) {
+    if !(settings.duplicate_tolerance >= 0.0 && settings.duplicate_tolerance.is_finite()) {
         return invalid(
             "duplicate_tolerance",
-            format!("must be finite and >= 0, got {}", params.duplicate_tolerance),
+            format!("must be finite and >= 0, got {}", settings.duplicate_tolerance),
         );
     }
-    if !(params.disk_scale > 0.0 && params.disk_scale <= MAX_DISK_SCALE) {
-        return invalid("disk_scale", format!("must be in (0, {MAX_DISK_SCALE}], got {}", params.disk_scale));
+    if !(settings.disk_scale > 0.0 && settings.disk_scale <= MAX_DISK_SCALE) {
+        return invalid(
+            "disk_scale",
+            format!("must be in (0, {MAX_DISK_SCALE}], got {}", settings.disk_scale),
+        );
+    }
+    if let Some(sensor) = settings.sensor.filter(|sensor| !sensor.is_finite()) {
+        return invalid("sensor", format!("must be a finite position, got {sensor}"));
+    }
+    if let Some(filter) = &settings.remove_outliers {
+        validate_outlier_filter(filter)?;
     }
     Ok(())
 }
@@ -82,8 +79,8 @@ fn validate_outlier_filter(filter: &OutlierFilter) -> Result<(), PrepError> {
 
 /// Whether prepping `points` points with `params` fits in `budget`, checked before any stage
 /// allocates.
-pub fn validate_size(points: usize, params: &PrepParams, budget: &MemoryBudget) -> Result<(), PrepError> {
-    let neighbours = u64::from(params.k.max(params.normal_k));
+pub fn validate_size(points: usize, settings: &PrepSettings, budget: &MemoryBudget) -> Result<(), PrepError> {
+    let neighbours = u64::from(settings.k.max(settings.normal_k));
     budget
         .check(points as u64, PREP_BYTES_PER_POINT + 8 * neighbours, "points to prep")
         .map_err(|shortfall| PrepError::TooLarge { problem: shortfall.to_string() })
@@ -175,43 +172,46 @@ mod tests {
 
     #[test]
     fn refuses_bad_settings() {
-        let few = PrepParams { k: 2, ..PrepParams::default() };
-        assert!(matches!(validate_params(&few), Err(PrepError::InvalidSetting { setting: "k", .. })));
-        let many = PrepParams { normal_k: 4_000_000_000, ..PrepParams::default() };
-        assert!(matches!(validate_params(&many), Err(PrepError::InvalidSetting { setting: "normal_k", .. })));
-        let nan = PrepParams { duplicate_tolerance: f32::NAN, ..PrepParams::default() };
-        assert!(matches!(validate_params(&nan), Err(PrepError::InvalidSetting { .. })));
-        assert_eq!(validate_params(&PrepParams::default()), Ok(()));
+        let few = PrepSettings { k: 2, ..PrepSettings::default() };
+        assert!(matches!(validate_settings(&few), Err(PrepError::InvalidSetting { setting: "k", .. })));
+        let many = PrepSettings { normal_k: 4_000_000_000, ..PrepSettings::default() };
+        assert!(matches!(
+            validate_settings(&many),
+            Err(PrepError::InvalidSetting { setting: "normal_k", .. })
+        ));
+        let nan = PrepSettings { duplicate_tolerance: f32::NAN, ..PrepSettings::default() };
+        assert!(matches!(validate_settings(&nan), Err(PrepError::InvalidSetting { .. })));
+        assert_eq!(validate_settings(&PrepSettings::default()), Ok(()));
     }
 
     #[test]
     fn refuses_a_sensor_off_the_map_and_a_bad_outlier_filter() {
         let nan_sensor =
-            PrepOptions { sensor: Some(DVec3::new(f64::NAN, 0.0, 0.0)), ..PrepOptions::default() };
+            PrepSettings { sensor: Some(DVec3::new(f64::NAN, 0.0, 0.0)), ..PrepSettings::default() };
         assert!(matches!(
-            validate_options(&nan_sensor),
+            validate_settings(&nan_sensor),
             Err(PrepError::InvalidSetting { setting: "sensor", .. })
         ));
         for (neighbors, sigmas) in [(0, 1.0), (8, f32::NAN), (8, -1.0)] {
-            let filter = PrepOptions {
+            let filter = PrepSettings {
                 remove_outliers: Some(OutlierFilter { neighbors, sigmas }),
-                ..PrepOptions::default()
+                ..PrepSettings::default()
             };
-            assert!(validate_options(&filter).is_err(), "K = {neighbors}, N = {sigmas}");
+            assert!(validate_settings(&filter).is_err(), "K = {neighbors}, N = {sigmas}");
         }
-        let fine = PrepOptions {
+        let fine = PrepSettings {
             remove_outliers: Some(OutlierFilter { neighbors: 8, sigmas: 2.0 }),
             sensor: Some(DVec3::ONE),
-            ..PrepOptions::default()
+            ..PrepSettings::default()
         };
-        assert_eq!(validate_options(&fine), Ok(()));
+        assert_eq!(validate_settings(&fine), Ok(()));
     }
 
     #[test]
     fn refuses_a_cloud_too_large_for_memory_and_says_what_fits() {
         let budget = MemoryBudget { bytes: 1 << 30 };
-        assert_eq!(validate_size(1_000_000, &PrepParams::default(), &budget), Ok(()));
-        let error = validate_size(4_000_000_000, &PrepParams::default(), &budget).unwrap_err().to_string();
+        assert_eq!(validate_size(1_000_000, &PrepSettings::default(), &budget), Ok(()));
+        let error = validate_size(4_000_000_000, &PrepSettings::default(), &budget).unwrap_err().to_string();
         assert!(error.contains("4000000000 points to prep") && error.contains("at most about"), "{error}");
     }
 }

@@ -9,7 +9,8 @@ use rayon::prelude::*;
 use crate::neighbors::k_nearest;
 
 /// The settings of the filter (PCL's `StatisticalOutlierRemoval`, with the same meaning).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct OutlierFilter {
     /// `K`: how many nearest neighbours each point's mean distance is taken over.
     pub neighbors: u32,

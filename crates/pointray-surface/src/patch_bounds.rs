@@ -9,7 +9,8 @@ use pointray_kernels::{Aabb, Patch, PatchHot};
 use crate::quadratic_fit::evaluate;
 
 /// Which box each patch gets.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum BoxKind {
     /// The cube of half-size `d_i` around `p_i`, as in the paper.
     Cube,

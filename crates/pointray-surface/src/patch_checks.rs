@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use crate::PatchSet;
 use crate::geometry_range::{box_in_range, coordinates_in_range};
-use crate::input_validation::validate_params;
+use crate::input_validation::validate_settings;
 
 impl PatchSet {
     /// `Ok` when the set is consistent and in range; else the first problem found.
@@ -24,7 +24,7 @@ impl PatchSet {
         if !self.offset.is_finite() {
             return Err(format!("the recentring offset {} is not finite", self.offset));
         }
-        validate_params(&self.params).map_err(|e| format!("stored settings: {e}"))?;
+        validate_settings(&self.settings).map_err(|e| format!("stored settings: {e}"))?;
         if let Some(i) = self.aabbs.par_iter().position_first(|aabb| !box_in_range(aabb)) {
             return Err(format!("box {i} is not finite, not ordered, or beyond the coordinate range"));
         }

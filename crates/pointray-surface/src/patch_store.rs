@@ -1,27 +1,29 @@
 //! The patch store: the versioned binary file that caches a `PatchSet`.
 //!
-//! All numbers are little-endian. Version 4 layout:
+//! All numbers are little-endian. Version 5 layout:
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRPATCH\0"` |
-//! | 8 | 4 | format version, u32 = 4 |
-//! | 12 | 4 | header size in bytes, u32 = 160 |
+//! | 8 | 4 | format version, u32 = 5 |
+//! | 12 | 4 | header size in bytes, u32 = 208 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
-//! | 24 | 4 | `k`, u32 |
-//! | 28 | 4 | `normal_k`, u32 |
-//! | 32 | 4 | box kind, u32 (0 cube, 1 tight) |
-//! | 36 | 4 | duplicate tolerance (fraction of the bbox diagonal), f32 |
-//! | 40 | 24 | bounds of all boxes: min xyz, max xyz, f32 x 6 (local coordinates) |
-//! | 64 | 24 | offset, f64 x 3 (`input = local + offset`) |
-//! | 88 | 64 | section table: (byte offset u64, byte length u64) for aabbs, hot, cold, neighbours |
-//! | 152 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
-//! | 156 | 4 | disk scale, f32 (`PrepParams::disk_scale`) |
-//! | 160 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
+//! | 24 | 24 | offset, f64 x 3 (`input = local + offset`) |
+//! | 48 | 24 | bounds of all boxes: min xyz, max xyz, f32 x 6 (local coordinates) |
+//! | 72 | 64 | section table: (byte offset u64, byte length u64) for aabbs, hot, cold, neighbours |
+//! | 136 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
+//! | 140 | 68 | the `PrepSettings` the patches were made with (below) |
+//! | 208 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
 //! | 16-aligned | 36 n | hot: `PatchHot` (origin, d_u: f32 x 4; octahedral normal, tangent angle and d_v/d_u, c0..c5 as scaled halves: u32 x 5) |
 //! | 16-aligned | 12 n | cold: `PatchCold` (RGBA8 u32, intensity f32, colour reach f32) |
 //! | 16-aligned | 4 m n | neighbours: `m` patch indices per patch (u32, `NO_NEIGHBOR` = unused) |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
+//!
+//! The settings: `k`, `normal_k` (u32), recompute normals (u32, 0 or 1), radius (u32: 0 paper,
+//! 1 adaptive, 2 cell), disk scale (f32), boxes (u32: 0 cube, 1 tight), scan (u32: 0 auto,
+//! 1 off), duplicate tolerance (f32, a fraction of the bbox diagonal), outlier filter `K`
+//! (u32, 0 = none) and `N` (f32), sensor given (u32, 0 or 1), then at 184 the sensor, f64 x 3
+//! (zero when not given).
 //!
 //! Gaps between sections (to the next multiple of 16) are zero. The record layouts are
 //! those of `pointray_kernels::layout`, so the sections can be uploaded to the GPU as
@@ -34,11 +36,14 @@ use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 
+use crate::density_radius::RadiusMode;
+use crate::outlier_removal::OutlierFilter;
 use crate::patch_bounds::BoxKind;
-use crate::patch_set::{PatchSet, PrepParams};
+use crate::patch_set::PatchSet;
+use crate::prep_settings::{PrepSettings, ScanMode};
 
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 const SECTION_COUNT: usize = 4;
 const HEADER_BYTES: usize = std::mem::size_of::<Header>();
 const CHECKSUM_BYTES: usize = 4;
@@ -78,16 +83,31 @@ struct Header {
     version: u32,
     header_bytes: u32,
     point_count: u64,
-    k: u32,
-    normal_k: u32,
-    box_kind: u32,
-    duplicate_tolerance: f32,
+    offset: [f64; 3],
     bounds_min: [f32; 3],
     bounds_max: [f32; 3],
-    offset: [f64; 3],
     sections: [Section; SECTION_COUNT],
     neighbor_slots: u32,
+    settings: StoredSettings,
+    sensor: [f64; 3],
+}
+
+/// `PrepSettings` as the header holds it, but for the sensor, which follows at an 8-byte
+/// boundary.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct StoredSettings {
+    k: u32,
+    normal_k: u32,
+    recompute_normals: u32,
+    radius: u32,
     disk_scale: f32,
+    boxes: u32,
+    scan: u32,
+    duplicate_tolerance: f32,
+    outlier_neighbors: u32,
+    outlier_sigmas: f32,
+    sensor_given: u32,
 }
 
 /// Where each section lies for `n` patches with `neighbor_slots` colour neighbours each;
@@ -184,16 +204,54 @@ fn header_for(patches: &PatchSet, layout: &Layout, neighbor_slots: u32) -> Heade
         version: FORMAT_VERSION,
         header_bytes: HEADER_BYTES as u32,
         point_count: patches.len() as u64,
-        k: patches.params.k,
-        normal_k: patches.params.normal_k,
-        box_kind: patches.params.box_kind.code(),
-        duplicate_tolerance: patches.params.duplicate_tolerance,
+        offset: patches.offset.to_array(),
         bounds_min: bounds.min,
         bounds_max: bounds.max,
-        offset: patches.offset.to_array(),
         sections: layout.sections,
         neighbor_slots,
-        disk_scale: patches.params.disk_scale,
+        settings: StoredSettings::of(&patches.settings),
+        sensor: patches.settings.sensor.unwrap_or_default().to_array(),
+    }
+}
+
+impl StoredSettings {
+    fn of(settings: &PrepSettings) -> Self {
+        let filter = settings.remove_outliers;
+        Self {
+            k: settings.k,
+            normal_k: settings.normal_k,
+            recompute_normals: settings.recompute_normals.into(),
+            radius: settings.radius.code(),
+            disk_scale: settings.disk_scale,
+            boxes: settings.boxes.code(),
+            scan: settings.scan.code(),
+            duplicate_tolerance: settings.duplicate_tolerance,
+            outlier_neighbors: filter.map_or(0, |f| f.neighbors),
+            outlier_sigmas: filter.map_or(0.0, |f| f.sigmas),
+            sensor_given: settings.sensor.is_some().into(),
+        }
+    }
+
+    /// The settings, or which code no version-5 store holds.
+    fn decode(&self, sensor: [f64; 3]) -> Result<PrepSettings, &'static str> {
+        let flag = |value: u32, what| match value {
+            0 => Ok(false),
+            1 => Ok(true),
+            _ => Err(what),
+        };
+        Ok(PrepSettings {
+            k: self.k,
+            normal_k: self.normal_k,
+            recompute_normals: flag(self.recompute_normals, "unknown recompute-normals flag")?,
+            sensor: flag(self.sensor_given, "unknown sensor flag")?.then(|| DVec3::from_array(sensor)),
+            remove_outliers: (self.outlier_neighbors != 0)
+                .then_some(OutlierFilter { neighbors: self.outlier_neighbors, sigmas: self.outlier_sigmas }),
+            radius: RadiusMode::from_code(self.radius).ok_or("unknown radius mode")?,
+            disk_scale: self.disk_scale,
+            boxes: BoxKind::from_code(self.boxes).ok_or("unknown box kind")?,
+            scan: ScanMode::from_code(self.scan).ok_or("unknown scan mode")?,
+            duplicate_tolerance: self.duplicate_tolerance,
+        })
     }
 }
 
@@ -231,19 +289,13 @@ pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
     if header.sections != layout.sections || header.header_bytes as usize != HEADER_BYTES {
         return Err(malformed("the section table does not match the point count"));
     }
-    let box_kind = BoxKind::from_code(header.box_kind).ok_or_else(|| malformed("unknown box kind"))?;
+    let settings = header.settings.decode(header.sensor).map_err(malformed)?;
     let section = |i: usize| {
         let Section { offset, length } = layout.sections[i];
         &bytes[offset as usize..(offset + length) as usize]
     };
     let patches = PatchSet {
-        params: PrepParams {
-            k: header.k,
-            normal_k: header.normal_k,
-            box_kind,
-            duplicate_tolerance: header.duplicate_tolerance,
-            disk_scale: header.disk_scale,
-        },
+        settings,
         offset: DVec3::from_array(header.offset),
         aabbs: bytemuck::pod_collect_to_vec(section(0)),
         hot: bytemuck::pod_collect_to_vec(section(1)),
@@ -298,18 +350,20 @@ mod tests {
     use super::*;
 
     #[test]
-    fn header_is_160_bytes_and_sections_are_aligned() {
-        assert_eq!(HEADER_BYTES, 160);
+    fn header_is_208_bytes_and_sections_are_aligned() {
+        assert_eq!(HEADER_BYTES, 208);
+        assert_eq!(std::mem::offset_of!(Header, settings), 140);
+        assert_eq!(std::mem::offset_of!(Header, sensor), 184);
         let layout = Layout::new(3, COLOR_NEIGHBORS as u32).unwrap();
         assert!(layout.sections.iter().all(|s| s.offset % 16 == 0));
-        assert_eq!(layout.sections[0], Section { offset: 160, length: 72 });
-        assert_eq!(layout.sections[1], Section { offset: 240, length: 108 });
-        assert_eq!(layout.sections[2], Section { offset: 352, length: 36 });
-        assert_eq!(layout.sections[3], Section { offset: 400, length: 144 });
-        assert_eq!(layout.total_bytes, 548);
+        assert_eq!(layout.sections[0], Section { offset: 208, length: 72 });
+        assert_eq!(layout.sections[1], Section { offset: 288, length: 108 });
+        assert_eq!(layout.sections[2], Section { offset: 400, length: 36 });
+        assert_eq!(layout.sections[3], Section { offset: 448, length: 144 });
+        assert_eq!(layout.total_bytes, 596);
         let without = Layout::new(3, 0).unwrap();
-        assert_eq!(without.sections[3], Section { offset: 400, length: 0 });
-        assert_eq!(without.total_bytes, 404);
+        assert_eq!(without.sections[3], Section { offset: 448, length: 0 });
+        assert_eq!(without.total_bytes, 452);
         assert!(Layout::new(u64::MAX, 0).is_none());
     }
 }

@@ -12,17 +12,18 @@ use rayon::prelude::*;
 use crate::cold_records::{cold_records, color_neighbor_table};
 use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii, cell_radii};
 use crate::duplicates::merge_duplicates;
-use crate::input_validation::{validate_options, validate_positions, validate_size};
+use crate::input_validation::{validate_positions, validate_settings, validate_size};
 use crate::morton::morton_order;
 use crate::neighbors::{Neighbors, k_nearest};
 use crate::normals::pca_normals;
 use crate::orientation::{orient_consistently, orient_toward};
 use crate::outlier_removal::OutlierFilter;
 use crate::patch_bounds::patch_box;
-use crate::patch_set::{PatchSet, PrepParams};
+use crate::patch_set::PatchSet;
 use crate::prep_error::PrepError;
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::prep_report::{FitCounts, PrepReport, RadiusFallbacks};
+use crate::prep_settings::PrepSettings;
 use crate::quadratic_fit::{FitKind, PatchFit, fit_patch};
 use crate::scan_prep::{scan_shaped, scan_structure};
 use crate::shaped_patches::{ShapedPatches, count_fits};
@@ -36,57 +37,30 @@ const WENDLAND_SCALE: f32 = 1.1;
 /// Points per progress report in the per-point stages.
 const PROGRESS_CHUNK: usize = 16_384;
 
-/// Changes whenever `prep` makes different patches from the same input and options (the
+/// Changes whenever `prep` makes different patches from the same input and settings (the
 /// cell margin went from 1.15 to 1.5 in revision 2; revision 3 brought scan-aware patches
 /// and the packed record; in revision 4 orientation joins blocks, which can turn a different
-/// set of normals), so that caches keyed on the options also key on this and never serve
+/// set of normals), so that caches keyed on the settings also key on this and never serve
 /// patches of an older rule.
 pub const PREP_REVISION: u32 = 4;
-
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct PrepOptions {
-    pub params: PrepParams,
-    /// Compute PCA normals even when the input carries normals.
-    pub recompute_normals: bool,
-    /// Orient normals toward this point (input coordinates); overrides the cloud's own
-    /// sensor position.
-    pub sensor: Option<DVec3>,
-    /// Drop statistical outliers before fitting; `None` keeps every point.
-    pub remove_outliers: Option<OutlierFilter>,
-    /// How the support radius `d_i` is chosen where the scan structure is not used.
-    pub radius_mode: RadiusMode,
-    /// Whether a LiDAR scan's line structure shapes the patches.
-    pub scan: ScanMode,
-}
-
-/// Whether `prep` uses a LiDAR scan's structure (`scan_lines`): scan lines from a ring field
-/// or recovered from elevations, seen from a known sensor.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum ScanMode {
-    /// Scan-aware patches whenever the sensor is known and its lines can be found.
-    #[default]
-    Auto,
-    /// Every cloud as unstructured points.
-    Off,
-}
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(
     cloud: &PointCloud,
-    options: &PrepOptions,
+    settings: &PrepSettings,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
-    prep_cloud(Cow::Borrowed(cloud), options, progress)
+    prep_cloud(Cow::Borrowed(cloud), settings, progress)
 }
 
 /// As `prep`, taking the cloud so that its f64 positions (24 bytes a point) are freed as
 /// soon as the recentred f32 copy exists: the way to prep the largest clouds.
 pub fn prep_owned(
     cloud: PointCloud,
-    options: &PrepOptions,
+    settings: &PrepSettings,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
-    prep_cloud(Cow::Owned(cloud), options, progress)
+    prep_cloud(Cow::Owned(cloud), settings, progress)
 }
 
 /// Each array is dropped as soon as its last stage is done, so that the peak (in the
@@ -94,14 +68,13 @@ pub fn prep_owned(
 /// the patches.
 fn prep_cloud(
     mut cloud: Cow<'_, PointCloud>,
-    options: &PrepOptions,
+    settings: &PrepSettings,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
-    let params = options.params;
-    let (k, normal_k) = (params.k as usize, params.normal_k as usize);
+    let (k, normal_k) = (settings.k as usize, settings.normal_k as usize);
     let mut clock = StageClock { progress, times: Vec::new() };
     let count = cloud.len();
-    clock.run(Stage::Validate, count, || validate(&cloud, options))?;
+    clock.run(Stage::Validate, count, || validate(&cloud, settings))?;
     let (offset, recentred) = clock.run(Stage::Recentre, count, || recentre(&cloud.positions));
     // Only the attributes are read from here on (gathered through `source`).
     if let Cow::Owned(owned) = &mut cloud {
@@ -112,13 +85,13 @@ fn prep_cloud(
     let sorted = gather(&recentred, &order);
     drop(recentred);
     let merge = clock.run(Stage::MergeDuplicates, count, || {
-        merge_duplicates(&sorted, params.duplicate_tolerance * diagonal(&sorted))
+        merge_duplicates(&sorted, settings.duplicate_tolerance * diagonal(&sorted))
     });
     if merge.kept.len() < k + 1 {
         return Err(PrepError::TooFewDistinctPoints { found: merge.kept.len(), k });
     }
     let (distinct, merged_duplicates) = (merge.kept.len(), merge.merged_count);
-    let kept = match &options.remove_outliers {
+    let kept = match &settings.remove_outliers {
         Some(filter) => clock
             .run(Stage::OutlierRemoval, merge.kept.len(), || keep_inliers(filter, &sorted, &merge.kept, k))?,
         None => merge.kept,
@@ -133,20 +106,28 @@ fn prep_cloud(
     let patches = points.len();
     let mut neighbors = clock.run(Stage::Neighbours, patches, || k_nearest(&points, k.max(normal_k)));
     let scan =
-        clock.run(Stage::ScanLines, patches, || scan_structure(&points, cloud, &source, options, offset));
+        clock.run(Stage::ScanLines, patches, || scan_structure(&points, cloud, &source, settings, offset));
+    let colors = has_point_colors(cloud);
+    // Past the shaping only the colour table reads the neighbours; the scan route never
+    // reads them, and the unstructured route narrows them before its fit's peak.
+    let kept_neighbors = color_table_width(colors, k);
     let shaped = match scan {
-        Some(scan) => scan_shaped(&points, scan, params.disk_scale, &mut clock),
-        None => unstructured_shaped(&points, &mut neighbors, cloud, &source, options, offset, &mut clock),
+        Some(scan) => {
+            neighbors.narrow(kept_neighbors);
+            scan_shaped(&points, scan, settings.disk_scale, &mut clock)
+        }
+        None => {
+            let input = UnstructuredInput { cloud, source: &source, settings, offset, kept_neighbors };
+            unstructured_shaped(&points, &mut neighbors, &input, &mut clock)
+        }
     };
     drop(points);
     let hot = shaped.hot;
-    let colors = has_point_colors(cloud);
-    neighbors.narrow(color_table_width(colors, k));
     let (cold, color_neighbors) = clock.run(Stage::ColdRecords, patches, || {
         (gather_cold(cloud, &source, &shaped.color_radii), color_neighbor_table(neighbors, colors))
     });
     let aabbs: Vec<Aabb> =
-        clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, params.box_kind)).collect());
+        clock.run(Stage::Boxes, patches, || hot.par_iter().map(|h| patch_box(h, settings.boxes)).collect());
     let report = PrepReport {
         input_points: count,
         merged_duplicates,
@@ -161,7 +142,7 @@ fn prep_cloud(
         patch_sources: source,
         stage_times: clock.times,
     };
-    Ok((PatchSet { params, offset, aabbs, hot, cold, color_neighbors }, report))
+    Ok((PatchSet { settings: *settings, offset, aabbs, hot, cold, color_neighbors }, report))
 }
 
 /// Patches of unstructured points: PCA normals oriented over the neighbour graph or toward a
@@ -169,25 +150,23 @@ fn prep_cloud(
 fn unstructured_shaped(
     points: &[Vec3],
     neighbors: &mut Neighbors,
-    cloud: &PointCloud,
-    source: &[u32],
-    options: &PrepOptions,
-    offset: DVec3,
+    input: &UnstructuredInput,
     clock: &mut StageClock,
 ) -> ShapedPatches {
-    let params = options.params;
-    let (k, patches) = (params.k as usize, points.len());
+    let UnstructuredInput { cloud, source, settings, offset, kept_neighbors } = *input;
+    let (k, patches) = (settings.k as usize, points.len());
     let (mut normals, replaced_input_normals) =
-        clock.run(Stage::Normals, patches, || normals_for(points, neighbors, cloud, source, options));
-    clock
-        .run(Stage::Orientation, patches, || orient(points, &mut normals, neighbors, cloud, options, offset));
+        clock.run(Stage::Normals, patches, || normals_for(points, neighbors, cloud, source, settings));
+    clock.run(Stage::Orientation, patches, || {
+        orient(points, &mut normals, neighbors, cloud, settings, offset)
+    });
     let (packed_frames, frames) = clock.run(Stage::Frames, patches, || stored_frames(&normals));
     let radii = clock.run(Stage::SupportRadii, patches, || {
-        support_radii(points, &normals, &frames, neighbors, k, options.radius_mode)
+        support_radii(points, &normals, &frames, neighbors, k, settings.radius)
     });
     drop(normals); // the frames hold them
     // The fit reads only k neighbours: the rest of the table is freed before its peak.
-    neighbors.narrow(color_table_width(has_point_colors(cloud), k));
+    neighbors.narrow(kept_neighbors);
     let progress = clock.progress;
     let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
         fit_patches(
@@ -196,7 +175,7 @@ fn unstructured_shaped(
             &radii.chosen,
             neighbors,
             k,
-            params.disk_scale,
+            settings.disk_scale,
             progress,
         )
     });
@@ -211,15 +190,27 @@ fn unstructured_shaped(
     }
 }
 
+/// What the unstructured route reads besides the points and their neighbours.
+#[derive(Clone, Copy)]
+struct UnstructuredInput<'a> {
+    cloud: &'a PointCloud,
+    /// The input index of each point.
+    source: &'a [u32],
+    settings: &'a PrepSettings,
+    offset: DVec3,
+    /// Neighbours per point kept past the support radii (`color_table_width`).
+    kept_neighbors: usize,
+}
+
 /// The neighbours kept past the fit: `k` for the fit, and the colour table's width when the
 /// points carry colours.
 fn color_table_width(colors: bool, k: usize) -> usize {
     if colors { k.max(COLOR_NEIGHBORS) } else { k }
 }
 
-fn validate(cloud: &PointCloud, options: &PrepOptions) -> Result<(), PrepError> {
-    validate_options(options)?;
-    validate_size(cloud.len(), &options.params, &MemoryBudget::of_this_machine())?;
+fn validate(cloud: &PointCloud, settings: &PrepSettings) -> Result<(), PrepError> {
+    validate_settings(settings)?;
+    validate_size(cloud.len(), settings, &MemoryBudget::of_this_machine())?;
     let expected = cloud.len();
     let lengths = [
         ("normals", cloud.normals.as_ref().map(Vec::len)),
@@ -231,7 +222,7 @@ fn validate(cloud: &PointCloud, options: &PrepOptions) -> Result<(), PrepError> 
             return Err(PrepError::AttributeLength { attribute, found, expected });
         }
     }
-    validate_positions(&cloud.positions, options.params.k as usize)
+    validate_positions(&cloud.positions, settings.k as usize)
 }
 
 /// Recentres on the bounding-box centre in f64, then drops to f32: geo-referenced
@@ -261,10 +252,10 @@ fn normals_for(
     neighbors: &Neighbors,
     cloud: &PointCloud,
     source: &[u32],
-    options: &PrepOptions,
+    settings: &PrepSettings,
 ) -> (Vec<Vec3>, usize) {
-    let normal_k = options.params.normal_k as usize;
-    let input = cloud.normals.as_ref().filter(|_| !options.recompute_normals);
+    let normal_k = settings.normal_k as usize;
+    let input = cloud.normals.as_ref().filter(|_| !settings.recompute_normals);
     let Some(input) = input else {
         return (pca_normals(points, neighbors, normal_k), 0);
     };
@@ -288,12 +279,12 @@ fn orient(
     normals: &mut [Vec3],
     neighbors: &Neighbors,
     cloud: &PointCloud,
-    options: &PrepOptions,
+    settings: &PrepSettings,
     offset: DVec3,
 ) {
-    if let Some(sensor) = options.sensor.or(cloud.sensor_position) {
+    if let Some(sensor) = settings.sensor.or(cloud.sensor_position) {
         orient_toward(points, normals, (sensor - offset).as_vec3());
-    } else if options.recompute_normals || cloud.normals.is_none() {
+    } else if settings.recompute_normals || cloud.normals.is_none() {
         orient_consistently(points, normals, neighbors);
     }
 }

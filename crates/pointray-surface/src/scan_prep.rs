@@ -7,9 +7,9 @@ use pointray_kernels::PatchHot;
 use rayon::prelude::*;
 
 use crate::density_radius::RadiusAdjustments;
-use crate::prep::{PrepOptions, ScanMode};
 use crate::prep_progress::Stage;
 use crate::prep_report::{RadiusFallbacks, ScanSummary};
+use crate::prep_settings::{PrepSettings, ScanMode};
 use crate::scan_lines::ScanLines;
 use crate::scan_patches::scan_patches;
 use crate::shaped_patches::{ShapedPatches, count_fits};
@@ -21,13 +21,13 @@ pub(crate) fn scan_structure(
     points: &[Vec3],
     cloud: &PointCloud,
     source: &[u32],
-    options: &PrepOptions,
+    settings: &PrepSettings,
     offset: DVec3,
 ) -> Option<ScanLines> {
-    if options.scan == ScanMode::Off {
+    if settings.scan == ScanMode::Off {
         return None;
     }
-    let sensor_of = |i: u32| options.sensor.or_else(|| cloud.sensor_of(i as usize));
+    let sensor_of = |i: u32| settings.sensor.or_else(|| cloud.sensor_of(i as usize));
     let sensors: Vec<DVec3> =
         source.iter().map(|&i| sensor_of(i).map(|s| s - offset)).collect::<Option<_>>()?;
     let rings =

@@ -11,7 +11,7 @@ use pointray_fidelity::{
 };
 
 use crate::patch_args::PatchArgs;
-use crate::view_args::parse_finite;
+use crate::point_arg::parse_finite;
 
 /// Cast each return's ray from its sensor against the points' patches and report the
 /// fractions whose first hit agrees with the return, lies well in front of it (floaters) or
@@ -21,9 +21,6 @@ use crate::view_args::parse_finite;
 pub struct ConsistencyArgs {
     /// The scan (any format `prep` reads) with a sensor position or per-point sensor origins.
     points: PathBuf,
-    /// Where every return was seen from, `x,y,z`; overrides the file's sensor.
-    #[arg(long, value_parser = parse_finite, allow_hyphen_values = true)]
-    sensor: Option<DVec3>,
     /// Check at most this many returns, drawn at random.
     #[arg(long, default_value_t = ConsistencyOptions::default().rays)]
     rays: usize,
@@ -60,15 +57,15 @@ pub fn run(args: ConsistencyArgs) -> anyhow::Result<()> {
             spacing_multiple: args.spacing_tolerance,
         },
         acceptance: args.patches.acceptance(),
-        sensor: args.sensor,
+        sensor: args.patches.sensor(),
     };
     let context = || format!("checking {} against its sensor's rays", args.points.display());
     options.tolerance.validate().with_context(context)?;
-    let prep_options = args.patches.prep_options(args.sensor)?;
+    let prep_settings = args.patches.prep_settings()?;
     let cloud = args.patches.read(&args.points)?;
     // Before the prep, which can take minutes: a scan with no sensor cannot be checked.
-    let origins = ReturnOrigins::of_cloud(&cloud, args.sensor).with_context(context)?;
-    let (patches, prep_report) = args.patches.prep(&args.points, &cloud, &prep_options)?;
+    let origins = ReturnOrigins::of_cloud(&cloud, args.patches.sensor()).with_context(context)?;
+    let (patches, prep_report) = args.patches.prep(&args.points, &cloud, &prep_settings)?;
     let patches = Arc::new(patches);
     let mut report = sensor_ray_consistency(&cloud, patches.clone(), &options).with_context(context)?;
     if cloud.rings.is_some() {

@@ -5,7 +5,6 @@ use std::sync::Arc;
 
 use anyhow::Context;
 use clap::Args;
-use glam::DVec3;
 use pointray_fidelity::view_images::is_view_image;
 use pointray_fidelity::view_placement::validate_setting;
 use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, SensorPose, measure_fidelity};
@@ -16,7 +15,7 @@ use pointray_vulkan::DeviceSelector;
 use crate::backend::{Backend, BackendChoice};
 use crate::patch_args::PatchArgs;
 use crate::setting_flag::setting_flag;
-use crate::view_args::{ViewArgs, parse_finite};
+use crate::view_args::ViewArgs;
 
 /// Render the points' patches and the mesh from the same cameras and report holes, false
 /// surfaces, depth and normal error (against the mesh's interpolated vertex normals) and
@@ -29,10 +28,6 @@ pub struct FidelityArgs {
     mesh: PathBuf,
     #[command(flatten)]
     views: ViewArgs,
-    /// Where the scan's sensor stood, `x,y,z`, for sensor views and for orienting normals;
-    /// overrides the file's.
-    #[arg(long, value_parser = parse_finite, allow_hyphen_values = true)]
-    sensor: Option<DVec3>,
     /// Images of this many pixels a side (sensor views: this wide).
     #[arg(long, default_value_t = 512, value_parser = setting_flag(RenderSetting::Width))]
     size: u32,
@@ -76,18 +71,18 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     validate_setting(options.up, options.fov_degrees, options.size)?;
     let size = RenderSettings { width: args.size, height: args.size, ..RenderSettings::default() };
     size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
-    let prep_options = args.patches.prep_options(args.sensor)?;
+    let prep_settings = args.patches.prep_settings()?;
     if let Some(folder) = &args.images {
         check_image_folder(folder, &inputs)?;
     }
     let mesh = pointray_io::formats::read_triangle_mesh(&args.mesh)?;
     let cloud = args.patches.read(&args.points)?;
     if args.views.wants_sensor() {
-        let pose = SensorPose::of_cloud(&cloud, options.up, args.sensor)
+        let pose = SensorPose::of_cloud(&cloud, options.up, args.patches.sensor())
             .with_context(|| format!("{}: placing the sensor views", args.points.display()))?;
         options.sensor = Some(pose);
     }
-    let (patches, _) = args.patches.prep(&args.points, &cloud, &prep_options)?;
+    let (patches, _) = args.patches.prep(&args.points, &cloud, &prep_settings)?;
     drop(cloud);
     let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);
     println!("backend: {}", backend.name());

@@ -8,7 +8,7 @@ use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
 use pointray_lidar::{LidarScene, Scan, ScanProgress, Sensor, SensorPose, SensorPreset, Surface, UpAxis};
 
-use super::prep::parse_point;
+use crate::point_arg::parse_point;
 
 /// Scans past this many rays show a progress bar.
 const RAYS_FOR_BAR: u64 = 1_000_000;

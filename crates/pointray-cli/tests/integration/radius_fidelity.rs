@@ -20,7 +20,7 @@ use pointray_fidelity::{CpuFrameRenderer, FidelityMetrics, FidelityOptions, meas
 use pointray_io::PointCloud;
 use pointray_scene::PatchAcceptance;
 use pointray_surface::uneven_sampling::{Unevenness, sample_mesh_unevenly};
-use pointray_surface::{NoProgress, PrepOptions, RadiusMode, prep};
+use pointray_surface::{NoProgress, PrepSettings, RadiusMode, prep};
 
 const MODELS: [&str; 3] = ["bunny", "horse", "dragon_res2"];
 const SAMPLES: usize = 40_000;
@@ -38,8 +38,8 @@ fn measure(
     disk_scale: f32,
     size: u32,
 ) -> FidelityMetrics {
-    let mut options = PrepOptions { radius_mode: mode, ..PrepOptions::default() };
-    options.params.disk_scale = disk_scale;
+    let mut options = PrepSettings { radius: mode, ..PrepSettings::default() };
+    options.disk_scale = disk_scale;
     let (patches, _) = prep(cloud, &options, &NoProgress).expect("the samples prep");
     let fidelity = FidelityOptions::around(6, size, PatchAcceptance::Disk).unwrap();
     measure_fidelity(Arc::new(patches), mesh.clone(), &fidelity, &CpuFrameRenderer).unwrap().overall

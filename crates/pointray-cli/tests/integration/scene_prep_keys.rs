@@ -1,4 +1,5 @@
-//! The scene file's `radius` and `remove_outliers` keys on a points object reach prep.
+//! A points object's `prep` table in a scene file reaches prep: the same settings, by the same
+//! names, as `pointray prep`'s flags.
 
 use std::path::{Path, PathBuf};
 
@@ -15,14 +16,13 @@ fn write_plane_with_outliers(dir: &Path) -> PathBuf {
     path
 }
 
+/// A scene of the plane with `keys` as its `prep` table (none when empty).
 fn write_scene(dir: &Path, keys: &str) -> PathBuf {
     let points = write_plane_with_outliers(dir);
     let path = dir.join("scene.toml");
-    std::fs::write(
-        &path,
-        format!("[[objects]]\ntype = \"points\"\npath = \"{}\"\n{keys}\n", points.display()),
-    )
-    .unwrap();
+    let prep = if keys.is_empty() { String::new() } else { format!("[objects.prep]\n{keys}\n") };
+    std::fs::write(&path, format!("[[objects]]\ntype = \"points\"\npath = \"{}\"\n{prep}", points.display()))
+        .unwrap();
     path
 }
 
@@ -48,6 +48,8 @@ fn outliers_are_removed_and_the_radius_mode_applies() {
     let adaptive = patch_radii(&write_scene(dir.path(), "radius = \"adaptive\""));
     assert_eq!(adaptive.len(), 905);
     assert!(adaptive.iter().zip(&paper).any(|(a, p)| a != p), "`radius = \"adaptive\"` changed no radius");
+    let halved = patch_radii(&write_scene(dir.path(), "disk_scale = 0.5"));
+    assert!(halved.iter().zip(&default).all(|(h, c)| (h - 0.5 * c).abs() <= 1e-6 * c), "disk_scale");
 }
 
 #[test]
@@ -58,6 +60,8 @@ fn bad_keys_are_refused_by_name() {
         ("remove_outliers = { neighbors = 8, sigmas = -1.0 }", "remove_outliers.sigmas"),
         ("remove_outliers = { neighbors = 8 }", "sigmas"),
         ("radius = \"huge\"", "unknown variant"),
+        ("disk-scale = 0.5", "unknown field"),
+        ("k = 2", "prep.k"),
     ] {
         let error =
             load_scene(&write_scene(dir.path(), keys), &LoadOptions::default()).unwrap_err().to_string();

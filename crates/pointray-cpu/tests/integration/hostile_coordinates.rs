@@ -10,7 +10,7 @@ use std::time::Duration;
 use glam::DVec3;
 use pointray_io::PointCloud;
 use pointray_scene::{LoadOptions, RenderSettings, load_scene};
-use pointray_surface::{NoProgress, PrepOptions, prep};
+use pointray_surface::{NoProgress, PrepSettings, prep};
 use proptest::prelude::*;
 
 /// Far above what a case takes on a 2-core machine; only a hang reaches it.
@@ -72,7 +72,7 @@ proptest! {
 
     #[test]
     fn prep_gives_traceable_patches_or_a_clear_error(cloud in hostile_cloud()) {
-        let result = within_bound(move || prep(&cloud, &PrepOptions::default(), &NoProgress).map(|(p, _)| p));
+        let result = within_bound(move || prep(&cloud, &PrepSettings::default(), &NoProgress).map(|(p, _)| p));
         match result {
             Ok(patches) => prop_assert_eq!(patches.check(), Ok(())),
             Err(error) => prop_assert!(!error.to_string().is_empty()),

@@ -8,7 +8,7 @@ use glam::{Affine3A, DVec3, Vec3};
 use pointray_cpu::render;
 use pointray_io::PointCloud;
 use pointray_scene::{Camera, Frame, Light, Material, RenderSettings};
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, RadiusMode, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepSettings, RadiusMode, prep};
 
 /// A deterministic value in [-0.5, 0.5).
 fn jitter(i: u64) -> f64 {
@@ -40,7 +40,7 @@ fn gradient_plane_with(side: usize, radius_mode: RadiusMode) -> PatchSet {
     let colors =
         positions.iter().map(|p| [srgb_byte(0.5 + 0.45 * p.x), 40, srgb_byte(0.5 + 0.45 * p.z)]).collect();
     let cloud = PointCloud { colors: Some(colors), ..PointCloud::from_positions(positions) };
-    prep(&cloud, &PrepOptions { radius_mode, ..PrepOptions::default() }, &NoProgress)
+    prep(&cloud, &PrepSettings { radius: radius_mode, ..PrepSettings::default() }, &NoProgress)
         .expect("a plane preps")
         .0
 }

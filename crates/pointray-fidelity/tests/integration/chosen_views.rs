@@ -9,7 +9,7 @@ use pointray_fidelity::{
 };
 use pointray_io::{PointCloud, TriangleMesh};
 use pointray_scene::PatchAcceptance;
-use pointray_surface::{NoProgress, PrepOptions, prep};
+use pointray_surface::{NoProgress, PrepSettings, prep};
 
 use crate::ring_scan::{HIGHEST_BEAM, LOWEST_BEAM, SENSOR, ground_scan};
 
@@ -37,7 +37,7 @@ fn square_points(centre: Vec3, half: f32, per_side: usize) -> PointCloud {
 }
 
 fn measure(points: &PointCloud, mesh: TriangleMesh, options: &FidelityOptions) -> FidelityReport {
-    let (patches, _) = prep(points, &PrepOptions::default(), &NoProgress).unwrap();
+    let (patches, _) = prep(points, &PrepSettings::default(), &NoProgress).unwrap();
     let report = measure_fidelity(Arc::new(patches), Arc::new(mesh), options, &CpuFrameRenderer).unwrap();
     println!("{report}");
     report
@@ -111,7 +111,7 @@ fn sensor_views_without_a_sensor_are_an_error() {
     let cloud = square_points(Vec3::ZERO, 1.0, 11);
     let options =
         FidelityOptions::with_views(vec![ViewSpec::Sensor { yaws: 4 }], SIZE, PatchAcceptance::Disk);
-    let (patches, _) = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap();
+    let (patches, _) = prep(&cloud, &PrepSettings::default(), &NoProgress).unwrap();
     let result =
         measure_fidelity(Arc::new(patches), Arc::new(square(Vec3::ZERO, 1.0)), &options, &CpuFrameRenderer);
     assert!(result.unwrap_err().to_string().contains("no sensor position"));
@@ -124,7 +124,7 @@ fn sensor_views_without_a_sensor_are_an_error() {
 #[test]
 fn bad_lenses_up_axes_and_sizes_are_errors() {
     let cloud = square_points(Vec3::ZERO, 1.0, 11);
-    let (patches, _) = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap();
+    let (patches, _) = prep(&cloud, &PrepSettings::default(), &NoProgress).unwrap();
     let (patches, mesh) = (Arc::new(patches), Arc::new(square(Vec3::ZERO, 1.0)));
     let base =
         FidelityOptions::with_views(vec![ViewSpec::Above { height: 5.0 }], SIZE, PatchAcceptance::Disk);

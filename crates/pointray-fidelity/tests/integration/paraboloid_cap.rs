@@ -8,7 +8,7 @@ use glam::{DVec3, Vec3};
 use pointray_fidelity::{CpuFrameRenderer, FidelityOptions, FidelityReport, ViewSpec, measure_fidelity};
 use pointray_io::{PointCloud, TriangleMesh};
 use pointray_scene::PatchAcceptance;
-use pointray_surface::{NoProgress, PrepOptions, prep};
+use pointray_surface::{NoProgress, PrepSettings, prep};
 
 /// z = CURVATURE * (x² + y²) over the unit disc.
 const CURVATURE: f64 = 0.5;
@@ -58,7 +58,7 @@ fn views_that_see_the_cap() -> Vec<Vec3> {
 }
 
 fn measure(points: &PointCloud, mesh: TriangleMesh) -> FidelityReport {
-    let (patches, _) = prep(points, &PrepOptions::default(), &NoProgress).expect("prep of the cap");
+    let (patches, _) = prep(points, &PrepSettings::default(), &NoProgress).expect("prep of the cap");
     let views = views_that_see_the_cap().into_iter().map(ViewSpec::Direction).collect();
     let options = FidelityOptions::with_views(views, SIZE, PatchAcceptance::Box);
     let report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &CpuFrameRenderer).unwrap();

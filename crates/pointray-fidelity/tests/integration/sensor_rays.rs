@@ -9,12 +9,12 @@ use pointray_fidelity::{
     support_against_beam_spacing,
 };
 use pointray_io::PointCloud;
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, PrepReport, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepReport, PrepSettings, prep};
 
 use crate::ring_scan::{SENSOR, ground_scan, without};
 
 fn patches_of(cloud: &PointCloud) -> (PatchSet, PrepReport) {
-    prep(cloud, &PrepOptions::default(), &NoProgress).expect("prep of the synthetic scan")
+    prep(cloud, &PrepSettings::default(), &NoProgress).expect("prep of the synthetic scan")
 }
 
 fn check(cloud: &PointCloud, patches: PatchSet) -> ConsistencyReport {

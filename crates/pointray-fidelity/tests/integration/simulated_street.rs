@@ -16,7 +16,7 @@ use pointray_lidar::{
 };
 use pointray_scene::PatchAcceptance;
 use pointray_surface::prep_progress::NoProgress as NoPrepProgress;
-use pointray_surface::{PatchSet, PrepOptions, PrepReport, prep};
+use pointray_surface::{PatchSet, PrepReport, PrepSettings, prep};
 
 /// Sensor views this many pixels wide; the view from above is this square.
 const SIZE: u32 = 256;
@@ -53,7 +53,7 @@ fn scanned(sweep: &Sweep) -> Scanned {
         pointray_lidar::SensorPose { position: DVec3::new(0.0, 0.0, sensor.mount_height), yaw_deg: 0.0 };
     let returns = scan(&scene, &sensor, &[station], sweep.seed, &NoProgress).expect("a sweep").returns;
     let cloud = to_point_cloud(&returns);
-    let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoPrepProgress).expect("prep");
+    let (patches, report) = prep(&cloud, &PrepSettings::default(), &NoPrepProgress).expect("prep");
     assert!(report.scan.is_some(), "{}: the scan structure was not used", sweep.preset.key());
     Scanned { cloud, mesh: Arc::new(merged_mesh(&surfaces)), patches: Arc::new(patches), report }
 }

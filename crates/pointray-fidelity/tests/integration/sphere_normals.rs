@@ -71,14 +71,12 @@ fn render(mesh: &Arc<TriangleMesh>, camera: Camera, size: u32) -> Frame {
 /// near the silhouette of a coarse polyhedron the radius at a hit can face away from the
 /// camera, and the frame's normal is turned toward it.
 fn worst_against_radius(frame: &Frame, camera: &Camera) -> (f32, usize) {
-    let pinhole = camera.pinhole();
     let size = glam::UVec2::new(frame.width, frame.height);
     let mut worst = 0.0f32;
     let mut hits = 0;
     for pixel in (0..frame.pixel_count()).filter(|&p| frame.instance_id[p] != Frame::MISS) {
         let coordinates = glam::UVec2::new(pixel as u32 % frame.width, pixel as u32 / frame.width);
-        let ray =
-            pointray_kernels::camera_ray(&pinhole, size, coordinates, pointray_kernels::sample_jitter(0));
+        let ray = pointray_kernels::camera_ray(camera, size, coordinates, pointray_kernels::sample_jitter(0));
         let radius = ray.at(frame.depth[pixel]).normalize();
         worst = worst.max(frame.normal[pixel].dot(radius).abs().min(1.0).acos().to_degrees());
         hits += 1;

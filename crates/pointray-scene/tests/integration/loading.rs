@@ -126,7 +126,7 @@ fn point_sets_return_to_their_input_coordinates() {
         name = "moved"
         type = "points"
         path = "ball.ply"
-        k = 12
+        prep = { k = 12 }
         [objects.transform]
         translate = [1.0, 0.0, 0.0]
         "#,
@@ -140,7 +140,7 @@ fn point_sets_return_to_their_input_coordinates() {
     assert_close(center(&moved), center_in_file.as_vec3() + Vec3::X, 1e-3);
     assert_eq!(scene.objects[1].name, "moved");
     let Geometry::Patches(patches) = &scene.objects[1].geometry else { panic!("a point set") };
-    assert_eq!(patches.params.k, 12, "the file's k reaches prep");
+    assert_eq!(patches.settings.k, 12, "the file's k reaches prep");
     assert_eq!(loaded.point_sets.len(), 2);
     assert!(loaded.point_sets.iter().all(|(_, origin)| *origin == PointSetOrigin::Prepped { cache: None }));
 }

@@ -127,7 +127,8 @@ fn different_settings_and_a_changed_input_get_their_own_cache_files() {
     let plain = fixture("");
     let runs = PrepRuns::default();
     let default_cache = cache_file(&load(&plain, &runs));
-    std::fs::write(&plain.scene, "[[objects]]\ntype = \"points\"\npath = \"ball.ply\"\nk = 12\n").unwrap();
+    std::fs::write(&plain.scene, "[[objects]]\ntype = \"points\"\npath = \"ball.ply\"\nprep = { k = 12 }\n")
+        .unwrap();
     let k12_cache = cache_file(&load(&plain, &runs));
     assert_ne!(default_cache, k12_cache);
     assert_eq!(runs.count(), 2);
@@ -171,8 +172,11 @@ fn a_patch_store_input_loads_directly() {
     let center = pointray_scene::bounds::center(&bounds);
     assert!((center - glam::Vec3::new(1.0, 2.0, 3.0)).length() < 1e-3, "{center}");
 
-    std::fs::write(&fixture.scene, "[[objects]]\ntype = \"points\"\npath = \"ball.patches\"\nk = 12\n")
-        .unwrap();
+    std::fs::write(
+        &fixture.scene,
+        "[[objects]]\ntype = \"points\"\npath = \"ball.patches\"\nprep = { k = 12 }\n",
+    )
+    .unwrap();
     let options = LoadOptions { cache_dir: Some(fixture.cache_dir.path()), ..LoadOptions::default() };
     let error = load_scene(&fixture.scene, &options).unwrap_err();
     assert!(matches!(error, SceneError::Invalid { .. }), "{error:?}");

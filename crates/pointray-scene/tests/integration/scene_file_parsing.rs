@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use pointray_scene::object_spec::ShapeSpec;
 use pointray_scene::scene_file::{BackgroundSpec, LightSpec};
 use pointray_scene::{SceneError, SceneFile};
+use pointray_surface::PrepSettings;
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
@@ -83,7 +84,7 @@ fn a_full_scene_parses_into_the_expected_values() {
         [[objects]]
         type = "points"
         path = "models/a.ply"
-        k = 12
+        prep = { k = 12 }
         [objects.material]
         reflectivity = 0.25
         use_point_colors = true
@@ -105,10 +106,7 @@ fn a_full_scene_parses_into_the_expected_values() {
         file.objects[0].shape,
         ShapeSpec::Points {
             path: "models/a.ply".into(),
-            k: Some(12),
-            normal_k: None,
-            radius: None,
-            remove_outliers: None,
+            prep: Some(PrepSettings { k: 12, ..PrepSettings::default() }),
             columns: None
         }
     );
@@ -196,7 +194,10 @@ fn bad_values_are_errors_naming_the_key() {
         ),
         ("[[objects]]\ntype = \"ground\"\nauto = true\nheight = 1.0\n".to_string(), "objects[0].height"),
         ("[[objects]]\ntype = \"ground\"\nsize = 0.0\n".to_string(), "objects[0].size"),
-        ("[[objects]]\ntype = \"points\"\npath = \"a.ply\"\nk = 2\n".to_string(), "objects[0].k"),
+        (
+            "[[objects]]\ntype = \"points\"\npath = \"a.ply\"\nprep = { k = 2 }\n".to_string(),
+            "objects[0].prep.k",
+        ),
         ("[[objects]]\ntype = \"mesh\"\npath = \"\"\n".to_string(), "objects[0].path"),
     ];
     for (text, key) in cases {

@@ -3,10 +3,10 @@
 use crate::common;
 
 use glam::{DVec3, Vec3};
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, PrepReport, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepReport, PrepSettings, prep};
 
 fn prep_default(cloud: &pointray_io::PointCloud) -> (PatchSet, PrepReport) {
-    prep(cloud, &PrepOptions::default(), &NoProgress).expect("a clean analytic surface preps")
+    prep(cloud, &PrepSettings::default(), &NoProgress).expect("a clean analytic surface preps")
 }
 
 /// Every patch's surface over its disk lies on `z = height(x, y)` to within

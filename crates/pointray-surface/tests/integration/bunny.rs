@@ -4,7 +4,7 @@
 use crate::normals_support::{area_weighted_vertex_normals, data_dir};
 
 use pointray_io::formats::ply;
-use pointray_surface::{NoProgress, PrepOptions, prep};
+use pointray_surface::{NoProgress, PrepSettings, prep};
 
 #[test]
 fn bunny_patches_are_finite_and_normals_agree_with_the_mesh() {
@@ -12,7 +12,7 @@ fn bunny_patches_are_finite_and_normals_agree_with_the_mesh() {
     let (points, mesh) = (data.join("points/bunny.ply"), data.join("meshes/bunny.ply"));
     let cloud = ply::read_point_cloud(&points).expect("the bunny points read");
     let mesh = ply::read_triangle_mesh(&mesh).expect("the bunny mesh reads");
-    let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoProgress).expect("the bunny preps");
+    let (patches, report) = prep(&cloud, &PrepSettings::default(), &NoProgress).expect("the bunny preps");
     for (i, patch) in patches.hot.iter().enumerate() {
         assert!(patch.decode().coefficients.iter().all(|c| c.is_finite()), "patch {i}: {patch:?}");
         assert!(patch.radius() > 0.0 && patch.radius().is_finite(), "patch {i}: {patch:?}");

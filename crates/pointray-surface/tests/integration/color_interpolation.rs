@@ -7,7 +7,7 @@ use crate::common;
 use glam::{DVec3, Vec3};
 use pointray_kernels::interpolate_color::{COLOR_SUPPORT_SCALE, color_from_rgba8};
 use pointray_kernels::{COLOR_NEIGHBORS, PatchAcceptance, Ray, interpolate_color, intersect_patch};
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, RadiusMode, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepSettings, RadiusMode, prep};
 
 /// A jittered height field with a smooth colour field (sRGB in the file, as scans carry it).
 fn coloured_scan() -> PatchSet {
@@ -18,7 +18,7 @@ fn coloured_scan() -> PatchSet {
         [byte(0.5 + 0.5 * (3.0 * x).sin()), byte(0.5 + 0.4 * y), 128]
     });
     cloud.colors = Some(colors.collect());
-    prep(&cloud, &PrepOptions::default(), &NoProgress).expect("a height field preps").0
+    prep(&cloud, &PrepSettings::default(), &NoProgress).expect("a height field preps").0
 }
 
 /// The largest channel difference within a set of colours.
@@ -68,7 +68,7 @@ fn every_patch_a_ray_meets_gives_the_same_colour() {
 fn colours_reach_the_papers_distance_whatever_the_radius() {
     let cloud = common::height_field(30, DVec3::ZERO, |x, y| 0.1 * x * y);
     let prepped = |radius_mode| {
-        prep(&cloud, &PrepOptions { radius_mode, ..PrepOptions::default() }, &NoProgress).unwrap().0
+        prep(&cloud, &PrepSettings { radius: radius_mode, ..PrepSettings::default() }, &NoProgress).unwrap().0
     };
     let (paper, cell) = (prepped(RadiusMode::Paper), prepped(RadiusMode::Cell));
     for (i, (p, c)) in paper.cold.iter().zip(&cell.cold).enumerate() {

@@ -6,7 +6,7 @@ use crate::common;
 use glam::{DVec3, Vec2};
 use pointray_surface::density_radius::BAND;
 use pointray_surface::neighbors::k_nearest;
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, RadiusMode, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepSettings, RadiusMode, prep};
 
 /// Dense cell edge; the sparse half's cells are sqrt(10) times wider: 10x fewer points per area.
 const DENSE_CELL: f64 = 0.02;
@@ -30,7 +30,7 @@ fn density_jump() -> pointray_io::PointCloud {
 }
 
 fn prepped(mode: RadiusMode) -> PatchSet {
-    let options = PrepOptions { radius_mode: mode, ..PrepOptions::default() };
+    let options = PrepSettings { radius: mode, ..PrepSettings::default() };
     prep(&density_jump(), &options, &NoProgress).expect("the plane preps").0
 }
 
@@ -66,7 +66,7 @@ fn adaptive_radii_cover_the_seam() {
 fn adaptive_radii_stay_in_the_band() {
     let (paper, adaptive) = (prepped(RadiusMode::Paper), prepped(RadiusMode::Adaptive));
     assert_eq!(paper.len(), adaptive.len());
-    let k = PrepOptions::default().params.k as usize;
+    let k = PrepSettings::default().k as usize;
     let origins: Vec<_> = paper.hot.iter().map(|hot| hot.origin()).collect();
     let neighbors = k_nearest(&origins, k);
     let mut changed = 0;
@@ -98,7 +98,7 @@ fn plane_with_a_stray_point() -> pointray_io::PointCloud {
 #[test]
 fn an_isolated_point_gets_no_huge_patch() {
     let stray = |mode| {
-        let options = PrepOptions { radius_mode: mode, ..PrepOptions::default() };
+        let options = PrepSettings { radius: mode, ..PrepSettings::default() };
         let (patches, _) = prep(&plane_with_a_stray_point(), &options, &NoProgress).unwrap();
         let index =
             patches.hot.iter().position(|hot| (hot.origin().as_dvec3() + patches.offset).z > 0.5).unwrap();

@@ -1,14 +1,13 @@
-//! `PrepParams::disk_scale` shrinks how far each patch reaches, and nothing else: the same
+//! `PrepSettings::disk_scale` shrinks how far each patch reaches, and nothing else: the same
 //! fits over the same neighbourhoods, radii scaled, boxes around the smaller disks.
 
 use crate::common;
 
 use glam::DVec3;
-use pointray_surface::{NoProgress, PatchSet, PrepError, PrepOptions, PrepParams, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepError, PrepSettings, prep};
 
 fn prepped(cloud: &pointray_io::PointCloud, disk_scale: f32) -> Result<PatchSet, PrepError> {
-    let options =
-        PrepOptions { params: PrepParams { disk_scale, ..PrepParams::default() }, ..PrepOptions::default() };
+    let options = PrepSettings { disk_scale, ..PrepSettings::default() };
     prep(cloud, &options, &NoProgress).map(|(patches, _)| patches)
 }
 
@@ -17,7 +16,7 @@ fn a_smaller_disk_scales_the_radii_and_keeps_the_fits() {
     let cloud = common::height_field(30, DVec3::ZERO, |x, y| 0.2 * x * x - 0.1 * x * y + 0.3 * y);
     let paper = prepped(&cloud, 1.0).expect("preps");
     let smaller = prepped(&cloud, 0.7).expect("preps");
-    assert_eq!(smaller.params.disk_scale, 0.7);
+    assert_eq!(smaller.settings.disk_scale, 0.7);
     for (i, (a, b)) in paper.hot.iter().zip(&smaller.hot).enumerate() {
         // The coefficients are stored as half floats scaled by the radius, so they agree to a
         // half float's precision.

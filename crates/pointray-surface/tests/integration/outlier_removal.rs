@@ -3,7 +3,7 @@
 use crate::common;
 
 use glam::DVec3;
-use pointray_surface::{NoProgress, OutlierFilter, PrepOptions, prep};
+use pointray_surface::{NoProgress, OutlierFilter, PrepSettings, prep};
 
 const PLANE_SIDE: usize = 60;
 const OUTLIERS: usize = 20;
@@ -23,9 +23,9 @@ fn plane_with_outliers() -> pointray_io::PointCloud {
 #[test]
 fn every_injected_outlier_goes_and_every_plane_point_stays() {
     let cloud = plane_with_outliers();
-    let options = PrepOptions {
+    let options = PrepSettings {
         remove_outliers: Some(OutlierFilter { neighbors: 8, sigmas: 2.0 }),
-        ..PrepOptions::default()
+        ..PrepSettings::default()
     };
     let (patches, report) = prep(&cloud, &options, &NoProgress).expect("the plane preps");
     let plane_points = PLANE_SIDE * PLANE_SIDE;
@@ -40,16 +40,16 @@ fn every_injected_outlier_goes_and_every_plane_point_stays() {
 
 #[test]
 fn without_the_filter_the_outliers_get_patches() {
-    let (patches, report) = prep(&plane_with_outliers(), &PrepOptions::default(), &NoProgress).unwrap();
+    let (patches, report) = prep(&plane_with_outliers(), &PrepSettings::default(), &NoProgress).unwrap();
     assert_eq!(report.removed_outliers, 0);
     assert_eq!(patches.len(), PLANE_SIDE * PLANE_SIDE + OUTLIERS);
 }
 
 #[test]
 fn bad_filter_settings_are_refused() {
-    let options = PrepOptions {
+    let options = PrepSettings {
         remove_outliers: Some(OutlierFilter { neighbors: 0, sigmas: 2.0 }),
-        ..PrepOptions::default()
+        ..PrepSettings::default()
     };
     let error = prep(&plane_with_outliers(), &options, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("remove_outliers.neighbors"), "{error}");

@@ -8,15 +8,16 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use pointray_kernels::COLOR_NEIGHBORS;
 use pointray_surface::patch_store::{self, StoreError};
-use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepOptions, PrepParams, prep};
+use pointray_surface::{
+    BoxKind, NoProgress, OutlierFilter, PatchSet, PrepSettings, RadiusMode, ScanMode, prep,
+};
 
 fn sample_patches(box_kind: BoxKind) -> PatchSet {
     let mut cloud = common::sphere(3000, 1.5, DVec3::new(1e5, 2e5, -3.0));
     cloud.colors = Some((0..3000).map(|i| [(i % 256) as u8, 7, 200]).collect());
     cloud.intensities = Some((0..3000).map(|i| i as f32 / 3000.0).collect());
-    let options =
-        PrepOptions { params: PrepParams { box_kind, ..PrepParams::default() }, ..Default::default() };
-    prep(&cloud, &options, &NoProgress).expect("a sphere preps").0
+    let settings = PrepSettings { boxes: box_kind, ..PrepSettings::default() };
+    prep(&cloud, &settings, &NoProgress).expect("a sphere preps").0
 }
 
 fn written(directory: &Path, patches: &PatchSet) -> PathBuf {
@@ -32,7 +33,7 @@ fn round_trip_is_bit_identical() {
         let patches = sample_patches(box_kind);
         let path = written(directory.path(), &patches);
         let loaded = patch_store::read(&path).expect("reading what was written");
-        assert_eq!(loaded.params, patches.params);
+        assert_eq!(loaded.settings, patches.settings);
         assert_eq!(loaded.offset.to_array().map(f64::to_bits), patches.offset.to_array().map(f64::to_bits));
         let bytes = |p: &PatchSet| {
             let mut all: Vec<u8> = bytemuck::cast_slice(&p.aabbs).to_vec();
@@ -54,14 +55,39 @@ fn round_trip_is_bit_identical() {
 }
 
 #[test]
+fn every_setting_prep_ran_with_is_recorded() {
+    let directory = tempfile::tempdir().unwrap();
+    let cloud = common::sphere(500, 1.0, DVec3::ZERO);
+    let settings = PrepSettings {
+        k: 7,
+        normal_k: 12,
+        recompute_normals: true,
+        sensor: Some(DVec3::new(0.5, -2.0, 1e6)),
+        remove_outliers: Some(OutlierFilter { neighbors: 8, sigmas: 2.5 }),
+        radius: RadiusMode::Adaptive,
+        disk_scale: 0.8,
+        boxes: BoxKind::Cube,
+        scan: ScanMode::Off,
+        duplicate_tolerance: 2e-6,
+    };
+    let patches = prep(&cloud, &settings, &NoProgress).unwrap().0;
+    assert_eq!(patches.settings, settings);
+    let loaded = patch_store::read(&written(directory.path(), &patches)).unwrap();
+    assert_eq!(loaded.settings, settings);
+    let defaults = prep(&cloud, &PrepSettings::default(), &NoProgress).unwrap().0;
+    let loaded = patch_store::read(&written(directory.path(), &defaults)).unwrap();
+    assert_eq!(loaded.settings, PrepSettings::default(), "no sensor and no filter stay absent");
+}
+
+#[test]
 fn a_cloud_without_colours_or_intensities_stores_no_neighbours() {
     let directory = tempfile::tempdir().unwrap();
     let mut cloud = common::sphere(500, 1.0, DVec3::ZERO);
-    let patches = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap().0;
+    let patches = prep(&cloud, &PrepSettings::default(), &NoProgress).unwrap().0;
     assert!(patches.color_neighbors.is_empty());
     // Intensities alone keep them: an intensity ramp colours the points at load.
     cloud.intensities = Some(vec![0.5; 500]);
-    let ramped = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap().0;
+    let ramped = prep(&cloud, &PrepSettings::default(), &NoProgress).unwrap().0;
     assert_eq!(ramped.color_neighbors.len(), 500 * COLOR_NEIGHBORS);
     let coloured = sample_patches(BoxKind::Cube);
     let neighbour_bytes = 4 * COLOR_NEIGHBORS as u64 * coloured.len() as u64;
@@ -126,11 +152,11 @@ fn damaged(damage: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, StoreError, tempfile:
 
 #[test]
 fn another_version_is_refused_by_name() {
-    // Version 3 stores (before the packed record) are refused with the way out.
-    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&3u32.to_le_bytes()));
-    assert!(matches!(error, StoreError::WrongVersion { found: 3, .. }), "{error:?}");
+    // Version 4 stores (which did not record the radius mode) are refused with the way out.
+    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&4u32.to_le_bytes()));
+    assert!(matches!(error, StoreError::WrongVersion { found: 4, .. }), "{error:?}");
     let message = error.to_string();
-    assert!(message.contains("version 3, this build reads version 4: re-run `pointray prep`"), "{message}");
+    assert!(message.contains("version 4, this build reads version 5: re-run `pointray prep`"), "{message}");
     assert!(message.contains(&path.display().to_string()), "{message}");
 }
 

@@ -5,7 +5,7 @@ use crate::common;
 
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, PrepReport, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepReport, PrepSettings, prep};
 
 const CENTRE: DVec3 = DVec3::new(10.0, 20.0, -5.0);
 
@@ -20,13 +20,13 @@ fn outward(patches: &PatchSet, i: usize) -> Vec3 {
     (patches.hot[i].origin().as_dvec3() + patches.offset - CENTRE).normalize().as_vec3()
 }
 
-fn run(cloud: &PointCloud, options: &PrepOptions) -> (PatchSet, PrepReport) {
+fn run(cloud: &PointCloud, options: &PrepSettings) -> (PatchSet, PrepReport) {
     prep(cloud, options, &NoProgress).expect("a sphere preps")
 }
 
 #[test]
 fn input_normals_are_kept_and_normalised() {
-    let (patches, report) = run(&sphere_with_normals(2000), &PrepOptions::default());
+    let (patches, report) = run(&sphere_with_normals(2000), &PrepSettings::default());
     assert_eq!(report.replaced_input_normals, 0);
     for (i, patch) in patches.hot.iter().enumerate() {
         assert!((patch.normal().length() - 1.0).abs() < 1e-5);
@@ -36,7 +36,7 @@ fn input_normals_are_kept_and_normalised() {
 
 #[test]
 fn recomputed_normals_face_the_sensor() {
-    let options = PrepOptions { recompute_normals: true, sensor: Some(CENTRE), ..PrepOptions::default() };
+    let options = PrepSettings { recompute_normals: true, sensor: Some(CENTRE), ..PrepSettings::default() };
     let (patches, _) = run(&sphere_with_normals(2000), &options);
     for i in 0..patches.len() {
         assert!(
@@ -53,7 +53,7 @@ fn broken_input_normals_are_replaced_and_agree_with_their_neighbours() {
     for i in (0..2000).step_by(100) {
         normals[i] = if i % 200 == 0 { Vec3::ZERO } else { Vec3::NAN };
     }
-    let (patches, report) = run(&cloud, &PrepOptions::default());
+    let (patches, report) = run(&cloud, &PrepSettings::default());
     assert_eq!(report.replaced_input_normals, 20);
     for i in 0..patches.len() {
         assert!(patches.hot[i].normal().dot(outward(&patches, i)) > 0.99, "patch {i}");
@@ -67,7 +67,7 @@ fn colours_and_intensities_follow_their_points() {
     let colour_of = |i: usize| [0, 1, 2].map(|bit| if i >> bit & 1 == 1 { 255u8 } else { 0 });
     cloud.colors = Some((0..4000).map(colour_of).collect());
     cloud.intensities = Some((0..4000).map(|i| i as f32 / 4000.0).collect());
-    let (patches, report) = run(&cloud, &PrepOptions::default());
+    let (patches, report) = run(&cloud, &PrepSettings::default());
     assert_eq!(report.patch_sources.len(), patches.len());
     assert!(report.patch_sources.windows(2).any(|w| w[1] < w[0]), "Morton order differs from input order");
     for (cold, &source) in patches.cold.iter().zip(&report.patch_sources) {

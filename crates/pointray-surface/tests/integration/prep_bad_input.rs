@@ -4,11 +4,11 @@ use crate::common;
 
 use glam::DVec3;
 use pointray_io::PointCloud;
-use pointray_surface::{NoProgress, PrepError, PrepOptions, prep};
+use pointray_surface::{NoProgress, PrepError, PrepSettings, prep};
 
 fn prep_error(positions: Vec<DVec3>) -> PrepError {
     let cloud = PointCloud::from_positions(positions);
-    prep(&cloud, &PrepOptions::default(), &NoProgress).expect_err("bad input must be refused")
+    prep(&cloud, &PrepSettings::default(), &NoProgress).expect_err("bad input must be refused")
 }
 
 fn plane(n: usize) -> Vec<DVec3> {
@@ -56,7 +56,7 @@ fn identical_and_collinear_points() {
 fn attribute_arrays_must_match_the_points() {
     let mut cloud = PointCloud::from_positions(plane(10));
     cloud.colors = Some(vec![[1, 2, 3]; 99]);
-    let error = prep(&cloud, &PrepOptions::default(), &NoProgress).unwrap_err();
+    let error = prep(&cloud, &PrepSettings::default(), &NoProgress).unwrap_err();
     assert_eq!(error, PrepError::AttributeLength { attribute: "colours", found: 99, expected: 100 });
 }
 
@@ -67,7 +67,7 @@ fn exact_and_near_duplicates_are_merged_without_nans_or_zero_radii() {
     positions.extend(base.iter().step_by(2).copied()); // exact copies
     positions.extend(base.iter().skip(1).step_by(2).map(|p| *p + DVec3::splat(1e-9))); // 1e-9 apart
     let cloud = PointCloud::from_positions(positions);
-    let (patches, report) = prep(&cloud, &PrepOptions::default(), &NoProgress).expect("duplicates are fine");
+    let (patches, report) = prep(&cloud, &PrepSettings::default(), &NoProgress).expect("duplicates are fine");
     assert_eq!(report.input_points, 800);
     assert_eq!(report.merged_duplicates, 400);
     assert_eq!(patches.len(), 400);

@@ -3,7 +3,7 @@
 
 use glam::{DVec3, Vec2};
 use pointray_io::PointCloud;
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, ScanMode, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepSettings, ScanMode, prep};
 
 const SENSOR: DVec3 = DVec3::new(0.0, 0.0, 1.8);
 const WALL_X: f64 = 12.0;
@@ -35,7 +35,7 @@ fn sweep(noise: f64) -> (PointCloud, Vec<u16>) {
 }
 
 fn prepped(cloud: &PointCloud, scan: ScanMode) -> PatchSet {
-    prep(cloud, &PrepOptions { scan, ..PrepOptions::default() }, &NoProgress).expect("prep").0
+    prep(cloud, &PrepSettings { scan, ..PrepSettings::default() }, &NoProgress).expect("prep").0
 }
 
 /// The fraction of `probes` (input coordinates on the ground) that some patch's support

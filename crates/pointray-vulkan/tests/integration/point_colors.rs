@@ -13,7 +13,7 @@ use common::{
 use glam::{Affine3A, DVec3, Quat, Vec3};
 use pointray_io::PointCloud;
 use pointray_scene::{Background, Camera, Frame, Geometry, Material, RenderSettings, Scene, SceneObject};
-use pointray_surface::{NoProgress, PatchSet, PrepOptions, prep};
+use pointray_surface::{NoProgress, PatchSet, PrepSettings, prep};
 
 /// The linear colour each point carries, from its input position: ramps along x and y.
 fn color_field(input: DVec3) -> Vec3 {
@@ -40,7 +40,7 @@ fn coloured_sphere() -> PatchSet {
         .collect();
     let colors = positions.iter().map(|&p| srgb_bytes(color_field(p))).collect();
     let cloud = PointCloud { colors: Some(colors), ..PointCloud::from_positions(positions) };
-    prep(&cloud, &PrepOptions::default(), &NoProgress).expect("a sphere preps").0
+    prep(&cloud, &PrepSettings::default(), &NoProgress).expect("a sphere preps").0
 }
 
 fn placement() -> Affine3A {

@@ -100,14 +100,8 @@ pub fn camera(position: Vec3, look_at: Vec3) -> Camera {
 
 /// The world ray through pixel `(x, y)`'s centre, as the renderer casts it.
 pub fn pixel_ray(camera: &Camera, width: u32, height: u32, x: u32, y: u32) -> pointray_kernels::Ray {
-    let pinhole = pointray_kernels::PinholeCamera {
-        position: camera.position,
-        look_at: camera.look_at,
-        up: camera.up,
-        vertical_fov_degrees: camera.vertical_fov_degrees,
-    };
     pointray_kernels::camera_ray(
-        &pinhole,
+        camera,
         glam::UVec2::new(width, height),
         glam::UVec2::new(x, y),
         pointray_kernels::sample_jitter(0),

@@ -7,11 +7,11 @@ use std::sync::Arc;
 use glam::{Affine3A, UVec2, Vec3};
 use pointray_io::TriangleMesh;
 use pointray_io::formats::ply::read_point_cloud;
-use pointray_kernels::{Aabb, PatchCold, PatchHot, PinholeCamera, camera_ray};
+use pointray_kernels::{Aabb, PatchCold, PatchHot, camera_ray};
 use pointray_scene::{
     Background, Camera, Frame, Geometry, Light, Material, RenderSettings, Scene, SceneObject,
 };
-use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepOptions, PrepParams, prep};
+use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepSettings, prep};
 use pointray_vulkan::{DeviceSelector, VulkanRenderer};
 
 fn in_ci() -> bool {
@@ -130,14 +130,8 @@ pub fn sphere_on_floor(floor_reflectivity: f32, light_intensity: f32) -> Scene {
 
 /// The world-space ray of pixel `index`'s first sample, as the renderer shot it.
 pub fn primary_ray(camera: &Camera, frame: &Frame, index: usize) -> pointray_kernels::Ray {
-    let pinhole = PinholeCamera {
-        position: camera.position,
-        look_at: camera.look_at,
-        up: camera.up,
-        vertical_fov_degrees: camera.vertical_fov_degrees,
-    };
     let pixel = UVec2::new(index as u32 % frame.width, index as u32 / frame.width);
-    camera_ray(&pinhole, UVec2::new(frame.width, frame.height), pixel, pointray_kernels::sample_jitter(0))
+    camera_ray(camera, UVec2::new(frame.width, frame.height), pixel, pointray_kernels::sample_jitter(0))
 }
 
 /// Intersection over union of two hit masks.
@@ -168,8 +162,7 @@ pub fn prepped_points_with_boxes(
     box_kind: BoxKind,
 ) -> SceneObject {
     let cloud = read_point_cloud(path).unwrap_or_else(|e| panic!("{} does not load: {e}", path.display()));
-    let options =
-        PrepOptions { params: PrepParams { box_kind, ..PrepParams::default() }, ..PrepOptions::default() };
+    let options = PrepSettings { boxes: box_kind, ..PrepSettings::default() };
     let (patches, _) = prep(&cloud, &options, &NoProgress).expect("prep succeeds");
     SceneObject {
         name: name.into(),
