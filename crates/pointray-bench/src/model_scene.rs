@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 
 use pointray_scene::SceneFile;
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
-use pointray_surface::NoProgress;
 
 use crate::data::data_file;
 use crate::error::BenchError;
@@ -78,6 +77,6 @@ pub fn load_with_model(
         problem: e.to_string(),
     })?;
     let file = SceneFile::parse(&text, scene_path)?;
-    let options = LoadOptions { cache_dir: Some(cache), progress: &NoProgress };
+    let options = LoadOptions { cache_dir: Some(cache), ..LoadOptions::default() };
     Ok(load_scene_file(&file, &options)?)
 }

@@ -73,7 +73,8 @@ pub fn run_scene_file(
     options: &BenchOptions,
 ) -> Result<Report, BenchError> {
     ensure_cache_dir(&options.cache)?;
-    let loaded = load_scene(path, &LoadOptions { cache_dir: Some(&options.cache), progress: &NoProgress })?;
+    let loaded =
+        load_scene(path, &LoadOptions { cache_dir: Some(&options.cache), ..LoadOptions::default() })?;
     let (width, height) = options.size.unwrap_or((loaded.settings.width, loaded.settings.height));
     let settings = RenderSettings { width, height, ..loaded.settings };
     let name = path.display().to_string();

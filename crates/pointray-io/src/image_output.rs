@@ -18,10 +18,21 @@ use crate::{IoError, write_atomically};
 /// An 8-bit sRGB PNG of linear RGB pixels.
 pub fn write_png_srgb(path: &Path, width: u32, height: u32, linear: &[Vec3]) -> Result<(), IoError> {
     check_size(path, width, height, linear.len())?;
+    write_encoded(path, |out| encode_srgb8(out, width, height, linear))
+}
+
+/// The bytes `write_png_srgb` would write, in memory.
+pub fn encode_png_srgb(width: u32, height: u32, linear: &[Vec3]) -> Result<Vec<u8>, IoError> {
+    let name = Path::new("(image in memory)");
+    check_size(name, width, height, linear.len())?;
+    let mut bytes = Vec::new();
+    encode_srgb8(&mut bytes, width, height, linear).map_err(|e| IoError::unwritable(name, e.to_string()))?;
+    Ok(bytes)
+}
+
+fn encode_srgb8(out: impl io::Write, width: u32, height: u32, linear: &[Vec3]) -> ImageResult<()> {
     let bytes: Vec<u8> = linear.iter().flat_map(|p| p.to_array().map(srgb_encode)).collect();
-    write_encoded(path, |out| {
-        PngEncoder::new(out).write_image(&bytes, width, height, ExtendedColorType::Rgb8)
-    })
+    PngEncoder::new(out).write_image(&bytes, width, height, ExtendedColorType::Rgb8)
 }
 
 /// A 32-bit float RGB OpenEXR of linear pixels, unchanged.

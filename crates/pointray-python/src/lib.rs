@@ -2,14 +2,30 @@
 //! The package's Python layer (`python/pointray/`) gives it its documented API; this layer
 //! converts between numpy arrays and the workspace's types and releases the GIL for long calls.
 
+mod arrays;
+mod backend;
+mod devices;
 mod errors;
+mod patches;
+mod png;
+mod prep;
 mod read;
+mod render;
+mod scene_text;
+mod toml_values;
 
 use pyo3::prelude::*;
 
 #[pymodule]
 fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("PointrayError", module.py().get_type::<errors::PointrayError>())?;
+    module.add_class::<patches::Patches>()?;
     module.add_function(wrap_pyfunction!(read::read, module)?)?;
+    module.add_function(wrap_pyfunction!(prep::prep, module)?)?;
+    module.add_function(wrap_pyfunction!(render::render, module)?)?;
+    module.add_function(wrap_pyfunction!(scene_text::scene_to_toml, module)?)?;
+    module.add_function(wrap_pyfunction!(scene_text::scene_from_toml, module)?)?;
+    module.add_function(wrap_pyfunction!(png::encode_png, module)?)?;
+    module.add_function(wrap_pyfunction!(devices::devices, module)?)?;
     Ok(())
 }

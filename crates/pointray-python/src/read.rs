@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use numpy::{IntoPyArray, PyArrayMethods};
 use pointray_io::PointCloud;
 use pointray_io::formats::{ColumnSpec, read_point_cloud_with};
+use pointray_scene::UpAxis;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -17,7 +18,13 @@ pub fn read<'py>(py: Python<'py>, path: PathBuf, columns: Option<&str>) -> PyRes
     let columns = columns.map(|text| text.parse::<ColumnSpec>().map_err(|e| to_python(&e))).transpose()?;
     let cloud =
         py.detach(|| read_point_cloud_with(&path, columns.as_ref())).map_err(|error| to_python(&error))?;
-    cloud_to_dict(py, cloud)
+    let fields = cloud_to_dict(py, cloud)?;
+    let up = match UpAxis::conventional(&path) {
+        UpAxis::Y => "y",
+        UpAxis::Z => "z",
+    };
+    fields.set_item("up_axis", up)?;
+    Ok(fields)
 }
 
 fn cloud_to_dict(py: Python<'_>, cloud: PointCloud) -> PyResult<Bound<'_, PyDict>> {

@@ -32,11 +32,15 @@ pub struct LoadOptions<'a> {
     /// every load and writes nothing.
     pub cache_dir: Option<&'a Path>,
     pub progress: &'a dyn PrepProgress,
+    /// Point sets already in memory (from a program, not a file), by object index: these
+    /// points objects take them in place of reading their `path`, which then only names
+    /// them in messages.
+    pub in_memory: &'a [(usize, Arc<PatchSet>)],
 }
 
 impl Default for LoadOptions<'_> {
     fn default() -> Self {
-        Self { cache_dir: None, progress: &NoProgress }
+        Self { cache_dir: None, progress: &NoProgress, in_memory: &[] }
     }
 }
 
@@ -149,6 +153,10 @@ fn load_object(
             }
             (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
         }
+        ShapeSpec::Points { path, .. } if in_memory(options, index).is_some() => {
+            let patches = in_memory(options, index).cloned().unwrap_or_else(|| unreachable!("matched"));
+            (Geometry::Patches(patches), Some(PointSetOrigin::InMemory), path.display().to_string())
+        }
         ShapeSpec::Points { path, prep, columns } => {
             let path = existing_file(file, &key, path)?;
             let read = point_sets::ReadRequest {
@@ -243,6 +251,10 @@ fn check_color_source(source: ColorSource, shape: &ShapeSpec) -> Result<(), Stri
         }
         _ => Ok(()),
     }
+}
+
+fn in_memory<'a>(options: &LoadOptions<'a>, index: usize) -> Option<&'a Arc<PatchSet>> {
+    options.in_memory.iter().find(|(object, _)| *object == index).map(|(_, patches)| patches)
 }
 
 /// `"auto"` as the geometry allows: colours where a point set has any (white everywhere is

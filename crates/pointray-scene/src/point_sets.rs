@@ -39,6 +39,8 @@ pub enum PointSetOrigin {
     Procedural,
     /// Prepped now; `cache` is the file it was written to, if caching was asked for.
     Prepped { cache: Option<PathBuf> },
+    /// Given in memory by the program that loads the scene (`LoadOptions::in_memory`).
+    InMemory,
     /// Read from a valid cache file; prep did not run.
     CacheHit { cache: PathBuf },
     /// The cache file was unreadable (`problem`), so prep ran and replaced it.

@@ -73,7 +73,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     settings.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     let cache_dir = cache_dir_for(&args.output);
     let bar = PrepBar::default();
-    let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar };
+    let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar, ..LoadOptions::default() };
     let LoadedScene { mut scene, frame: render_frame, .. } = load_scene_file(&file, &options)?;
     let backend = Backend::open(args.backend.backend, &args.backend.device)?;
     println!("backend: {}", backend.describe());

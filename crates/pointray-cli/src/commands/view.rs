@@ -120,6 +120,6 @@ fn is_sequence_frame(dir: &Path, path: &Path, frames: u32) -> bool {
 fn load(file: &SceneFile) -> anyhow::Result<LoadedScene> {
     let cache_dir = PathBuf::from(".pointray-cache");
     let bar = PrepBar::default();
-    let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar };
+    let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar, ..LoadOptions::default() };
     Ok(load_scene_file(file, &options)?)
 }

@@ -11,7 +11,11 @@ prints for the same failure, and ``ValueError`` or ``TypeError`` for arrays of t
 or kind.
 """
 
-from ._native import PointrayError
+from ._native import Patches, PointrayError, devices
 from ._point_cloud import PointCloud, read
+from ._prep import prep
+from ._render import RenderedImage, png_bytes, render
+from ._scene import Scene
 
-__all__ = ["PointCloud", "PointrayError", "read"]
+__all__ = ["Patches", "PointCloud", "PointrayError", "RenderedImage", "Scene", "devices", "png_bytes",
+           "prep", "read", "render"]

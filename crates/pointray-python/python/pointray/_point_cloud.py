@@ -35,6 +35,9 @@ class PointCloud:
     """Where the scanner stood, when the file says so."""
     sensor_origins: Optional[np.ndarray] = None
     """(N, 3) float64 per-point sensor positions, for merged stations or a moving sensor."""
+    up_axis: str = "y"
+    """The file format's up axis by convention: ``"z"`` for LAS, LAZ, E57, PCD and ``.bin``
+    sweeps, ``"y"`` for PLY, OBJ and text. ``render`` stands the cloud upright by it."""
 
     def __len__(self) -> int:
         return len(self.positions)

@@ -48,7 +48,8 @@ fn fixture(object_extra: &str) -> Fixture {
 }
 
 fn load(fixture: &Fixture, runs: &PrepRuns) -> LoadedScene {
-    let options = LoadOptions { cache_dir: Some(fixture.cache_dir.path()), progress: runs };
+    let options =
+        LoadOptions { cache_dir: Some(fixture.cache_dir.path()), progress: runs, ..LoadOptions::default() };
     load_scene(&fixture.scene, &options).unwrap()
 }
 

@@ -1,0 +1,163 @@
+//! `render(...)`: a scene, a points file or prepped patches to numpy images, on the CPU or a
+//! Vulkan device, through the same loading and renderers as `pointray render`.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use numpy::{IntoPyArray, PyArrayMethods};
+use pointray_io::MemoryBudget;
+use pointray_scene::load::{LoadOptions, load_scene_file};
+use pointray_scene::material_spec::ColorSource;
+use pointray_scene::scene_file::CameraSpec;
+use pointray_scene::{Frame, PointsScene, RenderSetting, RenderSettings, SceneFile, UpAxis};
+use pointray_surface::PatchSet;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use serde::Deserialize;
+
+use crate::backend::Backend;
+use crate::errors::{PointrayError, to_python};
+use crate::patches::Patches;
+use crate::toml_values::to_toml;
+
+/// Renders `source` with `options`; returns the image and, on request, its AOVs.
+#[pyfunction]
+pub fn render<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyDict>,
+    options: &Bound<'py, PyDict>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (mut file, in_memory) = scene_source(source)?;
+    let up = text_option(source, "up")?
+        .map(|text| text.parse::<UpAxis>())
+        .transpose()
+        .map_err(PyValueError::new_err)?;
+    if let Some(camera) = options.get_item("camera")?.filter(|c| !c.is_none()) {
+        let spec = CameraSpec::deserialize(to_toml(&camera)?)
+            .map_err(|e| PointrayError::new_err(format!("camera: {}", e.message())))?;
+        let up = up.unwrap_or(UpAxis::Y);
+        let position = up.to_scene(spec.position.into()).to_array();
+        let look_at = up.to_scene(spec.look_at.into()).to_array();
+        file.camera = Some(CameraSpec { position, look_at, ..spec });
+    }
+    let settings = render_settings(&file, options)?;
+    settings.check_memory(&MemoryBudget::of_this_machine()).map_err(PointrayError::new_err)?;
+    let backend = text_option(options, "backend")?.unwrap_or_else(|| "auto".into());
+    let device = text_option(options, "device")?.unwrap_or_else(|| "auto".into());
+    let frame = py
+        .detach(|| -> Result<Frame, String> {
+            let load_options = LoadOptions { in_memory: &in_memory, ..LoadOptions::default() };
+            let loaded = load_scene_file(&file, &load_options).map_err(|e| describe(&e))?;
+            let backend = Backend::open(&backend, &device)?;
+            let mut frame = backend.render(&loaded.scene, &settings)?;
+            frame.scale_depth(loaded.frame.scale as f32);
+            Ok(frame)
+        })
+        .map_err(PointrayError::new_err)?;
+    frame_to_dict(py, frame)
+}
+
+/// The scene file a source describes, and the point sets it holds in memory by object index.
+fn scene_source(source: &Bound<'_, PyDict>) -> PyResult<(SceneFile, Vec<(usize, Arc<PatchSet>)>)> {
+    if let Some(text) = text_option(source, "scene")? {
+        let anchor = path_option(source, "anchor")?.unwrap_or_else(|| PathBuf::from("(scene from Python)"));
+        let file = SceneFile::parse(&text, &anchor).map_err(|e| to_python(&e))?;
+        let in_memory = match source.get_item("in_memory")? {
+            Some(list) => list
+                .cast::<PyList>()?
+                .iter()
+                .map(|item| {
+                    let (index, patches): (usize, PyRef<'_, Patches>) = item.extract()?;
+                    Ok((index, patches.set.clone()))
+                })
+                .collect::<PyResult<_>>()?,
+            None => Vec::new(),
+        };
+        return Ok((file, in_memory));
+    }
+    let points = path_option(source, "points_file")?;
+    let patches = match source.get_item("patches")? {
+        Some(patches) => Some(patches.extract::<PyRef<'_, Patches>>()?.set.clone()),
+        None => None,
+    };
+    let name = points.clone().unwrap_or_else(|| PathBuf::from("(points from Python)"));
+    let mut look = match &points {
+        Some(path) => PointsScene::conventional(path),
+        None => PointsScene { up: UpAxis::Y, floor: true, color_source: ColorSource::Auto },
+    };
+    if let Some(up) = text_option(source, "up")? {
+        look.up = up.parse().map_err(PyValueError::new_err)?;
+    }
+    look.floor = flag_option(source, "floor")?.unwrap_or(look.floor);
+    if let Some(color) = text_option(source, "color")? {
+        look.color_source = color.parse().map_err(PyValueError::new_err)?;
+    }
+    let in_memory = patches.map(|set| vec![(0, set)]).unwrap_or_default();
+    Ok((look.scene_file(&name), in_memory))
+}
+
+/// The file's `[render]` settings with the call's on top, each checked as the flag is.
+fn render_settings(file: &SceneFile, options: &Bound<'_, PyDict>) -> PyResult<RenderSettings> {
+    let mut settings = file.render_settings().map_err(|e| to_python(&e))?;
+    let set = |setting: RenderSetting, key: &str, target: &mut u32| -> PyResult<()> {
+        if let Some(value) = option(options, key)?.map(|value| value.extract::<u32>()).transpose()? {
+            *target =
+                setting.check(value).map_err(|problem| PyValueError::new_err(format!("{key}: {problem}")))?;
+        }
+        Ok(())
+    };
+    set(RenderSetting::Width, "width", &mut settings.width)?;
+    set(RenderSetting::Height, "height", &mut settings.height)?;
+    set(RenderSetting::SamplesPerPixel, "spp", &mut settings.samples_per_pixel)?;
+    set(RenderSetting::MaxDepth, "max_depth", &mut settings.max_depth)?;
+    if let Some(shadows) = flag_option(options, "shadows")? {
+        settings.shadows = shadows;
+    }
+    Ok(settings)
+}
+
+/// `dict[key]` unless absent or `None`.
+fn option<'py>(dict: &Bound<'py, PyDict>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+    Ok(dict.get_item(key)?.filter(|value| !value.is_none()))
+}
+
+fn text_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<String>> {
+    option(dict, key)?.map(|value| value.extract::<String>()).transpose()
+}
+
+fn path_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<PathBuf>> {
+    option(dict, key)?.map(|value| value.extract::<PathBuf>()).transpose()
+}
+
+fn flag_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<bool>> {
+    option(dict, key)?.map(|value| value.extract::<bool>()).transpose()
+}
+
+fn describe(error: &(dyn std::error::Error + 'static)) -> String {
+    to_python(error).to_string().trim_start_matches("PointrayError: ").to_string()
+}
+
+/// The image as (H, W, 4) float32, linear RGB with alpha 1 where a primary ray hit the scene,
+/// and the AOVs as (H, W, ...) arrays.
+fn frame_to_dict(py: Python<'_>, frame: Frame) -> PyResult<Bound<'_, PyDict>> {
+    let (width, height) = (frame.width as usize, frame.height as usize);
+    let hit = frame.hit_mask();
+    let rgba: Vec<f32> = frame
+        .color
+        .iter()
+        .zip(&hit)
+        .flat_map(|(color, &hit)| [color.x, color.y, color.z, if hit { 1.0 } else { 0.0 }])
+        .collect();
+    let result = PyDict::new(py);
+    result.set_item("image", rgba.into_pyarray(py).reshape([height, width, 4])?)?;
+    result.set_item("depth", frame.depth.into_pyarray(py).reshape([height, width])?)?;
+    let normals: Vec<f32> = frame.normal.iter().flat_map(|n| n.to_array()).collect();
+    result.set_item("normal", normals.into_pyarray(py).reshape([height, width, 3])?)?;
+    let ids = |ids: Vec<u32>| {
+        ids.into_iter().map(|id| if id == Frame::MISS { -1 } else { i64::from(id) }).collect::<Vec<i64>>()
+    };
+    result.set_item("instance", ids(frame.instance_id).into_pyarray(py).reshape([height, width])?)?;
+    result.set_item("primitive", ids(frame.primitive_id).into_pyarray(py).reshape([height, width])?)?;
+    Ok(result)
+}
