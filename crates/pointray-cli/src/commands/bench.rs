@@ -11,9 +11,10 @@ use pointray_bench::{
 };
 use pointray_io::MemoryBudget;
 use pointray_scene::{RenderSetting, RenderSettings, SceneFile};
-use pointray_vulkan::{DeviceSelector, VulkanRenderer, validation_requested_by_env};
+use pointray_vulkan::{BackendChoice, DeviceSelector, VulkanRenderer};
 
-use crate::backend::{Backend, BackendChoice};
+use crate::backend::{Backend, backend_choice};
+use crate::environment::device_options;
 use crate::progress::PrepBar;
 use crate::setting_flag::setting_flag;
 
@@ -51,7 +52,7 @@ pub struct BenchArgs {
     #[arg(long, default_value = ".pointray-cache/bench")]
     cache: PathBuf,
     /// `scale` only: the renderer; `auto` takes a hardware ray-tracing GPU, else the CPU.
-    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
+    #[arg(long, default_value = "auto", value_parser = backend_choice())]
     backend: BackendChoice,
     /// `scale` only: the rungs to run, e.g. `1M,10M` (default: all; a rung that does not fit
     /// the machine is skipped with the reason).
@@ -80,8 +81,10 @@ impl Target {
         let path = PathBuf::from(target);
         pointray_io::ensure_readable_file(&path)?;
         let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
-        // A suite lists models; anything else is a scene file.
-        Ok(if text.contains("[[models]]") {
+        // A suite lists models; anything else is a scene file, whose reader also names the
+        // file and line of a syntax error.
+        let lists_models = text.parse::<toml::Table>().is_ok_and(|table| table.contains_key("models"));
+        Ok(if lists_models {
             Self::Suite(Suite::parse(&text, &path)?)
         } else {
             Self::Scene(SceneFile::parse(&text, &path)?)
@@ -129,10 +132,12 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let size = RenderSettings { width, height, ..RenderSettings::default() };
         size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     }
-    let renderer = VulkanRenderer::new(args.device.clone()).context("opening the Vulkan backend")?;
+    let device_options = device_options();
+    let renderer =
+        VulkanRenderer::new(args.device.clone(), device_options).context("opening the Vulkan backend")?;
     println!("device: {}", renderer.device_info());
     let reordering = (args.ablations && renderer.device_info().hit_reordering)
-        .then(|| VulkanRenderer::with_hit_reordering(args.device.clone(), validation_requested_by_env()))
+        .then(|| VulkanRenderer::with_hit_reordering(args.device.clone(), device_options))
         .transpose()
         .context("opening a second renderer with hit reordering")?;
     let options = BenchOptions {

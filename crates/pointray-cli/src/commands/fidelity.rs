@@ -10,9 +10,9 @@ use pointray_fidelity::view_placement::validate_setting;
 use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, SensorPose, measure_fidelity};
 use pointray_io::MemoryBudget;
 use pointray_scene::{Frame, RenderSetting, RenderSettings, Scene};
-use pointray_vulkan::DeviceSelector;
+use pointray_vulkan::{BackendChoice, DeviceSelector};
 
-use crate::backend::{Backend, BackendChoice};
+use crate::backend::{Backend, backend_choice};
 use crate::patch_args::PatchArgs;
 use crate::setting_flag::setting_flag;
 use crate::view_args::ViewArgs;
@@ -40,7 +40,7 @@ pub struct FidelityArgs {
     /// missing): holes red (dark red where the sensor never looked), false surface blue.
     #[arg(long, value_name = "DIR")]
     images: Option<PathBuf>,
-    #[arg(long, value_enum, default_value_t = BackendChoice::Cpu)]
+    #[arg(long, default_value = "cpu", value_parser = backend_choice())]
     backend: BackendChoice,
     /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
     #[arg(long, default_value = "auto")]
