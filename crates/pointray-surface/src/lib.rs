@@ -17,6 +17,7 @@ pub mod patch_bounds;
 mod patch_checks;
 pub mod patch_set;
 pub mod patch_store;
+pub mod patch_tiles;
 pub mod peak_memory;
 pub mod prep;
 pub mod prep_error;
