@@ -9,9 +9,13 @@ use std::ops::Range;
 /// The runs of `patch_count` patches, at most `max_patches` each (0 counts as 1), of
 /// near-equal length, in order; none when there are no patches.
 pub fn tile_ranges(patch_count: usize, max_patches: usize) -> Vec<Range<usize>> {
-    let tiles = patch_count.div_ceil(max_patches.max(1));
-    let start = |tile: usize| (tile as u128 * patch_count as u128 / tiles as u128) as usize;
-    (0..tiles).map(|tile| start(tile)..start(tile + 1)).collect()
+    even_ranges(patch_count, patch_count.div_ceil(max_patches.max(1)))
+}
+
+/// `count` items in `parts` consecutive runs whose lengths differ by one at most.
+pub fn even_ranges(count: usize, parts: usize) -> Vec<Range<usize>> {
+    let start = |part: usize| (part as u128 * count as u128 / parts.max(1) as u128) as usize;
+    (0..parts).map(|part| start(part)..start(part + 1)).collect()
 }
 
 #[cfg(test)]

@@ -89,12 +89,42 @@ pub fn prep_owned(
     prep_cloud(Cow::Owned(cloud), options, progress)
 }
 
+/// As `prep`, for a tile of a larger cloud (`tiled_prep`): recentred on the whole cloud's
+/// offset and merging duplicates within its distance, so that the tile's patches are the
+/// ones a single pass over the whole cloud makes.
+pub fn prep_in_frame(
+    cloud: &PointCloud,
+    options: &PrepOptions,
+    frame: &PrepFrame,
+    progress: &dyn PrepProgress,
+) -> Result<(PatchSet, PrepReport), PrepError> {
+    prep_framed(Cow::Borrowed(cloud), options, Some(frame), progress)
+}
+
+/// What a tile of a cloud takes from the whole cloud.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrepFrame {
+    /// The recentring offset: `input = local + offset`.
+    pub offset: DVec3,
+    /// Points closer than this (local units) merge as duplicates.
+    pub duplicate_distance: f32,
+}
+
+fn prep_cloud(
+    cloud: Cow<'_, PointCloud>,
+    options: &PrepOptions,
+    progress: &dyn PrepProgress,
+) -> Result<(PatchSet, PrepReport), PrepError> {
+    prep_framed(cloud, options, None, progress)
+}
+
 /// Each array is dropped as soon as its last stage is done, so that the peak (in the
 /// support radii and the fit) holds little more than the neighbour table, the frames and
 /// the patches.
-fn prep_cloud(
+fn prep_framed(
     mut cloud: Cow<'_, PointCloud>,
     options: &PrepOptions,
+    frame: Option<&PrepFrame>,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
     let params = options.params;
@@ -102,7 +132,10 @@ fn prep_cloud(
     let mut clock = StageClock { progress, times: Vec::new() };
     let count = cloud.len();
     clock.run(Stage::Validate, count, || validate(&cloud, options))?;
-    let (offset, recentred) = clock.run(Stage::Recentre, count, || recentre(&cloud.positions));
+    let (offset, recentred) = clock.run(Stage::Recentre, count, || match frame {
+        Some(frame) => (frame.offset, recentre_on(&cloud.positions, frame.offset)),
+        None => recentre(&cloud.positions),
+    });
     // Only the attributes are read from here on (gathered through `source`).
     if let Cow::Owned(owned) = &mut cloud {
         owned.positions = Vec::new();
@@ -112,7 +145,8 @@ fn prep_cloud(
     let sorted = gather(&recentred, &order);
     drop(recentred);
     let merge = clock.run(Stage::MergeDuplicates, count, || {
-        merge_duplicates(&sorted, params.duplicate_tolerance * diagonal(&sorted))
+        let distance = frame.map_or_else(|| duplicate_distance(&params, &sorted), |f| f.duplicate_distance);
+        merge_duplicates(&sorted, distance)
     });
     if merge.kept.len() < k + 1 {
         return Err(PrepError::TooFewDistinctPoints { found: merge.kept.len(), k });
@@ -236,13 +270,22 @@ fn validate(cloud: &PointCloud, options: &PrepOptions) -> Result<(), PrepError> 
 
 /// Recentres on the bounding-box centre in f64, then drops to f32: geo-referenced
 /// coordinates (~10^6) would otherwise lose their centimetres.
-fn recentre(positions: &[DVec3]) -> (DVec3, Vec<Vec3>) {
+pub(crate) fn recentre(positions: &[DVec3]) -> (DVec3, Vec<Vec3>) {
     let (min, max) = positions
         .par_iter()
         .fold(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
         .reduce(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)));
     let centre = (min + max) * 0.5;
-    (centre, positions.par_iter().map(|&p| (p - centre).as_vec3()).collect())
+    (centre, recentre_on(positions, centre))
+}
+
+fn recentre_on(positions: &[DVec3], centre: DVec3) -> Vec<Vec3> {
+    positions.par_iter().map(|&p| (p - centre).as_vec3()).collect()
+}
+
+/// Points closer than this merge as duplicates: the tolerance's fraction of the diagonal.
+pub(crate) fn duplicate_distance(params: &PrepParams, points: &[Vec3]) -> f32 {
+    params.duplicate_tolerance * diagonal(points)
 }
 
 fn diagonal(points: &[Vec3]) -> f32 {
