@@ -121,7 +121,7 @@ fn bounds(points: &[Vec3]) -> (Vec3, Vec3) {
 fn own_patches(set: PatchSet, sources: &[u32], members: &[u32], core: usize) -> TilePatches {
     let input_of = |patch: usize| members[sources[patch] as usize];
     let keep: Vec<usize> = (0..set.len()).filter(|&j| (sources[j] as usize) < core).collect();
-    let width = if set.len() == 0 { 0 } else { set.color_neighbors.len() / set.len() };
+    let width = if set.is_empty() { 0 } else { set.color_neighbors.len() / set.len() };
     let color_neighbors = keep
         .iter()
         .flat_map(|&j| set.color_neighbors[j * width..(j + 1) * width].iter())
