@@ -11,6 +11,7 @@
 use std::ops::Range;
 
 use glam::Vec3;
+use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use pointray_io::PointCloud;
 use pointray_kernels::NO_NEIGHBOR;
 use rayon::prelude::*;
@@ -81,32 +82,62 @@ pub fn prep_tile(
     let local = |i: u32| (cloud.positions[i as usize] - plan.frame.offset).as_vec3();
     let core_points: Vec<Vec3> = core.par_iter().map(|&i| local(i)).collect();
     let k = options.params.k.max(options.params.normal_k) as usize;
-    let reach = HALO_REACHES * farthest_neighbourhood(&core_points, k);
-    let (min, max) = bounds(&core_points);
-    let (min, max) = (min - Vec3::splat(reach), max + Vec3::splat(reach));
-    let mut in_core = vec![false; cloud.len()];
-    core.iter().for_each(|&i| in_core[i as usize] = true);
-    let halo: Vec<u32> = (0..cloud.len() as u32)
-        .into_par_iter()
-        .filter(|&i| !in_core[i as usize] && local(i).cmpge(min).all() && local(i).cmple(max).all())
-        .collect();
-    drop(in_core);
+    let reaches: Vec<f32> =
+        neighbourhood_radii(&core_points, k).into_iter().map(|radius| HALO_REACHES * radius).collect();
+    let halo = halo_of(cloud.len(), core, &core_points, &reaches, local);
     let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
     let (patches, report) = prep_in_frame(&subset(cloud, &members), options, &plan.frame, progress)?;
     Ok(own_patches(patches, &report.patch_sources, &members, core.len()))
 }
 
-/// The distance from any of `points` to its `k`-th nearest neighbour among them (an upper
-/// bound on its neighbourhood in the whole cloud); unbounded for fewer than `k + 1` points.
-fn farthest_neighbourhood(points: &[Vec3], k: usize) -> f32 {
+/// The points outside `core` within its point `i`'s `reaches[i]` of it, for any `i`.
+fn halo_of(
+    count: usize,
+    core: &[u32],
+    core_points: &[Vec3],
+    reaches: &[f32],
+    local: impl Fn(u32) -> Vec3 + Sync,
+) -> Vec<u32> {
+    let reach = reaches.iter().copied().fold(0.0, f32::max);
+    let (min, max) = bounds(core_points);
+    let (min, max) = (min - Vec3::splat(reach), max + Vec3::splat(reach));
+    let mut in_core = vec![false; count];
+    core.iter().for_each(|&i| in_core[i as usize] = true);
+    let candidates: Vec<u32> = (0..count as u32)
+        .into_par_iter()
+        .filter(|&i| !in_core[i as usize] && local(i).cmpge(min).all() && local(i).cmple(max).all())
+        .collect();
+    drop(in_core);
+    if candidates.is_empty() {
+        return candidates;
+    }
+    let entries: Vec<[f32; 3]> = candidates.iter().map(|&i| local(i).to_array()).collect();
+    let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
+        .unwrap_or_else(|e| unreachable!("a tile's points fit u32 indices: {e}"));
+    let mut reached: Vec<u32> = core_points
+        .par_iter()
+        .zip(reaches)
+        .flat_map_iter(|(p, &r)| {
+            let hits = tree.query(&p.to_array()).within::<SquaredEuclidean<f32>>(r * r).execute();
+            hits.into_iter().map(|hit| hit.item)
+        })
+        .collect();
+    reached.par_sort_unstable();
+    reached.dedup();
+    reached.into_iter().map(|j| candidates[j as usize]).collect()
+}
+
+/// Each point's distance to its `k`-th nearest neighbour among `points` (an upper bound on
+/// its neighbourhood in the whole cloud); unbounded for fewer than `k + 1` points.
+fn neighbourhood_radii(points: &[Vec3], k: usize) -> Vec<f32> {
     if points.len() <= k {
-        return f32::INFINITY;
+        return vec![f32::INFINITY; points.len()];
     }
     let neighbors = k_nearest(points, k);
     (0..points.len())
         .into_par_iter()
         .map(|i| neighbors.distances_of(i).iter().copied().fold(0.0, f32::max))
-        .reduce(|| 0.0, f32::max)
+        .collect()
 }
 
 fn bounds(points: &[Vec3]) -> (Vec3, Vec3) {

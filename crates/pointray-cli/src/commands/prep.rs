@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use glam::DVec3;
 use pointray_surface::input_validation::validate_options;
+use pointray_surface::tiled_prep::prep_tiled;
 use pointray_surface::{OutlierFilter, PrepError, PrepOptions, PrepParams, prep_owned};
 
 use crate::boxes_arg::Boxes;
@@ -57,6 +58,12 @@ pub struct PrepArgs {
     /// or `--sensor`); `off` treats every cloud as unstructured points.
     #[arg(long, value_enum, default_value_t = Scan::Auto)]
     scan: Scan,
+    /// Prep in this many tiles, one after another, each with a halo of its neighbours'
+    /// points: the same patches where they depend only on their neighbourhoods, in the
+    /// memory of the cloud and one tile (normals oriented over the neighbour graph are
+    /// settled per tile; orient toward `--sensor` for identical ones).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65_536))]
+    tiles: Option<u32>,
     #[command(flatten)]
     columns: ColumnsArg,
 }
@@ -84,10 +91,20 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     validate_options(&options).map_err(flag_error)?;
     let cloud = args.columns.read_point_cloud(&args.points)?;
     let bar = PrepBar::default();
-    let (patches, report) =
-        prep_owned(cloud, &options, &bar).map_err(|e| anyhow::anyhow!("{}: {e}", args.points.display()))?;
+    let in_file = |e: PrepError| anyhow::anyhow!("{}: {e}", args.points.display());
+    let patches = match args.tiles {
+        Some(tiles) => {
+            let patches = prep_tiled(&cloud, &options, tiles as usize, &bar).map_err(in_file)?;
+            println!("prepped {} points in {tiles} tiles into {} patches", cloud.len(), patches.len());
+            patches
+        }
+        None => {
+            let (patches, report) = prep_owned(cloud, &options, &bar).map_err(in_file)?;
+            println!("{report}");
+            patches
+        }
+    };
     pointray_surface::patch_store::write(&args.output, &patches)?;
-    println!("{report}");
     println!("wrote {} patches to {} (offset stored in its header)", patches.len(), args.output.display());
     Ok(())
 }
