@@ -47,7 +47,7 @@ pub fn measure(
     output: PixelOutput,
     frames: FrameCounts,
 ) -> Result<Measurement, VulkanError> {
-    let layout = SceneLayout { blas: layout, buffers: settings.buffer_layout };
+    let layout = SceneLayout { blas: layout, buffers: settings.buffer_layout, ..SceneLayout::default() };
     measure_prepared(renderer, &renderer.prepare_with_layout(scene, layout)?, settings, output, frames)
 }
 

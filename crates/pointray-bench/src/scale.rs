@@ -147,6 +147,7 @@ fn measure_rung(
         store_write_seconds: store_write.as_secs_f64(),
         load_seconds: load.as_secs_f64(),
         blas_build_seconds: costs.blas.as_secs_f64(),
+        bottom_levels: costs.tiles,
         gpu_bytes_per_point: costs.gpu_bytes.map(|bytes| bytes as f64 / points),
         fps,
     })

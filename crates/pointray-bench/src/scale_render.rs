@@ -34,6 +34,8 @@ pub struct BuildCosts {
     pub blas: Duration,
     /// Everything the scene holds on the GPU; `None` on the CPU backend.
     pub gpu_bytes: Option<u64>,
+    /// Bottom levels: one per mesh and per tile of a point set.
+    pub tiles: usize,
 }
 
 impl<'a> ScaleBackend<'a> {
@@ -69,16 +71,19 @@ impl<'a> ScaleBackend<'a> {
                     .prepare(scene)
                     .map_err(|source| BenchError::Vulkan { case: case.to_string(), source })?;
                 let report = prepared.build_report();
-                let costs = BuildCosts { blas: report.blas_build, gpu_bytes: Some(report.gpu_bytes()) };
+                let costs = BuildCosts {
+                    blas: report.blas_build,
+                    gpu_bytes: Some(report.gpu_bytes()),
+                    tiles: report.blas_count,
+                };
                 Ok((ReadyScene::Vulkan { renderer, prepared: Box::new(prepared) }, costs))
             }
             Self::Cpu => {
                 let started = Instant::now();
                 let renderer = CpuRenderer::new(scene);
-                Ok((
-                    ReadyScene::Cpu(Box::new(renderer)),
-                    BuildCosts { blas: started.elapsed(), gpu_bytes: None },
-                ))
+                let costs =
+                    BuildCosts { blas: started.elapsed(), gpu_bytes: None, tiles: renderer.tile_count() };
+                Ok((ReadyScene::Cpu(Box::new(renderer)), costs))
             }
         }
     }

@@ -38,6 +38,9 @@ pub struct RungMeasurement {
     pub load_seconds: f64,
     /// Building the bottom level(s): GPU BLAS, or the CPU renderer's BVHs.
     pub blas_build_seconds: f64,
+    /// Bottom levels built: one per tile of the points (`maxPrimitiveCount` patches at
+    /// most on the GPU) and one for the floor.
+    pub bottom_levels: usize,
     /// Everything the scene keeps on the GPU, per patch; `None` on the CPU backend.
     pub gpu_bytes_per_point: Option<f64>,
     /// Frames per second by size, with shadows and one reflection bounce.
@@ -70,7 +73,7 @@ impl ScaleRow {
                 let fps: Vec<String> =
                     m.fps.iter().map(|s| format!("{:.1} FPS at {}x{}", s.fps, s.width, s.height)).collect();
                 format!(
-                    "{}: prep {:.2} s ({:.2} M points/s, peak {}), store {:.1} MB, load {:.2} s, BLAS {:.2} s, GPU {}, {}",
+                    "{}: prep {:.2} s ({:.2} M points/s, peak {}), store {:.1} MB, load {:.2} s, BLAS {:.2} s ({} bottom levels), GPU {}, {}",
                     self.label,
                     m.prep_seconds,
                     m.prep_points_per_second / 1e6,
@@ -78,6 +81,7 @@ impl ScaleRow {
                     m.store_bytes as f64 / 1e6,
                     m.load_seconds,
                     m.blas_build_seconds,
+                    m.bottom_levels,
                     m.gpu_bytes_per_point.map_or("n/a".into(), |b| format!("{b:.0} B/point")),
                     fps.join(", ")
                 )
@@ -100,9 +104,9 @@ pub fn scale_markdown(report: &ScaleReport) -> String {
     let size_columns: String = sizes.iter().map(|(w, h)| format!(" FPS {w}x{h} |")).collect();
     let _ = writeln!(
         text,
-        "| points | prep s | M points/s | prep peak RSS GB (B/point) | store GB | GPU B/point | load s | BLAS build s |{size_columns}"
+        "| points | prep s | M points/s | prep peak RSS GB (B/point) | store GB | GPU B/point | load s | BLAS build s | bottom levels |{size_columns}"
     );
-    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(sizes.len()));
+    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(sizes.len()));
     for row in &report.rows {
         let _ = writeln!(text, "{}", table_row(row, sizes.len()));
     }
@@ -115,7 +119,7 @@ pub fn scale_markdown(report: &ScaleReport) -> String {
 fn table_row(row: &ScaleRow, size_count: usize) -> String {
     let m = match &row.outcome {
         RungOutcome::Skipped { reason } => {
-            return format!("| {} | skipped: {reason} |{}", row.label, " |".repeat(6 + size_count));
+            return format!("| {} | skipped: {reason} |{}", row.label, " |".repeat(7 + size_count));
         }
         RungOutcome::Measured(m) => m,
     };
@@ -124,7 +128,7 @@ fn table_row(row: &ScaleRow, size_count: usize) -> String {
     });
     let fps: String = m.fps.iter().map(|s| format!(" {:.1} |", s.fps)).collect();
     format!(
-        "| {} | {:.2} | {:.2} | {peak} | {:.2} | {} | {:.2} | {:.2} |{fps}",
+        "| {} | {:.2} | {:.2} | {peak} | {:.2} | {} | {:.2} | {:.2} | {} |{fps}",
         row.label,
         m.prep_seconds,
         m.prep_points_per_second / 1e6,
@@ -132,5 +136,6 @@ fn table_row(row: &ScaleRow, size_count: usize) -> String {
         m.gpu_bytes_per_point.map_or("–".into(), |b| format!("{b:.0}")),
         m.load_seconds,
         m.blas_build_seconds,
+        m.bottom_levels,
     )
 }

@@ -152,6 +152,7 @@ fn assert_sane(measurement: &RungMeasurement, points: u64) {
     assert!(m.store_bytes > 71 * points && m.store_bytes < 73 * points, "{m:?}");
     assert!(m.prep_peak_rss_bytes.is_some_and(|bytes| bytes > 0), "{m:?}");
     assert!(m.load_seconds >= m.blas_build_seconds && m.blas_build_seconds > 0.0, "{m:?}");
+    assert_eq!(m.bottom_levels, 2, "the points in one tile, and the floor: {m:?}");
     let sizes: Vec<(u32, u32)> = m.fps.iter().map(|s| (s.width, s.height)).collect();
     assert_eq!(sizes, [(48, 27), (16, 16)]);
     assert!(m.fps.iter().all(|s| s.fps > 0.0 && (s.fps * s.frame_ms - 1000.0).abs() < 1e-6), "{m:?}");
@@ -181,9 +182,11 @@ fn scale_suite_reports_gpu_bytes_on_vulkan() {
     let report = run_scale(ScaleBackend::Vulkan(&renderer), &options).expect("runs");
     let m = measured(&report);
     assert_sane(m, 20_000);
-    // The hot and cold records (48 bytes a patch) and the BLAS; no boxes, no combined records.
+    // The hot records (36 bytes a patch) and the BLAS; no boxes, no combined records, and
+    // no cold ones: the dragon's material does not colour by the points.
     let bytes = m.gpu_bytes_per_point.expect("GPU bytes on Vulkan");
-    assert!(bytes > 48.0 && bytes < 180.0, "{bytes} B/point");
+    eprintln!("{bytes:.1} GPU bytes a point");
+    assert!(bytes > 36.0 && bytes < 180.0, "{bytes} B/point");
     assert_eq!(renderer.validation_messages(), 0, "the validation layer reported messages");
 }
 

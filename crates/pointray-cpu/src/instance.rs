@@ -18,28 +18,32 @@ pub struct Instance {
 }
 
 impl Instance {
-    /// `None` for an object with nothing to hit or a transform that cannot be inverted
-    /// (a zero scale flattens it to nothing visible).
-    pub fn new(object_index: u32, object: &SceneObject) -> Option<Self> {
+    /// The instances of an object's tiles (one for a mesh or a small point set, at most
+    /// `max_tile_patches` patches each), all with the object's transform. None for an
+    /// object with nothing to hit or a transform that cannot be inverted (a zero scale
+    /// flattens it to nothing visible).
+    pub fn tiles_of(object_index: u32, object: &SceneObject, max_tile_patches: usize) -> Vec<Self> {
         if object.transform.matrix3.determinant().abs() <= f32::MIN_POSITIVE || !object.transform.is_finite()
         {
             tracing::warn!("CPU renderer: object {:?} has a singular transform; left out", object.name);
-            return None;
+            return Vec::new();
         }
-        let blas = ObjectBvh::build(&object.geometry)?;
         let world_to_object = object.transform.inverse();
-        let world_bounds = transformed_box(&blas.bounds(), &object.transform);
-        if !box_in_range(&world_bounds) {
+        let instances: Vec<Self> = ObjectBvh::build_tiles(&object.geometry, max_tile_patches)
+            .into_iter()
+            .map(|blas| Self {
+                object_index,
+                world_bounds: transformed_box(&blas.bounds(), &object.transform),
+                blas,
+                world_to_object,
+                normal_to_world: world_to_object.matrix3.transpose(),
+            })
+            .collect();
+        if instances.iter().any(|instance| !box_in_range(&instance.world_bounds)) {
             tracing::warn!("CPU renderer: object {:?} is placed beyond the f32 range; left out", object.name);
-            return None;
+            return Vec::new();
         }
-        Some(Self {
-            object_index,
-            blas,
-            world_to_object,
-            normal_to_world: world_to_object.matrix3.transpose(),
-            world_bounds,
-        })
+        instances
     }
 
     /// Object lengths to world lengths, exact for uniform scales. Taken from the inverse

@@ -12,6 +12,8 @@ use pointray_kernels::{Aabb, PatchAcceptance, Ray, intersect_patch};
 use pointray_scene::Geometry;
 use pointray_surface::PatchSet;
 use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
+use pointray_surface::patch_tiles::tile_ranges;
+use rayon::prelude::*;
 
 use crate::triangle::intersect_triangle;
 
@@ -19,7 +21,7 @@ use crate::triangle::intersect_triangle;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ObjectHit {
     pub t: f32,
-    /// The patch or triangle index within the object.
+    /// The patch or triangle index within the object (the whole set, not the tile).
     pub primitive: u32,
     /// Patch-local `(u, v)`; zero for triangles.
     pub uv: Vec2,
@@ -31,24 +33,35 @@ pub struct ObjectBvh {
     /// ray against the primitive's own box first skips most quadratic solves, and matches
     /// the GPU, whose hardware calls the intersection shader only for boxes the ray enters.
     boxes: Vec<obvhs::aabb::Aabb>,
+    /// The object's index of this BVH's first primitive: a tile of a large point set holds
+    /// a run of its patches, and hits name them by their index in the whole set.
+    first: u32,
     geometry: Geometry,
 }
 
 impl ObjectBvh {
-    /// `None` for an object with nothing to hit, or whose records are inconsistent
-    /// (a triangle naming a missing vertex, fewer boxes than patches): it is left out,
-    /// with a warning, rather than crash the render.
-    pub fn build(geometry: &Geometry) -> Option<Self> {
+    /// The BVHs of an object's tiles (`pointray_surface::patch_tiles`): a point set's
+    /// patches in runs of at most `max_tile_patches`, a mesh whole. Empty for an object
+    /// with nothing to hit, or whose records are inconsistent (a triangle naming a missing
+    /// vertex, fewer boxes than patches): it is left out, with a warning, rather than crash
+    /// the render.
+    pub fn build_tiles(geometry: &Geometry, max_tile_patches: usize) -> Vec<Self> {
         if let Some(problem) = inconsistency(geometry) {
             tracing::warn!("CPU renderer: leaving an object out: {problem}");
-            return None;
+            return Vec::new();
         }
         let boxes = primitive_boxes(geometry);
-        if boxes.is_empty() {
-            return None;
-        }
-        let bvh = build_bvh(&boxes);
-        Some(Self { bvh, boxes, geometry: geometry.clone() })
+        let max_tile = match geometry {
+            Geometry::Patches(_) => max_tile_patches,
+            Geometry::Mesh(_) => boxes.len(),
+        };
+        tile_ranges(boxes.len(), max_tile)
+            .into_par_iter()
+            .map(|tile| {
+                let boxes = boxes[tile.clone()].to_vec();
+                Self { bvh: build_bvh(&boxes), boxes, first: tile.start as u32, geometry: geometry.clone() }
+            })
+            .collect()
     }
 
     /// The object-space box around every primitive.
@@ -96,10 +109,11 @@ impl ObjectBvh {
         primitive: u32,
         acceptance: PatchAcceptance,
     ) -> Option<ObjectHit> {
-        let index = primitive as usize;
-        if !enters_box(&self.boxes[index], candidate) {
+        if !enters_box(&self.boxes[primitive as usize], candidate) {
             return None;
         }
+        let primitive = self.first + primitive;
+        let index = primitive as usize;
         let (t_min, t_max) = (candidate.tmin, candidate.tmax);
         match &self.geometry {
             Geometry::Patches(patches) => {

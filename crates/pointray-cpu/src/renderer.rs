@@ -33,7 +33,23 @@ impl CpuRenderer {
     /// Builds every object's BVH and the top level once; objects with nothing to hit or a
     /// singular transform are left out (with a warning).
     pub fn new(scene: &Scene) -> Self {
-        Self { scene: scene.clone(), top: TopLevel::build(scene), ray_epsilon: scene.ray_epsilon() }
+        Self::with_max_tile_patches(scene, usize::MAX)
+    }
+
+    /// As `new`, with each point set split into tiles of at most `max_tile_patches` patches
+    /// (`pointray_surface::patch_tiles`), one BVH each under the top level: the same hits,
+    /// and a large set's BVHs build in parallel.
+    pub fn with_max_tile_patches(scene: &Scene, max_tile_patches: usize) -> Self {
+        Self {
+            scene: scene.clone(),
+            top: TopLevel::build(scene, max_tile_patches),
+            ray_epsilon: scene.ray_epsilon(),
+        }
+    }
+
+    /// How many bottom-level BVHs (tiles of point sets, meshes) the scene was built into.
+    pub fn tile_count(&self) -> usize {
+        self.top.instances.len()
     }
 
     /// Renders one frame. Zero samples per pixel count as one.

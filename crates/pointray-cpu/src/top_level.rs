@@ -1,4 +1,5 @@
-//! The top level: a BVH over the world boxes of the scene's object instances.
+//! The top level: a BVH over the world boxes of the scene's object instances, one per
+//! tile of a large point set.
 
 use glam::Vec2;
 use obvhs::cwbvh::CwBvh;
@@ -25,12 +26,13 @@ pub struct TopLevel {
 }
 
 impl TopLevel {
-    pub fn build(scene: &Scene) -> Self {
+    /// Every object's tiles as instances; point sets in tiles of at most `max_tile_patches`.
+    pub fn build(scene: &Scene, max_tile_patches: usize) -> Self {
         let instances: Vec<Instance> = scene
             .objects
             .iter()
             .enumerate()
-            .filter_map(|(index, object)| Instance::new(index as u32, object))
+            .flat_map(|(index, object)| Instance::tiles_of(index as u32, object, max_tile_patches))
             .collect();
         let boxes: Vec<obvhs::aabb::Aabb> = instances
             .iter()

@@ -19,8 +19,10 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Com
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MeshVertices { vec4 positions[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer MeshIndices { uint indices[]; };
 
-// One per scene object, indexed by gl_InstanceCustomIndexEXT. Addresses that the object's
-// kind does not use are zero; only the hit group of that kind dereferences them.
+// One per TLAS instance, indexed by gl_InstanceCustomIndexEXT: a mesh, a point set, or one
+// tile of a large point set (a run of its patches with a BLAS of its own; the tiles of a set
+// share its buffers). Addresses that the object's kind does not use are zero; only the hit
+// group of that kind dereferences them.
 struct ObjectRecord {
     HotPatches hot;
     ColdPatches cold;
@@ -30,6 +32,10 @@ struct ObjectRecord {
     ColorNeighbors color_neighbors;         // 0 where the points have no colours (interpolate_color.glsl)
     vec4 diffuse_ambient;                   // rgb = diffuse colour, a = ambient
     vec4 specular_shininess_reflect_colors; // x = specular, y = shininess, z = reflectivity, w = use point colours
+    uint object_index;                      // the object's index in the scene (the instance AOV)
+    uint first_patch;                       // the patch index of the tile's primitive 0
+    uint pad0;
+    uint pad1;
 };
 
 // Point light: xyz = position, w = 0. Directional: xyz = travel direction, w = 1.

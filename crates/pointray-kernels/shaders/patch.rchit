@@ -27,7 +27,7 @@ uint hit_color(ObjectRecord object, uint patch_index) {
 
 void main() {
     ObjectRecord object = objects[gl_InstanceCustomIndexEXT];
-    uint patch_index = gl_PrimitiveID + gl_GeometryIndexEXT;
+    uint patch_index = object.first_patch + gl_PrimitiveID + gl_GeometryIndexEXT;
     PatchHot patch_record = load_hot(object, patch_index);
     vec3 object_normal = patch_normal(decode_patch(patch_record), hit_uv);
     // Normals go to world by the inverse transpose: n * WorldToObject.

@@ -8,8 +8,8 @@ const uint MISS_ID = 0xffffffffu;
 struct HitPayload {
     vec3 normal_or_background; // geometric world normal (not face-forwarded), or the background on a miss
     float t;
-    uint instance;             // MISS_ID on a miss
-    uint primitive;
+    uint instance;             // the ObjectRecord's index (gl_InstanceCustomIndexEXT); MISS_ID on a miss
+    uint primitive;            // the patch's index in its whole set, or the triangle's
     uint color_rgba8;          // the point's colour (white for meshes)
     float clearance;           // secondary rays leaving the hit start at this t (self_clearance)
 };

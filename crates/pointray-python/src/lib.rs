@@ -3,7 +3,6 @@
 //! converts between numpy arrays and the workspace's types and releases the GIL for long calls.
 
 mod arrays;
-mod backend;
 mod devices;
 mod errors;
 mod patches;

@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use numpy::{IntoPyArray, PyArrayMethods};
 use pointray_io::MemoryBudget;
+use pointray_render::{Backend, BackendChoice, DeviceSelector, device_options_from_environment};
 use pointray_scene::load::{LoadOptions, load_scene_file};
 use pointray_scene::material_spec::ColorSource;
 use pointray_scene::scene_file::CameraSpec;
@@ -16,7 +17,6 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use serde::Deserialize;
 
-use crate::backend::Backend;
 use crate::errors::{PointrayError, to_python};
 use crate::patches::Patches;
 use crate::toml_values::to_toml;
@@ -43,14 +43,23 @@ pub fn render<'py>(
     }
     let settings = render_settings(&file, options)?;
     settings.check_memory(&MemoryBudget::of_this_machine()).map_err(PointrayError::new_err)?;
-    let backend = text_option(options, "backend")?.unwrap_or_else(|| "auto".into());
-    let device = text_option(options, "device")?.unwrap_or_else(|| "auto".into());
+    let backend: BackendChoice = text_option(options, "backend")?
+        .as_deref()
+        .unwrap_or("auto")
+        .parse()
+        .map_err(PyValueError::new_err)?;
+    let device: DeviceSelector = text_option(options, "device")?
+        .as_deref()
+        .unwrap_or("auto")
+        .parse()
+        .map_err(|e| PyValueError::new_err(format!("device: {e}")))?;
     let frame = py
         .detach(|| -> Result<Frame, String> {
             let load_options = LoadOptions { in_memory: &in_memory, ..LoadOptions::default() };
             let loaded = load_scene_file(&file, &load_options).map_err(|e| describe(&e))?;
-            let backend = Backend::open(&backend, &device)?;
-            let mut frame = backend.render(&loaded.scene, &settings)?;
+            let backend = Backend::open(backend, &device, device_options_from_environment())
+                .map_err(|e| format!("opening the Vulkan backend: {e}"))?;
+            let mut frame = backend.render(&loaded.scene, &settings).map_err(|e| describe(&e))?;
             frame.scale_depth(loaded.frame.scale as f32);
             Ok(frame)
         })
@@ -58,8 +67,11 @@ pub fn render<'py>(
     frame_to_dict(py, frame)
 }
 
+/// Point sets given in memory, by object index (`LoadOptions::in_memory`).
+type InMemory = Vec<(usize, Arc<PatchSet>)>;
+
 /// The scene file a source describes, and the point sets it holds in memory by object index.
-fn scene_source(source: &Bound<'_, PyDict>) -> PyResult<(SceneFile, Vec<(usize, Arc<PatchSet>)>)> {
+fn scene_source(source: &Bound<'_, PyDict>) -> PyResult<(SceneFile, InMemory)> {
     if let Some(text) = text_option(source, "scene")? {
         let anchor = path_option(source, "anchor")?.unwrap_or_else(|| PathBuf::from("(scene from Python)"));
         let file = SceneFile::parse(&text, &anchor).map_err(|e| to_python(&e))?;

@@ -1,5 +1,6 @@
 //! From a point set to MLS quadratic patches (SPEC.md §2): the offline half of pointray.
 
+mod cloud_subset;
 pub mod cold_records;
 mod component_signs;
 pub mod density_radius;
@@ -17,6 +18,7 @@ pub mod patch_bounds;
 mod patch_checks;
 pub mod patch_set;
 pub mod patch_store;
+pub mod patch_tiles;
 pub mod peak_memory;
 pub mod prep;
 pub mod prep_error;
@@ -32,6 +34,7 @@ mod scan_prep;
 mod shaped_patches;
 mod stage_clock;
 pub mod support_radius;
+pub mod tiled_prep;
 pub mod uneven_sampling;
 pub mod wendland;
 
@@ -39,7 +42,7 @@ pub use density_radius::RadiusMode;
 pub use outlier_removal::OutlierFilter;
 pub use patch_bounds::BoxKind;
 pub use patch_set::PatchSet;
-pub use prep::{PREP_REVISION, prep, prep_owned};
+pub use prep::{PREP_REVISION, PrepFrame, prep, prep_in_frame, prep_owned};
 pub use prep_error::PrepError;
 pub use prep_progress::{NoProgress, PrepProgress, Stage};
 pub use prep_report::{FitCounts, PrepReport, RadiusFallbacks, ScanSummary};

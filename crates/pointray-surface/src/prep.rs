@@ -63,19 +63,52 @@ pub fn prep_owned(
     prep_cloud(Cow::Owned(cloud), settings, progress)
 }
 
+/// As `prep`, for a tile of a larger cloud (`tiled_prep`): recentred on the whole cloud's
+/// offset and merging duplicates within its distance, so that the tile's patches are the
+/// ones a single pass over the whole cloud makes.
+pub fn prep_in_frame(
+    cloud: &PointCloud,
+    settings: &PrepSettings,
+    frame: &PrepFrame,
+    progress: &dyn PrepProgress,
+) -> Result<(PatchSet, PrepReport), PrepError> {
+    prep_framed(Cow::Borrowed(cloud), settings, Some(frame), progress)
+}
+
+/// What a tile of a cloud takes from the whole cloud.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrepFrame {
+    /// The recentring offset: `input = local + offset`.
+    pub offset: DVec3,
+    /// Points closer than this (local units) merge as duplicates.
+    pub duplicate_distance: f32,
+}
+
+fn prep_cloud(
+    cloud: Cow<'_, PointCloud>,
+    settings: &PrepSettings,
+    progress: &dyn PrepProgress,
+) -> Result<(PatchSet, PrepReport), PrepError> {
+    prep_framed(cloud, settings, None, progress)
+}
+
 /// Each array is dropped as soon as its last stage is done, so that the peak (in the
 /// support radii and the fit) holds little more than the neighbour table, the frames and
 /// the patches.
-fn prep_cloud(
+fn prep_framed(
     mut cloud: Cow<'_, PointCloud>,
     settings: &PrepSettings,
+    frame: Option<&PrepFrame>,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
     let (k, normal_k) = (settings.k as usize, settings.normal_k as usize);
     let mut clock = StageClock { progress, times: Vec::new() };
     let count = cloud.len();
     clock.run(Stage::Validate, count, || validate(&cloud, settings))?;
-    let (offset, recentred) = clock.run(Stage::Recentre, count, || recentre(&cloud.positions));
+    let (offset, recentred) = clock.run(Stage::Recentre, count, || match frame {
+        Some(frame) => (frame.offset, recentre_on(&cloud.positions, frame.offset)),
+        None => recentre(&cloud.positions),
+    });
     // Only the attributes are read from here on (gathered through `source`).
     if let Cow::Owned(owned) = &mut cloud {
         owned.positions = Vec::new();
@@ -85,7 +118,8 @@ fn prep_cloud(
     let sorted = gather(&recentred, &order);
     drop(recentred);
     let merge = clock.run(Stage::MergeDuplicates, count, || {
-        merge_duplicates(&sorted, settings.duplicate_tolerance * diagonal(&sorted))
+        let distance = frame.map_or_else(|| duplicate_distance(settings, &sorted), |f| f.duplicate_distance);
+        merge_duplicates(&sorted, distance)
     });
     if merge.kept.len() < k + 1 {
         return Err(PrepError::TooFewDistinctPoints { found: merge.kept.len(), k });
@@ -227,13 +261,22 @@ fn validate(cloud: &PointCloud, settings: &PrepSettings) -> Result<(), PrepError
 
 /// Recentres on the bounding-box centre in f64, then drops to f32: geo-referenced
 /// coordinates (~10^6) would otherwise lose their centimetres.
-fn recentre(positions: &[DVec3]) -> (DVec3, Vec<Vec3>) {
+pub(crate) fn recentre(positions: &[DVec3]) -> (DVec3, Vec<Vec3>) {
     let (min, max) = positions
         .par_iter()
         .fold(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
         .reduce(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)));
     let centre = (min + max) * 0.5;
-    (centre, positions.par_iter().map(|&p| (p - centre).as_vec3()).collect())
+    (centre, recentre_on(positions, centre))
+}
+
+fn recentre_on(positions: &[DVec3], centre: DVec3) -> Vec<Vec3> {
+    positions.par_iter().map(|&p| (p - centre).as_vec3()).collect()
+}
+
+/// Points closer than this merge as duplicates: the tolerance's fraction of the diagonal.
+pub(crate) fn duplicate_distance(settings: &PrepSettings, points: &[Vec3]) -> f32 {
+    settings.duplicate_tolerance * diagonal(points)
 }
 
 fn diagonal(points: &[Vec3]) -> f32 {

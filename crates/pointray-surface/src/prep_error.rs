@@ -2,6 +2,8 @@
 
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum PrepError {
+    #[error("tile {index} asked for, but the cloud is cut into {count} tiles (0 to {})", count.saturating_sub(1))]
+    NoSuchTile { index: usize, count: usize },
     #[error("point {index} has a coordinate that is NaN or infinite")]
     NonFiniteCoordinate { index: usize },
     #[error("{found} points, but k = {k} needs at least {} distinct points", k + 1)]

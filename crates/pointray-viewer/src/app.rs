@@ -112,7 +112,13 @@ impl App {
         let handle = window.window_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
         let inner = window.inner_size();
         let size = (inner.width, inner.height);
-        self.source.attach_window(display, handle, size, self.options.vsync, self.options.validation)?;
+        self.source.attach_window(
+            display,
+            handle,
+            size,
+            self.options.vsync,
+            self.options.device_options.validation,
+        )?;
         self.window = Some(window);
         Ok(())
     }

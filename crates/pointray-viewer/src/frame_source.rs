@@ -7,7 +7,8 @@
 use pointray_cpu::CpuRenderer;
 use pointray_scene::{Frame, Light, RenderSettings, Scene};
 use pointray_vulkan::{
-    DeviceSelector, MessageCounter, PreparedScene, ReadBack, VulkanRenderer, WindowTarget,
+    BackendChoice, DeviceOptions, DeviceSelector, MessageCounter, PreparedScene, ReadBack, VulkanRenderer,
+    WindowTarget,
 };
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use std::sync::Arc;
@@ -16,17 +17,6 @@ use crate::display_frame::frame_from_display;
 use crate::error::ViewerError;
 use crate::pixels::frame_bytes;
 use crate::present::Presenter;
-
-/// Which renderer draws the frames; as `pointray render --backend`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum RenderBackend {
-    /// A hardware ray-tracing GPU if there is one, else the CPU renderer (CPU Vulkan drivers
-    /// such as lavapipe are slower than the CPU renderer, as for `pointray render`).
-    #[default]
-    Auto,
-    Vulkan,
-    Cpu,
-}
 
 /// How frames reach the window.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -64,23 +54,17 @@ pub(crate) enum FrameSource {
 impl FrameSource {
     /// With `display`, a Vulkan renderer can present to that window system's windows.
     pub(crate) fn open(
-        choice: RenderBackend,
+        choice: BackendChoice,
         device: &DeviceSelector,
-        validation: bool,
+        options: DeviceOptions,
         scene: &Scene,
         display: Option<RawDisplayHandle>,
     ) -> Result<Self, ViewerError> {
         let open = || match display {
-            Some(display) => VulkanRenderer::for_window(device.clone(), validation, display),
-            None => VulkanRenderer::with_validation(device.clone(), validation),
+            Some(display) => VulkanRenderer::for_window(device.clone(), options, display),
+            None => VulkanRenderer::new(device.clone(), options),
         };
-        let renderer = match choice {
-            RenderBackend::Cpu => None,
-            RenderBackend::Vulkan => Some(open()?),
-            RenderBackend::Auto => {
-                open().ok().filter(|r| !r.device_info().device_type.to_ascii_lowercase().contains("cpu"))
-            }
-        };
+        let renderer = choice.vulkan_renderer(open)?;
         match renderer {
             Some(renderer) => Ok(Self::Vulkan {
                 window: None,
@@ -260,9 +244,9 @@ mod tests {
         Scene { camera: orbit_camera(&scene.camera, 1, 4, 360.0), lights, ..scene.clone() }
     }
 
-    fn fresh_render(backend: RenderBackend, scene: &Scene, settings: &RenderSettings) -> Frame {
+    fn fresh_render(backend: BackendChoice, scene: &Scene, settings: &RenderSettings) -> Frame {
         match backend {
-            RenderBackend::Cpu => pointray_cpu::render(scene, settings),
+            BackendChoice::Cpu => pointray_cpu::render(scene, settings),
             _ => {
                 let renderer = VulkanRenderer::with_validation(DeviceSelector::Auto, true).expect("reopens");
                 let frame = renderer.render(scene, settings).expect("a fresh render");
@@ -291,17 +275,22 @@ mod tests {
         let loaded = load_demo(&LoadOptions::default()).expect("the demo scene loads");
         let settings = RenderSettings { width: 64, height: 48, ..loaded.settings };
         let moved = moved(&loaded.scene);
-        for backend in [RenderBackend::Cpu, RenderBackend::Vulkan] {
-            let mut source =
-                match FrameSource::open(backend, &DeviceSelector::Auto, true, &loaded.scene, None) {
-                    Ok(source) => source,
-                    Err(ViewerError::Renderer(error)) if error.is_no_device() => {
-                        assert!(!std::env::var("CI").is_ok_and(|v| v == "true"), "CI=true but {error}");
-                        eprintln!("note: skipping {backend:?}, {error}");
-                        continue;
-                    }
-                    Err(error) => panic!("{backend:?} does not open: {error}"),
-                };
+        for backend in [BackendChoice::Cpu, BackendChoice::Vulkan] {
+            let mut source = match FrameSource::open(
+                backend,
+                &DeviceSelector::Auto,
+                DeviceOptions::VALIDATED,
+                &loaded.scene,
+                None,
+            ) {
+                Ok(source) => source,
+                Err(ViewerError::Renderer(error)) if error.is_no_device() => {
+                    assert!(!std::env::var("CI").is_ok_and(|v| v == "true"), "CI=true but {error}");
+                    eprintln!("note: skipping {backend:?}, {error}");
+                    continue;
+                }
+                Err(error) => panic!("{backend:?} does not open: {error}"),
+            };
             let first = render(&mut source, &loaded.scene, &settings);
             let after = render(&mut source, &moved, &settings);
             assert_ne!(first.color, after.color, "{backend:?}: the view did not change");

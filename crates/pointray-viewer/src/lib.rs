@@ -31,14 +31,14 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use pointray_scene::{Camera, RenderSettings, Scene};
-use pointray_vulkan::{DeviceSelector, MessageCounter};
+use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector, MessageCounter};
 use winit::event_loop::EventLoop;
 use winit::raw_window_handle::HasDisplayHandle;
 
 pub use camera_rig::CameraRig;
 pub use controls::KEY_HELP;
 pub use error::ViewerError;
-pub use frame_source::{Presentation, RenderBackend};
+pub use frame_source::Presentation;
 pub use pointray_scene::orbit_camera;
 pub use screenshots::sequence_path;
 
@@ -60,12 +60,13 @@ pub struct Script {
 
 #[derive(Clone, Debug)]
 pub struct ViewerOptions {
-    pub backend: RenderBackend,
+    pub backend: BackendChoice,
     pub device: DeviceSelector,
+    /// How devices open. With validation, the Khronos layer runs on the presenter and the
+    /// renderer: any message, during the run or at teardown (leaked objects), fails the run
+    /// with `ViewerError::Validation`.
+    pub device_options: DeviceOptions,
     pub vsync: bool,
-    /// The Khronos validation layer on the presenter and the renderer: any message, during
-    /// the run or at teardown (leaked objects), fails the run with `ViewerError::Validation`.
-    pub validation: bool,
     /// `None`: interactive until the window is closed.
     pub script: Option<Script>,
 }
@@ -96,7 +97,7 @@ pub fn run_viewer(
     let event_loop = event_loop()?;
     let display = event_loop.display_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
     let source =
-        FrameSource::open(options.backend, &options.device, options.validation, &scene, Some(display))?;
+        FrameSource::open(options.backend, &options.device, options.device_options, &scene, Some(display))?;
     let backend = source.describe();
     let presentation = source.presentation();
     println!("backend: {backend}, presentation: {presentation:?}");

@@ -8,7 +8,8 @@ mod common;
 
 use common::{Orbit, missing, psnr, read_png, scripted_run};
 use pointray_scene::{AovSelection, Frame, write_frame};
-use pointray_viewer::{Presentation, RenderBackend, ViewerError, orbit_camera, run_viewer};
+use pointray_viewer::{Presentation, ViewerError, orbit_camera, run_viewer};
+use pointray_vulkan::BackendChoice;
 use pointray_vulkan::{DeviceSelector, VulkanRenderer};
 
 const FRAMES: u32 = 30;
@@ -25,7 +26,7 @@ fn covered_objects(frame: &Frame) -> usize {
 #[test]
 fn scripted_orbit_screenshot_matches_the_renderer() {
     let orbit = Orbit { frames: FRAMES, arc_degrees: ARC_DEGREES, keep_sequence: true };
-    let Some(run) = scripted_run(RenderBackend::Vulkan, 1, orbit) else { return };
+    let Some(run) = scripted_run(BackendChoice::Vulkan, 1, orbit) else { return };
     let (loaded, settings, dir, screenshot) = (&run.demo.loaded, run.settings, &run.dir, &run.screenshot);
     let sequence = run.sequence.as_deref().expect("the run keeps its sequence");
     let summary = match run_viewer(loaded.scene.clone(), settings, run.options) {

@@ -8,7 +8,8 @@ mod common;
 
 use common::{Orbit, missing, psnr, read_png, scripted_run};
 use pointray_scene::{AovSelection, write_frame};
-use pointray_viewer::{Presentation, RenderBackend, ViewerError, orbit_camera, run_viewer};
+use pointray_viewer::{Presentation, ViewerError, orbit_camera, run_viewer};
+use pointray_vulkan::BackendChoice;
 
 const FRAMES: u32 = 30;
 const ARC_DEGREES: f32 = 270.0;
@@ -16,7 +17,7 @@ const ARC_DEGREES: f32 = 270.0;
 #[test]
 fn cpu_scripted_orbit_ends_on_a_fresh_renderers_image() {
     let orbit = Orbit { frames: FRAMES, arc_degrees: ARC_DEGREES, keep_sequence: false };
-    let Some(run) = scripted_run(RenderBackend::Cpu, 2, orbit) else { return };
+    let Some(run) = scripted_run(BackendChoice::Cpu, 2, orbit) else { return };
     let (loaded, settings, dir, screenshot) = (&run.demo.loaded, run.settings, &run.dir, &run.screenshot);
     let summary = match run_viewer(loaded.scene.clone(), settings, run.options) {
         Ok(summary) => summary,

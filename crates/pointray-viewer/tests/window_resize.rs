@@ -12,8 +12,8 @@ use std::time::{Duration, Instant};
 use common::{demo_on_display, missing};
 use pointray_scene::{RenderSettings, Scene};
 use pointray_vulkan::{
-    DeviceSelector, DisplayImage, PixelOutput, PreparedScene, Presented, ReadBack, TraceTarget,
-    VulkanRenderer, WindowTarget,
+    DeviceOptions, DeviceSelector, DisplayImage, PixelOutput, PreparedScene, Presented, ReadBack,
+    TraceTarget, VulkanRenderer, WindowTarget,
 };
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
@@ -59,12 +59,13 @@ impl ResizeRun {
         let window = event_loop.create_window(attributes).map_err(|e| e.to_string())?;
         let display = window.display_handle().map_err(|e| e.to_string())?.as_raw();
         let handle = window.window_handle().map_err(|e| e.to_string())?.as_raw();
-        let renderer = VulkanRenderer::for_window(DeviceSelector::Auto, true, display).map_err(|error| {
-            if error.is_no_device() {
-                self.outcome.skipped = Some(error.to_string());
-            }
-            error.to_string()
-        })?;
+        let renderer = VulkanRenderer::for_window(DeviceSelector::Auto, DeviceOptions::VALIDATED, display)
+            .map_err(|error| {
+                if error.is_no_device() {
+                    self.outcome.skipped = Some(error.to_string());
+                }
+                error.to_string()
+            })?;
         let prepared = renderer.prepare(&self.scene).map_err(|e| e.to_string())?;
         let inner = window.inner_size();
         let target = WindowTarget::new(&renderer, display, handle, (inner.width, inner.height), false)

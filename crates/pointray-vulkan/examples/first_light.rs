@@ -150,7 +150,7 @@ fn time_traces(
 fn main() -> Result<(), Error> {
     let args = parse_args()?;
     std::fs::create_dir_all(&args.out)?;
-    let renderer = VulkanRenderer::new(DeviceSelector::Auto)?;
+    let renderer = VulkanRenderer::new(DeviceSelector::Auto, pointray_vulkan::DeviceOptions::default())?;
     println!("device: {}", renderer.device_info());
     let mut scenes = bunny_scenes(&args.data)?;
     scenes.push(("demo", demo_scene()?));

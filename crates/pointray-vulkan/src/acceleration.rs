@@ -1,5 +1,6 @@
-//! Bottom- and top-level acceleration structures (SPEC.md §3): one BLAS per point set whose
-//! single AABB geometry holds every patch box, one triangle BLAS per mesh, one TLAS.
+//! Bottom- and top-level acceleration structures (SPEC.md §3): one BLAS per point set (or per
+//! tile of a large one) whose single AABB geometry holds its patch boxes, one triangle BLAS
+//! per mesh, one TLAS.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -127,26 +128,8 @@ pub(crate) fn build(
 ) -> Result<AccelerationStructure, VulkanError> {
     let started = Instant::now();
     let compact = input.ty == vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL;
-    let mut flags = vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE;
-    if compact {
-        flags |= vk::BuildAccelerationStructureFlagsKHR::ALLOW_COMPACTION;
-    }
-    let mut build_info = vk::AccelerationStructureBuildGeometryInfoKHR::default()
-        .ty(input.ty)
-        .flags(flags)
-        .mode(vk::BuildAccelerationStructureModeKHR::BUILD)
-        .geometries(&input.geometries);
-    let counts: Vec<u32> = input.ranges.iter().map(|r| r.primitive_count).collect();
-    let mut sizes = vk::AccelerationStructureBuildSizesInfoKHR::default();
-    // SAFETY: `build_info` describes `counts.len()` geometries.
-    unsafe {
-        context.acceleration.get_acceleration_structure_build_sizes(
-            vk::AccelerationStructureBuildTypeKHR::DEVICE,
-            &build_info,
-            &counts,
-            &mut sizes,
-        )
-    };
+    let mut build_info = build_info(input, build_flags(input.ty));
+    let sizes = sizes_of(context, &build_info, input);
     let structure = create(context, input.ty, sizes.acceleration_structure_size)?;
     let alignment = context.scratch_alignment;
     let scratch = Buffer::new(
@@ -176,6 +159,53 @@ pub(crate) fn build(
     };
     structure.build_time = started.elapsed();
     Ok(structure)
+}
+
+/// Fast tracing; bottom levels may be compacted.
+fn build_flags(ty: vk::AccelerationStructureTypeKHR) -> vk::BuildAccelerationStructureFlagsKHR {
+    let fast = vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE;
+    if ty == vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL {
+        fast | vk::BuildAccelerationStructureFlagsKHR::ALLOW_COMPACTION
+    } else {
+        fast
+    }
+}
+
+fn build_info<'a>(
+    input: &'a BuildInput<'a>,
+    flags: vk::BuildAccelerationStructureFlagsKHR,
+) -> vk::AccelerationStructureBuildGeometryInfoKHR<'a> {
+    vk::AccelerationStructureBuildGeometryInfoKHR::default()
+        .ty(input.ty)
+        .flags(flags)
+        .mode(vk::BuildAccelerationStructureModeKHR::BUILD)
+        .geometries(&input.geometries)
+}
+
+fn sizes_of(
+    context: &GpuContext,
+    build_info: &vk::AccelerationStructureBuildGeometryInfoKHR<'_>,
+    input: &BuildInput<'_>,
+) -> vk::AccelerationStructureBuildSizesInfoKHR<'static> {
+    let counts: Vec<u32> = input.ranges.iter().map(|r| r.primitive_count).collect();
+    let mut sizes = vk::AccelerationStructureBuildSizesInfoKHR::default();
+    // SAFETY: `build_info` describes `counts.len()` geometries; the query reads no addresses.
+    unsafe {
+        context.acceleration.get_acceleration_structure_build_sizes(
+            vk::AccelerationStructureBuildTypeKHR::DEVICE,
+            build_info,
+            &counts,
+            &mut sizes,
+        )
+    };
+    sizes
+}
+
+/// What building `input` takes on this device, before anything is uploaded (the query
+/// ignores the input's addresses): the structure's size before compaction and the scratch.
+pub(crate) fn build_sizes(context: &GpuContext, input: &BuildInput<'_>) -> (u64, u64) {
+    let sizes = sizes_of(context, &build_info(input, build_flags(input.ty)), input);
+    (sizes.acceleration_structure_size, sizes.build_scratch_size + context.scratch_alignment)
 }
 
 fn create(

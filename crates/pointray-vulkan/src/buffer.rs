@@ -131,3 +131,16 @@ impl Drop for Buffer {
 pub(crate) fn addressable(usage: vk::BufferUsageFlags) -> vk::BufferUsageFlags {
     usage | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS
 }
+
+/// Usage of a buffer that shaders read by address.
+pub(crate) fn storage_usage() -> vk::BufferUsageFlags {
+    addressable(vk::BufferUsageFlags::STORAGE_BUFFER)
+}
+
+/// Usage of a buffer that acceleration-structure builds read (and shaders may too).
+pub(crate) fn build_input_usage() -> vk::BufferUsageFlags {
+    addressable(
+        vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
+            | vk::BufferUsageFlags::STORAGE_BUFFER,
+    )
+}

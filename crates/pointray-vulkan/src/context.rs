@@ -9,7 +9,7 @@ use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
 use raw_window_handle::RawDisplayHandle;
 
 use crate::device::{
-    DeviceInfo, DeviceSelector, REQUIRED_EXTENSIONS, compute_queue_family, describe, select,
+    DeviceInfo, DeviceOptions, DeviceSelector, REQUIRED_EXTENSIONS, compute_queue_family, describe, select,
 };
 use crate::error::{VkContext, VulkanError};
 use crate::instance::{Instance, create_instance};
@@ -37,10 +37,10 @@ impl GpuContext {
     /// the device has `VK_KHR_swapchain`.
     pub(crate) fn new(
         selector: &DeviceSelector,
-        validation: bool,
+        options: DeviceOptions,
         display: Option<RawDisplayHandle>,
     ) -> Result<Self, VulkanError> {
-        let instance = create_instance(validation, display)?;
+        let instance = create_instance(options.validation, display)?;
         // SAFETY: the instance is alive.
         let physicals =
             unsafe { instance.instance.enumerate_physical_devices() }.during("enumerating devices")?;
@@ -51,10 +51,7 @@ impl GpuContext {
         let family = compute_queue_family(&instance.instance, physical).ok_or_else(|| {
             VulkanError::NoSuitableDevice("the chosen device lost its compute queue".into())
         })?;
-        // POINTRAY_HIT_REORDERING=off leaves the extension out of the device (the benchmark
-        // measures what merely enabling it does to the driver).
-        let hit_reordering =
-            infos[index].hit_reordering && std::env::var("POINTRAY_HIT_REORDERING").as_deref() != Ok("off");
+        let hit_reordering = infos[index].hit_reordering && options.hit_reordering;
         if instance.presents && !has_swapchain(&instance.instance, physical) {
             return Err(VulkanError::NoSuitableDevice(format!(
                 "{} cannot present to windows: it lacks VK_KHR_swapchain",
@@ -239,7 +236,7 @@ mod tests {
     /// `vkDestroyDevice`, after every owner is gone, and the shared counter still counts it.
     #[test]
     fn the_message_counter_counts_leaks_reported_at_teardown() {
-        let context = match GpuContext::new(&DeviceSelector::Auto, true, None) {
+        let context = match GpuContext::new(&DeviceSelector::Auto, DeviceOptions::VALIDATED, None) {
             Ok(context) => context,
             Err(error) if error.is_no_device() => {
                 assert!(!std::env::var("CI").is_ok_and(|v| v == "true"), "CI=true but {error}");

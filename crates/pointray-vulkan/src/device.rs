@@ -4,6 +4,7 @@ use std::ffi::CStr;
 
 use ash::vk;
 
+use crate::device_type::DeviceType;
 use crate::error::{VkContext, VulkanError};
 use crate::instance::create_instance;
 
@@ -42,12 +43,35 @@ impl std::str::FromStr for DeviceSelector {
     }
 }
 
+/// How a device is opened: the switches a command line reads from its environment
+/// (`POINTRAY_VALIDATION`, `POINTRAY_HIT_REORDERING`) and hands down.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DeviceOptions {
+    /// The Khronos validation layer, counting every message it reports.
+    pub validation: bool,
+    /// Enables `VK_NV_ray_tracing_invocation_reorder` where the device offers it; off, the
+    /// extension stays out of the device, so the benchmark can measure what merely enabling
+    /// it does to the driver.
+    pub hit_reordering: bool,
+}
+
+impl Default for DeviceOptions {
+    fn default() -> Self {
+        Self { validation: false, hit_reordering: true }
+    }
+}
+
+impl DeviceOptions {
+    /// The defaults with validation on, as tests open devices.
+    pub const VALIDATED: Self = Self { validation: true, hit_reordering: true };
+}
+
 /// One physical device as the loader reports it, and whether pointray can use it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DeviceInfo {
     pub index: usize,
     pub name: String,
-    pub device_type: String,
+    pub device_type: DeviceType,
     /// `major.minor.patch` of the Vulkan API the driver supports.
     pub api_version: String,
     /// The driver's own name and version text (e.g. "llvmpipe" / "Mesa 25.0.7").
@@ -121,7 +145,7 @@ pub(crate) fn describe(instance: &ash::Instance, device: vk::PhysicalDevice, ind
     DeviceInfo {
         index,
         name,
-        device_type: format!("{:?}", base.device_type),
+        device_type: DeviceType::of(base.device_type),
         api_version: version_text(base.api_version),
         driver: format!("{driver_name} {driver_info}").trim().to_owned(),
         max_blas_primitives: if rejection.is_none() { max_blas_primitives(instance, device) } else { 0 },
@@ -213,23 +237,12 @@ pub(crate) fn compute_queue_family(instance: &ash::Instance, device: vk::Physica
     families.iter().position(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE)).map(|i| i as u32)
 }
 
-/// Lower is better: discrete GPUs first, CPU implementations (lavapipe) last.
-fn preference(device_type: &str) -> u32 {
-    match device_type {
-        "DISCRETE_GPU" => 0,
-        "INTEGRATED_GPU" => 1,
-        "VIRTUAL_GPU" => 2,
-        "CPU" => 4,
-        _ => 3,
-    }
-}
-
 /// The index of the device `selector` asks for among `devices`, or an error naming them all.
 pub(crate) fn select(devices: &[DeviceInfo], selector: &DeviceSelector) -> Result<usize, VulkanError> {
     let usable = |d: &&DeviceInfo| d.rejection.is_none();
     let chosen = match selector {
         DeviceSelector::Auto => {
-            devices.iter().filter(usable).min_by_key(|d| (preference(&d.device_type), d.index))
+            devices.iter().filter(usable).min_by_key(|d| (d.device_type.preference(), d.index))
         }
         DeviceSelector::Name(text) => {
             let text = text.to_lowercase();
@@ -252,11 +265,11 @@ pub(crate) fn select(devices: &[DeviceInfo], selector: &DeviceSelector) -> Resul
 mod tests {
     use super::*;
 
-    fn info(index: usize, name: &str, device_type: &str, rejection: Option<&str>) -> DeviceInfo {
+    fn info(index: usize, name: &str, device_type: DeviceType, rejection: Option<&str>) -> DeviceInfo {
         DeviceInfo {
             index,
             name: name.into(),
-            device_type: device_type.into(),
+            device_type,
             api_version: "1.3.0".into(),
             driver: String::new(),
             rejection: rejection.map(Into::into),
@@ -268,14 +281,18 @@ mod tests {
 
     #[test]
     fn auto_prefers_a_discrete_gpu_over_lavapipe() {
-        let devices = [info(0, "llvmpipe", "CPU", None), info(1, "NVIDIA H100", "DISCRETE_GPU", None)];
+        let devices = [
+            info(0, "llvmpipe", DeviceType::Cpu, None),
+            info(1, "NVIDIA H100", DeviceType::DiscreteGpu, None),
+        ];
         assert_eq!(select(&devices, &DeviceSelector::Auto).unwrap(), 1);
         assert_eq!(select(&devices, &DeviceSelector::Name("LLVM".into())).unwrap(), 0);
     }
 
     #[test]
     fn rejection_lists_every_device_and_its_reason() {
-        let devices = [info(0, "old gpu", "DISCRETE_GPU", Some("lacks VK_KHR_ray_tracing_pipeline"))];
+        let devices =
+            [info(0, "old gpu", DeviceType::DiscreteGpu, Some("lacks VK_KHR_ray_tracing_pipeline"))];
         let message = select(&devices, &DeviceSelector::Auto).unwrap_err().to_string();
         assert!(
             message.contains("old gpu") && message.contains("lacks VK_KHR_ray_tracing_pipeline"),

@@ -22,6 +22,8 @@ pub enum VulkanError {
     Call { during: &'static str, result: vk::Result },
     #[error("memory allocation failed during {during}: {message}")]
     Allocation { during: &'static str, message: String },
+    #[error("{0}")]
+    OverBudget(String),
     #[error("the scene cannot be rendered: {0}")]
     InvalidScene(String),
     #[error("the render settings are invalid: {0}")]

@@ -21,7 +21,9 @@ impl PatchCombined {
     }
 }
 
-/// Per scene object: buffer addresses (zero where the kind does not use them) and material.
+/// Per TLAS instance (a mesh, a point set, or a tile of one): buffer addresses (zero where
+/// the kind does not use them; a set's tiles share its buffers), material, and which object
+/// and patches it is.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub(crate) struct ObjectRecord {
@@ -34,6 +36,11 @@ pub(crate) struct ObjectRecord {
     pub(crate) color_neighbors: u64,
     pub(crate) diffuse_ambient: [f32; 4],
     pub(crate) specular_shininess_reflect_colors: [f32; 4],
+    /// The object's index in `Scene::objects`, which the instance AOV reports.
+    pub(crate) object_index: u32,
+    /// The patch index of the tile's primitive 0; 0 for meshes and untiled sets.
+    pub(crate) first_patch: u32,
+    pub(crate) pad: [u32; 2],
 }
 
 impl ObjectRecord {
@@ -50,6 +57,11 @@ impl ObjectRecord {
             ],
             ..self
         }
+    }
+
+    /// This record for the tile of object `object_index` whose first patch is `first_patch`.
+    pub(crate) fn for_tile(self, object_index: u32, first_patch: u32) -> Self {
+        Self { object_index, first_patch, ..self }
     }
 }
 
@@ -165,7 +177,7 @@ mod tests {
     #[test]
     fn records_have_the_glsl_sizes() {
         assert_eq!(std::mem::size_of::<PatchCombined>(), 48);
-        assert_eq!(std::mem::size_of::<ObjectRecord>(), 80);
+        assert_eq!(std::mem::size_of::<ObjectRecord>(), 96);
         assert_eq!(std::mem::size_of::<LightRecord>(), 32);
         assert_eq!(std::mem::size_of::<FrameUniforms>(), 96);
         assert_eq!(std::mem::size_of::<PixelRecord>(), 48);

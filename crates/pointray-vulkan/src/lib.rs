@@ -4,24 +4,28 @@
 //!
 //! ```no_run
 //! # fn demo(scene: &pointray_scene::Scene) -> Result<(), pointray_vulkan::VulkanError> {
-//! use pointray_vulkan::{DeviceSelector, VulkanRenderer};
-//! let renderer = VulkanRenderer::new(DeviceSelector::Auto)?;
+//! use pointray_vulkan::{DeviceOptions, DeviceSelector, VulkanRenderer};
+//! let renderer = VulkanRenderer::new(DeviceSelector::Auto, DeviceOptions::default())?;
 //! let prepared = renderer.prepare(scene)?;
 //! let frame = renderer.trace(&prepared, &pointray_scene::RenderSettings::default())?;
 //! # let _ = frame; Ok(()) }
 //! ```
 
 mod acceleration;
+mod backend_choice;
 mod barrier;
 mod binding_table;
 mod buffer;
 mod context;
 mod device;
+mod device_type;
 mod error;
 mod frame_loop;
 mod gpu_records;
 mod instance;
+mod memory_plan;
 mod memory_report;
+mod patch_upload;
 mod pipeline;
 mod prepared_scene;
 mod present_loop;
@@ -36,7 +40,9 @@ pub mod validation;
 mod window_target;
 
 pub use acceleration::BlasLayout;
-pub use device::{DeviceInfo, DeviceSelector, list_devices};
+pub use backend_choice::BackendChoice;
+pub use device::{DeviceInfo, DeviceOptions, DeviceSelector, list_devices};
+pub use device_type::DeviceType;
 pub use error::VulkanError;
 pub use frame_loop::FrameLoopTimes;
 pub use memory_report::BuildReport;
@@ -45,5 +51,5 @@ pub use present_loop::{PresentLoop, Presented};
 pub use renderer::{TraceTiming, VulkanRenderer};
 pub use swapchain::{Swapchain, SwapchainDevice, record_copy_to_present_image};
 pub use trace_target::{PixelOutput, TraceTarget};
-pub use validation::{MessageCounter, validation_requested_by_env};
+pub use validation::MessageCounter;
 pub use window_target::{DisplayImage, ReadBack, WindowTarget};

@@ -7,7 +7,7 @@ use crate::prepared_scene::PreparedScene;
 /// Build times and memory of a prepared scene's acceleration structures and buffers.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BuildReport {
-    /// Bottom levels built (one per non-empty object).
+    /// Bottom levels built: one per mesh and per tile of a point set.
     pub blas_count: usize,
     /// Sum of the bottom levels' build wall times, compaction included.
     pub blas_build: Duration,
@@ -15,8 +15,9 @@ pub struct BuildReport {
     /// GPU bytes of the bottom levels (after compaction) and of the top level.
     pub blas_bytes: u64,
     pub tlas_bytes: u64,
-    /// GPU bytes of the buffers the traces read: the hot and cold (or the combined) patch
-    /// records, colour neighbour lists, mesh vertices and indices. The build inputs (patch
+    /// GPU bytes of the buffers the traces read: the hot (or the combined) patch records,
+    /// the cold ones and colour neighbour lists where a material colours hits by the
+    /// points, mesh vertices and indices. The build inputs (patch
     /// boxes, TLAS instances) are freed once built.
     pub geometry_bytes: u64,
 }

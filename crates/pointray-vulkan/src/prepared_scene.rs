@@ -1,27 +1,26 @@
-//! A scene uploaded to the GPU: per-object buffers and BLASes, the TLAS, the object
-//! (material) table and the lights. Built once, traced many times.
+//! A scene uploaded to the GPU: per-object buffers, per-object (or per-tile) BLASes, the
+//! TLAS, the instance (material) records and the lights. Built once, traced many times.
 
 use std::sync::Arc;
 
 use ash::vk;
 use glam::{Affine3A, Vec4};
 use pointray_io::TriangleMesh;
-use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR};
 use pointray_scene::{Background, BufferLayout, Camera, Geometry, Light, RenderSettings, Scene};
-use pointray_surface::PatchSet;
 use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
 
-use crate::acceleration::{
-    AccelerationStructure, BlasLayout, aabb_input, build, instance_input, triangle_input,
-};
-use crate::buffer::{Buffer, addressable};
+use crate::acceleration::{AccelerationStructure, BlasLayout, build, instance_input, triangle_input};
+use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
-use crate::gpu_records::{LightRecord, ObjectRecord, PatchCombined};
+use crate::gpu_records::{LightRecord, ObjectRecord};
+use crate::memory_plan;
+use crate::patch_upload::prepare_patches;
 use crate::pipeline::{HIT_GROUP_PATCHES, HIT_GROUP_TRIANGLES};
 
-/// The largest object index an instance's 24-bit custom index can carry.
-const MAX_OBJECTS: usize = (1 << 24) - 1;
+/// The most instances (meshes and point-set tiles) whose records an instance's 24-bit
+/// custom index can name.
+const MAX_INSTANCES: usize = (1 << 24) - 1;
 
 pub struct PreparedScene {
     pub(crate) context: Arc<GpuContext>,
@@ -41,12 +40,19 @@ pub struct PreparedScene {
     pub(crate) _geometry: Vec<Buffer>,
 }
 
-/// How a scene goes onto the GPU: its BLAS layout and which per-patch buffers the traces
-/// of it will read (only those are uploaded).
+/// How a scene goes onto the GPU: its BLAS layout, which per-patch buffers the traces of it
+/// will read (only those are uploaded), how large a point set's tiles may be and how much
+/// GPU memory it may take.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SceneLayout {
     pub blas: BlasLayout,
     pub buffers: BufferLayout,
+    /// At most this many patches in one BLAS (`pointray_surface::patch_tiles`); the device's
+    /// `maxPrimitiveCount` caps it whatever is asked, and `None` asks for no other limit.
+    pub max_tile_patches: Option<u32>,
+    /// Bytes of GPU memory the scene may take, building included; `None` is the device's
+    /// device-local memory. A scene over it is refused before anything is uploaded.
+    pub memory_budget: Option<u64>,
 }
 
 impl SceneLayout {
@@ -54,121 +60,21 @@ impl SceneLayout {
     pub fn for_settings(settings: &RenderSettings) -> Self {
         Self { buffers: settings.buffer_layout, ..Self::default() }
     }
-}
 
-/// One object's contribution: its record and, unless it is empty, its BLAS.
-struct PreparedObject {
-    record: ObjectRecord,
-    blas: Option<(AccelerationStructure, u32)>,
-    buffers: Vec<Buffer>,
-}
-
-fn storage_usage() -> vk::BufferUsageFlags {
-    addressable(vk::BufferUsageFlags::STORAGE_BUFFER)
-}
-
-fn build_input_usage() -> vk::BufferUsageFlags {
-    addressable(
-        vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
-            | vk::BufferUsageFlags::STORAGE_BUFFER,
-    )
-}
-
-fn prepare_patches(
-    context: &Arc<GpuContext>,
-    patches: &PatchSet,
-    layout: SceneLayout,
-) -> Result<PreparedObject, VulkanError> {
-    let count = patches.len();
-    if patches.aabbs.len() != count || patches.cold.len() != count {
-        return Err(VulkanError::InvalidScene(format!(
-            "a patch set has {} hot records, {} cold records and {} boxes; they must match",
-            count,
-            patches.cold.len(),
-            patches.aabbs.len()
-        )));
+    /// The most patches one tile holds on `context`'s device.
+    fn tile_limit(&self, context: &GpuContext) -> u32 {
+        let device = u32::try_from(context.info.max_blas_primitives).unwrap_or(u32::MAX).max(1);
+        self.max_tile_patches.unwrap_or(u32::MAX).clamp(1, device)
     }
-    check_color_neighbors(patches)?;
-    let (mut record, mut buffers) = patch_records(context, patches, layout.buffers)?;
-    // Only coloured clouds carry neighbour lists; the others keep address 0, which the
-    // closest-hit shader never dereferences.
-    if !patches.color_neighbors.is_empty() {
-        let lists = Buffer::device_with_data(
-            context,
-            "colour neighbour lists",
-            bytemuck::cast_slice(&patches.color_neighbors),
-            storage_usage(),
-        )?;
-        record.color_neighbors = lists.device_address();
-        buffers.push(lists);
-    }
-    // The boxes are only the build's input: the structure keeps its own copy, and no shader
-    // reads them, so their buffer goes as soon as the build is done.
-    let blas = (count > 0)
-        .then(|| {
-            let aabbs = Buffer::device_with_data(
-                context,
-                "patch boxes",
-                bytemuck::cast_slice(&patches.aabbs),
-                build_input_usage(),
-            )?;
-            build(context, &aabb_input(aabbs.device_address(), count as u32, layout.blas))
-        })
-        .transpose()?
-        .map(|blas| (blas, HIT_GROUP_PATCHES));
-    Ok(PreparedObject { record, blas, buffers })
 }
 
-/// The per-patch records the trace reads, in `buffers`' layout only: the hot and cold
-/// buffers, or the combined one.
-fn patch_records(
-    context: &Arc<GpuContext>,
-    patches: &PatchSet,
-    buffers: BufferLayout,
-) -> Result<(ObjectRecord, Vec<Buffer>), VulkanError> {
-    let upload = |name, bytes: &[u8]| Buffer::device_with_data(context, name, bytes, storage_usage());
-    Ok(match buffers {
-        BufferLayout::Split => {
-            let hot = upload("hot patch records", bytemuck::cast_slice(&patches.hot))?;
-            let cold = upload("cold patch records", bytemuck::cast_slice(&patches.cold))?;
-            let record = ObjectRecord {
-                hot: hot.device_address(),
-                cold: cold.device_address(),
-                ..ObjectRecord::default()
-            };
-            (record, vec![hot, cold])
-        }
-        BufferLayout::Combined => {
-            let combined: Vec<PatchCombined> = patches
-                .hot
-                .iter()
-                .zip(&patches.cold)
-                .map(|(&hot, &cold)| PatchCombined::new(hot, cold))
-                .collect();
-            let combined = upload("combined patch records", bytemuck::cast_slice(&combined))?;
-            (ObjectRecord { combined: combined.device_address(), ..ObjectRecord::default() }, vec![combined])
-        }
-    })
-}
-
-/// The shader follows neighbour indices without bounds checks: each list must have its
-/// `COLOR_NEIGHBORS` slots and name only patches of its set.
-fn check_color_neighbors(patches: &PatchSet) -> Result<(), VulkanError> {
-    let (count, neighbors) = (patches.len(), &patches.color_neighbors);
-    if !neighbors.is_empty() && neighbors.len() != count * COLOR_NEIGHBORS {
-        return Err(VulkanError::InvalidScene(format!(
-            "a patch set has {} colour neighbour entries for {count} patches; {COLOR_NEIGHBORS} per patch wanted",
-            neighbors.len()
-        )));
-    }
-    match neighbors.iter().position(|&j| j != NO_NEIGHBOR && j as usize >= count) {
-        Some(bad) => Err(VulkanError::InvalidScene(format!(
-            "patch {} names colour neighbour {}, but the set has {count} patches",
-            bad / COLOR_NEIGHBORS,
-            neighbors[bad]
-        ))),
-        None => Ok(()),
-    }
+/// One object's contribution: its record (addresses only), its bottom levels (none when
+/// it is empty, one per tile of a point set) with the index of each one's first primitive,
+/// and the buffers its traces read.
+pub(crate) struct PreparedObject {
+    pub(crate) record: ObjectRecord,
+    pub(crate) bottom_levels: Vec<(AccelerationStructure, u32)>,
+    pub(crate) buffers: Vec<Buffer>,
 }
 
 fn prepare_mesh(context: &Arc<GpuContext>, mesh: &TriangleMesh) -> Result<PreparedObject, VulkanError> {
@@ -204,14 +110,14 @@ fn prepare_mesh(context: &Arc<GpuContext>, mesh: &TriangleMesh) -> Result<Prepar
                 ),
             )
         })
-        .transpose()?
-        .map(|blas| (blas, HIT_GROUP_TRIANGLES));
+        .transpose()?;
     let record = ObjectRecord {
         vertices: vertices.device_address(),
         indices: indices.device_address(),
         ..ObjectRecord::default()
     };
-    Ok(PreparedObject { record, blas, buffers: vec![vertices, indices] })
+    let bottom_levels = blas.into_iter().map(|blas| (blas, 0)).collect();
+    Ok(PreparedObject { record, bottom_levels, buffers: vec![vertices, indices] })
 }
 
 /// Object to world as the 3x4 row-major matrix Vulkan instances carry.
@@ -227,13 +133,13 @@ fn instance_transform(transform: &Affine3A) -> vk::TransformMatrixKHR {
 
 fn instance(
     transform: &Affine3A,
-    object_index: u32,
+    record_index: u32,
     blas: &AccelerationStructure,
     hit_group: u32,
 ) -> vk::AccelerationStructureInstanceKHR {
     vk::AccelerationStructureInstanceKHR {
         transform: instance_transform(transform),
-        instance_custom_index_and_mask: vk::Packed24_8::new(object_index, 0xff),
+        instance_custom_index_and_mask: vk::Packed24_8::new(record_index, 0xff),
         instance_shader_binding_table_record_offset_and_flags: vk::Packed24_8::new(
             hit_group,
             // Point-set patches and meshes are seen from both sides.
@@ -319,27 +225,33 @@ pub(crate) fn prepare(
     scene: &Scene,
     layout: SceneLayout,
 ) -> Result<PreparedScene, VulkanError> {
-    if scene.objects.len() > MAX_OBJECTS {
-        return Err(VulkanError::InvalidScene(format!(
-            "{} objects; at most {MAX_OBJECTS} fit",
-            scene.objects.len()
-        )));
-    }
     if let Some(problem) = scene.objects.iter().find_map(out_of_range) {
         return Err(VulkanError::InvalidScene(problem));
     }
-    let mut records = Vec::with_capacity(scene.objects.len());
-    let mut instances = Vec::new();
-    let mut bottom_levels = Vec::new();
+    let max_tile = layout.tile_limit(context);
+    let need = memory_plan::plan(context, scene, layout, max_tile);
+    if need.bottom_levels > MAX_INSTANCES {
+        return Err(VulkanError::InvalidScene(format!(
+            "{} meshes and point-set tiles of at most {max_tile} patches; at most {MAX_INSTANCES} fit",
+            need.bottom_levels
+        )));
+    }
+    memory_plan::check_budget(context, &need, layout.memory_budget)?;
+    let mut records = Vec::with_capacity(need.bottom_levels);
+    let mut instances = Vec::with_capacity(need.bottom_levels);
+    let mut bottom_levels = Vec::with_capacity(need.bottom_levels);
     let mut geometry = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
-        let prepared = match &object.geometry {
-            Geometry::Patches(patches) => prepare_patches(context, patches, layout)?,
-            Geometry::Mesh(mesh) => prepare_mesh(context, mesh)?,
+        let (prepared, hit_group) = match &object.geometry {
+            Geometry::Patches(patches) => {
+                (prepare_patches(context, patches, &object.material, layout, max_tile)?, HIT_GROUP_PATCHES)
+            }
+            Geometry::Mesh(mesh) => (prepare_mesh(context, mesh)?, HIT_GROUP_TRIANGLES),
         };
-        records.push(prepared.record.with_material(&object.material));
-        if let Some((blas, hit_group)) = prepared.blas {
-            instances.push(instance(&object.transform, index as u32, &blas, hit_group));
+        let record = prepared.record.with_material(&object.material);
+        for (blas, first) in prepared.bottom_levels {
+            instances.push(instance(&object.transform, records.len() as u32, &blas, hit_group));
+            records.push(record.for_tile(index as u32, first));
             bottom_levels.push(blas);
         }
         geometry.extend(prepared.buffers);
@@ -349,8 +261,11 @@ pub(crate) fn prepare(
         Buffer::device_with_data(context, "TLAS instances", instance_bytes(&instances), build_input_usage())?;
     let tlas = build(context, &instance_input(instance_buffer.device_address(), instances.len() as u32))?;
     drop(instance_buffer);
-    let record_bytes =
-        if records.is_empty() { vec![0u8; 80] } else { bytemuck::cast_slice(&records).to_vec() };
+    let record_bytes = if records.is_empty() {
+        vec![0u8; size_of::<ObjectRecord>()]
+    } else {
+        bytemuck::cast_slice(&records).to_vec()
+    };
     Ok(PreparedScene {
         context: context.clone(),
         camera: scene.camera,

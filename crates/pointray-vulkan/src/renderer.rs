@@ -8,14 +8,14 @@ use raw_window_handle::RawDisplayHandle;
 
 use crate::binding_table::ShaderBindingTable;
 use crate::context::GpuContext;
-use crate::device::{DeviceInfo, DeviceSelector};
+use crate::device::{DeviceInfo, DeviceOptions, DeviceSelector};
 use crate::error::VulkanError;
 use crate::pipeline::RayTracingPipeline;
 use crate::prepared_scene::{PreparedScene, SceneLayout, prepare};
 use crate::shaders;
 use crate::trace::trace_into;
 use crate::trace_target::{PixelOutput, TraceTarget};
-use crate::validation::{MessageCounter, validation_requested_by_env};
+use crate::validation::MessageCounter;
 
 /// How long one trace took.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,14 +35,15 @@ pub struct VulkanRenderer {
 }
 
 impl VulkanRenderer {
-    /// A renderer on the selected device; validation is on when `POINTRAY_VALIDATION=1`.
-    pub fn new(selector: DeviceSelector) -> Result<Self, VulkanError> {
-        Self::with_validation(selector, validation_requested_by_env())
+    /// A renderer on the selected device.
+    pub fn new(selector: DeviceSelector, options: DeviceOptions) -> Result<Self, VulkanError> {
+        Self::with_raygen(&Arc::new(GpuContext::new(&selector, options, None)?), shaders::PRIMARY_RGEN)
     }
 
-    /// A renderer with the Khronos validation layer on or off.
+    /// A renderer with the Khronos validation layer on or off, and the other options at
+    /// their defaults.
     pub fn with_validation(selector: DeviceSelector, validation: bool) -> Result<Self, VulkanError> {
-        Self::with_raygen(&Arc::new(GpuContext::new(&selector, validation, None)?), shaders::PRIMARY_RGEN)
+        Self::new(selector, DeviceOptions { validation, ..DeviceOptions::default() })
     }
 
     /// A renderer that can also present to windows of `display`'s window system: its
@@ -50,18 +51,22 @@ impl VulkanRenderer {
     /// the device when it has none). Present with a `WindowTarget`.
     pub fn for_window(
         selector: DeviceSelector,
-        validation: bool,
+        options: DeviceOptions,
         display: RawDisplayHandle,
     ) -> Result<Self, VulkanError> {
-        let context = GpuContext::new(&selector, validation, Some(display))?;
+        let context = GpuContext::new(&selector, options, Some(display))?;
         Self::with_raygen(&Arc::new(context), shaders::PRIMARY_RGEN)
     }
 
     /// A renderer that traces every path segment with shader execution reordering
     /// (`VK_NV_ray_tracing_invocation_reorder`): the same pictures, for comparing speed. An
     /// error on devices without it.
-    pub fn with_hit_reordering(selector: DeviceSelector, validation: bool) -> Result<Self, VulkanError> {
-        let context = Arc::new(GpuContext::new(&selector, validation, None)?);
+    pub fn with_hit_reordering(
+        selector: DeviceSelector,
+        options: DeviceOptions,
+    ) -> Result<Self, VulkanError> {
+        let options = DeviceOptions { hit_reordering: true, ..options };
+        let context = Arc::new(GpuContext::new(&selector, options, None)?);
         if !context.info.hit_reordering {
             return Err(VulkanError::InvalidSettings(format!(
                 "{} does not offer shader execution reordering (VK_NV_ray_tracing_invocation_reorder)",

@@ -9,11 +9,6 @@ use ash::vk;
 
 pub const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
 
-/// Whether validation was asked for through the environment (`POINTRAY_VALIDATION=1`).
-pub fn validation_requested_by_env() -> bool {
-    std::env::var("POINTRAY_VALIDATION").is_ok_and(|v| v == "1")
-}
-
 /// Errors and warnings the layer reported. Kept behind an `Arc` (or a `Box`) so that its
 /// address, handed to the driver as user data, stays put.
 #[derive(Debug, Default)]

@@ -11,11 +11,13 @@ use pointray_bench::{
 };
 use pointray_io::MemoryBudget;
 use pointray_scene::{RenderSetting, RenderSettings, SceneFile};
-use pointray_vulkan::{DeviceSelector, VulkanRenderer, validation_requested_by_env};
+use pointray_vulkan::{BackendChoice, DeviceSelector, VulkanRenderer};
 
-use crate::backend::{Backend, BackendChoice};
+use crate::backend::{backend_choice, open_backend};
 use crate::progress::PrepBar;
 use crate::setting_flag::setting_flag;
+use pointray_render::Backend;
+use pointray_render::device_options_from_environment as device_options;
 
 /// Time frames with GPU timestamps: FPS, frame and trace times, rays/s, build costs.
 #[derive(Args)]
@@ -51,7 +53,7 @@ pub struct BenchArgs {
     #[arg(long, default_value = ".pointray-cache/bench")]
     cache: PathBuf,
     /// `scale` only: the renderer; `auto` takes a hardware ray-tracing GPU, else the CPU.
-    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
+    #[arg(long, default_value = "auto", value_parser = backend_choice())]
     backend: BackendChoice,
     /// `scale` only: the rungs to run, e.g. `1M,10M` (default: all; a rung that does not fit
     /// the machine is skipped with the reason).
@@ -80,8 +82,10 @@ impl Target {
         let path = PathBuf::from(target);
         pointray_io::ensure_readable_file(&path)?;
         let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
-        // A suite lists models; anything else is a scene file.
-        Ok(if text.contains("[[models]]") {
+        // A suite lists models; anything else is a scene file, whose reader also names the
+        // file and line of a syntax error.
+        let lists_models = text.parse::<toml::Table>().is_ok_and(|table| table.contains_key("models"));
+        Ok(if lists_models {
             Self::Suite(Suite::parse(&text, &path)?)
         } else {
             Self::Scene(SceneFile::parse(&text, &path)?)
@@ -129,10 +133,12 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let size = RenderSettings { width, height, ..RenderSettings::default() };
         size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     }
-    let renderer = VulkanRenderer::new(args.device.clone()).context("opening the Vulkan backend")?;
+    let device_options = device_options();
+    let renderer =
+        VulkanRenderer::new(args.device.clone(), device_options).context("opening the Vulkan backend")?;
     println!("device: {}", renderer.device_info());
     let reordering = (args.ablations && renderer.device_info().hit_reordering)
-        .then(|| VulkanRenderer::with_hit_reordering(args.device.clone(), validation_requested_by_env()))
+        .then(|| VulkanRenderer::with_hit_reordering(args.device.clone(), device_options))
         .transpose()
         .context("opening a second renderer with hit reordering")?;
     let options = BenchOptions {
@@ -182,7 +188,7 @@ fn print_row(row: &ScaleRow) {
 }
 
 fn run_scale_suite(args: &BenchArgs) -> anyhow::Result<()> {
-    let backend = Backend::open(args.backend, &args.device)?;
+    let backend = open_backend(args.backend, &args.device)?;
     let scale_backend = match &backend {
         Backend::Vulkan(renderer) => ScaleBackend::Vulkan(renderer),
         Backend::Cpu => ScaleBackend::Cpu,

@@ -10,12 +10,13 @@ use pointray_fidelity::view_placement::validate_setting;
 use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, SensorPose, measure_fidelity};
 use pointray_io::MemoryBudget;
 use pointray_scene::{Frame, RenderSetting, RenderSettings, Scene};
-use pointray_vulkan::DeviceSelector;
+use pointray_vulkan::{BackendChoice, DeviceSelector};
 
-use crate::backend::{Backend, BackendChoice};
+use crate::backend::{backend_choice, open_backend};
 use crate::patch_args::PatchArgs;
 use crate::setting_flag::setting_flag;
 use crate::view_args::ViewArgs;
+use pointray_render::Backend;
 
 /// Render the points' patches and the mesh from the same cameras and report holes, false
 /// surfaces, depth and normal error (against the mesh's interpolated vertex normals) and
@@ -40,7 +41,7 @@ pub struct FidelityArgs {
     /// missing): holes red (dark red where the sensor never looked), false surface blue.
     #[arg(long, value_name = "DIR")]
     images: Option<PathBuf>,
-    #[arg(long, value_enum, default_value_t = BackendChoice::Cpu)]
+    #[arg(long, default_value = "cpu", value_parser = backend_choice())]
     backend: BackendChoice,
     /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
     #[arg(long, default_value = "auto")]
@@ -84,7 +85,7 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     }
     let (patches, _) = args.patches.prep(&args.points, &cloud, &prep_settings)?;
     drop(cloud);
-    let backend = ChosenBackend(Backend::open(args.backend, &args.device)?);
+    let backend = ChosenBackend(open_backend(args.backend, &args.device)?);
     println!("backend: {}", backend.name());
     let mut report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &backend)
         .with_context(|| format!("comparing {} against {}", args.points.display(), args.mesh.display()))?;

@@ -3,7 +3,8 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use pointray_surface::prep_owned;
+use pointray_surface::tiled_prep::prep_tiled;
+use pointray_surface::{PrepError, prep_owned};
 
 use crate::columns_arg::ColumnsArg;
 use crate::prep_settings_args::PrepSettingsArgs;
@@ -19,6 +20,12 @@ pub struct PrepArgs {
     output: PathBuf,
     #[command(flatten)]
     settings: PrepSettingsArgs,
+    /// Prep in this many tiles, one after another, each with a halo of its neighbours'
+    /// points: the same patches where they depend only on their neighbourhoods, in the
+    /// memory of the cloud and one tile (normals oriented over the neighbour graph are
+    /// settled per tile; orient toward `--sensor` for identical ones).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65_536))]
+    tiles: Option<u32>,
     #[command(flatten)]
     columns: ColumnsArg,
 }
@@ -31,10 +38,20 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     let settings = args.settings.settings()?;
     let cloud = args.columns.read_point_cloud(&args.points)?;
     let bar = PrepBar::default();
-    let (patches, report) =
-        prep_owned(cloud, &settings, &bar).map_err(|e| anyhow::anyhow!("{}: {e}", args.points.display()))?;
+    let in_file = |e: PrepError| anyhow::anyhow!("{}: {e}", args.points.display());
+    let patches = match args.tiles {
+        Some(tiles) => {
+            let patches = prep_tiled(&cloud, &settings, tiles as usize, &bar).map_err(in_file)?;
+            println!("prepped {} points in {tiles} tiles into {} patches", cloud.len(), patches.len());
+            patches
+        }
+        None => {
+            let (patches, report) = prep_owned(cloud, &settings, &bar).map_err(in_file)?;
+            println!("{report}");
+            patches
+        }
+    };
     pointray_surface::patch_store::write(&args.output, &patches)?;
-    println!("{report}");
     println!("wrote {} patches to {} (offset stored in its header)", patches.len(), args.output.display());
     Ok(())
 }

@@ -10,7 +10,7 @@ use pointray_scene::frame_output::{AovSelection, check_frame_outputs, write_fram
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
 use pointray_scene::{BufferLayout, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera};
 
-use crate::backend::{Backend, BackendArgs};
+use crate::backend::{BackendArgs, open_backend};
 use crate::progress::PrepBar;
 use crate::scene_input::SceneInputArgs;
 use crate::setting_flag::setting_flag;
@@ -75,7 +75,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let bar = PrepBar::default();
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar, ..LoadOptions::default() };
     let LoadedScene { mut scene, frame: render_frame, .. } = load_scene_file(&file, &options)?;
-    let backend = Backend::open(args.backend.backend, &args.backend.device)?;
+    let backend = open_backend(args.backend.backend, &args.backend.device)?;
     println!("backend: {}", backend.describe());
     let start = scene.camera;
     let frames = outputs.len() as u32;

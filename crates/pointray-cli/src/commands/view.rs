@@ -7,13 +7,13 @@ use pointray_io::MemoryBudget;
 use pointray_scene::frame_output::check_frame_outputs;
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
 use pointray_scene::{AovSelection, RenderSetting, SceneFile};
-use pointray_viewer::{RenderBackend, Script, ViewerOptions, run_viewer, sequence_path};
-use pointray_vulkan::validation_requested_by_env;
+use pointray_viewer::{Script, ViewerOptions, run_viewer, sequence_path};
 
-use crate::backend::{BackendArgs, BackendChoice};
+use crate::backend::BackendArgs;
 use crate::progress::PrepBar;
 use crate::scene_input::SceneInputArgs;
 use crate::setting_flag::setting_flag;
+use pointray_render::device_options_from_environment as device_options;
 
 /// Open a window on a scene (TOML) or a points file, and fly around it.
 #[derive(Args)]
@@ -64,16 +64,11 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
         screenshot: args.screenshot.clone(),
         sequence: args.sequence.clone(),
     });
-    let backend = match args.backend.backend {
-        BackendChoice::Auto => RenderBackend::Auto,
-        BackendChoice::Vulkan => RenderBackend::Vulkan,
-        BackendChoice::Cpu => RenderBackend::Cpu,
-    };
     let options = ViewerOptions {
-        backend,
+        backend: args.backend.backend,
         device: args.backend.device,
+        device_options: device_options(),
         vsync: args.vsync,
-        validation: validation_requested_by_env(),
         script,
     };
     let summary = run_viewer(scene, settings, options)?;

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use crate::common::{pointray_in, write_grid_ply, write_points_scene};
 
-/// `pointray render scene.toml -o OUTPUT` (and extra flags) in `dir`: it must fail, naming the
+/// `pointray render INPUT -o OUTPUT` (and extra flags) in `dir`: it must fail, naming the
 /// input, and leave every file in `dir` as it was.
 fn assert_render_refuses(dir: &Path, scene: &str, output: &str, extra: &[&str]) {
     let before = snapshot(dir);
@@ -38,9 +38,10 @@ fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
 fn render_refuses_to_overwrite_the_scene_and_its_points() {
     let dir = tempfile::tempdir().unwrap();
     write_grid_ply(&dir.path().join("grid.png"));
-    write_points_scene(dir.path(), "scene.png", "grid.png");
-    assert_render_refuses(dir.path(), "scene.png", "scene.png", &[]);
-    assert_render_refuses(dir.path(), "scene.png", "grid.png", &[]);
+    write_points_scene(dir.path(), "scene.toml", "grid.png");
+    assert_render_refuses(dir.path(), "scene.toml", "grid.png", &[]);
+    // A bare points file is the input itself.
+    assert_render_refuses(dir.path(), "grid.png", "grid.png", &[]);
 }
 
 #[test]

@@ -8,3 +8,4 @@ mod hostile_coordinates;
 mod plane_and_sphere;
 mod point_colors;
 mod shadows_and_reflections;
+mod tiles;

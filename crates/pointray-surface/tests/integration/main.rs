@@ -15,3 +15,4 @@ mod patch_store_files;
 mod prep_attributes;
 mod prep_bad_input;
 mod scan_aware;
+mod tiled_prep;

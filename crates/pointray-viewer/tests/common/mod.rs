@@ -7,8 +7,9 @@ use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
 use pointray_scene::{LoadOptions, LoadedScene, RenderSettings, load_demo};
-use pointray_viewer::{RenderBackend, Script, ViewerOptions};
+use pointray_viewer::{Script, ViewerOptions};
 use pointray_vulkan::DeviceSelector;
+use pointray_vulkan::{BackendChoice, DeviceOptions};
 
 pub fn in_ci() -> bool {
     std::env::var("CI").is_ok_and(|v| v == "true")
@@ -94,7 +95,7 @@ pub struct Orbit {
 }
 
 /// `None` when the test is skipped for want of a display (see `demo_on_display`).
-pub fn scripted_run(backend: RenderBackend, samples_per_pixel: u32, orbit: Orbit) -> Option<ScriptedRun> {
+pub fn scripted_run(backend: BackendChoice, samples_per_pixel: u32, orbit: Orbit) -> Option<ScriptedRun> {
     let demo = demo_on_display()?;
     let settings = RenderSettings { width: 96, height: 72, samples_per_pixel, ..demo.loaded.settings };
     let dir = tempfile::tempdir().expect("a temporary folder");
@@ -104,7 +105,7 @@ pub fn scripted_run(backend: RenderBackend, samples_per_pixel: u32, orbit: Orbit
         backend,
         device: DeviceSelector::Auto,
         vsync: false,
-        validation: true,
+        device_options: DeviceOptions::VALIDATED,
         script: Some(Script {
             frames: orbit.frames,
             arc_degrees: orbit.arc_degrees,

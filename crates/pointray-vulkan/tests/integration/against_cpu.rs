@@ -45,8 +45,13 @@ fn agreement(cpu: &Frame, gpu: &Frame) -> Agreement {
 fn assert_backends_agree(name: &str, scene: &Scene, settings: &RenderSettings) {
     let Some(renderer) = renderer() else { return };
     let gpu = renderer.render(scene, settings).expect("the Vulkan backend renders");
-    let cpu = pointray_cpu::render(scene, settings);
-    let agreement = agreement(&cpu, &gpu);
+    assert_frames_agree(name, &pointray_cpu::render(scene, settings), &gpu);
+    assert_no_validation_messages(&renderer);
+}
+
+/// The CPU's and the GPU's frames of one scene meet the thresholds above.
+pub fn assert_frames_agree(name: &str, cpu: &Frame, gpu: &Frame) {
+    let agreement = agreement(cpu, gpu);
     eprintln!(
         "{name}: masks {:.4}%, normals {:.4}%, PSNR {:.1} dB",
         100.0 * agreement.mask,
@@ -60,7 +65,6 @@ fn assert_backends_agree(name: &str, scene: &Scene, settings: &RenderSettings) {
         100.0 * agreement.normals_within_one_degree
     );
     assert!(agreement.psnr_db >= 40.0, "{name}: PSNR {:.1} dB", agreement.psnr_db);
-    assert_no_validation_messages(&renderer);
 }
 
 #[test]

@@ -5,12 +5,12 @@ use crate::common;
 
 use common::{assert_no_validation_messages, renderer, sphere_on_floor};
 use pointray_scene::RenderSettings;
-use pointray_vulkan::{DeviceSelector, VulkanError, VulkanRenderer, validation_requested_by_env};
+use pointray_vulkan::{DeviceOptions, DeviceSelector, VulkanError, VulkanRenderer};
 
 #[test]
 fn hit_reordering_draws_the_same_picture_or_is_refused() {
     let Some(plain) = renderer() else { return };
-    let reordering = VulkanRenderer::with_hit_reordering(DeviceSelector::Auto, validation_requested_by_env());
+    let reordering = VulkanRenderer::with_hit_reordering(DeviceSelector::Auto, DeviceOptions::VALIDATED);
     if !plain.device_info().hit_reordering {
         let Err(VulkanError::InvalidSettings(message)) = reordering else {
             panic!("a device without hit reordering must refuse it");

@@ -75,7 +75,16 @@ fn only_the_traced_layout_stays_on_the_gpu() {
     assert!(patches > 0);
     let hot_and_cold = (size_of::<PatchHot>() + size_of::<PatchCold>()) as u64;
     let split = renderer.prepare(&scene).expect("prepares").build_report();
-    assert_eq!(split.geometry_bytes, patches * hot_and_cold + mesh_bytes(&scene), "no boxes, no combined");
+    let hot = size_of::<PatchHot>() as u64;
+    assert_eq!(
+        split.geometry_bytes,
+        patches * hot + mesh_bytes(&scene),
+        "no boxes, no combined records, and no cold ones where no material colours hits by the points"
+    );
+    let mut coloured = scene.clone();
+    coloured.objects.iter_mut().for_each(|object| object.material.use_point_colors = true);
+    let split = renderer.prepare(&coloured).expect("prepares").build_report();
+    assert_eq!(split.geometry_bytes, patches * hot_and_cold + mesh_bytes(&scene), "hot and cold records");
     let combined = SceneLayout { buffers: BufferLayout::Combined, ..SceneLayout::default() };
     let report = renderer.prepare_with_layout(&scene, combined).expect("prepares").build_report();
     // std430 pads the combined record to a multiple of 16 bytes.

@@ -14,4 +14,5 @@ mod reflection;
 mod shadow;
 mod silhouette;
 mod sphere_normals;
+mod tiles;
 mod trace_target;

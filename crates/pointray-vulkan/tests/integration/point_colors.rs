@@ -27,7 +27,7 @@ fn srgb_bytes(linear: Vec3) -> [u8; 3] {
 }
 
 /// 4,000 points on the unit sphere (a Fibonacci spiral), coloured by `color_field`, prepped.
-fn coloured_sphere() -> PatchSet {
+pub fn coloured_sphere() -> PatchSet {
     let count = 4000;
     let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
     let positions: Vec<DVec3> = (0..count)
@@ -81,7 +81,7 @@ fn unlit(patches: PatchSet) -> Scene {
 }
 
 /// Lit, over a reflective floor: the blend at primary and reflection hits, under shadows.
-fn lit_on_floor(patches: PatchSet) -> Scene {
+pub fn lit_on_floor(patches: PatchSet) -> Scene {
     let floor_material = Material { reflectivity: 0.4, ..Material::default() };
     Scene {
         camera: camera(),
@@ -94,7 +94,7 @@ fn lit_on_floor(patches: PatchSet) -> Scene {
     }
 }
 
-fn psnr_db(a: &Frame, b: &Frame) -> f64 {
+pub fn psnr_db(a: &Frame, b: &Frame) -> f64 {
     let squared: f64 = (0..a.pixel_count())
         .map(|i| {
             let d = a.color[i].clamp(Vec3::ZERO, Vec3::ONE) - b.color[i].clamp(Vec3::ZERO, Vec3::ONE);

@@ -1,0 +1,10 @@
+//! A loaded scene drawn by the renderer a program chose (`BackendChoice`): the Vulkan ray
+//! tracer or the CPU renderer, which draw the same image. The programs' edges (the command
+//! line and the Python module) open one `Backend` and render through it.
+
+mod backend;
+mod environment;
+
+pub use backend::Backend;
+pub use environment::device_options_from_environment;
+pub use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector};

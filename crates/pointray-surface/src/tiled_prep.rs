@@ -1,0 +1,213 @@
+//! Prep in tiles: the cloud is sorted along one Morton curve over its whole bounding box and
+//! cut into tiles of equal point counts; each tile is prepped with a halo of the points
+//! around it, recentred and deduplicated as the whole cloud is (`PrepFrame`), and keeps the
+//! patches of its own points. A tile needs only its points and its halo, so tiles can run
+//! one after another in bounded memory or as separate jobs, and the merged patches are the
+//! ones a single pass makes wherever a patch depends only on its neighbourhood: positions,
+//! normals oriented toward a sensor or taken from the input, supports, fits and colours.
+//! Normals oriented over the neighbour graph are settled within each tile and its halo, so
+//! a whole tile's sign may differ from a single pass's (rendering shades both sides alike).
+
+use std::ops::Range;
+
+use glam::Vec3;
+use kiddo::{ImmutableKdTree, SquaredEuclidean};
+use pointray_io::PointCloud;
+use pointray_kernels::NO_NEIGHBOR;
+use rayon::prelude::*;
+
+use crate::cloud_subset::subset;
+use crate::morton::morton_order;
+use crate::neighbors::k_nearest;
+use crate::patch_set::PatchSet;
+use crate::patch_tiles::even_ranges;
+use crate::prep::{PrepFrame, duplicate_distance, prep_in_frame, recentre};
+use crate::prep_error::PrepError;
+use crate::prep_progress::PrepProgress;
+use crate::prep_settings::PrepSettings;
+
+/// The halo reaches this many times the farthest neighbourhood of the tile's points: one
+/// reach for their neighbours, one more for the neighbours' own neighbourhoods (their
+/// normals steer orientation).
+const HALO_REACHES: f32 = 2.0;
+
+/// How a cloud is cut into tiles; the same input and count always give the same plan, so
+/// separate jobs agree on it.
+pub struct TilePlan {
+    pub frame: PrepFrame,
+    /// Input indices along the Morton curve of the whole cloud.
+    order: Vec<u32>,
+    tiles: Vec<Range<usize>>,
+}
+
+/// One tile's patches, with the input index of each one's point; its colour neighbours
+/// name input indices too, until `merge_tiles` turns them into patch indices.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TilePatches {
+    pub patches: PatchSet,
+    pub sources: Vec<u32>,
+}
+
+impl TilePlan {
+    /// `tiles` tiles (at least 1) of `cloud` prepped with `settings`.
+    pub fn new(cloud: &PointCloud, settings: &PrepSettings, tiles: usize) -> Self {
+        let (offset, recentred) = recentre(&cloud.positions);
+        let frame = PrepFrame { offset, duplicate_distance: duplicate_distance(settings, &recentred) };
+        let order = morton_order(&recentred);
+        let tiles = even_ranges(order.len(), tiles.max(1));
+        Self { frame, order, tiles }
+    }
+
+    pub fn tile_count(&self) -> usize {
+        self.tiles.len()
+    }
+
+    /// The input indices of tile `index`'s own points.
+    pub fn core(&self, index: usize) -> &[u32] {
+        &self.order[self.tiles[index].clone()]
+    }
+}
+
+/// Preps tile `index` of `plan` (an error past the last tile).
+pub fn prep_tile(
+    cloud: &PointCloud,
+    settings: &PrepSettings,
+    plan: &TilePlan,
+    index: usize,
+    progress: &dyn PrepProgress,
+) -> Result<TilePatches, PrepError> {
+    if index >= plan.tile_count() {
+        return Err(PrepError::NoSuchTile { index, count: plan.tile_count() });
+    }
+    let core = plan.core(index);
+    let local = |i: u32| (cloud.positions[i as usize] - plan.frame.offset).as_vec3();
+    let core_points: Vec<Vec3> = core.par_iter().map(|&i| local(i)).collect();
+    let k = settings.k.max(settings.normal_k) as usize;
+    let reaches: Vec<f32> =
+        neighbourhood_radii(&core_points, k).into_iter().map(|radius| HALO_REACHES * radius).collect();
+    let halo = halo_of(cloud.len(), core, &core_points, &reaches, local);
+    let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
+    let (patches, report) = prep_in_frame(&subset(cloud, &members), settings, &plan.frame, progress)?;
+    Ok(own_patches(patches, &report.patch_sources, &members, core.len()))
+}
+
+/// The points outside `core` within its point `i`'s `reaches[i]` of it, for any `i`.
+fn halo_of(
+    count: usize,
+    core: &[u32],
+    core_points: &[Vec3],
+    reaches: &[f32],
+    local: impl Fn(u32) -> Vec3 + Sync,
+) -> Vec<u32> {
+    let reach = reaches.iter().copied().fold(0.0, f32::max);
+    let (min, max) = bounds(core_points);
+    let (min, max) = (min - Vec3::splat(reach), max + Vec3::splat(reach));
+    let mut in_core = vec![false; count];
+    core.iter().for_each(|&i| in_core[i as usize] = true);
+    let candidates: Vec<u32> = (0..count as u32)
+        .into_par_iter()
+        .filter(|&i| !in_core[i as usize] && local(i).cmpge(min).all() && local(i).cmple(max).all())
+        .collect();
+    drop(in_core);
+    if candidates.is_empty() {
+        return candidates;
+    }
+    let entries: Vec<[f32; 3]> = candidates.iter().map(|&i| local(i).to_array()).collect();
+    let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
+        .unwrap_or_else(|e| unreachable!("a tile's points fit u32 indices: {e}"));
+    let mut reached: Vec<u32> = core_points
+        .par_iter()
+        .zip(reaches)
+        .flat_map_iter(|(p, &r)| {
+            let hits = tree.query(&p.to_array()).within::<SquaredEuclidean<f32>>(r * r).execute();
+            hits.into_iter().map(|hit| hit.item)
+        })
+        .collect();
+    reached.par_sort_unstable();
+    reached.dedup();
+    reached.into_iter().map(|j| candidates[j as usize]).collect()
+}
+
+/// Each point's distance to its `k`-th nearest neighbour among `points` (an upper bound on
+/// its neighbourhood in the whole cloud); unbounded for fewer than `k + 1` points.
+fn neighbourhood_radii(points: &[Vec3], k: usize) -> Vec<f32> {
+    if points.len() <= k {
+        return vec![f32::INFINITY; points.len()];
+    }
+    let neighbors = k_nearest(points, k);
+    (0..points.len())
+        .into_par_iter()
+        .map(|i| neighbors.distances_of(i).iter().copied().fold(0.0, f32::max))
+        .collect()
+}
+
+fn bounds(points: &[Vec3]) -> (Vec3, Vec3) {
+    points
+        .par_iter()
+        .fold(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
+        .reduce(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)))
+}
+
+/// The patches of the tile's own points (the first `core` members), their colour neighbours
+/// as input indices.
+fn own_patches(set: PatchSet, sources: &[u32], members: &[u32], core: usize) -> TilePatches {
+    let input_of = |patch: usize| members[sources[patch] as usize];
+    let keep: Vec<usize> = (0..set.len()).filter(|&j| (sources[j] as usize) < core).collect();
+    let width = if set.is_empty() { 0 } else { set.color_neighbors.len() / set.len() };
+    let color_neighbors = keep
+        .iter()
+        .flat_map(|&j| set.color_neighbors[j * width..(j + 1) * width].iter())
+        .map(|&n| if n == NO_NEIGHBOR { NO_NEIGHBOR } else { input_of(n as usize) })
+        .collect();
+    TilePatches {
+        sources: keep.iter().map(|&j| input_of(j)).collect(),
+        patches: PatchSet {
+            settings: set.settings,
+            offset: set.offset,
+            aabbs: keep.iter().map(|&j| set.aabbs[j]).collect(),
+            hot: keep.iter().map(|&j| set.hot[j]).collect(),
+            cold: keep.iter().map(|&j| set.cold[j]).collect(),
+            color_neighbors,
+        },
+    }
+}
+
+/// The tiles' patches as one set, in tile order; colour neighbours whose point made no
+/// patch (merged away as a duplicate) become unused slots.
+pub fn merge_tiles(tiles: Vec<TilePatches>) -> PatchSet {
+    let inputs =
+        tiles.iter().flat_map(|tile| tile.sources.iter()).map(|&i| i as usize + 1).max().unwrap_or(0);
+    let mut patch_of = vec![NO_NEIGHBOR; inputs];
+    for (patch, &input) in tiles.iter().flat_map(|tile| tile.sources.iter()).enumerate() {
+        patch_of[input as usize] = patch as u32;
+    }
+    let mut merged = PatchSet::default();
+    for tile in tiles {
+        let set = tile.patches;
+        merged.settings = set.settings;
+        merged.offset = set.offset;
+        merged.aabbs.extend(set.aabbs);
+        merged.hot.extend(set.hot);
+        merged.cold.extend(set.cold);
+        merged.color_neighbors.extend(
+            set.color_neighbors
+                .into_iter()
+                .map(|input| patch_of.get(input as usize).copied().unwrap_or(NO_NEIGHBOR)),
+        );
+    }
+    merged
+}
+
+/// Every tile of `cloud` in turn, merged: at its peak the cloud and one tile's prep.
+pub fn prep_tiled(
+    cloud: &PointCloud,
+    settings: &PrepSettings,
+    tiles: usize,
+    progress: &dyn PrepProgress,
+) -> Result<PatchSet, PrepError> {
+    let plan = TilePlan::new(cloud, settings, tiles);
+    let prepped = (0..plan.tile_count())
+        .map(|index| prep_tile(cloud, settings, &plan, index, progress))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(merge_tiles(prepped))
+}

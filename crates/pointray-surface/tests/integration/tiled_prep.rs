@@ -1,0 +1,83 @@
+//! Prep in tiles with halos makes the patches a single pass makes: the same count, equal
+//! positions, normals and coefficients within the record's quantisation, the same colours
+//! and colour neighbours.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use pointray_io::PointCloud;
+use pointray_kernels::interpolate_color::COLOR_NEIGHBORS;
+use pointray_surface::tiled_prep::{TilePlan, prep_tile, prep_tiled};
+use pointray_surface::{NoProgress, PatchSet, PrepError, PrepSettings, ScanMode, prep};
+
+use crate::common::{height_field, jitter};
+
+/// A wavy, coloured sheet seen from above: normals toward the sensor depend only on each
+/// point's neighbourhood, as the fits and supports do.
+fn coloured_sheet() -> (PointCloud, PrepSettings) {
+    let mut cloud =
+        height_field(110, DVec3::new(500.0, -200.0, 30.0), |x, y| 0.2 * (3.0 * x).sin() * (2.0 * y).cos());
+    let colors = (0..cloud.len()).map(|i| [(i % 251) as u8, (jitter(i) * 200.0 + 100.0) as u8, 40]).collect();
+    cloud.colors = Some(colors);
+    let options = PrepSettings {
+        sensor: Some(DVec3::new(500.0, -200.0, 40.0)),
+        scan: ScanMode::Off,
+        ..PrepSettings::default()
+    };
+    (cloud, options)
+}
+
+fn position_key(set: &PatchSet, i: usize) -> [u32; 3] {
+    set.hot[i].origin().to_array().map(f32::to_bits)
+}
+
+#[test]
+fn eight_tiles_make_the_single_pass_patches() {
+    let (cloud, options) = coloured_sheet();
+    let (whole, _) = prep(&cloud, &options, &NoProgress).expect("a single pass preps");
+    let tiled = prep_tiled(&cloud, &options, 8, &NoProgress).expect("eight tiles prep");
+    assert_eq!(tiled.len(), whole.len(), "one patch per point either way");
+    assert_eq!(tiled.offset, whole.offset, "the whole cloud's offset");
+    let index: HashMap<[u32; 3], usize> = (0..whole.len()).map(|i| (position_key(&whole, i), i)).collect();
+    assert_eq!(index.len(), whole.len(), "positions tell the patches apart");
+    let (mut normal_error, mut coefficient_error) = (0.0f32, 0.0f32);
+    for t in 0..tiled.len() {
+        let w = *index.get(&position_key(&tiled, t)).unwrap_or_else(|| panic!("tiled patch {t} has no twin"));
+        let (a, b) = (tiled.hot[t].decode(), whole.hot[w].decode());
+        normal_error = normal_error.max(a.frame.n.angle_between(b.frame.n));
+        assert!((a.radii - b.radii).abs().max_element() <= 1e-3 * b.radii.x, "patch {t}: radii");
+        let scale = b.radii.x;
+        for (c, d) in a.coefficients.iter().zip(b.coefficients) {
+            coefficient_error = coefficient_error.max((c - d).abs() * scale);
+        }
+        assert_eq!(tiled.aabbs[t], whole.aabbs[w], "patch {t}: box");
+        assert_eq!(tiled.cold[t], whole.cold[w], "patch {t}: colour, intensity and reach");
+        let neighbour_positions = |set: &PatchSet, i: usize| -> Vec<[u32; 3]> {
+            set.color_neighbors[i * COLOR_NEIGHBORS..(i + 1) * COLOR_NEIGHBORS]
+                .iter()
+                .map(|&j| position_key(set, j as usize))
+                .collect()
+        };
+        assert_eq!(
+            neighbour_positions(&tiled, t),
+            neighbour_positions(&whole, w),
+            "patch {t}: colour neighbours"
+        );
+    }
+    eprintln!(
+        "8 tiles against one pass: normals within {normal_error:e} rad, coefficients within {coefficient_error:e}"
+    );
+    // The octahedral normal's two snorm16 halves resolve about 5e-5 rad; the half-float
+    // coefficients, scaled by the radius, about 1e-3 of it.
+    assert!(normal_error <= 1e-4, "normals differ by {normal_error} rad");
+    assert!(coefficient_error <= 1e-3, "coefficients differ by {coefficient_error}");
+}
+
+#[test]
+fn a_tile_past_the_last_is_refused() {
+    let (cloud, options) = coloured_sheet();
+    let plan = TilePlan::new(&cloud, &options, 4);
+    let error = prep_tile(&cloud, &options, &plan, 4, &NoProgress).expect_err("tile 4 of 4");
+    assert!(matches!(error, PrepError::NoSuchTile { index: 4, count: 4 }), "{error}");
+    assert!(error.to_string().contains("cut into 4 tiles (0 to 3)"), "{error}");
+}

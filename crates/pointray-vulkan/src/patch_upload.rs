@@ -1,0 +1,168 @@
+//! A point set onto the GPU: the per-patch records its traces read, and one BLAS per tile
+//! (`pointray_surface::patch_tiles`), all tiles sharing the set's buffers.
+
+use std::ops::Range;
+use std::sync::Arc;
+
+use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR};
+use pointray_scene::{BufferLayout, Material};
+use pointray_surface::PatchSet;
+use pointray_surface::patch_tiles::tile_ranges;
+
+use crate::acceleration::{AccelerationStructure, aabb_input, build};
+use crate::buffer::{Buffer, build_input_usage, storage_usage};
+use crate::context::GpuContext;
+use crate::error::VulkanError;
+use crate::gpu_records::{ObjectRecord, PatchCombined};
+use crate::prepared_scene::{PreparedObject, SceneLayout};
+
+/// Bytes of one patch box (`VkAabbPositionsKHR`).
+const BOX_BYTES: u64 = size_of::<pointray_kernels::Aabb>() as u64;
+
+/// Whether a trace of a point set with `material` reads its cold records and colour
+/// neighbours: only to colour hits by the points, so for the others they stay in memory.
+pub(crate) fn reads_point_colors(material: &Material) -> bool {
+    material.use_point_colors
+}
+
+/// The tiles of `patches` for a device whose BLASes hold at most `max_tile_patches`.
+pub(crate) fn patch_tiles(patches: &PatchSet, max_tile_patches: u32) -> Vec<Range<usize>> {
+    tile_ranges(patches.len(), max_tile_patches as usize)
+}
+
+pub(crate) fn prepare_patches(
+    context: &Arc<GpuContext>,
+    patches: &PatchSet,
+    material: &Material,
+    layout: SceneLayout,
+    max_tile_patches: u32,
+) -> Result<PreparedObject, VulkanError> {
+    let count = patches.len();
+    if patches.aabbs.len() != count || patches.cold.len() != count {
+        return Err(VulkanError::InvalidScene(format!(
+            "a patch set has {} hot records, {} cold records and {} boxes; they must match",
+            count,
+            patches.cold.len(),
+            patches.aabbs.len()
+        )));
+    }
+    check_color_neighbors(patches)?;
+    let colors = reads_point_colors(material);
+    let (mut record, mut buffers) = patch_records(context, patches, layout.buffers, colors)?;
+    // Only coloured clouds carry neighbour lists; the others keep address 0, which the
+    // closest-hit shader never dereferences.
+    if colors && !patches.color_neighbors.is_empty() {
+        let lists = Buffer::device_with_data(
+            context,
+            "colour neighbour lists",
+            bytemuck::cast_slice(&patches.color_neighbors),
+            storage_usage(),
+        )?;
+        record.color_neighbors = lists.device_address();
+        buffers.push(lists);
+    }
+    let bottom_levels = tile_bottom_levels(context, patches, layout, max_tile_patches)?;
+    Ok(PreparedObject { record, bottom_levels, buffers })
+}
+
+/// One BLAS per tile, each with its first patch. The boxes are only the builds' input: each
+/// structure keeps its own copy, and no shader reads them, so their buffer goes as soon as
+/// the last tile is built.
+fn tile_bottom_levels(
+    context: &Arc<GpuContext>,
+    patches: &PatchSet,
+    layout: SceneLayout,
+    max_tile_patches: u32,
+) -> Result<Vec<(AccelerationStructure, u32)>, VulkanError> {
+    if patches.is_empty() {
+        return Ok(Vec::new());
+    }
+    let aabbs = Buffer::device_with_data(
+        context,
+        "patch boxes",
+        bytemuck::cast_slice(&patches.aabbs),
+        build_input_usage(),
+    )?;
+    patch_tiles(patches, max_tile_patches)
+        .into_iter()
+        .map(|tile| {
+            let address = aabbs.device_address() + tile.start as u64 * BOX_BYTES;
+            let blas = build(context, &aabb_input(address, tile.len() as u32, layout.blas))?;
+            Ok((blas, tile.start as u32))
+        })
+        .collect()
+}
+
+/// The per-patch records the trace reads, in `buffers`' layout only: the hot buffer (and
+/// the cold one where the trace colours hits by the points), or the combined one.
+fn patch_records(
+    context: &Arc<GpuContext>,
+    patches: &PatchSet,
+    buffers: BufferLayout,
+    colors: bool,
+) -> Result<(ObjectRecord, Vec<Buffer>), VulkanError> {
+    let upload = |name, bytes: &[u8]| Buffer::device_with_data(context, name, bytes, storage_usage());
+    Ok(match buffers {
+        BufferLayout::Split => {
+            let hot = upload("hot patch records", bytemuck::cast_slice(&patches.hot))?;
+            let mut record = ObjectRecord { hot: hot.device_address(), ..ObjectRecord::default() };
+            let mut uploaded = vec![hot];
+            if colors {
+                let cold = upload("cold patch records", bytemuck::cast_slice(&patches.cold))?;
+                record.cold = cold.device_address();
+                uploaded.push(cold);
+            }
+            (record, uploaded)
+        }
+        BufferLayout::Combined => {
+            let combined: Vec<PatchCombined> = patches
+                .hot
+                .iter()
+                .zip(&patches.cold)
+                .map(|(&hot, &cold)| PatchCombined::new(hot, cold))
+                .collect();
+            let combined = upload("combined patch records", bytemuck::cast_slice(&combined))?;
+            (ObjectRecord { combined: combined.device_address(), ..ObjectRecord::default() }, vec![combined])
+        }
+    })
+}
+
+/// The GPU bytes of the records a trace of `patches` with `material` reads.
+pub(crate) fn record_bytes(patches: &PatchSet, material: &Material, buffers: BufferLayout) -> u64 {
+    let count = patches.len() as u64;
+    let hot = size_of::<pointray_kernels::PatchHot>() as u64;
+    let cold = size_of::<pointray_kernels::PatchCold>() as u64;
+    let colors = reads_point_colors(material);
+    let neighbors = if colors { patches.color_neighbors.len() as u64 * 4 } else { 0 };
+    neighbors
+        + match buffers {
+            BufferLayout::Split if colors => count * (hot + cold),
+            BufferLayout::Split => count * hot,
+            BufferLayout::Combined => count * size_of::<PatchCombined>() as u64,
+        }
+}
+
+/// The build's input for every patch box.
+pub(crate) fn box_bytes(patches: &PatchSet) -> u64 {
+    patches.len() as u64 * BOX_BYTES
+}
+
+/// The shader follows neighbour indices without bounds checks: each list must have its
+/// `COLOR_NEIGHBORS` slots and name only patches of its set.
+fn check_color_neighbors(patches: &PatchSet) -> Result<(), VulkanError> {
+    let (count, neighbors) = (patches.len(), &patches.color_neighbors);
+    if !neighbors.is_empty() && neighbors.len() != count * COLOR_NEIGHBORS {
+        return Err(VulkanError::InvalidScene(format!(
+            "a patch set has {} colour neighbour entries for {count} patches; {COLOR_NEIGHBORS} per patch wanted",
+            neighbors.len()
+        )));
+    }
+    match neighbors.iter().position(|&j| j != NO_NEIGHBOR && j as usize >= count) {
+        Some(bad) => Err(VulkanError::InvalidScene(format!(
+            "patch {} names colour neighbour {}, but the set has {count} patches",
+            bad / COLOR_NEIGHBORS,
+            neighbors[bad]
+        ))),
+        None => Ok(()),
+    }
+}
