@@ -6,7 +6,7 @@ mod arrays;
 mod devices;
 mod errors;
 mod patches;
-mod png;
+mod image_out;
 mod prep;
 mod read;
 mod render;
@@ -24,7 +24,8 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(render::render, module)?)?;
     module.add_function(wrap_pyfunction!(scene_text::scene_to_toml, module)?)?;
     module.add_function(wrap_pyfunction!(scene_text::scene_from_toml, module)?)?;
-    module.add_function(wrap_pyfunction!(png::encode_png, module)?)?;
+    module.add_function(wrap_pyfunction!(image_out::encode_png, module)?)?;
+    module.add_function(wrap_pyfunction!(image_out::save_image, module)?)?;
     module.add_function(wrap_pyfunction!(devices::devices, module)?)?;
     Ok(())
 }

@@ -32,6 +32,11 @@ class RenderedImage(np.ndarray):
     def _repr_png_(self) -> bytes:
         return png_bytes(self)
 
+    def save(self, path: str | os.PathLike) -> None:
+        """Writes the image as ``pointray render -o`` does: ``.png`` (8-bit sRGB) or ``.exr``
+        (linear float), atomically."""
+        _native.save_image(np.ascontiguousarray(self, dtype=np.float32), os.fspath(path))
+
 
 def png_bytes(image: np.ndarray) -> bytes:
     """An (H, W, 3 or 4) linear float image as 8-bit sRGB PNG bytes (alpha dropped)."""

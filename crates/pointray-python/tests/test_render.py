@@ -1,0 +1,68 @@
+"""Images from Python are the command line's images, bit for bit."""
+
+import numpy as np
+import pointray
+import pytest
+
+from conftest import pointray_cli
+
+SIZE = dict(width=96, height=72)
+
+
+def test_a_points_file_renders_as_the_command_line_renders_it(bunny, tmp_path):
+    pointray_cli("render", bunny, "-o", "cli.exr", "--backend", "cpu", "--width", 96, "--height", 72, cwd=tmp_path)
+    image = pointray.render(bunny, backend="cpu", **SIZE)
+    assert image.shape == (72, 96, 4) and image.dtype == np.float32
+    image.save(tmp_path / "python.exr")
+    assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+
+
+def test_a_scene_built_in_python_renders_as_its_scene_file(bunny, tmp_path):
+    scene = (pointray.Scene()
+             .light("point", position=[0.3, 0.5, 0.4])
+             .background([0.2, 0.2, 0.25])
+             .points(bunny, material={"diffuse": [0.9, 0.5, 0.3], "reflectivity": 0.1})
+             .ground(auto=True)
+             .render_settings(width=80, height=60))
+    (tmp_path / "scene.toml").write_text(scene.to_toml())
+    pointray_cli("render", "scene.toml", "-o", "cli.exr", "--backend", "cpu", cwd=tmp_path)
+    image = pointray.render(scene, backend="cpu")
+    image.save(tmp_path / "python.exr")
+    assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+    again = pointray.Scene.from_file(tmp_path / "scene.toml")
+    assert np.array_equal(pointray.render(again, backend="cpu"), image)
+
+
+def test_points_in_memory_render_like_their_file(bunny):
+    from_file = pointray.render(bunny, backend="cpu", **SIZE)
+    from_cloud = pointray.render(pointray.read(bunny), backend="cpu", **SIZE)
+    from_array = pointray.render(pointray.read(bunny).positions, backend="cpu", **SIZE)
+    assert np.array_equal(from_file, from_cloud)
+    assert np.array_equal(from_file, from_array)
+
+
+def test_alpha_and_aovs_say_where_the_scene_was_hit(bunny):
+    image = pointray.render(bunny, backend="cpu", aovs=True, floor=False, **SIZE)
+    hit = image[..., 3] == 1.0
+    assert 0.05 < hit.mean() < 0.95, "the bunny covers part of the frame"
+    assert set(image.aovs) == {"depth", "normal", "instance", "primitive"}
+    assert np.array_equal(hit, image.aovs["instance"] >= 0)
+    assert np.isinf(image.aovs["depth"][~hit]).all() and np.isfinite(image.aovs["depth"][hit]).all()
+    assert pointray.render(bunny, backend="cpu", **SIZE).aovs is None
+
+
+def test_a_notebook_shows_the_png_the_command_line_writes(bunny, tmp_path):
+    pointray_cli("render", bunny, "-o", "cli.png", "--backend", "cpu", "--width", 96, "--height", 72, cwd=tmp_path)
+    image = pointray.render(bunny, backend="cpu", **SIZE)
+    assert image._repr_png_() == (tmp_path / "cli.png").read_bytes()
+
+
+def test_bad_render_settings_are_refused_with_the_command_lines_words(bunny):
+    with pytest.raises(ValueError, match="width"):
+        pointray.render(bunny, backend="cpu", width=0, height=10)
+    with pytest.raises(ValueError, match="unknown backend"):
+        pointray.render(bunny, backend="gpu")
+    with pytest.raises(pointray.PointrayError, match="missing.ply"):
+        pointray.render("missing.ply", backend="cpu")
+    with pytest.raises(pointray.PointrayError, match="unknown field"):
+        pointray.Scene.from_toml("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nzoom = 2\n")
