@@ -7,7 +7,6 @@ cd "$(dirname "$0")/.."
 
 bash scripts/install-system-deps.sh
 export POINTRAY_VALIDATION=1
-export POINTRAY_DATA="${POINTRAY_DATA:-$(cd .. && pwd)/shared/data}"
 
 cargo fmt --all --check
 cargo clippy --workspace --all-targets --locked -- -D warnings

@@ -105,7 +105,7 @@ impl ColorScan {
     }
 }
 
-/// The Wendland weight `θ(r) = (1 - r)⁴ (4r + 1)` (that of the MLS fit, SPEC.md §2.6) of
+/// The Wendland weight `θ(r) = (1 - r)⁴ (4r + 1)` (that of the MLS fit, METHOD.md §2.6) of
 /// `r = distance / reach`: smooth, 1 at `p_j`, 0 from the ball's edge on.
 pub fn color_weight(distance: f32, reach: f32) -> f32 {
     if reach <= 0.0 || distance >= reach {

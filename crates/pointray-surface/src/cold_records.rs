@@ -1,4 +1,4 @@
-//! What only shading reads per patch (SPEC.md §2.7): the cold record (colour and
+//! What only shading reads per patch (METHOD.md §2.7): the cold record (colour and
 //! intensity) and the neighbours whose colours a hit blends (issue 7).
 
 use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold};

@@ -1,4 +1,4 @@
-//! Bottom- and top-level acceleration structures (SPEC.md §3): one BLAS per point set whose
+//! Bottom- and top-level acceleration structures (METHOD.md §3): one BLAS per point set whose
 //! single AABB geometry holds every patch box, one triangle BLAS per mesh, one TLAS.
 
 use std::sync::Arc;
