@@ -1,4 +1,4 @@
-//! The colour at a hit point, blended from the points around it (issue 7: no blocky seams
+//! The colour at a hit point, blended from the points around it (no blocky seams
 //! between patches). Twin of `shaders/interpolate_color.glsl`.
 //!
 //! Each point `j` spreads its colour over the ball of radius `COLOR_SUPPORT_SCALE * d_j`

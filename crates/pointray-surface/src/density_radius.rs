@@ -1,4 +1,4 @@
-//! Support radii that adapt to the local density (issue 7, "Robustness on real density").
+//! Support radii that adapt to the local density.
 //!
 //! The paper's `d_i` (METHOD.md §2.3) reaches the farthest of the `k` nearest neighbours.
 //! On real scans that fails two ways. Where the neighbours all lie on one side of `p_i` or

@@ -1,4 +1,4 @@
-//! `scenes/autzen.toml`, the real airborne LiDAR tile of issue 7, renders to a sensible image
+//! `scenes/autzen.toml`, the real airborne LiDAR tile, renders to a sensible image
 //! on the CPU backend: no NaN or infinite pixel, the tile fills a plausible part of the frame,
 //! it casts shadows, and its own RGB comes through.
 

@@ -1,4 +1,4 @@
-//! The Stanford bunny (issue 2, "The bunny"): finite patches, positive radii, and
+//! The Stanford bunny: finite patches, positive radii, and
 //! oriented normals that agree with the mesh's.
 
 use crate::normals_support::area_weighted_vertex_normals;

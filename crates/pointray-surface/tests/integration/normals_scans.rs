@@ -1,5 +1,5 @@
 //! Oriented normals of scanned models against their meshes, at the shared vertices
-//! (issue 2: >= 99% agree in sign after one global flip).
+//! (>= 99% agree in sign after one global flip).
 
 use crate::normals_support;
 

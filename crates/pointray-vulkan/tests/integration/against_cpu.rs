@@ -1,4 +1,4 @@
-//! The CPU renderer and the Vulkan renderer draw the same images (issue 4's thresholds):
+//! The CPU renderer and the Vulkan renderer draw the same images (the thresholds below):
 //! hit masks agree on >= 99.9% of pixels, normals within 1 degree on >= 99% of the pixels
 //! both hit, and the shaded images reach PSNR >= 40 dB.
 

@@ -1,4 +1,4 @@
-//! Point colours interpolated at the hit (issue 7) on the GPU: a prepped, coloured sphere
+//! Point colours interpolated at the hit on the GPU: a prepped, coloured sphere
 //! (turned, scaled and moved, so that the blend must work in object space) draws the same
 //! image as on the CPU, and shows the colour field without steps between patches, where one
 //! colour per patch shows them.
