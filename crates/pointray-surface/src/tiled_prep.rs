@@ -22,9 +22,9 @@ use crate::neighbors::k_nearest;
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
 use crate::prep::{PrepFrame, duplicate_distance, prep_in_frame, recentre};
-use crate::prep_settings::PrepSettings;
 use crate::prep_error::PrepError;
 use crate::prep_progress::PrepProgress;
+use crate::prep_settings::PrepSettings;
 
 /// The halo reaches this many times the farthest neighbourhood of the tile's points: one
 /// reach for their neighbours, one more for the neighbours' own neighbourhoods (their

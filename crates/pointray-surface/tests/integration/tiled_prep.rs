@@ -6,8 +6,8 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 use pointray_io::PointCloud;
-use pointray_surface::tiled_prep::{TilePlan, prep_tile, prep_tiled};
 use pointray_kernels::interpolate_color::COLOR_NEIGHBORS;
+use pointray_surface::tiled_prep::{TilePlan, prep_tile, prep_tiled};
 use pointray_surface::{NoProgress, PatchSet, PrepError, PrepSettings, ScanMode, prep};
 
 use crate::common::{height_field, jitter};
@@ -53,7 +53,10 @@ fn eight_tiles_make_the_single_pass_patches() {
         assert_eq!(tiled.aabbs[t], whole.aabbs[w], "patch {t}: box");
         assert_eq!(tiled.cold[t], whole.cold[w], "patch {t}: colour, intensity and reach");
         let neighbour_positions = |set: &PatchSet, i: usize| -> Vec<[u32; 3]> {
-            set.color_neighbors[i * COLOR_NEIGHBORS..(i + 1) * COLOR_NEIGHBORS].iter().map(|&j| position_key(set, j as usize)).collect()
+            set.color_neighbors[i * COLOR_NEIGHBORS..(i + 1) * COLOR_NEIGHBORS]
+                .iter()
+                .map(|&j| position_key(set, j as usize))
+                .collect()
         };
         assert_eq!(
             neighbour_positions(&tiled, t),
