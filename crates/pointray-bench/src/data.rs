@@ -4,11 +4,6 @@ use std::path::{Path, PathBuf};
 
 use crate::error::BenchError;
 
-/// The data folder: `POINTRAY_DATA`, else `../shared/data` beside the current folder.
-pub fn default_data_dir() -> PathBuf {
-    std::env::var_os("POINTRAY_DATA").map(PathBuf::from).unwrap_or_else(|| PathBuf::from("../shared/data"))
-}
-
 /// `relative` inside the data folder; an error naming the file when it is missing.
 pub fn data_file(data: &Path, relative: &Path) -> Result<PathBuf, BenchError> {
     let path = data.join(relative);

@@ -12,36 +12,8 @@ use pointray_bench::{
     run_scale, run_suite, scale_markdown,
 };
 use pointray_surface::NoProgress;
-use pointray_vulkan::{DeviceSelector, VulkanRenderer};
 
-fn in_ci() -> bool {
-    std::env::var("CI").is_ok_and(|v| v == "true")
-}
-
-fn renderer() -> Option<VulkanRenderer> {
-    match VulkanRenderer::with_validation(DeviceSelector::Auto, true) {
-        Ok(renderer) => Some(renderer),
-        Err(error) if error.is_no_device() => {
-            assert!(!in_ci(), "CI=true but no usable Vulkan device: {error}");
-            eprintln!("note: skipping, no usable Vulkan device: {error}");
-            None
-        }
-        Err(error) => panic!("creating the renderer failed: {error}"),
-    }
-}
-
-/// `../shared/data` beside the workspace, or `POINTRAY_DATA`; `None` outside CI when missing.
-fn data_dir() -> Option<PathBuf> {
-    let root = std::env::var_os("POINTRAY_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
-    if root.join("points/bunny.ply").is_file() {
-        return Some(root);
-    }
-    assert!(!in_ci(), "CI=true but the test data {} is missing", root.display());
-    eprintln!("note: skipping, test data {} is missing", root.display());
-    None
-}
+use pointray_test_support::{data_dir, vulkan_renderer as renderer};
 
 fn options<'a>(data: PathBuf, cache: &Path, size: Option<(u32, u32)>, ablations: bool) -> BenchOptions<'a> {
     BenchOptions {
@@ -59,7 +31,8 @@ fn options<'a>(data: PathBuf, cache: &Path, size: Option<(u32, u32)>, ablations:
 
 #[test]
 fn table1_bunny_runs_with_limit_and_ablations() {
-    let (Some(renderer), Some(data)) = (renderer(), data_dir()) else { return };
+    let Some(renderer) = renderer() else { return };
+    let data = data_dir();
     let cache = tempfile::tempdir().expect("a temporary folder");
     let suite = Suite::table1().expect("the built-in suite parses");
     let report =
@@ -99,7 +72,8 @@ fn table1_bunny_runs_with_limit_and_ablations() {
 
 #[test]
 fn primary_rays_only_are_counted_exactly() {
-    let (Some(renderer), Some(data)) = (renderer(), data_dir()) else { return };
+    let Some(renderer) = renderer() else { return };
+    let data = data_dir();
     let cache = tempfile::tempdir().expect("a temporary folder");
     // No lights (no shadow rays) and depth 1 (no reflections): one ray per sample.
     let text = r#"
@@ -160,7 +134,7 @@ fn assert_sane(measurement: &RungMeasurement, points: u64) {
 
 #[test]
 fn scale_suite_runs_a_rung_on_the_cpu_backend() {
-    let Some(data) = data_dir() else { return };
+    let data = data_dir();
     let cache = tempfile::tempdir().expect("a temporary folder");
     let options = scale_options(data, cache.path(), &[("20K", 20_000)]);
     let report = run_scale(ScaleBackend::Cpu, &options).expect("runs");
@@ -176,7 +150,8 @@ fn scale_suite_runs_a_rung_on_the_cpu_backend() {
 
 #[test]
 fn scale_suite_reports_gpu_bytes_on_vulkan() {
-    let (Some(renderer), Some(data)) = (renderer(), data_dir()) else { return };
+    let Some(renderer) = renderer() else { return };
+    let data = data_dir();
     let cache = tempfile::tempdir().expect("a temporary folder");
     let options = scale_options(data, cache.path(), &[("20K", 20_000)]);
     let report = run_scale(ScaleBackend::Vulkan(&renderer), &options).expect("runs");
@@ -192,7 +167,7 @@ fn scale_suite_reports_gpu_bytes_on_vulkan() {
 
 #[test]
 fn scale_suite_skips_what_does_not_fit_and_stays_out_of_checkouts() {
-    let Some(data) = data_dir() else { return };
+    let data = data_dir();
     let cache = tempfile::tempdir().expect("a temporary folder");
     let options = scale_options(data.clone(), cache.path(), &[("1P", 1_000_000_000_000_000)]);
     let report = run_scale(ScaleBackend::Cpu, &options).expect("runs");

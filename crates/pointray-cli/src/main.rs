@@ -3,6 +3,7 @@
 mod backend;
 mod columns_arg;
 mod commands;
+mod environment;
 mod patch_args;
 mod point_arg;
 mod prep_settings_args;

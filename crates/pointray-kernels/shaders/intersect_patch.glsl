@@ -1,4 +1,4 @@
-// Twin of src/intersect_patch.rs: a ray against one quadratic patch (SPEC.md section 3).
+// Twin of src/intersect_patch.rs: a ray against one quadratic patch (METHOD.md section 3).
 // The box test uses the patch's own cube [p - d_u, p + d_u] from the hot record, which
 // contains the stored AABB (see the Rust twin for why).
 #ifndef POINTRAY_INTERSECT_PATCH_GLSL

@@ -1,4 +1,4 @@
-//! The colour at a hit point, blended from the points around it (issue 7: no blocky seams
+//! The colour at a hit point, blended from the points around it (no blocky seams
 //! between patches). Twin of `shaders/interpolate_color.glsl`.
 //!
 //! Each point `j` spreads its colour over the ball of radius `COLOR_SUPPORT_SCALE * d_j`
@@ -105,7 +105,7 @@ impl ColorScan {
     }
 }
 
-/// The Wendland weight `θ(r) = (1 - r)⁴ (4r + 1)` (that of the MLS fit, SPEC.md §2.6) of
+/// The Wendland weight `θ(r) = (1 - r)⁴ (4r + 1)` (that of the MLS fit, METHOD.md §2.6) of
 /// `r = distance / reach`: smooth, 1 at `p_j`, 0 from the ball's edge on.
 pub fn color_weight(distance: f32, reach: f32) -> f32 {
     if reach <= 0.0 || distance >= reach {

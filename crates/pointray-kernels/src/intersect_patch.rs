@@ -1,9 +1,9 @@
-//! A ray against one quadratic patch (SPEC.md §3, intersection steps 1-3).
+//! A ray against one quadratic patch (METHOD.md §3, intersection steps 1-3).
 //! Twin of `shaders/intersect_patch.glsl`.
 //!
 //! **The box test uses the patch's own cube `[p - d_u, p + d_u]`**, computed from the hot
 //! record, not the stored `Aabb`: the test then reads only the hot record, as the paper's
-//! hot/cold split intends (SPEC.md §2.7). The stored box is that cube or (the default) a
+//! hot/cold split intends (METHOD.md §2.7). The stored box is that cube or (the default) a
 //! tight box around the patch over its support ellipse, which the cube contains; the support
 //! test then decides.
 
@@ -13,7 +13,7 @@ use crate::layout::Patch;
 use crate::quadratic_roots::quadratic_roots;
 use crate::ray::Ray;
 
-/// Which roots on a patch's quadratic count as hits (SPEC.md §3, step 3).
+/// Which roots on a patch's quadratic count as hits (METHOD.md §3, step 3).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[repr(u32)]
 pub enum PatchAcceptance {

@@ -1,6 +1,6 @@
 //! Per-patch records as the GPU reads them (std430), mirrored in `shaders/layout.glsl`.
 //!
-//! The split follows SPEC.md §2.7: `PatchHot` is all the intersection shader reads,
+//! The split follows METHOD.md §2.7: `PatchHot` is all the intersection shader reads,
 //! `PatchCold` is what only shading reads. Both are plain old data so that the patch
 //! store, the CPU renderer and the Vulkan buffers share one byte layout.
 
@@ -117,7 +117,7 @@ impl PatchHot {
     }
 }
 
-/// A patch decoded from its `PatchHot`: the frame, support and height field of SPEC.md §2.
+/// A patch decoded from its `PatchHot`: the frame, support and height field of METHOD.md §2.
 /// Twin of `Patch` in `shaders/patch_frame.glsl`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Patch {
@@ -210,7 +210,7 @@ impl Aabb {
         Self { min: min.to_array(), max: max.to_array() }
     }
 
-    /// The cube of half-size `half` around `center` (the paper's box, SPEC.md §2.4).
+    /// The cube of half-size `half` around `center` (the paper's box, METHOD.md §2.4).
     pub fn cube(center: Vec3, half: f32) -> Self {
         Self::new(center - Vec3::splat(half), center + Vec3::splat(half))
     }

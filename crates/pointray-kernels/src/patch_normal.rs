@@ -1,4 +1,4 @@
-//! The normal of a patch at local `(u, v)` (SPEC.md §3, closest hit).
+//! The normal of a patch at local `(u, v)` (METHOD.md §3, closest hit).
 //! Twin of `shaders/patch_normal.glsl`.
 
 use glam::{Vec2, Vec3};

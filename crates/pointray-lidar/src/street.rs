@@ -1,6 +1,6 @@
 //! A procedural street that needs no data files, Z up as LiDAR frames are, running along X:
 //! a road with kerbs, raised sidewalks, building blocks on both sides (set back by different
-//! depths, some with a bay), parked and driving cars, lamp poles and, when the shared data is
+//! depths, some with a bay), parked and driving cars, lamp poles and, when the data folder is
 //! there, the scanned bunny and horse standing on the road.
 //!
 //! It is fixed: the same street every time, so that it can serve as ground truth.

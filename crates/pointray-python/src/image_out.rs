@@ -37,7 +37,10 @@ pub fn save_image(py: Python<'_>, image: PyReadonlyArray3<'_, f32>, path: PathBu
 fn linear_rgb(image: &PyReadonlyArray3<'_, f32>) -> PyResult<(u32, u32, Vec<Vec3>)> {
     let &[height, width, channels] = image.shape() else { unreachable!("three dimensions") };
     if !matches!(channels, 3 | 4) {
-        return Err(PyValueError::new_err(format!("expected (H, W, 3) or (H, W, 4), got {:?}", image.shape())));
+        return Err(PyValueError::new_err(format!(
+            "expected (H, W, 3) or (H, W, 4), got {:?}",
+            image.shape()
+        )));
     }
     let pixels = image.as_array();
     let linear = pixels.rows().into_iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect();

@@ -5,8 +5,8 @@
 mod arrays;
 mod devices;
 mod errors;
-mod patches;
 mod image_out;
+mod patches;
 mod prep;
 mod read;
 mod render;

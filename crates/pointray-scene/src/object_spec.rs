@@ -4,7 +4,7 @@
 //! ```toml
 //! [[objects]]
 //! type = "points"          # a points file (any format pointray-io reads) or a .patches store
-//! path = "../../shared/data/points/bunny.ply"
+//! path = "../data/points/bunny.ply"
 //! columns = "x,y,z,intensity,ring"  # for text and raw .bin files: what each column holds
 //! [objects.prep]           # optional: `pointray prep`'s settings, with its flags' names
 //! k = 9

@@ -2,7 +2,7 @@
 
 use pointray_kernels::PatchAcceptance;
 
-/// How the per-patch data reaches the GPU (SPEC.md §2.7).
+/// How the per-patch data reaches the GPU (METHOD.md §2.7).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum BufferLayout {
     /// Hot (intersection) and cold (shading) data in separate buffers.

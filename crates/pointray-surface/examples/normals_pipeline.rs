@@ -29,7 +29,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use glam::{DVec3, Vec3};
-use normals_support::{FIT_K, NORMAL_K, data_dir, sign_agreement};
+use normals_support::{FIT_K, NORMAL_K, sign_agreement};
 use pointray_io::TriangleMesh;
 use pointray_io::formats::ply::read_triangle_mesh;
 use pointray_surface::duplicates::merge_duplicates;
@@ -47,7 +47,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let mesh_path = match args.next() {
         Some(path) => PathBuf::from(path),
-        None => data_dir().ok_or("no test data directory")?.join("meshes/dragon_res2.ply"),
+        None => pointray_test_support::data_file("meshes/dragon_res2.ply"),
     };
     let count: usize = args.next().map_or(Ok(1_000_000), |a| a.parse())?;
     let seed: u64 = args.next().map_or(Ok(1), |a| a.parse())?;

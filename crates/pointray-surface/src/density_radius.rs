@@ -1,6 +1,6 @@
-//! Support radii that adapt to the local density (issue 7, "Robustness on real density").
+//! Support radii that adapt to the local density.
 //!
-//! The paper's `d_i` (SPEC.md §2.3) reaches the farthest of the `k` nearest neighbours.
+//! The paper's `d_i` (METHOD.md §2.3) reaches the farthest of the `k` nearest neighbours.
 //! On real scans that fails two ways. Where the neighbours all lie on one side of `p_i` or
 //! along one scan line, the disk does not reach across the gap beside it, and the surface
 //! tears. Where a point is isolated, its neighbours are far and its box is huge.
@@ -39,7 +39,7 @@ use pointray_kernels::TangentFrame;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RadiusMode {
-    /// SPEC.md §2.3: the tangential distance to the farthest of the `k` neighbours.
+    /// METHOD.md §2.3: the tangential distance to the farthest of the `k` neighbours.
     Paper,
     /// The paper's radius widened to cover the point's Voronoi cell and held to a band
     /// around the neighbourhood's median.

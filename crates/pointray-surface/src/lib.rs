@@ -1,4 +1,4 @@
-//! From a point set to MLS quadratic patches (SPEC.md §2): the offline half of pointray.
+//! From a point set to MLS quadratic patches (METHOD.md §2): the offline half of pointray.
 
 mod cloud_subset;
 pub mod cold_records;

@@ -1,4 +1,4 @@
-//! The k-nearest-neighbour table (SPEC.md §2.1), shared by normals, orientation and the fit.
+//! The k-nearest-neighbour table (METHOD.md §2.1), shared by normals, orientation and the fit.
 
 use std::num::NonZeroUsize;
 

@@ -1,4 +1,4 @@
-//! PCA normals (SPEC.md §2.2): the direction of least spread of each neighbourhood.
+//! PCA normals (METHOD.md §2.2): the direction of least spread of each neighbourhood.
 
 use glam::{DMat3, DVec3, Vec3};
 use rayon::prelude::*;

@@ -1,4 +1,4 @@
-//! Orienting PCA normals (SPEC.md §2.2). PCA gives each normal up to sign; these make
+//! Orienting PCA normals (METHOD.md §2.2). PCA gives each normal up to sign; these make
 //! the signs agree across the surface, or point them toward a known scanner position.
 
 use glam::{DVec3, Vec3};

@@ -1,4 +1,4 @@
-//! Statistical outlier removal (issue 7): stray returns (birds, dust, multipath) sit far
+//! Statistical outlier removal: stray returns (birds, dust, multipath) sit far
 //! from the surface, and `prep` would give each one a patch as large as its distance to
 //! the surface. A point goes when its mean distance to its `neighbors` nearest points is
 //! more than `sigmas` standard deviations above the cloud's mean of those means.

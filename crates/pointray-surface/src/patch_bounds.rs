@@ -1,4 +1,4 @@
-//! The axis-aligned box of a patch (SPEC.md §2.4): the paper's cube, or a tight box
+//! The axis-aligned box of a patch (METHOD.md §2.4): the paper's cube, or a tight box
 //! around the patch surface over its support ellipse.
 
 use std::sync::LazyLock;

@@ -1,4 +1,4 @@
-//! `prep`: from a point cloud to a `PatchSet` (SPEC.md §2), stage by stage.
+//! `prep`: from a point cloud to a `PatchSet` (METHOD.md §2), stage by stage.
 
 use std::borrow::Cow;
 
@@ -31,7 +31,7 @@ use crate::stage_clock::StageClock;
 use crate::support_radius::{RadiusSource, support_radius};
 
 /// The Wendland scale `h_i` is this multiple of the farthest neighbour's distance, so
-/// that every neighbour keeps some weight (SPEC.md §2.6, ours).
+/// that every neighbour keeps some weight (METHOD.md §2.6, ours).
 const WENDLAND_SCALE: f32 = 1.1;
 
 /// Points per progress report in the per-point stages.
@@ -180,7 +180,7 @@ fn prep_framed(
 }
 
 /// Patches of unstructured points: PCA normals oriented over the neighbour graph or toward a
-/// sensor, round supports of the chosen radius mode, and quadratic fits (SPEC.md §2).
+/// sensor, round supports of the chosen radius mode, and quadratic fits (METHOD.md §2).
 fn unstructured_shaped(
     points: &[Vec3],
     neighbors: &mut Neighbors,
@@ -358,7 +358,7 @@ struct SupportRadii {
     adjustments: RadiusAdjustments,
 }
 
-/// The paper's radii (SPEC.md §2.3), then, in adaptive or cell mode, their correction.
+/// The paper's radii (METHOD.md §2.3), then, in adaptive or cell mode, their correction.
 fn support_radii(
     points: &[Vec3],
     normals: &[Vec3],

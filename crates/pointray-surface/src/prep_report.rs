@@ -8,7 +8,7 @@ use glam::DVec3;
 use crate::density_radius::RadiusAdjustments;
 use crate::prep_progress::Stage;
 
-/// How many patches ended with each fit model (SPEC.md §2.6).
+/// How many patches ended with each fit model (METHOD.md §2.6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FitCounts {
     pub quadratic: usize,
@@ -16,7 +16,7 @@ pub struct FitCounts {
     pub flat: usize,
 }
 
-/// How many support radii needed a fallback (SPEC.md §2.3).
+/// How many support radii needed a fallback (METHOD.md §2.3).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RadiusFallbacks {
     /// `|v|` instead of its tangential length.

@@ -14,9 +14,9 @@ use crate::patch_bounds::BoxKind;
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct PrepSettings {
-    /// Neighbours used for the support radius and the quadratic fit (SPEC.md §2.1).
+    /// Neighbours used for the support radius and the quadratic fit (METHOD.md §2.1).
     pub k: u32,
-    /// Neighbours used for the PCA normal (SPEC.md §2.2).
+    /// Neighbours used for the PCA normal (METHOD.md §2.2).
     pub normal_k: u32,
     /// Compute PCA normals even when the input carries normals.
     pub recompute_normals: bool,
@@ -32,7 +32,7 @@ pub struct PrepSettings {
     /// so the disk, the box and the self-clearance, is `disk_scale d_i`. The fit still uses
     /// the whole neighbourhood. 1 is the paper.
     pub disk_scale: f32,
-    /// The box each patch gets (SPEC.md §2.4).
+    /// The box each patch gets (METHOD.md §2.4).
     pub boxes: BoxKind,
     /// Whether a LiDAR scan's line structure shapes the patches.
     pub scan: ScanMode,

@@ -1,4 +1,4 @@
-//! The Wendland-weighted least-squares quadratic patch (SPEC.md §2.6) with its
+//! The Wendland-weighted least-squares quadratic patch (METHOD.md §2.6) with its
 //! fallback chain quadratic → plane → flat.
 //!
 //! `f(u,v) = c0 + c1 u + c2 v + c3 u² + c4 uv + c5 v²` is fitted to the point and its

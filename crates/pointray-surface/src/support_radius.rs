@@ -1,11 +1,11 @@
-//! The support radius `d_i` of a patch (SPEC.md §2.3).
+//! The support radius `d_i` of a patch (METHOD.md §2.3).
 
 use glam::Vec3;
 
 /// How `d_i` was obtained.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RadiusSource {
-    /// The tangential length of `v`, as SPEC.md §2.3 defines it.
+    /// The tangential length of `v`, as METHOD.md §2.3 defines it.
     Tangential,
     /// `|v|`: the farthest neighbour lies (almost) along the normal.
     Distance,

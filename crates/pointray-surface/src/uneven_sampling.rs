@@ -1,5 +1,5 @@
 //! Unevenly sampled stand-ins for real scans, for measuring what non-uniform density does to
-//! the patches against the mesh's ground truth (issue 7): uniform samples thinned either by
+//! the patches against the mesh's ground truth: uniform samples thinned either by
 //! a density gradient across the model or into scan lines.
 
 use glam::DVec3;

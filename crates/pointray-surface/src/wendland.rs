@@ -1,4 +1,4 @@
-//! The Wendland weight of the MLS fit (SPEC.md §2.6).
+//! The Wendland weight of the MLS fit (METHOD.md §2.6).
 
 /// `θ(r) = (1 - r)⁴ (4r + 1)` for `0 <= r < 1`, else 0: smooth, compactly supported,
 /// 1 at the centre.

@@ -1,4 +1,4 @@
-//! `pointray view`: an interactive window on a scene (issue 6).
+//! `pointray view`: an interactive window on a scene.
 //!
 //! With the Vulkan backend every frame goes straight from the ray-tracing pipeline to the
 //! window, on one device (`Presentation::Direct`): the renderer is made for the window

@@ -10,7 +10,6 @@ use common::{Orbit, missing, psnr, read_png, scripted_run};
 use pointray_scene::{AovSelection, Frame, write_frame};
 use pointray_viewer::{Presentation, ViewerError, orbit_camera, run_viewer};
 use pointray_vulkan::BackendChoice;
-use pointray_vulkan::{DeviceSelector, VulkanRenderer};
 
 const FRAMES: u32 = 30;
 const ARC_DEGREES: f32 = 360.0;
@@ -43,8 +42,7 @@ fn scripted_orbit_screenshot_matches_the_renderer() {
     assert!(expected_camera.position.distance(loaded.scene.camera.position) > 1e-3, "the orbit moved");
 
     // `pointray render` with the final camera: the same scene, settings and camera.
-    let renderer =
-        VulkanRenderer::with_validation(DeviceSelector::Auto, true).expect("the renderer opens again");
+    let renderer = pointray_test_support::vulkan_renderer().expect("the renderer opens again");
     let mut final_scene = loaded.scene.clone();
     final_scene.camera = summary.final_camera;
     let reference = renderer.render(&final_scene, &settings).expect("the reference renders");

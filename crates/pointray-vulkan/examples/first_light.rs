@@ -5,7 +5,7 @@
 //! `first_light --data DIR --out DIR [--reference DIR] [--frames N]`
 //! (`DIR` of `--data` holds `points/bunny.ply` and `meshes/bunny.ply`.)
 
-#[allow(dead_code)] // the example needs only a few of the tests' helpers
+#[allow(dead_code, unused_imports)] // the example needs only a few of the tests' helpers
 #[path = "../tests/integration/common/mod.rs"]
 mod common;
 
@@ -29,12 +29,8 @@ struct Args {
 }
 
 fn parse_args() -> Result<Args, Error> {
-    let mut args = Args {
-        data: PathBuf::from("../shared/data"),
-        out: PathBuf::from("out"),
-        reference: None,
-        frames: 50,
-    };
+    let mut args =
+        Args { data: PathBuf::from("data"), out: PathBuf::from("out"), reference: None, frames: 50 };
     let mut words = std::env::args().skip(1);
     while let Some(flag) = words.next() {
         let value = words.next().ok_or_else(|| format!("{flag} needs a value"))?;

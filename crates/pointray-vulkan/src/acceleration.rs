@@ -1,4 +1,4 @@
-//! Bottom- and top-level acceleration structures (SPEC.md §3): one BLAS per point set (or per
+//! Bottom- and top-level acceleration structures (METHOD.md §3): one BLAS per point set (or per
 //! tile of a large one) whose single AABB geometry holds its patch boxes, one triangle BLAS
 //! per mesh, one TLAS.
 

@@ -1,4 +1,4 @@
-//! The Vulkan ray-tracing renderer (SPEC.md §3): point sets as procedural AABB geometry with
+//! The Vulkan ray-tracing renderer (METHOD.md §3): point sets as procedural AABB geometry with
 //! a quadratic-patch intersection shader, meshes as triangles, shaded by an iterative path in
 //! ray generation (ARCHITECTURE.md, rendering contract).
 //!

@@ -14,6 +14,7 @@ use pointray_scene::{RenderSetting, RenderSettings, SceneFile};
 use pointray_vulkan::{BackendChoice, DeviceSelector, VulkanRenderer};
 
 use crate::backend::{backend_choice, open_backend};
+use crate::environment::data_dir;
 use crate::progress::PrepBar;
 use crate::setting_flag::setting_flag;
 use pointray_render::Backend;
@@ -45,7 +46,7 @@ pub struct BenchArgs {
     /// Skip the mesh twin of each model (the limit).
     #[arg(long)]
     no_limit: bool,
-    /// The data folder (default: POINTRAY_DATA, else ../shared/data).
+    /// The data folder (default: POINTRAY_DATA, else the checkout's data/).
     #[arg(long)]
     data: Option<PathBuf>,
     /// Where stand-ins and prepped point sets are cached. `scale` writes gigabytes there and
@@ -125,7 +126,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         return run_scale_suite(&args);
     }
     anyhow::ensure!(args.backend != BackendChoice::Cpu, "only the scale suite runs on the CPU backend");
-    let data = args.data.clone().unwrap_or_else(pointray_bench::data::default_data_dir);
+    let data = args.data.clone().unwrap_or_else(data_dir);
     let target = Target::read(&args.target)?;
     let outputs: Vec<PathBuf> = args.json.iter().chain(&args.markdown).cloned().collect();
     pointray_io::ensure_outputs_spare_inputs(&target.input_files(&data), &outputs)?;
@@ -196,7 +197,7 @@ fn run_scale_suite(args: &BenchArgs) -> anyhow::Result<()> {
     println!("backend: {}", scale_backend.describe());
     let progress = PrepBar::default();
     let options = ScaleOptions {
-        data: args.data.clone().unwrap_or_else(pointray_bench::data::default_data_dir),
+        data: args.data.clone().unwrap_or_else(data_dir),
         cache: args.cache.clone(),
         rungs: pointray_bench::scale::chosen_rungs(&args.rungs).map_err(anyhow::Error::msg)?,
         sizes: pointray_bench::scale::SCALE_SIZES.to_vec(),

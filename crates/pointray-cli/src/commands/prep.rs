@@ -1,4 +1,4 @@
-//! `pointray prep`: a points file to a patch store (SPEC.md §2).
+//! `pointray prep`: a points file to a patch store (METHOD.md §2).
 
 use std::path::PathBuf;
 

@@ -21,7 +21,7 @@ pub struct ScanArgs {
     /// A scene file to scan (Y up, as all scene files are); objects are classified by name.
     scene: Option<PathBuf>,
     /// Scan the built-in street (Z up) instead, with the bunny and horse on its road when the
-    /// data folder ($POINTRAY_DATA, else ../shared/data) has them.
+    /// data folder ($POINTRAY_DATA, else the checkout's data/) has them.
     #[arg(long)]
     street: bool,
     /// hdl64, hdl32, vlp16, os128 (spinning, at 10 Hz) or terrestrial (a tripod scanner).
@@ -147,7 +147,7 @@ impl World {
                 description: path.display().to_string(),
             });
         }
-        let data = pointray_bench::data::default_data_dir();
+        let data = crate::environment::data_dir();
         let surfaces = pointray_lidar::street::street(Some(&data))?;
         let models = pointray_lidar::street::model_files(&data);
         let names: Vec<String> = models

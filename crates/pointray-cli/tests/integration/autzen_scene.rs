@@ -1,10 +1,10 @@
-//! `scenes/autzen.toml`, the real airborne LiDAR tile of issue 7, renders to a sensible image
+//! `scenes/autzen.toml`, the real airborne LiDAR tile, renders to a sensible image
 //! on the CPU backend: no NaN or infinite pixel, the tile fills a plausible part of the frame,
 //! it casts shadows, and its own RGB comes through.
 
 use std::path::{Path, PathBuf};
 
-use crate::common::data_file;
+use pointray_test_support::data_file;
 
 use glam::Vec3;
 use pointray_scene::object_spec::ShapeSpec;
@@ -36,7 +36,7 @@ fn tile_pixels(frame: &Frame) -> Vec<usize> {
 
 #[test]
 fn autzen_renders_lit_shadowed_and_in_colour() {
-    let Some(data) = data_file("scans/autzen_trim.las") else { return };
+    let data = data_file("scans/autzen_trim.las");
     let loaded =
         load_scene_file(&autzen_scene(data), &LoadOptions::default()).expect("the autzen scene loads");
     let settings = RenderSettings { width: WIDTH, height: HEIGHT, ..loaded.settings };

@@ -5,7 +5,8 @@ use std::path::Path;
 
 use glam::{DVec3, Vec3};
 
-use crate::common::{data_file, pointray_in, write_grid_ply};
+use crate::common::{pointray_in, write_grid_ply};
+use pointray_test_support::data_file;
 
 const SIZE: [&str; 4] = ["--width", "80", "--height", "60"];
 
@@ -81,7 +82,7 @@ fn a_kitti_sweep_stands_upright() {
 
 #[test]
 fn a_las_tile_renders_in_its_own_colours() {
-    let Some(tile) = data_file("scans/autzen_trim.las") else { return };
+    let tile = data_file("scans/autzen_trim.las");
     let dir = tempfile::tempdir().unwrap();
     let frame = render(dir.path(), &tile, &[]);
     assert_framed_and_lit("autzen_trim.las", &frame);

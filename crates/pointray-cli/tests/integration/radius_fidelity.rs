@@ -12,7 +12,7 @@
 //! ```
 //! `POINTRAY_FIDELITY_SIZE` sets the image size (default 512, as `pointray fidelity`).
 
-use crate::common::data_file;
+use pointray_test_support::data_file;
 
 use std::sync::Arc;
 
@@ -76,7 +76,7 @@ fn radius_modes_on_uneven_density() {
     );
     println!("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for model in MODELS {
-        let Some(path) = data_file(&format!("meshes/{model}.ply")) else { continue };
+        let path = data_file(&format!("meshes/{model}.ply"));
         let mesh = Arc::new(pointray_io::formats::read_triangle_mesh(&path).unwrap());
         for (sampling, unevenness) in SAMPLINGS {
             let cloud = sample_mesh_unevenly(&mesh, SAMPLES, 1, unevenness);

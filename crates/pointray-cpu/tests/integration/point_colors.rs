@@ -1,4 +1,4 @@
-//! Point colours are interpolated at the hit (issue 7): a plane coloured by two crossing
+//! Point colours are interpolated at the hit: a plane coloured by two crossing
 //! gradients shows no steps between adjacent pixels, where one colour per patch does.
 
 use crate::common;

@@ -1,4 +1,4 @@
-//! Issue 4's exactness test: a paraboloid cap, a surface the quadratic patches fit almost
+//! The exactness test: a paraboloid cap, a surface the quadratic patches fit almost
 //! exactly, against its own triangulation. Then the same cap with points removed, to show
 //! that the hole rate does move.
 

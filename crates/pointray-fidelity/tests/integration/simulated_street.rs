@@ -1,5 +1,5 @@
 //! Spinning-LiDAR sweeps of the procedural street, prepped scan-aware with the defaults, held
-//! to the LiDAR issue's bars against the street's mesh and against the sensor's own rays.
+//! to the LiDAR bars against the street's mesh and against the sensor's own rays.
 //! Sensors, noise, dropout and seeds vary, so that no bar holds for one simulated scan alone.
 
 use std::sync::Arc;
@@ -73,9 +73,9 @@ fn fidelity(scanned: &Scanned, view: ViewSpec, name: &str) -> FidelityMetrics {
 }
 
 /// Where these sweeps stand, measured by this test (see bench/FIDELITY.md, LiDAR): a guard
-/// against regression, below the LiDAR issue's bars where those are not yet met (holes from
+/// against regression, below the LiDAR bars where those are not yet met (holes from
 /// the sensor ≤ 0.5 %, mean normal error ≤ 5°, ≥ 98 % consistent). False surface, holes from
-/// above and the support bound meet the bars.
+/// above and the support bound meet the bars.
 struct Bars {
     sensor_seen_holes: f64,
     above_seen_holes: f64,

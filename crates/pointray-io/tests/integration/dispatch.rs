@@ -45,7 +45,7 @@ fn point_only_formats_are_not_meshes() {
 
 #[test]
 fn the_shared_las_scan_is_dispatched_to_the_las_reader() {
-    let Some(data) = common::data_dir() else { return };
+    let data = pointray_test_support::data_dir();
     assert_eq!(formats::read_point_cloud(&data.join("scans/autzen_trim.las")).unwrap().len(), 110_000);
     let bunny = formats::read_point_cloud(&data.join("points/bunny.ply")).unwrap();
     assert_eq!(bunny, ply::read_point_cloud(&data.join("points/bunny.ply")).unwrap());

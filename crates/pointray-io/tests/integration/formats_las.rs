@@ -9,8 +9,6 @@ use pointray_io::IoError;
 use pointray_io::formats::detect::{PointFormat, detect_format};
 use pointray_io::formats::las::read_las;
 
-use crate::common::data_dir;
-
 /// Coordinates near 10^6 feet, stored at 0.01 resolution, as in geo-referenced tiles.
 const SCALE: f64 = 0.01;
 const EASTING: f64 = 1_234_567.89;
@@ -211,7 +209,7 @@ fn more_declared_points_than_stored_is_refused() {
 
 #[test]
 fn autzen_tile_reads_with_its_point_count_colours_and_bounds() {
-    let Some(data) = data_dir() else { return };
+    let data = pointray_test_support::data_dir();
     let cloud = read_las(&data.join("scans/autzen_trim.las")).unwrap();
     assert_eq!(cloud.len(), 110_000);
     let colors = cloud.colors.as_ref().expect("autzen has RGB");

@@ -97,7 +97,7 @@ fn bytes_of(values: &[f32]) -> Vec<u8> {
 
 #[test]
 fn a_nuscenes_sweep_named_like_kitti_is_refused_not_misread() {
-    // The trap: 5-float records whose length is also a whole number of 4-float ones.
+    // The trap: 5-float records whose length is also a whole number of 4-float ones.
     let message = refusal("sweep.bin", &bytes_of(nuscenes_records(80).as_flattened()), None);
     assert!(message.contains("does not read as KITTI"), "{message}");
     assert!(message.contains("negative or non-finite intensity"), "{message}");

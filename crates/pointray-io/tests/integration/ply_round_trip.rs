@@ -1,7 +1,5 @@
 //! Clouds and meshes written as PLY in each encoding read back unchanged.
 
-use crate::common;
-
 use glam::{DVec3, Vec3};
 use pointray_io::formats::ply::{self, PlyEncoding};
 use pointray_io::{PointCloud, TriangleMesh};
@@ -80,7 +78,7 @@ fn a_mesh_survives_each_encoding() {
 
 #[test]
 fn the_bunny_mesh_round_trips_bit_for_bit() {
-    let Some(data) = common::data_dir() else { return };
+    let data = pointray_test_support::data_dir();
     let mesh = ply::read_triangle_mesh(&data.join("meshes/bunny.ply")).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bunny.ply");

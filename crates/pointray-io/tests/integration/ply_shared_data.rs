@@ -1,11 +1,9 @@
 //! The shared scan models load with the counts and bounds SOURCES.md gives.
 
-use crate::common;
-
 use glam::DVec3;
 use pointray_io::formats::ply;
 
-/// (name, vertices, faces, bbox min, bbox max) from ../shared/data/SOURCES.md.
+/// (name, vertices, faces, bbox min, bbox max) from data/SOURCES.md.
 type Model = (&'static str, usize, usize, [f64; 3], [f64; 3]);
 
 const MODELS: [Model; 3] = [
@@ -16,7 +14,7 @@ const MODELS: [Model; 3] = [
 
 #[test]
 fn point_files_have_the_documented_counts_and_bounds() {
-    let Some(data) = common::data_dir() else { return };
+    let data = pointray_test_support::data_dir();
     for (name, vertices, _, min, max) in MODELS {
         let cloud = ply::read_point_cloud(&data.join(format!("points/{name}.ply"))).unwrap();
         assert_eq!(cloud.len(), vertices, "{name}");
@@ -30,7 +28,7 @@ fn point_files_have_the_documented_counts_and_bounds() {
 
 #[test]
 fn mesh_files_have_the_documented_counts() {
-    let Some(data) = common::data_dir() else { return };
+    let data = pointray_test_support::data_dir();
     for (name, vertices, faces, _, _) in MODELS {
         let mesh = ply::read_triangle_mesh(&data.join(format!("meshes/{name}.ply"))).unwrap();
         assert_eq!(mesh.positions.len(), vertices, "{name}");
@@ -40,7 +38,7 @@ fn mesh_files_have_the_documented_counts() {
 
 #[test]
 fn mesh_vertices_equal_the_point_file_vertices() {
-    let Some(data) = common::data_dir() else { return };
+    let data = pointray_test_support::data_dir();
     let mesh = ply::read_triangle_mesh(&data.join("meshes/bunny.ply")).unwrap();
     let cloud = ply::read_point_cloud(&data.join("points/bunny.ply")).unwrap();
     let cloud_as_f32: Vec<_> = cloud.positions.iter().map(|p| p.as_vec3()).collect();
@@ -49,7 +47,7 @@ fn mesh_vertices_equal_the_point_file_vertices() {
 
 #[test]
 fn a_mesh_file_reads_as_a_point_cloud_of_its_vertices() {
-    let Some(data) = common::data_dir() else { return };
+    let data = pointray_test_support::data_dir();
     let cloud = ply::read_point_cloud(&data.join("meshes/horse.ply")).unwrap();
     assert_eq!(cloud.len(), 48_485);
 }

@@ -1,4 +1,4 @@
-//! The scanned models that stand on the street when the shared data has them: the Stanford
+//! The scanned models that stand on the street when the data folder has them: the Stanford
 //! bunny and the Cyberware horse, each scaled so that its largest side is a metre.
 
 use std::path::{Path, PathBuf};

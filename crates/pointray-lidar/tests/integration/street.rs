@@ -35,7 +35,7 @@ fn a_scan_of_the_street_sees_ground_buildings_and_cars_where_they_are() {
 
 #[test]
 fn the_scanned_models_stand_on_the_road_a_metre_tall_or_long() {
-    let Some(data) = data_dir() else { return };
+    let data = pointray_test_support::data_dir();
     let surfaces = street(Some(&data)).unwrap();
     for name in ["bunny", "horse"] {
         let model = surfaces.iter().find(|s| s.name == name).unwrap_or_else(|| panic!("no {name}"));

@@ -296,22 +296,11 @@ fn procedural_spheres_fit_their_analytic_surface() {
 }
 
 #[test]
-fn the_example_scenes_load_with_the_shared_data() {
+fn the_example_scenes_load_with_the_checkouts_data() {
     let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
     let cache = tempfile::tempdir().unwrap();
-    for (name, data) in
-        [("bunny_mesh_floor.toml", "meshes/bunny.ply"), ("bunny_floor.toml", "points/bunny.ply")]
-    {
-        let Some(data) = common::data_file(data) else { return };
-        let mut file = pointray_scene::SceneFile::read(&scenes.join(name)).unwrap();
-        // Point the scene at POINTRAY_DATA when it is set (an absolute path resolves to itself).
-        for object in &mut file.objects {
-            if let pointray_scene::object_spec::ShapeSpec::Points { path, .. }
-            | pointray_scene::object_spec::ShapeSpec::Mesh { path } = &mut object.shape
-            {
-                *path = data.clone();
-            }
-        }
+    for name in ["bunny_mesh_floor.toml", "bunny_floor.toml"] {
+        let file = pointray_scene::SceneFile::read(&scenes.join(name)).unwrap();
         let options = LoadOptions { cache_dir: Some(cache.path()), ..LoadOptions::default() };
         let scene = pointray_scene::load_scene_file(&file, &options).unwrap().scene;
         let bunny = scene.objects[0].world_bounds().unwrap();

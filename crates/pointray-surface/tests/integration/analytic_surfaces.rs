@@ -1,4 +1,4 @@
-//! Patches of noise-free analytic surfaces (issue 2, "Analytic surfaces").
+//! Patches of noise-free analytic surfaces.
 
 use crate::common;
 

@@ -1,14 +1,15 @@
-//! The Stanford bunny (issue 2, "The bunny"): finite patches, positive radii, and
+//! The Stanford bunny: finite patches, positive radii, and
 //! oriented normals that agree with the mesh's.
 
-use crate::normals_support::{area_weighted_vertex_normals, data_dir};
+use crate::normals_support::area_weighted_vertex_normals;
+use pointray_test_support::data_dir;
 
 use pointray_io::formats::ply;
 use pointray_surface::{NoProgress, PrepSettings, prep};
 
 #[test]
 fn bunny_patches_are_finite_and_normals_agree_with_the_mesh() {
-    let Some(data) = data_dir() else { return };
+    let data = data_dir();
     let (points, mesh) = (data.join("points/bunny.ply"), data.join("meshes/bunny.ply"));
     let cloud = ply::read_point_cloud(&points).expect("the bunny points read");
     let mesh = ply::read_triangle_mesh(&mesh).expect("the bunny mesh reads");

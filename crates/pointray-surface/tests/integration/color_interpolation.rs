@@ -1,4 +1,4 @@
-//! Colour interpolation on a prepped scan (issue 7): every patch that a ray meets at one
+//! Colour interpolation on a prepped scan: every patch that a ray meets at one
 //! point of the surface gives that point the same colour, where one colour per patch shows
 //! steps, and the neighbour lists that make it work survive prep.
 

@@ -1,4 +1,4 @@
-//! PCA normals on noise-free analytic surfaces against their exact normals (issue 2).
+//! PCA normals on noise-free analytic surfaces against their exact normals.
 
 use crate::normals_support;
 

@@ -1,5 +1,5 @@
 //! The patch store: bit-identical round trips and a distinct error for each kind of
-//! damage (issue 2, "Bad input" and "Round trip").
+//! damage.
 
 use crate::common;
 

@@ -8,12 +8,9 @@ use std::time::Duration;
 
 use pointray_scene::{LoadOptions, LoadedScene, RenderSettings, load_demo};
 use pointray_viewer::{Script, ViewerOptions};
-use pointray_vulkan::DeviceSelector;
-use pointray_vulkan::{BackendChoice, DeviceOptions};
+use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector};
 
-pub fn in_ci() -> bool {
-    std::env::var("CI").is_ok_and(|v| v == "true")
-}
+pub use pointray_test_support::in_ci;
 
 /// Skips (with a note) outside CI; fails in CI.
 pub fn missing(what: &str) {
@@ -122,7 +119,5 @@ pub fn read_png(path: &Path) -> image::RgbImage {
 
 pub fn psnr(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
     assert_eq!(a.dimensions(), b.dimensions(), "image sizes differ");
-    let squared: f64 = a.as_raw().iter().zip(b.as_raw()).map(|(&x, &y)| (x as f64 - y as f64).powi(2)).sum();
-    let mse = squared / a.as_raw().len() as f64;
-    if mse == 0.0 { f64::INFINITY } else { 10.0 * (255.0f64 * 255.0 / mse).log10() }
+    pointray_test_support::psnr_bytes(a.as_raw(), b.as_raw())
 }

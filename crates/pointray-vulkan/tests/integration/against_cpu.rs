@@ -1,11 +1,11 @@
-//! The CPU renderer and the Vulkan renderer draw the same images (issue 4's thresholds):
+//! The CPU renderer and the Vulkan renderer draw the same images (the thresholds below):
 //! hit masks agree on >= 99.9% of pixels, normals within 1 degree on >= 99% of the pixels
 //! both hit, and the shaded images reach PSNR >= 40 dB.
 
 use crate::common;
 
 use common::{
-    assert_no_validation_messages, data_file, model_on_floor, prepped_points_with_boxes, renderer, settings,
+    assert_no_validation_messages, model_on_floor, prepped_points_with_boxes, renderer, settings,
     sphere_on_floor,
 };
 use pointray_scene::{Frame, Geometry, Material, PatchAcceptance, RenderSettings, Scene, demo_scene};
@@ -83,7 +83,7 @@ fn a_reflective_floor_under_a_sphere_matches() {
 /// only by rays that also enter the tight box, so there the backends may legitimately differ.
 #[test]
 fn the_bunny_on_a_floor_matches_with_both_acceptance_tests() {
-    let Some(path) = data_file("points/bunny.ply") else { return };
+    let path = pointray_test_support::data_file("points/bunny.ply");
     for (acceptance, box_kind) in
         [(PatchAcceptance::Box, BoxKind::Cube), (PatchAcceptance::Disk, BoxKind::Tight)]
     {

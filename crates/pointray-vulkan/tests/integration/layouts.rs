@@ -6,12 +6,9 @@ use crate::common;
 
 use common::{assert_no_validation_messages, renderer, settings, sphere_on_floor};
 use pointray_kernels::{PatchCold, PatchHot};
-use pointray_scene::{BufferLayout, Frame, Geometry, RenderSettings, Scene};
+use pointray_scene::{BufferLayout, Geometry, RenderSettings, Scene};
+use pointray_test_support::largest_color_difference;
 use pointray_vulkan::{BlasLayout, SceneLayout};
-
-fn largest_difference(a: &Frame, b: &Frame) -> f32 {
-    a.color.iter().zip(&b.color).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0, f32::max)
-}
 
 #[test]
 fn blas_and_buffer_layouts_render_the_same_image() {
@@ -31,7 +28,7 @@ fn blas_and_buffer_layouts_render_the_same_image() {
     ] {
         assert_eq!(frame.instance_id, reference.instance_id, "{name}: hit objects differ");
         assert_eq!(frame.primitive_id, reference.primitive_id, "{name}: hit patches differ");
-        let difference = largest_difference(&frame, &reference);
+        let difference = largest_color_difference(&frame, &reference);
         assert!(difference < 1e-5, "{name}: colours differ by {difference}");
     }
     assert_no_validation_messages(&renderer);

@@ -1,4 +1,4 @@
-//! Point colours interpolated at the hit (issue 7) on the GPU: a prepped, coloured sphere
+//! Point colours interpolated at the hit on the GPU: a prepped, coloured sphere
 //! (turned, scaled and moved, so that the blend must work in object space) draws the same
 //! image as on the CPU, and shows the colour field without steps between patches, where one
 //! colour per patch shows them.
@@ -14,6 +14,7 @@ use glam::{Affine3A, DVec3, Quat, Vec3};
 use pointray_io::PointCloud;
 use pointray_scene::{Background, Camera, Frame, Geometry, Material, RenderSettings, Scene, SceneObject};
 use pointray_surface::{NoProgress, PatchSet, PrepSettings, prep};
+use pointray_test_support::psnr;
 
 /// The linear colour each point carries, from its input position: ramps along x and y.
 fn color_field(input: DVec3) -> Vec3 {
@@ -94,17 +95,6 @@ pub fn lit_on_floor(patches: PatchSet) -> Scene {
     }
 }
 
-pub fn psnr_db(a: &Frame, b: &Frame) -> f64 {
-    let squared: f64 = (0..a.pixel_count())
-        .map(|i| {
-            let d = a.color[i].clamp(Vec3::ZERO, Vec3::ONE) - b.color[i].clamp(Vec3::ZERO, Vec3::ONE);
-            f64::from(d.length_squared()) / 3.0
-        })
-        .sum();
-    let mse = squared / a.pixel_count() as f64;
-    if mse == 0.0 { f64::INFINITY } else { 10.0 * (1.0 / mse).log10() }
-}
-
 /// The largest step between neighbouring sphere pixels beyond what the colour field changes
 /// between their hit points. Pixels at grazing angles (normal within 60 degrees of the
 /// silhouette) are left out: there one pixel spans several patches anyway.
@@ -142,7 +132,7 @@ fn interpolated_colours_match_the_cpu_and_show_no_steps() {
     let render_both = |set: PatchSet, name: &str| {
         let scene = unlit(set);
         let gpu = renderer.render(&scene, &settings).expect("the Vulkan backend renders");
-        let psnr = psnr_db(&pointray_cpu::render(&scene, &settings), &gpu);
+        let psnr = psnr(&pointray_cpu::render(&scene, &settings), &gpu);
         eprintln!("unlit coloured sphere, {name}: CPU against Vulkan {psnr:.1} dB");
         (gpu, psnr)
     };
@@ -170,7 +160,7 @@ fn lit_coloured_sphere_over_a_mirror_floor_matches_the_cpu() {
     let settings = settings(128);
     let gpu = renderer.render(&scene, &settings).expect("the Vulkan backend renders");
     let cpu = pointray_cpu::render(&scene, &settings);
-    let psnr = psnr_db(&cpu, &gpu);
+    let psnr = psnr(&cpu, &gpu);
     eprintln!("lit coloured sphere over a mirror floor: CPU against Vulkan {psnr:.1} dB");
     assert!(psnr >= 45.0, "CPU and Vulkan differ: PSNR {psnr:.1} dB");
     assert_no_validation_messages(&renderer);

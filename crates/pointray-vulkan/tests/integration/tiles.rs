@@ -4,11 +4,11 @@
 
 use crate::against_cpu::assert_frames_agree;
 use crate::common;
-use crate::point_colors::{coloured_sphere, lit_on_floor, psnr_db};
+use crate::point_colors::{coloured_sphere, lit_on_floor};
+use pointray_test_support::psnr as psnr_db;
 
 use common::{
-    assert_no_validation_messages, data_file, model_on_floor, prepped_points, renderer, settings,
-    sphere_on_floor,
+    assert_no_validation_messages, model_on_floor, prepped_points, renderer, settings, sphere_on_floor,
 };
 use glam::Vec3;
 use pointray_cpu::CpuRenderer;
@@ -84,7 +84,7 @@ fn assert_same_hits(name: &str, tiled: &Frame, whole: &Frame) {
 #[test]
 fn a_cloud_in_many_tiles_draws_the_untiled_image() {
     let Some(renderer) = renderer() else { return };
-    let Some(bunny) = data_file("points/bunny.ply") else { return };
+    let bunny = pointray_test_support::data_file("points/bunny.ply");
     // Prepped clouds: the patches of an exact sphere (`sphere_on_floor`) tie at equal depths,
     // which either backend may break either way.
     let scenes = [

@@ -7,16 +7,11 @@ use common::{assert_no_validation_messages, point_light, renderer, sphere_on_flo
 use glam::Vec3;
 use pointray_kernels::srgb_encode_rgba8;
 use pointray_scene::RenderSettings;
+use pointray_test_support::largest_byte_difference;
 use pointray_vulkan::{PixelOutput, TraceTarget};
 
 fn small(width: u32, height: u32) -> RenderSettings {
     RenderSettings { width, height, ..RenderSettings::default() }
-}
-
-/// The largest difference of any byte of two RGBA8 images.
-fn largest_byte_difference(a: &[u8], b: &[u8]) -> u8 {
-    assert_eq!(a.len(), b.len());
-    a.iter().zip(b).map(|(x, y)| x.abs_diff(*y)).max().unwrap_or(0)
 }
 
 #[test]

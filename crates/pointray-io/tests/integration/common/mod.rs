@@ -1,22 +1,8 @@
-//! Shared test helpers: locating the shared data and writing small fixture files.
+//! Fixture files the reader tests write.
 
 use std::path::{Path, PathBuf};
 
 use pcd_rs::{DataKind, DynRecord, DynWriter, Schema, ValueKind, WriterInit};
-
-/// `../shared/data` relative to the workspace root, or `POINTRAY_DATA`. `None` (after a note)
-/// when the data is missing, unless `CI=true`, where missing data fails the test.
-pub fn data_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("POINTRAY_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
-    if dir.is_dir() {
-        return Some(dir);
-    }
-    assert!(std::env::var("CI").as_deref() != Ok("true"), "test data missing at {}", dir.display());
-    eprintln!("note: test data missing at {}; skipping", dir.display());
-    None
-}
 
 /// Writes `bytes` to `name` in a fresh temporary directory (kept alive by the returned guard).
 pub fn fixture(name: &str, bytes: &[u8]) -> (tempfile::TempDir, PathBuf) {

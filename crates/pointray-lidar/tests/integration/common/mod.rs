@@ -1,6 +1,4 @@
-//! Scenes whose every surface is known, sensors made exact (no noise), and data lookup.
-
-use std::path::{Path, PathBuf};
+//! Scenes whose every surface is known, and sensors made exact (no noise).
 
 use glam::{DVec3, Vec3};
 use pointray_io::TriangleMesh;
@@ -43,18 +41,4 @@ pub fn exact(preset: pointray_lidar::SensorPreset, azimuth_step_deg: f64) -> Sen
 
 pub fn station(x: f64, y: f64, z: f64) -> SensorPose {
     SensorPose { position: DVec3::new(x, y, z), yaw_deg: 0.0 }
-}
-
-/// The shared data folder (`../shared/data` beside the workspace, or `$POINTRAY_DATA`);
-/// `None` (with a note) when it is missing, a failure when `CI=true`.
-pub fn data_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("POINTRAY_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
-    if dir.join("meshes/bunny.ply").is_file() {
-        return Some(dir);
-    }
-    assert!(std::env::var("CI").as_deref() != Ok("true"), "test data {} is missing", dir.display());
-    eprintln!("note: skipping, test data {} is missing", dir.display());
-    None
 }

@@ -1,27 +1,9 @@
 //! Helpers shared by the integration tests.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::{DVec3, Vec3};
 use pointray_io::{PointCloud, TriangleMesh};
-
-/// `../shared/data` next to the workspace, or `POINTRAY_DATA`.
-pub fn data_dir() -> PathBuf {
-    std::env::var_os("POINTRAY_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"))
-}
-
-/// The data file, or `None` (after a note) when the data is absent outside CI.
-pub fn data_file(relative: &str) -> Option<PathBuf> {
-    let path = data_dir().join(relative);
-    if path.is_file() {
-        return Some(path);
-    }
-    assert!(std::env::var("CI").as_deref() != Ok("true"), "test data missing: {}", path.display());
-    eprintln!("note: {} is missing; skipping", path.display());
-    None
-}
 
 /// A sphere of `count` points around `center`, without normals, so that prep computes them.
 pub fn sphere_cloud(center: DVec3, radius: f64, count: usize) -> PointCloud {

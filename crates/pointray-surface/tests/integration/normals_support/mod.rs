@@ -1,7 +1,4 @@
-//! Shared by the `normals_*` tests and `examples/normals_pipeline.rs`: test data lookup,
-//! the stages chained as `prep` chains them, and comparison with a mesh's normals.
-
-use std::path::PathBuf;
+//! Shared by the `normals_*` tests and `examples/normals_pipeline.rs`: the stages chained as `prep` chains them, and comparison with a mesh's normals.
 
 use glam::Vec3;
 use pointray_io::TriangleMesh;
@@ -10,23 +7,9 @@ use pointray_surface::neighbors::k_nearest;
 use pointray_surface::normals::pca_normals;
 use pointray_surface::orientation::orient_consistently;
 
-/// `prep`'s defaults (issue 2): 9 neighbours for the fit, 16 for the normal.
+/// `prep`'s defaults: 9 neighbours for the fit, 16 for the normal.
 pub const FIT_K: usize = 9;
 pub const NORMAL_K: usize = 16;
-
-/// `../shared/data` beside the workspace, or `$POINTRAY_DATA`. `None` (with a note)
-/// when it is missing, unless `CI=true`, where missing data fails the test.
-pub fn data_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("POINTRAY_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
-    if dir.is_dir() {
-        return Some(dir);
-    }
-    assert!(std::env::var("CI").as_deref() != Ok("true"), "test data missing at {}", dir.display());
-    eprintln!("note: test data missing at {}; skipping", dir.display());
-    None
-}
 
 /// Oriented normals computed the way `prep` does: Morton order, one kNN table for both
 /// k's, PCA, orientation; returned in the input's order.

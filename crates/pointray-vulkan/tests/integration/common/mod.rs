@@ -1,7 +1,6 @@
 //! What the Vulkan tests share: a validated renderer (or a skip note), small scenes built in
 //! code, and image comparisons.
 
-use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::{Affine3A, UVec2, Vec3};
@@ -12,43 +11,12 @@ use pointray_scene::{
     Background, Camera, Frame, Geometry, Light, Material, RenderSettings, Scene, SceneObject,
 };
 use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepSettings, prep};
-use pointray_vulkan::{DeviceSelector, VulkanRenderer};
+use pointray_vulkan::VulkanRenderer;
 
-fn in_ci() -> bool {
-    std::env::var("CI").is_ok_and(|v| v == "true")
-}
-
-/// A renderer on the best device with validation on; `None` (after a note) when no device
-/// fits and this is not CI. In CI a missing device fails the test.
-pub fn renderer() -> Option<VulkanRenderer> {
-    match VulkanRenderer::with_validation(DeviceSelector::Auto, true) {
-        Ok(renderer) => Some(renderer),
-        Err(error) if error.is_no_device() => {
-            assert!(!in_ci(), "CI=true but no usable Vulkan device: {error}");
-            eprintln!("note: skipping, no usable Vulkan device: {error}");
-            None
-        }
-        Err(error) => panic!("creating the renderer failed: {error}"),
-    }
-}
+pub use pointray_test_support::vulkan_renderer as renderer;
 
 pub fn assert_no_validation_messages(renderer: &VulkanRenderer) {
     assert_eq!(renderer.validation_messages(), 0, "the validation layer reported messages (printed above)");
-}
-
-/// `../shared/data` beside the workspace, or `POINTRAY_DATA`; `None` (after a note) when
-/// missing outside CI.
-pub fn data_file(relative: &str) -> Option<PathBuf> {
-    let root = std::env::var_os("POINTRAY_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
-    let path = root.join(relative);
-    if path.exists() {
-        return Some(path);
-    }
-    assert!(!in_ci(), "CI=true but the test data {} is missing", path.display());
-    eprintln!("note: skipping, test data {} is missing", path.display());
-    None
 }
 
 pub fn settings(size: u32) -> RenderSettings {

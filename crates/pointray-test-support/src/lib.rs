@@ -1,0 +1,14 @@
+//! What the crates' tests share (a dev-dependency only): the checkout's data files, a Vulkan
+//! renderer or a clear failure under CI, and image comparison.
+
+mod data;
+mod device;
+mod images;
+
+pub use data::{data_dir, data_file};
+#[cfg(feature = "vulkan")]
+pub use device::vulkan_renderer;
+pub use device::{in_ci, skip_without_device};
+pub use images::{largest_byte_difference, psnr_bytes};
+#[cfg(feature = "frames")]
+pub use images::{largest_color_difference, psnr};
