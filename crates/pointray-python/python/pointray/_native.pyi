@@ -1,0 +1,43 @@
+"""Type stubs of the extension module; the public API is re-exported by ``pointray``."""
+
+import os
+from typing import Any
+
+import numpy as np
+
+class PointrayError(Exception):
+    """A pointray operation failed; the message names the file and the problem."""
+
+class Patches:
+    """One MLS patch per distinct point: what ``prep`` makes and the renderers draw."""
+
+    @staticmethod
+    def load(path: str | os.PathLike[str]) -> Patches:
+        """Reads a patch store (``.patches``) that ``pointray prep`` or ``Patches.save`` wrote."""
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Writes a patch store, atomically."""
+    def __len__(self) -> int: ...
+    @property
+    def offset(self) -> tuple[float, float, float]:
+        """The recentring offset: ``centers = local + offset``, in float64."""
+    @property
+    def centers(self) -> np.ndarray:
+        """(N, 3) float64: each patch's point, in the input's coordinates."""
+    @property
+    def normals(self) -> np.ndarray:
+        """(N, 3) float32 unit normals."""
+    @property
+    def radii(self) -> np.ndarray:
+        """(N,) float32 support radii."""
+
+def devices() -> list[dict[str, Any]]:
+    """The Vulkan devices the loader sees: ``index``, ``name``, ``type``, ``api_version``,
+    ``driver``, ``usable``, ``rejection`` (why not, or ``None``) and ``device_local_bytes``."""
+
+def read(path: str, columns: str | None) -> dict[str, Any]: ...
+def prep(positions: Any, attributes: dict[str, Any], settings: dict[str, Any]) -> Patches: ...
+def render(source: dict[str, Any], options: dict[str, Any]) -> dict[str, np.ndarray]: ...
+def scene_to_toml(scene: dict[str, Any], anchor: str) -> str: ...
+def scene_from_toml(text: str, anchor: str) -> dict[str, Any]: ...
+def encode_png(image: np.ndarray) -> bytes: ...
+def save_image(image: np.ndarray, path: str) -> None: ...
