@@ -26,7 +26,8 @@ for sensor in hdl64 hdl32 vlp16 os128; do
         "$bin" consistency "$out/street-$sensor.ply" "${flags[@]}" --json "$out/consistency-$sensor-$mode.json"
     done
 done
-"$bin" scan --street --sensor terrestrial --stations "-20,0,1.5;20,0,1.5" --seed 1 -o "$out/street-tls.ply"
+"$bin" scan --street --sensor terrestrial --stations "-20,0,1.5;20,0,1.5" --azimuth-step 0.184 --seed 1 \
+    -o "$out/street-tls.ply"
 for mode in auto off; do
     /usr/bin/time -v "$bin" prep "$out/street-tls.ply" -o "$out/street-tls-$mode.patches" --scan "$mode" \
         > "$out/prep-tls-$mode.txt" 2>&1

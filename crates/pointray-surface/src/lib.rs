@@ -27,6 +27,7 @@ pub mod prep_report;
 pub mod prep_settings;
 pub mod quadratic_fit;
 pub mod sampling;
+pub mod scan_edges;
 pub mod scan_lines;
 pub mod scan_neighborhood;
 pub mod scan_patches;

@@ -44,12 +44,6 @@ pub fn fit_patch(samples: impl Iterator<Item = (Vec3, f32)>, h: f32, disk_radius
     fit_models(samples, h, disk_radius, &[FitKind::Quadratic, FitKind::Plane])
 }
 
-/// As `fit_patch`, but a plane at most: for neighbourhoods too few and too noisy to carry a
-/// curvature (a LiDAR return and its handful of scan neighbours).
-pub fn fit_plane_patch(samples: impl Iterator<Item = (Vec3, f32)>, h: f32, disk_radius: f32) -> PatchFit {
-    fit_models(samples, h, disk_radius, &[FitKind::Plane])
-}
-
 /// The first of `models` whose system is well posed and whose fit stays within the disk.
 fn fit_models(
     samples: impl Iterator<Item = (Vec3, f32)>,

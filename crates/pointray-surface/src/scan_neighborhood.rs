@@ -1,16 +1,22 @@
-//! A point's neighbourhood in a LiDAR scan: the returns beside it on its own scan line and
-//! the nearest by azimuth on the lines above and below, so that no support comes from its own
-//! line alone; then only those that agree with one surface through the point.
+//! A point's neighbourhood in a LiDAR scan: the returns around it on its own scan line and on
+//! the two lines above and below, so that no support comes from its own line alone; then only
+//! those that agree with one surface through the point.
 
 use glam::{DMat3, Vec3};
 
 use crate::normals::smallest_eigenvector;
 use crate::scan_lines::{ScanLine, ScanLines};
 
-/// Returns taken on each side of the point along its own line, this many steps away: along a
-/// line returns lie closer together than the range noise, so the far ones give the line's
-/// direction and the near ones the patch's reach.
-const ALONG_LINE_STEPS: [usize; 4] = [1, 2, 4, 8];
+/// Returns on the point's own line that seed the planes tried: this many steps away on each
+/// side. Along a line returns lie closer together than the range noise, so the far one gives
+/// the line's direction; the near ones keep a plane when the far one lies past an edge.
+const SEED_STEPS: [usize; 3] = [1, 2, 8];
+
+/// The neighbourhood spans this many azimuth steps on each side, on every line: at least
+/// `MIN_WINDOW` (a plane's normal averages the range noise of its returns, so it needs many),
+/// and about as far along the lines as the second line lies across them, up to `MAX_WINDOW`.
+const MIN_WINDOW: usize = 4;
+const MAX_WINDOW: usize = 16;
 
 /// A neighbour belongs to the point's surface when the segment to it rises at most this
 /// steeply out of the point's tangent plane (about 6°): gently curved bodies stay in, the foot
@@ -23,8 +29,14 @@ const MAX_RISE: f32 = 0.1;
 /// two returns 4 cm apart can differ by as much out of the plane as along it.
 const RANGE_NOISE_FRACTION: f32 = 0.005;
 
-/// A point's neighbourhood: the indices that agree on one surface, and its unit normal
-/// (not oriented). `crosses_lines` tells whether any of them lies on another line.
+/// Returns on other lines count only this many azimuth steps of the point's own line away
+/// from it when they seed a plane: where a line has no return near the point's azimuth (out of
+/// range, or a dropout), its nearest return in azimuth lies elsewhere in the scene.
+const SEED_AZIMUTH_STEPS: f32 = 3.0;
+
+/// A point's neighbourhood: the indices that agree on one surface (sorted), and the unit
+/// normal of the plane that fits them (not oriented). `crosses_lines` tells whether any of
+/// them lies on another line.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScanNeighborhood {
     pub members: Vec<u32>,
@@ -32,36 +44,73 @@ pub struct ScanNeighborhood {
     pub crosses_lines: bool,
 }
 
-/// Returns on other lines count only this many azimuth steps of the point's own line away:
-/// where a line has no return near the point's azimuth (out of range, or a dropout), its
-/// nearest return in azimuth lies elsewhere in the scene.
-const AZIMUTH_STEPS: f32 = 3.0;
+/// The returns around point `i`: `window` contains every return within the window of azimuth
+/// steps on its own line and the nearby lines; `along` and `across` are the few that seed the
+/// planes tried (`SEED_STEPS` along its line, the two returns bracketing its azimuth on each
+/// nearby line).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Candidates {
+    pub window: Vec<u32>,
+    pub along: Vec<u32>,
+    pub across: Vec<u32>,
+}
 
-/// The candidates of point `i`: `ALONG_LINE_STEPS` on each side along its line, and on each
-/// nearby line the two returns whose azimuths bracket its own.
-pub fn candidates(scan: &ScanLines, i: usize) -> Vec<u32> {
+/// The candidates of point `i`.
+pub fn candidates(scan: &ScanLines, i: usize) -> Candidates {
     let line = &scan.lines[scan.line_of[i] as usize];
-    let position = line.members.partition_point(|&m| scan.azimuth[m as usize] < scan.azimuth[i]);
-    let position =
-        (position..line.members.len()).find(|&at| line.members[at] as usize == i).unwrap_or(position);
-    let found: Vec<u32> = ALONG_LINE_STEPS
-        .iter()
-        .flat_map(|&step| [position.checked_sub(step), Some(position + step)])
-        .flatten()
-        .filter_map(|at| line.members.get(at).copied())
-        .collect();
+    let position = position_on_line(scan, line, i);
+    let step = azimuth_step_at(scan, line, position);
     let azimuth = scan.azimuth[i];
+    let window = window_steps(scan, i, step);
+    let reach = window as f32 * step;
+    let mut found = Candidates::default();
+    let own = line.members[position.saturating_sub(window)..(position + window + 1).min(line.members.len())]
+        .iter()
+        .copied()
+        .filter(|&j| j as usize != i);
+    found.window.extend(own);
+    found.along.extend(
+        SEED_STEPS
+            .iter()
+            .flat_map(|&s| [position.checked_sub(s), Some(position + s)])
+            .flatten()
+            .filter_map(|at| line.members.get(at).copied()),
+    );
+    let seed_reach = SEED_AZIMUTH_STEPS * step;
+    for other in scan.nearby_lines(i) {
+        let first = other.members.partition_point(|&m| scan.azimuth[m as usize] < azimuth - reach);
+        let within =
+            other.members[first..].iter().take_while(|&&m| scan.azimuth[m as usize] <= azimuth + reach);
+        found.window.extend(within);
+        let bracketing = bracketing(other, scan, azimuth)
+            .filter(|&j| (scan.azimuth[j as usize] - azimuth).abs() <= seed_reach);
+        found.across.extend(bracketing);
+    }
+    found
+}
+
+/// Where point `i` stands among its line's members.
+fn position_on_line(scan: &ScanLines, line: &ScanLine, i: usize) -> usize {
+    let position = line.members.partition_point(|&m| scan.azimuth[m as usize] < scan.azimuth[i]);
+    (position..line.members.len()).find(|&at| line.members[at] as usize == i).unwrap_or(position)
+}
+
+/// The azimuth step beside the member at `position`: the wider gap to its neighbours.
+fn azimuth_step_at(scan: &ScanLines, line: &ScanLine, position: usize) -> f32 {
+    let azimuth = scan.azimuth[line.members[position] as usize];
     let beside = [position.checked_sub(1), Some(position + 1)].into_iter().flatten();
     let step = beside
         .filter_map(|at| line.members.get(at))
         .map(|&j| (scan.azimuth[j as usize] - azimuth).abs())
         .fold(0.0f32, f32::max);
-    let reach = AZIMUTH_STEPS * step.max(1e-4);
-    let across = scan
-        .nearby_lines(i)
-        .flat_map(|other| bracketing(other, scan, azimuth))
-        .filter(|&j| (scan.azimuth[j as usize] - azimuth).abs() <= reach);
-    found.iter().copied().chain(across).collect()
+    step.max(1e-4)
+}
+
+/// Steps of the window on each side: as many as span the angle to the second line over, so
+/// that the neighbourhood is about as wide along the lines as across them.
+fn window_steps(scan: &ScanLines, i: usize, step: f32) -> usize {
+    let across = scan.beam_spacing(i).unwrap_or(0.0) * 2.0;
+    ((across / step).round() as usize).clamp(MIN_WINDOW, MAX_WINDOW)
 }
 
 /// The members of `line` just before and after `azimuth`.
@@ -70,40 +119,34 @@ fn bracketing<'a>(line: &'a ScanLine, scan: &ScanLines, azimuth: f32) -> impl It
     [at.checked_sub(1), Some(at)].into_iter().flatten().filter_map(|k| line.members.get(k).copied())
 }
 
-/// The neighbourhood of point `i` among `candidates`: of the planes through the point and two
-/// candidates, the one that most candidates lie near (a small exhaustive RANSAC: a wall's
-/// returns must not tilt the ground at its foot), refined by PCA over those that agree.
+/// The neighbourhood of point `i` among `candidates`: of the planes through the point, one
+/// seed along its line and one across, the one that most seeds lie near (a small RANSAC: a
+/// wall's returns must not tilt the ground at its foot); then the window's returns that agree
+/// with it, and the plane their directions from the point lie closest to.
 pub fn agreeing_neighborhood(
     points: &[Vec3],
     scan: &ScanLines,
     i: usize,
-    candidates: &[u32],
+    candidates: &Candidates,
 ) -> ScanNeighborhood {
-    let offsets: Vec<Vec3> = candidates.iter().map(|&j| points[j as usize] - points[i]).collect();
+    let offset = |j: u32| points[j as usize] - points[i];
     let line = scan.line_of[i];
-    let scale = candidates
-        .iter()
-        .zip(&offsets)
-        .filter(|&(&j, _)| scan.line_of[j as usize] != line)
-        .map(|(_, d)| d.length())
-        .fold(f32::INFINITY, f32::min);
+    let scale = candidates.across.iter().map(|&j| offset(j).length()).fold(f32::INFINITY, f32::min);
     let scale = if scale.is_finite() { scale } else { 0.0 };
     let noise = RANGE_NOISE_FRACTION * points[i].distance(scan.sensor[i]);
     let slope = |offset: Vec3, normal: Vec3| slope(offset, normal, scale, noise);
     let agreeing = |normal: Vec3| -> Vec<u32> {
-        candidates
-            .iter()
-            .zip(&offsets)
-            .filter(|&(_, &d)| slope(d, normal) <= MAX_RISE)
-            .map(|(&j, _)| j)
-            .collect()
+        candidates.window.iter().copied().filter(|&j| slope(offset(j), normal) <= MAX_RISE).collect()
     };
-    // Most agreeing candidates first, then the flattest fit among them.
+    let seeds: Vec<Vec3> = candidates.along.iter().chain(&candidates.across).map(|&j| offset(j)).collect();
+    // Most agreeing seeds first, then the flattest fit among them.
     let score = |normal: Vec3| {
-        let slopes = offsets.iter().map(|&d| slope(d, normal)).filter(|&s| s <= MAX_RISE);
+        let slopes = seeds.iter().map(|&d| slope(d, normal)).filter(|&s| s <= MAX_RISE);
         slopes.fold(0.0f32, |score, s| score + 1.0 - s)
     };
-    let best = plane_hypotheses(&offsets).max_by(|&a, &b| score(a).total_cmp(&score(b)));
+    let along: Vec<Vec3> = candidates.along.iter().map(|&j| offset(j)).collect();
+    let across: Vec<Vec3> = candidates.across.iter().map(|&j| offset(j)).collect();
+    let best = plane_hypotheses(&along, &across).max_by(|&a, &b| score(a).total_cmp(&score(b)));
     let mut members = best.map(agreeing).unwrap_or_default();
     let mut normal = plane_normal(points, i, &members, scale);
     let refined = agreeing(normal);
@@ -111,19 +154,25 @@ pub fn agreeing_neighborhood(
         normal = plane_normal(points, i, &refined, scale);
         members = refined;
     }
+    members.sort_unstable();
     let crosses_lines = members.iter().any(|&j| scan.line_of[j as usize] != line);
     ScanNeighborhood { members, normal, crosses_lines }
 }
 
-/// The unit normals of the planes through the origin and two of `offsets` that are not
-/// nearly in line with it.
-fn plane_hypotheses(offsets: &[Vec3]) -> impl Iterator<Item = Vec3> + '_ {
-    (0..offsets.len()).flat_map(move |a| {
-        (a + 1..offsets.len()).filter_map(move |b| {
-            let (p, q) = (offsets[a], offsets[b]);
-            let normal = p.cross(q);
-            (normal.length() > 0.1 * p.length() * q.length()).then(|| normal.normalize())
-        })
+/// The unit normals of the planes through the origin, one of `along` and one of `across`,
+/// that are not nearly in line with it; where fewer than two returns along the line seed them
+/// (a pole, a narrow object, the end of a line), two of `across` or of `along`.
+fn plane_hypotheses<'a>(along: &'a [Vec3], across: &'a [Vec3]) -> impl Iterator<Item = Vec3> + 'a {
+    let crossing = along.iter().flat_map(move |&p| across.iter().map(move |&q| (p, q)));
+    let pairs_of = |seeds: &'a [Vec3]| {
+        seeds.iter().enumerate().flat_map(move |(a, &p)| seeds[a + 1..].iter().map(move |&q| (p, q)))
+    };
+    let few_along = along.len() < 2;
+    let within = pairs_of(if across.is_empty() { along } else { across })
+        .filter(move |_| few_along || across.is_empty());
+    crossing.chain(within).filter_map(|(p, q)| {
+        let normal = p.cross(q);
+        (normal.length() > 0.1 * p.length() * q.length()).then(|| normal.normalize())
     })
 }
 

@@ -7,7 +7,8 @@ use pointray_kernels::packed_frame::normal_basis;
 use pointray_kernels::{PackedFrame, TangentFrame};
 use rayon::prelude::*;
 
-use crate::quadratic_fit::{FitKind, PatchFit, fit_plane_patch};
+use crate::quadratic_fit::{FitKind, PatchFit};
+use crate::scan_edges::{Silhouette, silhouettes};
 use crate::scan_lines::ScanLines;
 use crate::scan_neighborhood::{ScanNeighborhood, agreeing_neighborhood, candidates};
 
@@ -35,9 +36,15 @@ const EDGE_ON_COSINE: f32 = 0.02;
 /// the cell's corners on a regular grid; more covers the jitter of real azimuths.
 const FOOTPRINT_COVER: f32 = 0.75;
 
-/// The Wendland scale of the fit is this multiple of the farthest neighbour on each axis,
-/// as in the unstructured fit.
-const WENDLAND_SCALE: f32 = 1.1;
+/// At an occluder's edge a patch reaches this fraction of the predicted spacing toward the
+/// next ray, which saw the surface behind: the silhouette lies somewhere between the two rays,
+/// and the patch of the return before it on the other side covers the gap to it.
+const IN_FRONT_REACH: f32 = 0.5;
+
+/// Beside an occluder, a patch reaches this multiple of the predicted spacing: with the next
+/// line a spacing away on the other axis, an ellipse needs 1/cos 30° ≈ 1.15 of a step to
+/// cover the corners of its cells up to the next ray, which met the occluder.
+const BEHIND_REACH: f32 = 1.5;
 
 /// A scan patch before packing: its oriented normal, stored frame, radii `(d_u, d_v)` with
 /// `d_u >= d_v`, and fit.
@@ -68,7 +75,10 @@ fn scan_patch(points: &[Vec3], scan: &ScanLines, i: usize) -> ScanPatch {
     }
 }
 
-/// A patch over the surface its neighbours agree on.
+/// A patch over the surface its neighbours agree on: the plane through the return that fits
+/// them, over an ellipse that reaches the next return along the line on one axis and the next
+/// line on the other. Through the return, not their centroid: its normal already averages their
+/// range noise, and the sensor's own ray then meets the patch where it met the surface.
 fn surface_patch(
     points: &[Vec3],
     scan: &ScanLines,
@@ -76,31 +86,46 @@ fn surface_patch(
     neighborhood: &ScanNeighborhood,
     toward_sensor: Vec3,
 ) -> ScanPatch {
-    let normal =
-        if neighborhood.normal.dot(toward_sensor) < 0.0 { -neighborhood.normal } else { neighborhood.normal };
+    let normal = bridgeable(neighborhood.normal, toward_sensor);
     let along = along_line_direction(points, scan, i, &neighborhood.members, normal);
-    let offsets: Vec<(Vec3, bool)> = neighborhood
-        .members
-        .iter()
-        .map(|&j| (points[j as usize] - points[i], scan.line_of[j as usize] == scan.line_of[i]))
-        .collect();
     let axes = TangentFrame { t1: along, t2: normal.cross(along), n: normal };
-    let along_spacing = spacing(offsets.iter().filter(|(_, same)| *same).map(|(d, _)| axes.to_local(*d).x));
-    let across_spacing = spacing(offsets.iter().filter(|(_, same)| !*same).map(|(d, _)| axes.to_local(*d).y));
+    let on_line = |j: u32| scan.line_of[j as usize] == scan.line_of[i];
+    let local = |j: u32| axes.to_local(points[j as usize] - points[i]);
+    let members = || neighborhood.members.iter().copied();
+    let along_spacing = spacing(members().filter(|&j| on_line(j)).map(|j| local(j).x));
+    let across_spacing = spacing(members().filter(|&j| !on_line(j)).map(|j| local(j).y));
     let range = scan.sensor[i].distance(points[i]);
     let incidence = normal.dot(toward_sensor);
-    let across_spacing = cap_by_predicted(across_spacing, scan.beam_spacing(i), range, incidence);
-    let along_spacing = if along_spacing > 0.0 { along_spacing } else { across_spacing };
     let horizontal_range = (points[i] - scan.sensor[i]).truncate().length();
-    let along_spacing = cap_by_predicted(along_spacing, scan.azimuth_step(i), horizontal_range, incidence);
+    let predicted_across = predicted_spacing(scan.beam_spacing(i), range, incidence);
+    let predicted_along = predicted_spacing(scan.azimuth_step(i), horizontal_range, incidence);
+    let (along_edge, across_edge) = silhouettes(points, scan, i, &neighborhood.members);
+    let across_spacing = reach(across_spacing, predicted_across, across_edge);
+    let along_spacing = if along_spacing > 0.0 { along_spacing } else { across_spacing };
+    let along_spacing = reach(along_spacing, predicted_along, along_edge);
     let (major_axis, radii) = if along_spacing >= across_spacing {
         (axes.t1, Vec2::new(along_spacing, across_spacing) * COVER)
     } else {
         (axes.t2, Vec2::new(across_spacing, along_spacing) * COVER)
     };
     let frame = PackedFrame::new(normal, major_axis);
-    let fit = elliptical_fit(&frame.decode(), &offsets, radii.x);
+    let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Plane };
     ScanPatch { normal, frame, radii, fit, on_surface: true }
+}
+
+/// `normal` facing the sensor, turned toward it where the sensor sees its plane more nearly
+/// edge-on than `MIN_INCIDENCE_COSINE`: no reach is trusted past the spacing the beams have at
+/// that incidence, so a patch any flatter (a car's roof seen from beside it) would leave its
+/// lines open from the sensor. The turn is under 3°.
+fn bridgeable(normal: Vec3, toward_sensor: Vec3) -> Vec3 {
+    let normal = if normal.dot(toward_sensor) < 0.0 { -normal } else { normal };
+    let cosine = normal.dot(toward_sensor);
+    if cosine >= MIN_INCIDENCE_COSINE {
+        return normal;
+    }
+    let Some(across) = (normal - cosine * toward_sensor).try_normalize() else { return normal };
+    let sine = (1.0 - MIN_INCIDENCE_COSINE * MIN_INCIDENCE_COSINE).sqrt();
+    MIN_INCIDENCE_COSINE * toward_sensor + sine * across
 }
 
 /// The direction from the previous to the next return on the point's line, in the tangent
@@ -138,29 +163,24 @@ fn spacing(coordinates: impl Iterator<Item = f32>) -> f32 {
     }
 }
 
-/// A spacing between returns held to what the sensor's angular step (between lines, or along
-/// one) predicts at this range (about the step's axis) and incidence: past it the next return
-/// lies beyond a dropout, an occluder or on another object.
-fn cap_by_predicted(spacing: f32, angular_step: Option<f32>, range: f32, incidence_cosine: f32) -> f32 {
-    let Some(step) = angular_step else { return spacing };
-    let incidence = incidence_cosine.abs().max(MIN_INCIDENCE_COSINE);
-    spacing.min(PREDICTED_SPACING_TRUST * step * range / incidence)
+/// The spacing between returns that the sensor's angular step (between lines, or along one)
+/// predicts at this range (about the step's axis) and incidence.
+fn predicted_spacing(angular_step: Option<f32>, range: f32, incidence_cosine: f32) -> Option<f32> {
+    Some(angular_step? * range / incidence_cosine.abs().max(MIN_INCIDENCE_COSINE))
 }
 
-/// The plane fit with Wendland weights over the support's own ellipse, so that returns on
-/// the next line, farther away than those along the line, weigh as much at the same fraction
-/// of the way to the edge. A plane, not a quadratic: a return has a dozen scan neighbours at
-/// most, mostly along one line, and their range noise (centimetres) would become curvature
-/// that bends the patch across the grazing rays of the ground.
-fn elliptical_fit(frame: &TangentFrame, offsets: &[(Vec3, bool)], major_radius: f32) -> PatchFit {
-    let locals: Vec<Vec3> = offsets.iter().map(|(d, _)| frame.to_local(*d)).collect();
-    let reach = locals.iter().fold(Vec2::ZERO, |reach, l| reach.max(Vec2::new(l.x.abs(), l.y.abs())));
-    let scales = (reach * WENDLAND_SCALE)
-        .max(Vec2::splat(reach.max_element() * 0.1))
-        .max(Vec2::splat(f32::MIN_POSITIVE));
-    let h = scales.max_element();
-    let samples = locals.iter().map(|&l| (l, h * (Vec2::new(l.x, l.y) / scales).length()));
-    fit_plane_patch(std::iter::once((Vec3::ZERO, 0.0)).chain(samples), h, major_radius)
+/// How far a patch reaches on one axis, from the `spacing` to the next return on it: held to
+/// what the sensor's step predicts (`PREDICTED_SPACING_TRUST`: past it the next return lies
+/// beyond a dropout, an occluder or on another object); short of the next ray at an occluder's
+/// edge; under the occluder, past the corners of its cells, on the surface it hides.
+fn reach(spacing: f32, predicted: Option<f32>, silhouette: Silhouette) -> f32 {
+    let Some(predicted) = predicted else { return spacing };
+    let spacing = spacing.min(PREDICTED_SPACING_TRUST * predicted);
+    match silhouette {
+        Silhouette::None => spacing,
+        Silhouette::InFront => spacing.min(IN_FRONT_REACH * predicted),
+        Silhouette::Behind => spacing.max(BEHIND_REACH * predicted),
+    }
 }
 
 /// A small flat ellipse facing the sensor over the return's own angular cell (the beam

@@ -72,10 +72,11 @@ fn fidelity(scanned: &Scanned, view: ViewSpec, name: &str) -> FidelityMetrics {
     report.overall
 }
 
-/// Where these sweeps stand, measured by this test (see bench/FIDELITY.md, LiDAR): a guard
-/// against regression, below the LiDAR bars where those are not yet met (holes from
-/// the sensor ≤ 0.5 %, mean normal error ≤ 5°, ≥ 98 % consistent). False surface, holes from
-/// above and the support bound meet the bars.
+/// Where these sweeps stand, measured by this test (see bench/FIDELITY.md, LiDAR), with a
+/// margin of about a fifth: a guard against regression, below the LiDAR issue's bars where
+/// those are not yet met (holes from the sensor ≤ 0.5 %: 1.0–1.4 % measured; holes from above
+/// ≤ 2 %: 1.2–2.1 %; mean normal error ≤ 5°: 6.4–8.9° from the sensor; ≥ 98 % consistent:
+/// 96.4–99.7 %). False surface (0.06–0.12 %) and the support bound meet the bars.
 struct Bars {
     sensor_seen_holes: f64,
     above_seen_holes: f64,
@@ -86,12 +87,12 @@ struct Bars {
 }
 
 const BARS: Bars = Bars {
-    sensor_seen_holes: 0.02,
-    above_seen_holes: 0.025,
-    false_surface: 0.01,
-    sensor_normal_degrees: 14.0,
-    above_normal_degrees: 7.5,
-    consistent: 0.93,
+    sensor_seen_holes: 0.0175,
+    above_seen_holes: 0.0235,
+    false_surface: 0.0025,
+    sensor_normal_degrees: 10.0,
+    above_normal_degrees: 5.5,
+    consistent: 0.955,
 };
 
 #[test]

@@ -1,0 +1,89 @@
+//! Silhouettes in a LiDAR scan: where the next return along a line, or on the next line, lies
+//! on another surface well in front of or behind a point. A patch in front (an occluder's edge)
+//! must stop short of the next ray, or it floats in front of what that ray saw; a patch behind
+//! (the surface an occluder hides) may reach under the occluder, where no one sees it, and so
+//! close the corners between its lines at the silhouette.
+
+use glam::Vec3;
+
+use crate::scan_lines::{ScanLine, ScanLines};
+
+/// A neighbour on another surface lies across a silhouette when its range differs from the
+/// point's by more than this fraction of the point's range: a car's edge against the wall
+/// behind it, not the foot of a wall or a kerb.
+const DEPTH_JUMP_FRACTION: f32 = 0.05;
+
+/// Which side of a silhouette a point lies on, along one axis of its patch.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Silhouette {
+    /// No silhouette next to it on this axis.
+    #[default]
+    None,
+    /// The next return on this axis lies behind it, on a surface it occludes.
+    InFront,
+    /// The next return on this axis lies in front of it, on a surface that occludes it.
+    Behind,
+}
+
+impl Silhouette {
+    /// The two sides' verdicts as one: in front wins, so that no patch floats.
+    fn and(self, other: Self) -> Self {
+        match (self, other) {
+            (Self::InFront, _) | (_, Self::InFront) => Self::InFront,
+            (Self::Behind, _) | (_, Self::Behind) => Self::Behind,
+            _ => Self::None,
+        }
+    }
+}
+
+/// The silhouettes beside point `i` along its line and across the lines, given the returns
+/// (`members`, sorted) that agree with its surface.
+pub fn silhouettes(points: &[Vec3], scan: &ScanLines, i: usize, members: &[u32]) -> (Silhouette, Silhouette) {
+    let line = &scan.lines[scan.line_of[i] as usize];
+    let position = line.members.partition_point(|&m| scan.azimuth[m as usize] < scan.azimuth[i]);
+    let position =
+        (position..line.members.len()).find(|&at| line.members[at] as usize == i).unwrap_or(position);
+    let along = [position.checked_sub(1), Some(position + 1)]
+        .into_iter()
+        .flatten()
+        .filter_map(|at| line.members.get(at).copied());
+    let step = scan.azimuth_step(i).unwrap_or(0.0);
+    let across = [line.below, line.above]
+        .into_iter()
+        .flatten()
+        .filter_map(|l| nearest_in_azimuth(&scan.lines[l as usize], scan, scan.azimuth[i], step));
+    let side = |j: u32| silhouette(points, scan, i, j, members);
+    (
+        along.map(side).fold(Silhouette::None, Silhouette::and),
+        across.map(side).fold(Silhouette::None, Silhouette::and),
+    )
+}
+
+/// The return of `line` nearest `azimuth`, when one lies within a step of it.
+fn nearest_in_azimuth(line: &ScanLine, scan: &ScanLines, azimuth: f32, step: f32) -> Option<u32> {
+    let at = line.members.partition_point(|&m| scan.azimuth[m as usize] < azimuth);
+    [at.checked_sub(1), Some(at)]
+        .into_iter()
+        .flatten()
+        .filter_map(|k| line.members.get(k).copied())
+        .map(|j| (j, (scan.azimuth[j as usize] - azimuth).abs()))
+        .filter(|&(_, gap)| gap <= step)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(j, _)| j)
+}
+
+fn silhouette(points: &[Vec3], scan: &ScanLines, i: usize, j: u32, members: &[u32]) -> Silhouette {
+    if members.binary_search(&j).is_ok() {
+        return Silhouette::None;
+    }
+    let range = points[i].distance(scan.sensor[i]);
+    let other = points[j as usize].distance(scan.sensor[j as usize]);
+    let jump = DEPTH_JUMP_FRACTION * range;
+    if other > range + jump {
+        Silhouette::InFront
+    } else if other < range - jump {
+        Silhouette::Behind
+    } else {
+        Silhouette::None
+    }
+}
