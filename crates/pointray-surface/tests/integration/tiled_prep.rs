@@ -6,15 +6,15 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 use pointray_io::PointCloud;
-use pointray_surface::tiled_prep::{TilePlan, prep_tile, prep_tiled};
 use pointray_kernels::interpolate_color::COLOR_NEIGHBORS;
+use pointray_surface::tiled_prep::{TilePlan, prep_tile, prep_tiled};
 use pointray_surface::{NoProgress, PatchSet, PrepError, PrepSettings, ScanMode, prep};
 
 use crate::common::{height_field, jitter};
 
 /// A wavy, coloured sheet seen from above: normals toward the sensor depend only on each
 /// point's neighbourhood, as the fits and supports do.
-fn coloured_sheet() -> (PointCloud, PrepSettings) {
+pub fn coloured_sheet() -> (PointCloud, PrepSettings) {
     let mut cloud =
         height_field(110, DVec3::new(500.0, -200.0, 30.0), |x, y| 0.2 * (3.0 * x).sin() * (2.0 * y).cos());
     let colors = (0..cloud.len()).map(|i| [(i % 251) as u8, (jitter(i) * 200.0 + 100.0) as u8, 40]).collect();
@@ -53,7 +53,10 @@ fn eight_tiles_make_the_single_pass_patches() {
         assert_eq!(tiled.aabbs[t], whole.aabbs[w], "patch {t}: box");
         assert_eq!(tiled.cold[t], whole.cold[w], "patch {t}: colour, intensity and reach");
         let neighbour_positions = |set: &PatchSet, i: usize| -> Vec<[u32; 3]> {
-            set.color_neighbors[i * COLOR_NEIGHBORS..(i + 1) * COLOR_NEIGHBORS].iter().map(|&j| position_key(set, j as usize)).collect()
+            set.color_neighbors[i * COLOR_NEIGHBORS..(i + 1) * COLOR_NEIGHBORS]
+                .iter()
+                .map(|&j| position_key(set, j as usize))
+                .collect()
         };
         assert_eq!(
             neighbour_positions(&tiled, t),
