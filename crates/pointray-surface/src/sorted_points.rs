@@ -10,7 +10,6 @@ use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
-use rayon::prelude::*;
 
 use crate::point_records::{RecordLayout, record_key, record_position};
 use crate::stream_error::StreamError;
@@ -58,35 +57,44 @@ impl SortedPoints {
         (cloud, indices)
     }
 
-    /// The sorted positions, ascending and outside `skip`, of the points within the box
-    /// from `min` to `max` (local coordinates) that pass `keep`.
-    pub(crate) fn positions_near(
+    /// The points within the box from `min` to `max` (local coordinates), outside the
+    /// sorted positions `skip`, handed to `batch` with their sorted positions (ascending) at
+    /// most `batch_points` at a time.
+    pub(crate) fn near(
         &self,
         (min, max): (Vec3, Vec3),
         skip: &Range<u64>,
-        keep: impl Fn(Vec3) -> bool + Sync,
-    ) -> Result<Vec<u64>, StreamError> {
+        batch_points: usize,
+        mut batch: impl FnMut(&[Vec3], &[u64]),
+    ) -> Result<(), StreamError> {
         let size = self.layout.bytes();
-        let mut found = Vec::new();
+        let (mut points, mut positions) = (Vec::new(), Vec::new());
         let mut bytes = Vec::new();
         for (block, &(lo, hi)) in self.blocks.iter().enumerate() {
             if lo.cmpgt(max).any() || hi.cmplt(min).any() {
                 continue;
             }
             let first = block as u64 * BLOCK_POINTS;
-            let points = BLOCK_POINTS.min(self.count - first);
-            bytes.resize(points as usize * size, 0);
+            let count = BLOCK_POINTS.min(self.count - first);
+            bytes.resize(count as usize * size, 0);
             self.file.read_exact_at(&mut bytes, first * size as u64).map_err(|e| self.scratch(e))?;
-            let kept: Vec<u64> = bytes
-                .par_chunks_exact(size)
-                .enumerate()
-                .map(|(i, record)| (first + i as u64, (record_position(record) - self.offset).as_vec3()))
-                .filter(|(position, local)| !skip.contains(position) && keep(*local))
-                .map(|(position, _)| position)
-                .collect();
-            found.extend(kept);
+            for (i, record) in bytes.chunks_exact(size).enumerate() {
+                let (position, local) = (first + i as u64, (record_position(record) - self.offset).as_vec3());
+                if !skip.contains(&position) && local.cmpge(min).all() && local.cmple(max).all() {
+                    points.push(local);
+                    positions.push(position);
+                }
+            }
+            if points.len() >= batch_points {
+                batch(&points, &positions);
+                points.clear();
+                positions.clear();
+            }
         }
-        Ok(found)
+        if !points.is_empty() {
+            batch(&points, &positions);
+        }
+        Ok(())
     }
 
     fn scratch(&self, source: std::io::Error) -> StreamError {

@@ -51,6 +51,12 @@ impl StreamBudget {
         self.tile_capacity(settings) / CORE_SHARE
     }
 
+    /// Points near a tile tested for its halo at a time (with their tree, about 64 bytes
+    /// each, a tenth of the budget).
+    pub(crate) fn halo_batch_points(&self) -> usize {
+        (self.usable / 10 / 64).max(4096) as usize
+    }
+
     /// Whether writing the store, which maps each input point to its patch, fits.
     pub(crate) fn holds_patch_map(&self, points: u64) -> bool {
         points.saturating_mul(4) <= self.usable / 2

@@ -128,8 +128,10 @@ impl StreamPlan {
         let core_points: Vec<Vec3> = core.positions.par_iter().map(|&p| (p - offset).as_vec3()).collect();
         let reaches = halo_reaches(&core_points, settings);
         let halo_test = HaloTest::new(&core_points, &reaches);
-        let positions = self.sorted.positions_near(halo_test.bounds, &range, |p| halo_test.holds(p))?;
-        drop(halo_test);
+        let mut positions = Vec::new();
+        self.sorted.near(halo_test.bounds, &range, self.budget.halo_batch_points(), |points, at| {
+            positions.extend(halo_test.reached(points).into_iter().map(|j| at[j as usize]));
+        })?;
         let points = core.len() as u64 + positions.len() as u64;
         if points > self.budget.tile_capacity(settings) {
             return Ok(TileOutcome::OverBudget { points });
@@ -206,7 +208,7 @@ fn tile_count(
             "the memory budget ({} MiB for the work) cannot hold one tile of {MIN_TILE_POINTS} points \
              with its halo: give it at least {} MiB",
             budget.usable() >> 20,
-            (MIN_TILE_POINTS * 3 * crate::input_validation::prep_bytes_per_point(settings) >> 20) + 25
+            ((MIN_TILE_POINTS * 3 * crate::input_validation::prep_bytes_per_point(settings)) >> 20) + 25
         )));
     }
     if !budget.holds_patch_map(points) {

@@ -144,7 +144,12 @@ fn text_is_read_whole_within_the_budget_and_refused_beyond_it() {
     let mut stream = PointStream::open(&path, None, PLENTY).unwrap();
     assert!(!stream.is_chunked());
     let mut count = 0;
-    stream.read(30, |part| Ok::<(), IoError>(count += part.len())).unwrap();
+    stream
+        .read(30, |part| {
+            count += part.len();
+            Ok::<(), IoError>(())
+        })
+        .unwrap();
     assert_eq!(count, 100);
     let small = MemoryBudget { bytes: text.len() as u64 };
     let error = PointStream::open(&path, None, small).err().expect("over the budget").to_string();

@@ -74,7 +74,8 @@ fn tiles_prepped_alone_merge_into_the_single_process_store() {
     let error = merge_tile_files(&twice, &dir.path().join("m.patches"), PLENTY, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("is also"), "{error}");
     let error =
-        merge_tile_files(&[path.clone()], &dir.path().join("m.patches"), PLENTY, &NoProgress).unwrap_err();
+        merge_tile_files(std::slice::from_ref(&path), &dir.path().join("m.patches"), PLENTY, &NoProgress)
+            .unwrap_err();
     assert!(error.to_string().contains("sheet.ply: not a pointray tile file"), "{error}");
 }
 
