@@ -5,7 +5,7 @@ use std::path::Path;
 
 use clap::Args;
 use pointray_io::formats::ColumnSpec;
-use pointray_io::{IoError, PointCloud};
+use pointray_io::{IoError, MemoryBudget, PointCloud, PointStream};
 use pointray_scene::SceneFile;
 
 #[derive(Args)]
@@ -22,6 +22,11 @@ pub struct ColumnsArg {
 impl ColumnsArg {
     pub fn read_point_cloud(&self, path: &Path) -> Result<PointCloud, IoError> {
         pointray_io::formats::read_point_cloud_with(path, self.columns.as_ref())
+    }
+
+    /// The file opened for reading in chunks, or whole where `budget` allows.
+    pub fn open_stream(&self, path: &Path, budget: MemoryBudget) -> Result<PointStream, IoError> {
+        PointStream::open(path, self.columns.as_ref(), budget)
     }
 
     /// The scene with these columns for every points object that gives none of its own.

@@ -21,8 +21,9 @@ impl PrepProgress for PrepBar {
         if items < Self::MIN_POINTS_FOR_BAR {
             return;
         }
-        let style = ProgressStyle::with_template("{msg:>20} [{bar:40}] {pos}/{len} {elapsed}")
-            .expect("the template is valid");
+        let style =
+            ProgressStyle::with_template("{msg:>20} [{bar:40}] {pos}/{len} {elapsed}, about {eta} left")
+                .expect("the template is valid");
         let bar = ProgressBar::new(items).with_message(stage.name()).with_style(style);
         bar.enable_steady_tick(Duration::from_millis(200));
         *self.bar.lock().unwrap() = Some(bar);

@@ -8,6 +8,7 @@ pub mod formats;
 pub mod image_output;
 pub mod memory_budget;
 pub mod point_cloud;
+pub mod point_stream;
 pub mod temporaries;
 pub mod triangle_mesh;
 
@@ -19,4 +20,5 @@ pub use file_roles::{
 };
 pub use memory_budget::{MemoryBudget, MemoryShortfall};
 pub use point_cloud::PointCloud;
+pub use point_stream::PointStream;
 pub use triangle_mesh::TriangleMesh;

@@ -28,7 +28,13 @@ pub struct MemoryShortfall {
 impl MemoryBudget {
     /// The memory the system reports available now (Linux: `MemAvailable`), else 8 GiB.
     pub fn of_this_machine() -> Self {
-        Self { bytes: available_memory().unwrap_or(FALLBACK_BYTES) }
+        Self { bytes: meminfo("MemAvailable:").unwrap_or(FALLBACK_BYTES) }
+    }
+
+    /// Half the memory the machine has (Linux: `MemTotal`), else half of 8 GiB: a default
+    /// that leaves room for the rest of the machine's work.
+    pub fn half_of_this_machine() -> Self {
+        Self { bytes: meminfo("MemTotal:").unwrap_or(FALLBACK_BYTES) / 2 }
     }
 
     /// Whether `count` items of `bytes_each` fit; `items` names them in the message.
@@ -46,9 +52,10 @@ impl MemoryBudget {
     }
 }
 
-fn available_memory() -> Option<u64> {
+/// A `/proc/meminfo` field, in bytes.
+fn meminfo(field: &str) -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|line| line.starts_with("MemAvailable:"))?;
+    let line = text.lines().find(|line| line.starts_with(field))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     kib.checked_mul(1024)
 }
@@ -88,5 +95,6 @@ mod tests {
     #[test]
     fn this_machine_reports_some_memory() {
         assert!(MemoryBudget::of_this_machine().bytes > 0);
+        assert!(MemoryBudget::half_of_this_machine().bytes > 0);
     }
 }

@@ -1,5 +1,5 @@
-//! The temporary files behind atomic writes. Each is named `.pointray-PID-XXXXXX.tmp` after
-//! the process that writes it, so that:
+//! The temporary files behind atomic writes, and the temporary folders of out-of-core work.
+//! Each is named `.pointray-PID-XXXXXX.tmp` after the process that writes it, so that:
 //! - a process stopped by SIGINT or SIGTERM removes its own (`remove_live`, which the
 //!   command-line tool calls from its signal handler);
 //! - a later write into the same folder removes those of processes that no longer run (killed
@@ -32,11 +32,49 @@ pub(crate) fn finished(path: &Path) {
     lock(&LIVE).retain(|live| live != path);
 }
 
-/// Removes every temporary file this process is writing now: for a signal handler, just
-/// before the process exits.
+/// Removes every temporary file and folder this process is writing now: for a signal
+/// handler, just before the process exits.
 pub fn remove_live() {
     for path in lock(&LIVE).drain(..) {
-        let _ = std::fs::remove_file(path);
+        remove(&path);
+    }
+}
+
+fn remove(path: &Path) {
+    let _ = if path.is_dir() { std::fs::remove_dir_all(path) } else { std::fs::remove_file(path) };
+}
+
+/// A folder for a process's scratch files (named as the temporary files are), removed when
+/// dropped, on SIGINT or SIGTERM (`remove_live`), or by a later sweep once its process is
+/// gone.
+#[derive(Debug)]
+pub struct TemporaryFolder {
+    path: PathBuf,
+}
+
+impl TemporaryFolder {
+    /// A new folder inside `parent`.
+    pub fn new_in(parent: &Path) -> Result<Self, crate::IoError> {
+        sweep_stale(parent);
+        let folder = tempfile::Builder::new()
+            .prefix(&prefix())
+            .suffix(SUFFIX)
+            .tempdir_in(parent)
+            .map_err(|source| crate::IoError::os(parent, source))?;
+        let path = folder.keep();
+        started(&path);
+        Ok(Self { path })
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl Drop for TemporaryFolder {
+    fn drop(&mut self) {
+        remove(&self.path);
+        finished(&self.path);
     }
 }
 
@@ -52,7 +90,7 @@ pub(crate) fn sweep_stale(folder: &Path) {
         let name = entry.file_name();
         let stale = name.to_str().and_then(writer_pid).is_some_and(|pid| !process_runs(pid));
         if stale {
-            let _ = std::fs::remove_file(entry.path());
+            remove(&entry.path());
         }
     }
 }
@@ -95,5 +133,16 @@ mod tests {
         remove_live();
         assert!(!path.exists());
         finished(&path);
+    }
+
+    #[test]
+    fn a_temporary_folder_goes_with_its_contents() {
+        let dir = tempfile::tempdir().unwrap();
+        let folder = TemporaryFolder::new_in(dir.path()).unwrap();
+        let path = folder.path().to_path_buf();
+        std::fs::write(path.join("run-0"), b"sorted").unwrap();
+        assert!(writer_pid(path.file_name().unwrap().to_str().unwrap()).is_some(), "{path:?}");
+        drop(folder);
+        assert!(!path.exists());
     }
 }

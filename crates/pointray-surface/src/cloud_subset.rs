@@ -1,4 +1,4 @@
-//! A cloud's chosen points with every attribute they carry.
+//! A cloud's chosen points with every attribute they carry, and two clouds joined.
 
 use pointray_io::PointCloud;
 
@@ -17,4 +17,21 @@ pub(crate) fn subset(cloud: &PointCloud, indices: &[u32]) -> PointCloud {
         sensor_origins: pick(&cloud.sensor_origins, indices),
         sensor_position: cloud.sensor_position,
     }
+}
+
+/// `first`'s points followed by `second`'s (which carries the same attributes).
+pub(crate) fn concatenated(mut first: PointCloud, second: PointCloud) -> PointCloud {
+    fn join<T>(into: &mut Option<Vec<T>>, from: Option<Vec<T>>) {
+        if let (Some(into), Some(from)) = (into.as_mut(), from) {
+            into.extend(from);
+        }
+    }
+    first.positions.extend(second.positions);
+    join(&mut first.normals, second.normals);
+    join(&mut first.colors, second.colors);
+    join(&mut first.intensities, second.intensities);
+    join(&mut first.classifications, second.classifications);
+    join(&mut first.rings, second.rings);
+    join(&mut first.sensor_origins, second.sensor_origins);
+    first
 }

@@ -80,10 +80,14 @@ fn validate_outlier_filter(filter: &OutlierFilter) -> Result<(), PrepError> {
 /// Whether prepping `points` points with `params` fits in `budget`, checked before any stage
 /// allocates.
 pub fn validate_size(points: usize, settings: &PrepSettings, budget: &MemoryBudget) -> Result<(), PrepError> {
-    let neighbours = u64::from(settings.k.max(settings.normal_k));
     budget
-        .check(points as u64, PREP_BYTES_PER_POINT + 8 * neighbours, "points to prep")
+        .check(points as u64, prep_bytes_per_point(settings), "points to prep")
         .map_err(|shortfall| PrepError::TooLarge { problem: shortfall.to_string() })
+}
+
+/// The memory prep takes per point, at most.
+pub fn prep_bytes_per_point(settings: &PrepSettings) -> u64 {
+    PREP_BYTES_PER_POINT + 8 * u64::from(settings.k.max(settings.normal_k))
 }
 
 fn invalid(setting: &'static str, problem: String) -> Result<(), PrepError> {

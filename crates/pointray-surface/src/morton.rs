@@ -15,14 +15,34 @@ pub fn morton_order(points: &[Vec3]) -> Vec<u32> {
     let Some((min, max)) = finite_bounds(points) else {
         return (0..points.len() as u32).collect();
     };
-    // One scale for all axes (the bounding cube): per-axis scales would stretch a flat
-    // axis to full resolution and make the curve zigzag across it.
-    let extent = (max - min).max_element().max(f32::MIN_POSITIVE);
-    let scale = Vec3::splat(MAX_CELL / extent);
+    let grid = MortonGrid::over(min, max);
     let mut keyed: Vec<(u64, u32)> =
-        points.par_iter().enumerate().map(|(i, &p)| (morton_code(p, min, scale), i as u32)).collect();
+        points.par_iter().enumerate().map(|(i, &p)| (grid.code(p), i as u32)).collect();
     keyed.par_sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// The cells of a Morton curve over a bounding box: sorting by (code, input index) is the
+/// order `morton_order` gives, so points sorted out of core land where it puts them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MortonGrid {
+    min: Vec3,
+    scale: Vec3,
+}
+
+impl MortonGrid {
+    /// The grid over the box from `min` to `max`.
+    pub fn over(min: Vec3, max: Vec3) -> Self {
+        // One scale for all axes (the bounding cube): per-axis scales would stretch a flat
+        // axis to full resolution and make the curve zigzag across it.
+        let extent = (max - min).max_element().max(f32::MIN_POSITIVE);
+        Self { min, scale: Vec3::splat(MAX_CELL / extent) }
+    }
+
+    /// The interleaved 63-bit code of `p`'s cell.
+    pub fn code(&self, p: Vec3) -> u64 {
+        morton_code(p, self.min, self.scale)
+    }
 }
 
 /// The bounding box of the finite points, or `None` when there are none.

@@ -29,7 +29,6 @@
 //! those of `pointray_kernels::layout`, so the sections can be uploaded to the GPU as
 //! they are. `docs/PATCH_STORE.md` describes the same format.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use bytemuck::{Pod, Zeroable};
@@ -42,12 +41,14 @@ use crate::patch_bounds::BoxKind;
 use crate::patch_set::PatchSet;
 use crate::prep_settings::{PrepSettings, ScanMode};
 
+pub use crate::patch_store_write::{StoreSummary, write, write_sections, write_to};
+
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
 pub const FORMAT_VERSION: u32 = 5;
-const SECTION_COUNT: usize = 4;
-const HEADER_BYTES: usize = std::mem::size_of::<Header>();
+pub(crate) const SECTION_COUNT: usize = 4;
+pub(crate) const HEADER_BYTES: usize = std::mem::size_of::<Header>();
 const CHECKSUM_BYTES: usize = 4;
-const SECTION_ALIGNMENT: usize = 16;
+pub(crate) const SECTION_ALIGNMENT: usize = 16;
 
 #[derive(Debug, thiserror::Error)]
 pub enum StoreError {
@@ -71,32 +72,32 @@ pub enum StoreError {
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-struct Section {
-    offset: u64,
-    length: u64,
+pub(crate) struct Section {
+    pub offset: u64,
+    pub length: u64,
 }
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
-struct Header {
-    magic: [u8; 8],
-    version: u32,
-    header_bytes: u32,
-    point_count: u64,
-    offset: [f64; 3],
-    bounds_min: [f32; 3],
-    bounds_max: [f32; 3],
-    sections: [Section; SECTION_COUNT],
-    neighbor_slots: u32,
-    settings: StoredSettings,
-    sensor: [f64; 3],
+pub(crate) struct Header {
+    pub magic: [u8; 8],
+    pub version: u32,
+    pub header_bytes: u32,
+    pub point_count: u64,
+    pub offset: [f64; 3],
+    pub bounds_min: [f32; 3],
+    pub bounds_max: [f32; 3],
+    pub sections: [Section; SECTION_COUNT],
+    pub neighbor_slots: u32,
+    pub settings: StoredSettings,
+    pub sensor: [f64; 3],
 }
 
 /// `PrepSettings` as the header holds it, but for the sensor, which follows at an 8-byte
 /// boundary.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
-struct StoredSettings {
+pub(crate) struct StoredSettings {
     k: u32,
     normal_k: u32,
     recompute_normals: u32,
@@ -112,13 +113,13 @@ struct StoredSettings {
 
 /// Where each section lies for `n` patches with `neighbor_slots` colour neighbours each;
 /// the only layout this version allows.
-struct Layout {
-    sections: [Section; SECTION_COUNT],
-    total_bytes: u64,
+pub(crate) struct Layout {
+    pub sections: [Section; SECTION_COUNT],
+    pub total_bytes: u64,
 }
 
 impl Layout {
-    fn new(n: u64, neighbor_slots: u32) -> Option<Self> {
+    pub(crate) fn new(n: u64, neighbor_slots: u32) -> Option<Self> {
         let neighbors_stride = size_of::<u32>() * neighbor_slots as usize;
         let strides = [size_of::<Aabb>(), size_of::<PatchHot>(), size_of::<PatchCold>(), neighbors_stride];
         let mut cursor = HEADER_BYTES as u64;
@@ -133,89 +134,8 @@ impl Layout {
     }
 }
 
-/// Writes `patches` to `path` atomically (`pointray_io::write_atomically`): a temporary file
-/// in the same directory, renamed over `path` only once complete.
-pub fn write(path: &Path, patches: &PatchSet) -> Result<(), StoreError> {
-    let neighbor_slots = neighbor_slots(patches)
-        .map_err(|problem| StoreError::InconsistentPatchSet { path: path.to_path_buf(), problem })?;
-    pointray_io::write_atomically(path, |file| write_contents(file, patches, neighbor_slots)).map_err(
-        |error| match error {
-            pointray_io::IoError::Os { path, source } => StoreError::Io { path, source },
-            other => {
-                StoreError::Io { path: path.to_path_buf(), source: std::io::Error::other(other.to_string()) }
-            }
-        },
-    )
-}
-
-/// How many colour neighbours each patch has (0 or `COLOR_NEIGHBORS`), or why the record
-/// counts do not agree.
-fn neighbor_slots(patches: &PatchSet) -> Result<u32, String> {
-    let n = patches.len();
-    let slots = if patches.color_neighbors.is_empty() { 0 } else { COLOR_NEIGHBORS };
-    let lengths = [patches.aabbs.len(), patches.cold.len(), patches.color_neighbors.len()];
-    if lengths != [n, n, n * slots] {
-        return Err(format!(
-            "{n} hot records, {} boxes, {} cold records and {} colour neighbours ({COLOR_NEIGHBORS} per patch wanted)",
-            patches.aabbs.len(),
-            patches.cold.len(),
-            patches.color_neighbors.len()
-        ));
-    }
-    Ok(slots as u32)
-}
-
-/// The header and the sections, then the checksum of both.
-fn write_contents(file: &mut impl Write, patches: &PatchSet, neighbor_slots: u32) -> std::io::Result<()> {
-    let mut writer = ChecksummedWriter::new(file);
-    write_body(&mut writer, patches, neighbor_slots)?;
-    let checksum = writer.hasher.finalize();
-    writer.inner.write_all(&checksum.to_le_bytes())
-}
-
-fn write_body(
-    writer: &mut ChecksummedWriter<impl Write>,
-    patches: &PatchSet,
-    neighbor_slots: u32,
-) -> std::io::Result<()> {
-    let layout =
-        Layout::new(patches.len() as u64, neighbor_slots).expect("an in-memory patch set fits in u64 bytes");
-    writer.write_all(bytemuck::bytes_of(&header_for(patches, &layout, neighbor_slots)))?;
-    let bodies: [&[u8]; SECTION_COUNT] = [
-        bytemuck::cast_slice(&patches.aabbs),
-        bytemuck::cast_slice(&patches.hot),
-        bytemuck::cast_slice(&patches.cold),
-        bytemuck::cast_slice(&patches.color_neighbors),
-    ];
-    let mut position = HEADER_BYTES as u64;
-    for (section, body) in layout.sections.iter().zip(bodies) {
-        let padding = [0u8; SECTION_ALIGNMENT];
-        writer.write_all(&padding[..(section.offset - position) as usize])?;
-        writer.write_all(body)?;
-        position = section.offset + section.length;
-    }
-    Ok(())
-}
-
-fn header_for(patches: &PatchSet, layout: &Layout, neighbor_slots: u32) -> Header {
-    let bounds = patches.bounds().unwrap_or_default();
-    Header {
-        magic: MAGIC,
-        version: FORMAT_VERSION,
-        header_bytes: HEADER_BYTES as u32,
-        point_count: patches.len() as u64,
-        offset: patches.offset.to_array(),
-        bounds_min: bounds.min,
-        bounds_max: bounds.max,
-        sections: layout.sections,
-        neighbor_slots,
-        settings: StoredSettings::of(&patches.settings),
-        sensor: patches.settings.sensor.unwrap_or_default().to_array(),
-    }
-}
-
 impl StoredSettings {
-    fn of(settings: &PrepSettings) -> Self {
+    pub(crate) fn of(settings: &PrepSettings) -> Self {
         let filter = settings.remove_outliers;
         Self {
             k: settings.k,
@@ -252,23 +172,6 @@ impl StoredSettings {
             scan: ScanMode::from_code(self.scan).ok_or("unknown scan mode")?,
             duplicate_tolerance: self.duplicate_tolerance,
         })
-    }
-}
-
-/// Passes bytes on and keeps a running CRC-32 of them.
-struct ChecksummedWriter<W> {
-    inner: W,
-    hasher: crc32fast::Hasher,
-}
-
-impl<W: Write> ChecksummedWriter<W> {
-    fn new(inner: W) -> Self {
-        Self { inner, hasher: crc32fast::Hasher::new() }
-    }
-
-    fn write_all(&mut self, bytes: &[u8]) -> std::io::Result<()> {
-        self.hasher.update(bytes);
-        self.inner.write_all(bytes)
     }
 }
 

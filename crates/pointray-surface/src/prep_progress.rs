@@ -22,6 +22,16 @@ pub enum Stage {
     QuadraticFit,
     ColdRecords,
     Boxes,
+    /// Prep in bounded memory: the first read of the input, for its bounds.
+    Survey,
+    /// The second read, in sorted runs written to scratch files.
+    SortRuns,
+    /// The runs merged into one file along the Morton curve.
+    MergeRuns,
+    /// The tiles prepped one after another, each with its halo.
+    PrepTiles,
+    /// The tiles' patches written as one store.
+    MergeTiles,
 }
 
 impl Stage {
@@ -42,6 +52,11 @@ impl Stage {
             Stage::QuadraticFit => "quadratic fit",
             Stage::Boxes => "boxes",
             Stage::ColdRecords => "cold records",
+            Stage::Survey => "read bounds",
+            Stage::SortRuns => "sort runs",
+            Stage::MergeRuns => "merge runs",
+            Stage::PrepTiles => "prep tiles",
+            Stage::MergeTiles => "write store",
         }
     }
 }

@@ -82,16 +82,21 @@ pub fn prep_tile(
     let core = plan.core(index);
     let local = |i: u32| (cloud.positions[i as usize] - plan.frame.offset).as_vec3();
     let core_points: Vec<Vec3> = core.par_iter().map(|&i| local(i)).collect();
-    let k = settings.k.max(settings.normal_k) as usize;
-    let reaches: Vec<f32> =
-        neighbourhood_radii(&core_points, k).into_iter().map(|radius| HALO_REACHES * radius).collect();
+    let reaches = halo_reaches(&core_points, settings);
     let halo = halo_of(cloud.len(), core, &core_points, &reaches, local);
     let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
     let (patches, report) = prep_in_frame(&subset(cloud, &members), settings, &plan.frame, progress)?;
     Ok(own_patches(patches, &report.patch_sources, &members, core.len()))
 }
 
-/// The points outside `core` within its point `i`'s `reaches[i]` of it, for any `i`.
+/// How far each core point's halo reaches.
+pub(crate) fn halo_reaches(core_points: &[Vec3], settings: &PrepSettings) -> Vec<f32> {
+    let k = settings.k.max(settings.normal_k) as usize;
+    neighbourhood_radii(core_points, k).into_iter().map(|radius| HALO_REACHES * radius).collect()
+}
+
+/// The points outside `core` within its point `i`'s `reaches[i]` of it, for any `i`, in
+/// input order.
 fn halo_of(
     count: usize,
     core: &[u32],
@@ -99,9 +104,8 @@ fn halo_of(
     reaches: &[f32],
     local: impl Fn(u32) -> Vec3 + Sync,
 ) -> Vec<u32> {
-    let reach = reaches.iter().copied().fold(0.0, f32::max);
-    let (min, max) = bounds(core_points);
-    let (min, max) = (min - Vec3::splat(reach), max + Vec3::splat(reach));
+    let halo = HaloTest::new(core_points, reaches);
+    let (min, max) = halo.bounds;
     let mut in_core = vec![false; count];
     core.iter().for_each(|&i| in_core[i as usize] = true);
     let candidates: Vec<u32> = (0..count as u32)
@@ -109,23 +113,55 @@ fn halo_of(
         .filter(|&i| !in_core[i as usize] && local(i).cmpge(min).all() && local(i).cmple(max).all())
         .collect();
     drop(in_core);
-    if candidates.is_empty() {
-        return candidates;
+    let points: Vec<Vec3> = candidates.iter().map(|&i| local(i)).collect();
+    halo.reached(&points).into_iter().map(|j| candidates[j as usize]).collect()
+}
+
+/// Which points lie in a tile's halo: within core point `i`'s `reaches[i]` of it, for some
+/// `i`. The test is the same for every point, however the candidates are gathered (all at
+/// once from a cloud in memory, or batch by batch from the blocks of a sorted file).
+pub(crate) struct HaloTest<'a> {
+    core_points: &'a [Vec3],
+    reaches: &'a [f32],
+    /// The box around the core points that holds every point they reach.
+    pub bounds: (Vec3, Vec3),
+}
+
+impl<'a> HaloTest<'a> {
+    pub(crate) fn new(core_points: &'a [Vec3], reaches: &'a [f32]) -> Self {
+        let widest = reaches.iter().copied().fold(0.0, f32::max);
+        let (min, max) = bounds(core_points);
+        Self { core_points, reaches, bounds: (min - Vec3::splat(widest), max + Vec3::splat(widest)) }
     }
-    let entries: Vec<[f32; 3]> = candidates.iter().map(|&i| local(i).to_array()).collect();
-    let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
-        .unwrap_or_else(|e| unreachable!("a tile's points fit u32 indices: {e}"));
-    let mut reached: Vec<u32> = core_points
-        .par_iter()
-        .zip(reaches)
-        .flat_map_iter(|(p, &r)| {
-            let hits = tree.query(&p.to_array()).within::<SquaredEuclidean<f32>>(r * r).execute();
-            hits.into_iter().map(|hit| hit.item)
-        })
-        .collect();
-    reached.par_sort_unstable();
-    reached.dedup();
-    reached.into_iter().map(|j| candidates[j as usize]).collect()
+
+    /// The indices of the `candidates` within reach of a core point, ascending. The tree
+    /// only narrows the search (with a margin); the distances are compared here, so that
+    /// the answer for a point does not depend on the other candidates.
+    pub(crate) fn reached(&self, candidates: &[Vec3]) -> Vec<u32> {
+        if candidates.is_empty() {
+            return Vec::new();
+        }
+        let entries: Vec<[f32; 3]> = candidates.iter().map(|p| p.to_array()).collect();
+        let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
+            .unwrap_or_else(|e| unreachable!("a batch of candidates fits u32 indices: {e}"));
+        drop(entries);
+        let mut reached: Vec<u32> = self
+            .core_points
+            .par_iter()
+            .zip(self.reaches)
+            .flat_map_iter(|(&p, &r)| {
+                let search = r * r * (1.0 + 1e-4);
+                let hits =
+                    tree.query(&p.to_array()).within::<SquaredEuclidean<f32>>(search).unsorted().execute();
+                hits.into_iter()
+                    .map(|hit| hit.item)
+                    .filter(move |&j| (candidates[j as usize] - p).length_squared() <= r * r)
+            })
+            .collect();
+        reached.par_sort_unstable();
+        reached.dedup();
+        reached
+    }
 }
 
 /// Each point's distance to its `k`-th nearest neighbour among `points` (an upper bound on
@@ -150,7 +186,7 @@ fn bounds(points: &[Vec3]) -> (Vec3, Vec3) {
 
 /// The patches of the tile's own points (the first `core` members), their colour neighbours
 /// as input indices.
-fn own_patches(set: PatchSet, sources: &[u32], members: &[u32], core: usize) -> TilePatches {
+pub(crate) fn own_patches(set: PatchSet, sources: &[u32], members: &[u32], core: usize) -> TilePatches {
     let input_of = |patch: usize| members[sources[patch] as usize];
     let keep: Vec<usize> = (0..set.len()).filter(|&j| (sources[j] as usize) < core).collect();
     let width = if set.is_empty() { 0 } else { set.color_neighbors.len() / set.len() };

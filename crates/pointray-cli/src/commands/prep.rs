@@ -1,12 +1,20 @@
-//! `pointray prep`: a points file to a patch store (METHOD.md §2).
+//! `pointray prep`: a points file to a patch store (METHOD.md §2), in memory when the cloud
+//! fits the budget, else tile by tile from a cloud read in chunks; or one tile of a cut as a
+//! separate job, and the merge of such tiles.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
-use pointray_surface::tiled_prep::prep_tiled;
-use pointray_surface::{PrepError, prep_owned};
+use pointray_io::MemoryBudget;
+use pointray_surface::input_validation::prep_bytes_per_point;
+use pointray_surface::peak_memory::peak_rss;
+use pointray_surface::streamed_prep::{prep_one_tile, prep_streamed};
+use pointray_surface::streamed_tiles::TileCount;
+use pointray_surface::tile_merge::{MergeSummary, merge_tile_files};
+use pointray_surface::{PrepError, PrepSettings, prep_owned};
 
 use crate::columns_arg::ColumnsArg;
+use crate::memory_arg::parse_memory;
 use crate::prep_settings_args::PrepSettingsArgs;
 use crate::progress::PrepBar;
 
@@ -14,44 +22,99 @@ use crate::progress::PrepBar;
 #[derive(Args)]
 pub struct PrepArgs {
     /// The points file (PLY, LAS/LAZ, PCD, E57, XYZ/CSV, KITTI .bin).
-    points: PathBuf,
-    /// The patch store to write.
+    #[arg(required_unless_present = "merge")]
+    points: Option<PathBuf>,
+    /// The patch store to write (with `--tile`, the tile file).
     #[arg(short, long)]
     output: PathBuf,
     #[command(flatten)]
     settings: PrepSettingsArgs,
-    /// Prep in this many tiles, one after another, each with a halo of its neighbours'
-    /// points: the same patches where they depend only on their neighbourhoods, in the
-    /// memory of the cloud and one tile (normals oriented over the neighbour graph are
-    /// settled per tile; orient toward `--sensor` for identical ones).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65_536))]
+    /// Prep in at least this many tiles, one after another, each with a halo of its
+    /// neighbours' points: the same patches where they depend only on their neighbourhoods
+    /// (normals oriented over the neighbour graph are settled per tile; orient toward
+    /// `--sensor` for identical ones). A cloud over the memory budget is tiled anyway.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65_536), conflicts_with_all = ["tile", "merge"])]
     tiles: Option<u32>,
+    /// Prep only tile I of the `--of` N (0 to N-1) and write it alone, for `--merge`.
+    #[arg(long, value_name = "I", requires = "of", conflicts_with = "merge")]
+    tile: Option<u32>,
+    /// The number of tiles the cloud is cut into, with `--tile`.
+    #[arg(long, value_name = "N", requires = "tile", value_parser = clap::value_parser!(u32).range(1..=65_536))]
+    of: Option<u32>,
+    /// Merge these tile files (every tile of one cut) into the store `--output`.
+    #[arg(long, value_name = "TILE_FILES", num_args = 1.., conflicts_with = "points")]
+    merge: Vec<PathBuf>,
+    /// The memory prep may use, e.g. `8G` or `512M` (default: half the machine's RAM).
+    #[arg(long, value_parser = parse_memory)]
+    memory: Option<MemoryBudget>,
     #[command(flatten)]
     columns: ColumnsArg,
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {
-    pointray_io::ensure_outputs_spare_inputs(
-        std::slice::from_ref(&args.points),
-        std::slice::from_ref(&args.output),
-    )?;
-    let settings = args.settings.settings()?;
-    let cloud = args.columns.read_point_cloud(&args.points)?;
+    let inputs: Vec<PathBuf> = args.points.iter().chain(&args.merge).cloned().collect();
+    pointray_io::ensure_outputs_spare_inputs(&inputs, std::slice::from_ref(&args.output))?;
+    let memory = args.memory.unwrap_or_else(MemoryBudget::half_of_this_machine);
     let bar = PrepBar::default();
-    let in_file = |e: PrepError| anyhow::anyhow!("{}: {e}", args.points.display());
-    let patches = match args.tiles {
-        Some(tiles) => {
-            let patches = prep_tiled(&cloud, &settings, tiles as usize, &bar).map_err(in_file)?;
-            println!("prepped {} points in {tiles} tiles into {} patches", cloud.len(), patches.len());
-            patches
-        }
-        None => {
-            let (patches, report) = prep_owned(cloud, &settings, &bar).map_err(in_file)?;
-            println!("{report}");
-            patches
-        }
+    let Some(points) = &args.points else {
+        let merged = merge_tile_files(&args.merge, &args.output, memory, &bar)?;
+        report_store(&merged, &args.output);
+        return Ok(());
     };
+    let settings = args.settings.settings()?;
+    if let (Some(tile), Some(of)) = (args.tile, args.of) {
+        let mut stream = args.columns.open_stream(points, memory)?;
+        let owned =
+            prep_one_tile(&mut stream, &settings, (tile as usize, of as usize), memory, &args.output, &bar)?;
+        println!(
+            "wrote tile {tile} of {of} ({owned} of {} points) to {}",
+            stream.len(),
+            args.output.display()
+        );
+        return Ok(());
+    }
+    let mut stream = args.columns.open_stream(points, memory)?;
+    if args.tiles.is_none() && fits_in_memory(stream.len(), &settings, memory) {
+        drop(stream);
+        return prep_in_memory(points, &args, &settings, &bar);
+    }
+    let count = TileCount::AtLeast(args.tiles.unwrap_or(1) as usize);
+    let merged = prep_streamed(&mut stream, &settings, (count, memory), &args.output, &bar)?;
+    // The process's own high-water mark, which tests and job scripts read back.
+    let peak =
+        peak_rss().map_or_else(String::new, |bytes| format!(" (peak resident memory {} KiB)", bytes >> 10));
+    let (points, tiles, budget) = (merged.input_points, merged.tiles, memory.bytes >> 20);
+    println!("prepped {points} points in {tiles} tiles within {budget} MiB{peak}");
+    report_store(&merged, &args.output);
+    Ok(())
+}
+
+/// Whether a single pass over the whole cloud (whose positions take 24 bytes a point
+/// before it starts) fits the budget.
+fn fits_in_memory(points: u64, settings: &PrepSettings, memory: MemoryBudget) -> bool {
+    memory.check(points, prep_bytes_per_point(settings) + 24, "points").is_ok()
+}
+
+fn prep_in_memory(
+    points: &Path,
+    args: &PrepArgs,
+    settings: &PrepSettings,
+    bar: &PrepBar,
+) -> anyhow::Result<()> {
+    let cloud = args.columns.read_point_cloud(points)?;
+    let in_file = |e: PrepError| anyhow::anyhow!("{}: {e}", points.display());
+    let (patches, report) = prep_owned(cloud, settings, bar).map_err(in_file)?;
+    println!("{report}");
     pointray_surface::patch_store::write(&args.output, &patches)?;
     println!("wrote {} patches to {} (offset stored in its header)", patches.len(), args.output.display());
     Ok(())
+}
+
+fn report_store(merged: &MergeSummary, output: &Path) {
+    println!(
+        "wrote {} patches of {} tiles to {} (offset stored in its header)",
+        merged.patches,
+        merged.tiles,
+        output.display()
+    );
 }

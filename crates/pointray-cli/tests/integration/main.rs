@@ -19,3 +19,4 @@ mod scan_command;
 mod scan_measures;
 mod scene_prep_keys;
 mod size_limits;
+mod streamed_prep;

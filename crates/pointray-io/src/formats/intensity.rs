@@ -12,31 +12,57 @@ const SENSOR_FULL_SCALES: [f64; 4] = [1.0, 255.0, 4095.0, 65535.0];
 /// normalise: no values, or every value zero (the file reserves the field but the
 /// sensor never filled it).
 pub(crate) fn normalise_intensities(raw: &[f64]) -> Option<Vec<f32>> {
-    let (min, max) = finite_range(raw)?;
-    if max <= 0.0 && min >= 0.0 {
-        return None;
-    }
-    let (low, scale) = if min < 0.0 { (min, max - min) } else { (0.0, full_scale_covering(max)) };
-    Some(raw.iter().map(|&value| scaled(value, low, scale)).collect())
+    let mut range = IntensityRange::default();
+    raw.iter().for_each(|&value| range.include(value));
+    let scale = range.scale()?;
+    Some(raw.iter().map(|&value| scale.apply(value)).collect())
 }
 
-fn finite_range(raw: &[f64]) -> Option<(f64, f64)> {
-    raw.iter().filter(|value| value.is_finite()).fold(None, |range, &value| match range {
-        None => Some((value, value)),
-        Some((min, max)) => Some((f64::min(min, value), f64::max(max, value))),
-    })
+/// The finite raw intensities seen so far: the whole file's range sets the scale, even when
+/// it is read in chunks.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct IntensityRange {
+    range: Option<(f64, f64)>,
+}
+
+impl IntensityRange {
+    pub(crate) fn include(&mut self, value: f64) {
+        if value.is_finite() {
+            let (min, max) = self.range.unwrap_or((value, value));
+            self.range = Some((min.min(value), max.max(value)));
+        }
+    }
+
+    /// The scale onto [0, 1], or `None` when every value was zero or there were none.
+    pub(crate) fn scale(&self) -> Option<IntensityScale> {
+        let (min, max) = self.range?;
+        if max <= 0.0 && min >= 0.0 {
+            return None;
+        }
+        let (low, scale) = if min < 0.0 { (min, max - min) } else { (0.0, full_scale_covering(max)) };
+        Some(IntensityScale { low, scale })
+    }
+}
+
+/// Raw intensity `low` maps to 0, `low + scale` to 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct IntensityScale {
+    low: f64,
+    scale: f64,
+}
+
+impl IntensityScale {
+    /// Non-finite values (a sensor's "no return") become 0.
+    pub(crate) fn apply(&self, value: f64) -> f32 {
+        if !value.is_finite() || self.scale <= 0.0 {
+            return 0.0;
+        }
+        ((value - self.low) / self.scale).clamp(0.0, 1.0) as f32
+    }
 }
 
 fn full_scale_covering(max: f64) -> f64 {
     SENSOR_FULL_SCALES.into_iter().find(|&scale| max <= scale).unwrap_or(max)
-}
-
-/// Non-finite values (a sensor's "no return") become 0.
-fn scaled(value: f64, low: f64, scale: f64) -> f32 {
-    if !value.is_finite() || scale <= 0.0 {
-        return 0.0;
-    }
-    ((value - low) / scale).clamp(0.0, 1.0) as f32
 }
 
 #[cfg(test)]

@@ -37,10 +37,29 @@ where
     R: Read + Seek + Send + Sync + 'static,
 {
     preflight(&mut read, origin)?;
-    // The `laz` decoder still indexes and slices on values from corrupt data in ways the
-    // preflight cannot foresee (fuzzing found several); its panics become errors here.
-    std::panic::catch_unwind(AssertUnwindSafe(|| decode(read, origin)))
+    survive_decoder(origin, || decode(read, origin))
+}
+
+/// A reader positioned at the first point of the file at `path`, once the preflight passed.
+pub(super) fn open_reader(path: &Path) -> Result<las::Reader, IoError> {
+    let mut read = BufReader::new(File::open(path).map_err(|source| IoError::os(path, source))?);
+    preflight(&mut read, path)?;
+    survive_decoder(path, || las::Reader::new(read).map_err(|error| las_error(path, error)))
+}
+
+/// The `laz` decoder still indexes and slices on values from corrupt data in ways the
+/// preflight cannot foresee (fuzzing found several); its panics become errors here.
+pub(super) fn survive_decoder<T>(
+    origin: &Path,
+    decode: impl FnOnce() -> Result<T, IoError>,
+) -> Result<T, IoError> {
+    std::panic::catch_unwind(AssertUnwindSafe(decode))
         .unwrap_or_else(|_| Err(IoError::malformed(origin, "LAS/LAZ decoder failed on corrupt point data")))
+}
+
+/// Points per batch for the reader's point format.
+pub(super) fn batch_points(header: &las::Header) -> u64 {
+    (BATCH_BYTES / u64::from(header.point_format().len()).max(1)).max(1)
 }
 
 fn decode<R>(read: R, origin: &Path) -> Result<PointCloud, IoError>
@@ -50,7 +69,7 @@ where
     let mut reader = las::Reader::new(read).map_err(|error| las_error(origin, error))?;
     let declared = reader.header().number_of_points();
     let mut columns = LasColumns::default();
-    let batch_points = (BATCH_BYTES / u64::from(reader.header().point_format().len()).max(1)).max(1);
+    let batch_points = batch_points(reader.header());
     let mut batch = PointDataBuilder::new().for_header(reader.header()).build();
     loop {
         let read = reader.fill_points(batch_points, &mut batch).map_err(|error| las_error(origin, error))?;
@@ -221,7 +240,7 @@ fn check_version(header: &las::Header, origin: &Path) -> Result<(), IoError> {
 }
 
 /// Sorts the `las` crate's errors into "we cannot read this variant" and "this file is broken".
-fn las_error(origin: &Path, error: las::Error) -> IoError {
+pub(super) fn las_error(origin: &Path, error: las::Error) -> IoError {
     let unsupported =
         |what: String| IoError::Unsupported { path: origin.into(), what, supported: SUPPORTED.into() };
     match error {
@@ -277,12 +296,14 @@ impl LasColumns {
 /// LAS stores colour in 16 bits, but many writers put 8-bit values there unscaled: when no
 /// channel exceeds 255 the values are taken as 8-bit, otherwise the high byte is kept.
 fn colors_to_8_bit(raw: &[[u16; 3]]) -> Option<Vec<[u8; 3]>> {
-    let max = raw.iter().flatten().copied().max()?;
-    if max == 0 {
-        return None;
-    }
-    let shift = if max <= 255 { 0 } else { 8 };
+    let shift = color_shift(raw.iter().flatten().copied().max()?)?;
     Some(raw.iter().map(|rgb| rgb.map(|channel| (channel >> shift) as u8)).collect())
+}
+
+/// The shift that brings the file's colours to 8 bits, from its largest channel value;
+/// `None` when every colour is black (the fields are reserved but unfilled).
+pub(super) fn color_shift(max: u16) -> Option<u32> {
+    (max > 0).then_some(if max <= 255 { 0 } else { 8 })
 }
 
 #[cfg(test)]

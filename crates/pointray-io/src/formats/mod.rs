@@ -7,6 +7,7 @@ mod dispatch;
 pub mod e57;
 mod intensity;
 pub mod las;
+pub(crate) mod las_chunks;
 pub mod obj;
 pub mod pcd;
 pub mod ply;

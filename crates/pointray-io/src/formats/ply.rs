@@ -6,6 +6,7 @@
 //! azimuth or time, say) are skipped. Meshes take faces as `vertex_indices` or `vertex_index`
 //! lists of any integer type, fan-triangulated.
 
+pub(crate) mod chunks;
 mod face;
 mod reader;
 mod vertex;

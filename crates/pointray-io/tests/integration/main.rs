@@ -19,3 +19,4 @@ mod ply_bad_input;
 mod ply_round_trip;
 mod ply_shared_data;
 mod ply_throughput;
+mod point_stream;

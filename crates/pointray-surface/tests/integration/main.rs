@@ -15,4 +15,5 @@ mod patch_store_files;
 mod prep_attributes;
 mod prep_bad_input;
 mod scan_aware;
+mod streamed_prep;
 mod tiled_prep;

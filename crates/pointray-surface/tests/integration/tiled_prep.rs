@@ -14,7 +14,7 @@ use crate::common::{height_field, jitter};
 
 /// A wavy, coloured sheet seen from above: normals toward the sensor depend only on each
 /// point's neighbourhood, as the fits and supports do.
-fn coloured_sheet() -> (PointCloud, PrepSettings) {
+pub fn coloured_sheet() -> (PointCloud, PrepSettings) {
     let mut cloud =
         height_field(110, DVec3::new(500.0, -200.0, 30.0), |x, y| 0.2 * (3.0 * x).sin() * (2.0 * y).cos());
     let colors = (0..cloud.len()).map(|i| [(i % 251) as u8, (jitter(i) * 200.0 + 100.0) as u8, 40]).collect();

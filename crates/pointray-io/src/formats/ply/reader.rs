@@ -31,21 +31,7 @@ pub fn has_magic(start: &[u8]) -> bool {
 /// parsed (to stay in step with the body) and dropped.
 pub(super) fn read_contents(path: &Path, want_faces: bool) -> Result<PlyContents, IoError> {
     let malformed = |problem: String| IoError::malformed(path, problem);
-    let mut reader = open_checked(path)?;
-    let header = Parser::<VertexRecord>::new()
-        .read_header(&mut reader)
-        .map_err(|e| malformed(format!("bad PLY header: {}", one_line(&e.to_string()))))?;
-    let header_length = reader.get_mut().stream_position().map_err(|e| IoError::os(path, e))?;
-    check_unique_names(&header_text(path, header_length).map_err(|e| IoError::os(path, e))?)
-        .map_err(malformed)?;
-    let vertex_element =
-        header.elements.get("vertex").ok_or_else(|| malformed("no 'vertex' element".into()))?;
-    let layout = VertexLayout::from_element(vertex_element).map_err(malformed)?;
-    check_elements(&header).map_err(malformed)?;
-    if header.encoding != Encoding::Ascii {
-        let body_length = remaining_bytes(&mut reader).map_err(|e| IoError::os(path, e))?;
-        check_body_length(&header, body_length).map_err(malformed)?;
-    }
+    let CheckedHeader { header, layout, mut reader, .. } = read_checked_header(path)?;
     let mut contents = PlyContents { layout, vertices: Vec::new(), faces: None };
     for (name, element) in &header.elements {
         match name.as_str() {
@@ -64,6 +50,38 @@ pub(super) fn read_contents(path: &Path, want_faces: bool) -> Result<PlyContents
 }
 
 type FileReader = Reader<BufReader<File>>;
+
+/// A header that passed every check, with the reader at the first byte of the body.
+pub(super) struct CheckedHeader {
+    pub header: Header,
+    pub layout: VertexLayout,
+    pub reader: FileReader,
+    /// Where the body starts.
+    pub body_start: u64,
+    /// How many bytes follow the header.
+    pub body_length: u64,
+}
+
+/// Reads and checks the header; for a binary file, also that the body is long enough.
+pub(super) fn read_checked_header(path: &Path) -> Result<CheckedHeader, IoError> {
+    let malformed = |problem: String| IoError::malformed(path, problem);
+    let mut reader = open_checked(path)?;
+    let header = Parser::<VertexRecord>::new()
+        .read_header(&mut reader)
+        .map_err(|e| malformed(format!("bad PLY header: {}", one_line(&e.to_string()))))?;
+    let body_start = reader.get_mut().stream_position().map_err(|e| IoError::os(path, e))?;
+    check_unique_names(&header_text(path, body_start).map_err(|e| IoError::os(path, e))?)
+        .map_err(malformed)?;
+    let vertex_element =
+        header.elements.get("vertex").ok_or_else(|| malformed("no 'vertex' element".into()))?;
+    let layout = VertexLayout::from_element(vertex_element).map_err(malformed)?;
+    check_elements(&header).map_err(malformed)?;
+    let body_length = remaining_bytes(&mut reader).map_err(|e| IoError::os(path, e))?;
+    if header.encoding != Encoding::Ascii {
+        check_body_length(&header, body_length).map_err(malformed)?;
+    }
+    Ok(CheckedHeader { header, layout, reader, body_start, body_length })
+}
 
 /// Opens the file and makes sure it is a non-empty PLY file before ply-rs-bw sees it.
 fn open_checked(path: &Path) -> Result<FileReader, IoError> {
@@ -165,7 +183,7 @@ fn check_body_length(header: &Header, body_length: u64) -> Result<(), String> {
 }
 
 /// Bytes per value; a list is at least its count.
-fn minimum_size(property: &PropertyType) -> u64 {
+pub(super) fn minimum_size(property: &PropertyType) -> u64 {
     let scalar = match property {
         PropertyType::Scalar(scalar) | PropertyType::List(scalar, _) => scalar,
     };

@@ -27,6 +27,18 @@ pub(super) struct VertexLayout {
 }
 
 impl VertexLayout {
+    /// A layout that takes positions alone.
+    pub fn positions_only() -> Self {
+        Self {
+            has_normals: false,
+            color_unit: None,
+            intensity_unit: None,
+            has_rings: false,
+            has_classifications: false,
+            has_sensor_origins: false,
+        }
+    }
+
     /// Reads the layout from the header; x, y and z must be numeric scalars, a ring and a
     /// classification integers.
     pub fn from_element(element: &ElementDef) -> Result<Self, String> {
@@ -99,7 +111,7 @@ pub(super) struct VertexRecord {
 
 /// Which value of a record a property name refers to.
 #[derive(Clone, Copy)]
-enum Field {
+pub(super) enum Field {
     Position(usize),
     Normal(usize),
     Color(usize),
@@ -110,7 +122,7 @@ enum Field {
 }
 
 impl Field {
-    fn named(name: &str) -> Option<Self> {
+    pub(super) fn named(name: &str) -> Option<Self> {
         let index = |names: &[&str]| names.iter().position(|n| *n == name);
         index(&POSITION)
             .map(Self::Position)
@@ -124,7 +136,7 @@ impl Field {
 }
 
 impl VertexRecord {
-    fn slot(&mut self, field: Field) -> &mut f64 {
+    pub(super) fn slot(&mut self, field: Field) -> &mut f64 {
         match field {
             Field::Position(i) => &mut self.position[i],
             Field::Normal(i) => &mut self.normal[i],
@@ -216,18 +228,39 @@ pub(super) fn into_point_cloud(
     records: &[VertexRecord],
     layout: &VertexLayout,
 ) -> Result<PointCloud, String> {
-    let positions = positions(records)?;
+    let divisor =
+        layout.intensity_unit.map_or(1.0, |unit| intensity_divisor(largest_intensity(records, unit)));
+    into_point_cloud_from(records, layout, 0, divisor)
+}
+
+/// As `into_point_cloud`, for records that start at point `first` of the file, with
+/// intensities (on their type's unit scale) divided by `intensity_divisor`.
+pub(super) fn into_point_cloud_from(
+    records: &[VertexRecord],
+    layout: &VertexLayout,
+    first: u64,
+    intensity_divisor: f64,
+) -> Result<PointCloud, String> {
+    let numbered = |problem: String| renumbered(problem, first);
+    let positions = positions(records).map_err(numbered)?;
     let normals =
         layout.has_normals.then(|| records.iter().map(|r| DVec3::from(r.normal).as_vec3()).collect());
     let colors =
         layout.color_unit.map(|unit| records.iter().map(|r| r.color.map(|c| to_byte(c / unit))).collect());
-    let intensities = layout.intensity_unit.map(|unit| normalised_intensities(records, unit));
-    let rings = layout.has_rings.then(|| whole_numbers(records, RING, u16::MAX.into())).transpose()?;
+    let intensities =
+        layout.intensity_unit.map(|unit| normalised_intensities(records, unit, intensity_divisor));
+    let rings = layout
+        .has_rings
+        .then(|| whole_numbers(records, RING, u16::MAX.into()))
+        .transpose()
+        .map_err(numbered)?;
     let classifications = layout
         .has_classifications
         .then(|| whole_numbers(records, CLASSIFICATION, u8::MAX.into()))
-        .transpose()?;
-    let sensor_origins = layout.has_sensor_origins.then(|| sensor_origins(records)).transpose()?;
+        .transpose()
+        .map_err(numbered)?;
+    let sensor_origins =
+        layout.has_sensor_origins.then(|| sensor_origins(records)).transpose().map_err(numbered)?;
     Ok(PointCloud {
         positions,
         normals,
@@ -280,13 +313,31 @@ fn to_byte(unit_channel: f64) -> u8 {
     (unit_channel.clamp(0.0, 1.0) * 255.0).round() as u8
 }
 
-/// Intensities on [0, 1]. Floating-point intensities outside that range (scanners write raw
-/// return strengths) are divided by the largest one, so that their relative sizes survive.
-fn normalised_intensities(records: &[VertexRecord], unit_value: f64) -> Vec<f32> {
-    let unit: Vec<f64> = records.iter().map(|r| r.intensity / unit_value).collect();
-    let largest = unit.iter().copied().filter(|v| v.is_finite()).fold(0.0, f64::max);
-    let divisor = if largest > 1.0 { largest } else { 1.0 };
-    unit.iter().map(|v| (v / divisor).clamp(0.0, 1.0) as f32).collect()
+/// Errors name points by their index in the chunk; this makes it the file's.
+fn renumbered(problem: String, first: u64) -> String {
+    match problem.strip_prefix("point ").and_then(|rest| rest.split_once(' ')) {
+        Some((index, rest)) if first > 0 => match index.parse::<u64>() {
+            Ok(index) => format!("point {} {rest}", first + index),
+            Err(_) => problem,
+        },
+        _ => problem,
+    }
+}
+
+/// The largest finite intensity on its type's unit scale (0 when none is above 0).
+pub(super) fn largest_intensity(records: &[VertexRecord], unit_value: f64) -> f64 {
+    records.iter().map(|r| r.intensity / unit_value).filter(|v| v.is_finite()).fold(0.0, f64::max)
+}
+
+/// Floating-point intensities outside [0, 1] (scanners write raw return strengths) are
+/// divided by the largest one, so that their relative sizes survive.
+pub(super) fn intensity_divisor(largest: f64) -> f64 {
+    if largest > 1.0 { largest } else { 1.0 }
+}
+
+/// Intensities on [0, 1].
+fn normalised_intensities(records: &[VertexRecord], unit_value: f64, divisor: f64) -> Vec<f32> {
+    records.iter().map(|r| (r.intensity / unit_value / divisor).clamp(0.0, 1.0) as f32).collect()
 }
 
 /// Records for writing a cloud back out.

@@ -1,0 +1,154 @@
+//! A cloud sorted along its Morton curve in one scratch file of records, with the bounds of
+//! each block of consecutive records: a run of the curve covers a compact region, so the
+//! points in a box are found by reading only the blocks whose bounds meet it.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::ops::Range;
+use std::os::unix::fs::FileExt;
+use std::path::{Path, PathBuf};
+
+use glam::{DVec3, Vec3};
+use pointray_io::PointCloud;
+
+use crate::point_records::{RecordLayout, record_key, record_position};
+use crate::stream_error::StreamError;
+
+/// Records per block of the index.
+const BLOCK_POINTS: u64 = 4096;
+
+pub(crate) struct SortedPoints {
+    path: PathBuf,
+    file: File,
+    layout: RecordLayout,
+    offset: DVec3,
+    count: u64,
+    /// The local bounds (min, max) of each block of `BLOCK_POINTS` records.
+    blocks: Vec<(Vec3, Vec3)>,
+    sensor_position: Option<DVec3>,
+}
+
+impl SortedPoints {
+    pub(crate) fn len(&self) -> u64 {
+        self.count
+    }
+
+    /// The points at sorted positions `range`, with their input indices.
+    pub(crate) fn read_range(&self, range: Range<u64>) -> Result<(PointCloud, Vec<u32>), StreamError> {
+        let size = self.layout.bytes() as u64;
+        let mut bytes = vec![0u8; ((range.end - range.start) * size) as usize];
+        self.file.read_exact_at(&mut bytes, range.start * size).map_err(|e| self.scratch(e))?;
+        Ok(self.decode(bytes.chunks_exact(size as usize)))
+    }
+
+    /// The points at the sorted `positions` (ascending), with their input indices.
+    pub(crate) fn read_positions(&self, positions: &[u64]) -> Result<(PointCloud, Vec<u32>), StreamError> {
+        let size = self.layout.bytes();
+        let mut bytes = vec![0u8; positions.len() * size];
+        for (record, &position) in bytes.chunks_exact_mut(size).zip(positions) {
+            self.file.read_exact_at(record, position * size as u64).map_err(|e| self.scratch(e))?;
+        }
+        Ok(self.decode(bytes.chunks_exact(size)))
+    }
+
+    fn decode<'a>(&self, records: impl Iterator<Item = &'a [u8]>) -> (PointCloud, Vec<u32>) {
+        let mut cloud = self.layout.empty_cloud(self.sensor_position);
+        let indices = records.map(|record| self.layout.decode_into(record, &mut cloud).1).collect();
+        (cloud, indices)
+    }
+
+    /// The points within the box from `min` to `max` (local coordinates), outside the
+    /// sorted positions `skip`, handed to `batch` with their sorted positions (ascending) at
+    /// most `batch_points` at a time.
+    pub(crate) fn near(
+        &self,
+        (min, max): (Vec3, Vec3),
+        skip: &Range<u64>,
+        batch_points: usize,
+        mut batch: impl FnMut(&[Vec3], &[u64]),
+    ) -> Result<(), StreamError> {
+        let size = self.layout.bytes();
+        let (mut points, mut positions) = (Vec::new(), Vec::new());
+        let mut bytes = Vec::new();
+        for (block, &(lo, hi)) in self.blocks.iter().enumerate() {
+            if lo.cmpgt(max).any() || hi.cmplt(min).any() {
+                continue;
+            }
+            let first = block as u64 * BLOCK_POINTS;
+            let count = BLOCK_POINTS.min(self.count - first);
+            bytes.resize(count as usize * size, 0);
+            self.file.read_exact_at(&mut bytes, first * size as u64).map_err(|e| self.scratch(e))?;
+            for (i, record) in bytes.chunks_exact(size).enumerate() {
+                let (position, local) = (first + i as u64, (record_position(record) - self.offset).as_vec3());
+                if !skip.contains(&position) && local.cmpge(min).all() && local.cmple(max).all() {
+                    points.push(local);
+                    positions.push(position);
+                }
+            }
+            if points.len() >= batch_points {
+                batch(&points, &positions);
+                points.clear();
+                positions.clear();
+            }
+        }
+        if !points.is_empty() {
+            batch(&points, &positions);
+        }
+        Ok(())
+    }
+
+    fn scratch(&self, source: std::io::Error) -> StreamError {
+        StreamError::scratch(&self.path, source)
+    }
+}
+
+/// Writes the sorted file record by record, keeping the block bounds.
+pub(crate) struct SortedWriter {
+    path: PathBuf,
+    out: BufWriter<File>,
+    layout: RecordLayout,
+    offset: DVec3,
+    count: u64,
+    blocks: Vec<(Vec3, Vec3)>,
+    last_key: Option<(u64, u32)>,
+}
+
+impl SortedWriter {
+    pub(crate) fn create(path: &Path, layout: RecordLayout, offset: DVec3) -> Result<Self, StreamError> {
+        let file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create_new(true)
+            .open(path)
+            .map_err(|e| StreamError::scratch(path, e))?;
+        Ok(Self {
+            path: path.to_path_buf(),
+            out: BufWriter::with_capacity(1 << 20, file),
+            layout,
+            offset,
+            count: 0,
+            blocks: Vec::new(),
+            last_key: None,
+        })
+    }
+
+    pub(crate) fn push(&mut self, record: &[u8]) -> Result<(), StreamError> {
+        let key = record_key(record);
+        debug_assert!(self.last_key.is_none_or(|last| last < key), "records arrive in order");
+        self.last_key = Some(key);
+        let local = (record_position(record) - self.offset).as_vec3();
+        if self.count.is_multiple_of(BLOCK_POINTS) {
+            self.blocks.push((local, local));
+        }
+        let block = self.blocks.last_mut().expect("a block was opened");
+        *block = (block.0.min(local), block.1.max(local));
+        self.count += 1;
+        self.out.write_all(record).map_err(|e| StreamError::scratch(&self.path, e))
+    }
+
+    pub(crate) fn finish(self, sensor_position: Option<DVec3>) -> Result<SortedPoints, StreamError> {
+        let Self { path, out, layout, offset, count, blocks, .. } = self;
+        let file = out.into_inner().map_err(|e| StreamError::scratch(&path, e.into_error()))?;
+        Ok(SortedPoints { path, file, layout, offset, count, blocks, sensor_position })
+    }
+}

@@ -1,0 +1,68 @@
+//! How prep in bounded memory shares its budget: the reads, the sorted runs, one tile with
+//! its halo at a time, and the map from points to patches that the store's writing keeps.
+
+use pointray_io::MemoryBudget;
+
+use crate::input_validation::prep_bytes_per_point;
+use crate::prep_settings::PrepSettings;
+
+/// Held back for the program itself, its threads and buffers.
+const RESERVED_BYTES: u64 = 24 << 20;
+
+/// A tile is planned to take at most this share of its prep's memory with its own points;
+/// the rest is left for its halo.
+const CORE_SHARE: u64 = 3;
+
+/// Fewer points than this in a tile would be mostly halo.
+pub(crate) const MIN_TILE_POINTS: u64 = 1024;
+
+/// Bytes the survey and the runs take per point read at a time (the format's decoded
+/// record and the cloud made of it).
+const READ_BYTES_PER_POINT: u64 = 256;
+
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StreamBudget {
+    /// What the work may use beyond the program itself.
+    usable: u64,
+}
+
+impl StreamBudget {
+    pub(crate) fn new(memory: MemoryBudget) -> Self {
+        Self { usable: memory.bytes.saturating_sub(RESERVED_BYTES) }
+    }
+
+    /// Points read from the input at a time.
+    pub(crate) fn chunk_points(&self) -> usize {
+        (self.usable / 32 / READ_BYTES_PER_POINT).clamp(256, 1 << 20) as usize
+    }
+
+    /// Bytes of records sorted in memory at a time (with their keys, about half again).
+    pub(crate) fn run_bytes(&self) -> usize {
+        (self.usable / 3).max(1 << 20) as usize
+    }
+
+    /// The most points a tile's prep may hold, its halo included.
+    pub(crate) fn tile_capacity(&self, settings: &PrepSettings) -> u64 {
+        self.usable / prep_bytes_per_point(settings)
+    }
+
+    /// The most points a tile may own.
+    pub(crate) fn core_capacity(&self, settings: &PrepSettings) -> u64 {
+        self.tile_capacity(settings) / CORE_SHARE
+    }
+
+    /// Points near a tile tested for its halo at a time (with their tree, about 64 bytes
+    /// each, a tenth of the budget).
+    pub(crate) fn halo_batch_points(&self) -> usize {
+        (self.usable / 10 / 64).max(4096) as usize
+    }
+
+    /// Whether writing the store, which maps each input point to its patch, fits.
+    pub(crate) fn holds_patch_map(&self, points: u64) -> bool {
+        points.saturating_mul(4) <= self.usable / 2
+    }
+
+    pub(crate) fn usable(&self) -> u64 {
+        self.usable
+    }
+}

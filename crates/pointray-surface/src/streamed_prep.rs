@@ -1,0 +1,79 @@
+//! Prep in bounded memory, from a cloud read in chunks: sorted out of core and prepped tile
+//! by tile (`streamed_tiles`) in a scratch folder beside the output, which is removed when
+//! done or interrupted. One process preps every tile and merges them; or a job preps one
+//! tile of a cut into a tile file, and a merge of all the tile files writes the same store.
+
+use std::collections::VecDeque;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use pointray_io::temporaries::TemporaryFolder;
+use pointray_io::{MemoryBudget, PointStream};
+
+use crate::prep_progress::{PrepProgress, Stage};
+use crate::prep_settings::PrepSettings;
+use crate::stream_budget::MIN_TILE_POINTS;
+use crate::stream_error::StreamError;
+use crate::streamed_tiles::{StreamPlan, TileCount, TileOutcome};
+use crate::tile_file::write_tile_file;
+use crate::tile_merge::{MergeSummary, merge_ordered_tile_files};
+
+/// Preps the whole of `stream` within `memory` and writes the store `output`. A tile whose
+/// halo would not fit is split in two (jobs of a fixed cut refuse instead).
+pub fn prep_streamed(
+    stream: &mut PointStream,
+    settings: &PrepSettings,
+    (count, memory): (TileCount, MemoryBudget),
+    output: &Path,
+    progress: &dyn PrepProgress,
+) -> Result<MergeSummary, StreamError> {
+    let scratch = TemporaryFolder::new_in(pointray_io::folder_of(output))?;
+    let plan = StreamPlan::new(stream, settings, (count, memory), scratch.path(), progress)?;
+    progress.stage_started(Stage::PrepTiles, plan.points());
+    let started = std::time::Instant::now();
+    let mut files: Vec<PathBuf> = Vec::new();
+    let mut pending: VecDeque<Range<u64>> = plan.tile_ranges().iter().cloned().collect();
+    while let Some(range) = pending.pop_front() {
+        match plan.prep_range(settings, range.clone())? {
+            TileOutcome::Prepped(tile) => {
+                let path = scratch.path().join(format!("tile-{}", files.len()));
+                // Numbered in order; a merge of one process's tiles takes them so.
+                write_tile_file(&path, tile, (files.len(), files.len() + 1), plan.points())?;
+                files.push(path);
+                progress.advanced(range.end - range.start);
+            }
+            // A tile whose halo outgrew the budget is split in two along the curve.
+            TileOutcome::OverBudget { .. } if range.end - range.start >= 2 * MIN_TILE_POINTS => {
+                let middle = range.start + (range.end - range.start) / 2;
+                pending.push_front(middle..range.end);
+                pending.push_front(range.start..middle);
+            }
+            TileOutcome::OverBudget { points } => {
+                return Err(plan.over_budget(&format!("the tile of points {range:?}"), points, settings));
+            }
+        }
+    }
+    progress.stage_finished(Stage::PrepTiles, started.elapsed());
+    merge_ordered_tile_files(&files, output, memory, progress)
+}
+
+/// Preps tile `index` of `count` of `stream` within `memory` and writes it alone to the
+/// tile file `output`; returns the points the tile owns.
+pub fn prep_one_tile(
+    stream: &mut PointStream,
+    settings: &PrepSettings,
+    (index, count): (usize, usize),
+    memory: MemoryBudget,
+    output: &Path,
+    progress: &dyn PrepProgress,
+) -> Result<u64, StreamError> {
+    let scratch = TemporaryFolder::new_in(pointray_io::folder_of(output))?;
+    let plan =
+        StreamPlan::new(stream, settings, (TileCount::Exactly(count), memory), scratch.path(), progress)?;
+    progress.stage_started(Stage::PrepTiles, plan.tile_points(index));
+    let started = std::time::Instant::now();
+    let tile = plan.prep_tile(settings, index)?;
+    write_tile_file(output, tile, (index, count), plan.points())?;
+    progress.stage_finished(Stage::PrepTiles, started.elapsed());
+    Ok(plan.tile_points(index))
+}

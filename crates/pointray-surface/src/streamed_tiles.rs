@@ -1,0 +1,231 @@
+//! Prep in tiles from a cloud read in chunks, in bounded memory: a first read finds the
+//! bounds (and so the recentring, the duplicate distance and the Morton curve of the whole
+//! cloud, as a single pass has them), a second sorts the points along the curve out of
+//! core, and each tile is then read back with the halo of points its own reach, from
+//! whichever neighbouring tiles hold them. The tiles are those of `tiled_prep`, and so are
+//! their patches, bit for bit.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use glam::{DVec3, Vec3};
+use pointray_io::{MemoryBudget, PointStream};
+use rayon::prelude::*;
+
+use crate::cloud_subset::{concatenated, subset};
+use crate::morton::MortonGrid;
+use crate::out_of_core_sort::{SortPlan, sort_points};
+use crate::patch_tiles::even_ranges;
+use crate::prep::{PrepFrame, prep_in_frame};
+use crate::prep_error::PrepError;
+use crate::prep_progress::{NoProgress, PrepProgress, Stage};
+use crate::prep_settings::PrepSettings;
+use crate::sorted_points::SortedPoints;
+use crate::stream_budget::{MIN_TILE_POINTS, StreamBudget};
+use crate::stream_error::StreamError;
+use crate::tiled_prep::{HaloTest, TilePatches, halo_reaches, own_patches};
+
+/// How many tiles to cut the cloud into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TileCount {
+    /// As few as the budget allows, and at least this many.
+    AtLeast(usize),
+    /// Exactly this many (tiles prepped as separate jobs must agree); refused when one
+    /// would not fit the budget.
+    Exactly(usize),
+}
+
+/// A cloud sorted along its curve in scratch files, cut into tiles.
+pub struct StreamPlan {
+    input: PathBuf,
+    pub frame: PrepFrame,
+    sorted: SortedPoints,
+    tiles: Vec<Range<u64>>,
+    budget: StreamBudget,
+}
+
+impl StreamPlan {
+    /// Reads `stream` twice and sorts it into `scratch`.
+    pub fn new(
+        stream: &mut PointStream,
+        settings: &PrepSettings,
+        (count, memory): (TileCount, MemoryBudget),
+        scratch: &Path,
+        progress: &dyn PrepProgress,
+    ) -> Result<Self, StreamError> {
+        let input = stream.path().to_path_buf();
+        let budget = StreamBudget::new(memory);
+        let (min, max) = survey_bounds(stream, budget.chunk_points(), progress)?;
+        let points = stream.len();
+        let prep_error = |source| StreamError::Prep { path: input.clone(), source };
+        let k = settings.k.max(settings.normal_k) as usize;
+        if points <= k as u64 {
+            return Err(prep_error(PrepError::TooFewPoints { found: points as usize, k }));
+        }
+        if points > u64::from(u32::MAX) {
+            let problem = format!("{points} points: prep numbers points with 32 bits, at most {}", u32::MAX);
+            return Err(prep_error(PrepError::TooLarge { problem }));
+        }
+        let tiles = tile_count(count, points, settings, &budget, &input)?;
+        let offset = (min + max) * 0.5;
+        let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
+        let frame =
+            PrepFrame { offset, duplicate_distance: settings.duplicate_tolerance * (high - low).length() };
+        let plan = SortPlan {
+            grid: MortonGrid::over(low, high),
+            offset,
+            chunk_points: budget.chunk_points(),
+            run_bytes: budget.run_bytes(),
+            folder: scratch,
+        };
+        let sorted = sort_points(stream, &plan, progress)?;
+        let tiles = even_ranges(sorted.len() as usize, tiles)
+            .into_iter()
+            .map(|range| range.start as u64..range.end as u64)
+            .collect();
+        Ok(Self { input, frame, sorted, tiles, budget })
+    }
+
+    pub fn tile_count(&self) -> usize {
+        self.tiles.len()
+    }
+
+    /// The points of the whole cloud.
+    pub fn points(&self) -> u64 {
+        self.sorted.len()
+    }
+
+    /// The points tile `index` owns.
+    pub fn tile_points(&self, index: usize) -> u64 {
+        self.tiles.get(index).map_or(0, |range| range.end - range.start)
+    }
+
+    /// The points of each tile, in order along the curve (positions in the sorted cloud).
+    pub fn tile_ranges(&self) -> &[Range<u64>] {
+        &self.tiles
+    }
+
+    /// Preps tile `index` with its halo; its patches name their points (and colour
+    /// neighbours) by input index, as `tiled_prep::prep_tile`'s do.
+    pub fn prep_tile(&self, settings: &PrepSettings, index: usize) -> Result<TilePatches, StreamError> {
+        let range = self.tiles.get(index).cloned().ok_or_else(|| StreamError::Prep {
+            path: self.input.clone(),
+            source: PrepError::NoSuchTile { index, count: self.tile_count() },
+        })?;
+        match self.prep_range(settings, range)? {
+            TileOutcome::Prepped(tile) => Ok(tile),
+            TileOutcome::OverBudget { points } => {
+                Err(self.over_budget(&format!("tile {index}"), points, settings))
+            }
+        }
+    }
+
+    /// Preps the points at sorted positions `range` as a tile, with their halo, unless
+    /// they and their halo would not fit the budget.
+    pub fn prep_range(&self, settings: &PrepSettings, range: Range<u64>) -> Result<TileOutcome, StreamError> {
+        let (core, core_inputs) = self.sorted.read_range(range.clone())?;
+        let offset = self.frame.offset;
+        let core_points: Vec<Vec3> = core.positions.par_iter().map(|&p| (p - offset).as_vec3()).collect();
+        let reaches = halo_reaches(&core_points, settings);
+        let halo_test = HaloTest::new(&core_points, &reaches);
+        let mut positions = Vec::new();
+        self.sorted.near(halo_test.bounds, &range, self.budget.halo_batch_points(), |points, at| {
+            positions.extend(halo_test.reached(points).into_iter().map(|j| at[j as usize]));
+        })?;
+        let points = core.len() as u64 + positions.len() as u64;
+        if points > self.budget.tile_capacity(settings) {
+            return Ok(TileOutcome::OverBudget { points });
+        }
+        let (halo, halo_inputs) = self.sorted.read_positions(&positions)?;
+        // The halo in input order, as the in-memory tiles take it.
+        let mut by_input: Vec<u32> = (0..halo_inputs.len() as u32).collect();
+        by_input.sort_unstable_by_key(|&j| halo_inputs[j as usize]);
+        let core_len = core.len() as u32;
+        let order: Vec<u32> = (0..core_len).chain(by_input.iter().map(|&j| core_len + j)).collect();
+        let members: Vec<u32> =
+            core_inputs.iter().copied().chain(by_input.iter().map(|&j| halo_inputs[j as usize])).collect();
+        let cloud = subset(&concatenated(core, halo), &order);
+        let (patches, report) = prep_in_frame(&cloud, settings, &self.frame, &NoProgress)
+            .map_err(|source| StreamError::Prep { path: self.input.clone(), source })?;
+        Ok(TileOutcome::Prepped(own_patches(patches, &report.patch_sources, &members, core_len as usize)))
+    }
+
+    /// Why `tile`, holding `points` with its halo, cannot be prepped.
+    pub fn over_budget(&self, tile: &str, points: u64, settings: &PrepSettings) -> StreamError {
+        let problem = format!(
+            "{tile} with its halo holds {points} points, but the memory budget holds about {}: \
+             raise the memory budget or cut the cloud into more tiles",
+            self.budget.tile_capacity(settings)
+        );
+        StreamError::OverBudget { path: self.input.clone(), problem }
+    }
+}
+
+/// A tile prepped, or how many points it and its halo hold when they do not fit.
+pub enum TileOutcome {
+    Prepped(TilePatches),
+    OverBudget { points: u64 },
+}
+
+/// The bounds of the cloud, from a first read; non-finite coordinates are refused.
+fn survey_bounds(
+    stream: &mut PointStream,
+    chunk: usize,
+    progress: &dyn PrepProgress,
+) -> Result<(DVec3, DVec3), StreamError> {
+    let input = stream.path().to_path_buf();
+    progress.stage_started(Stage::Survey, stream.len());
+    let started = std::time::Instant::now();
+    let (mut min, mut max, mut seen) = (DVec3::INFINITY, DVec3::NEG_INFINITY, 0usize);
+    stream.survey(chunk, |positions| {
+        if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+            let source = PrepError::NonFiniteCoordinate { index: seen + i };
+            return Err(StreamError::Prep { path: input.clone(), source });
+        }
+        for &p in positions {
+            (min, max) = (min.min(p), max.max(p));
+        }
+        seen += positions.len();
+        progress.advanced(positions.len() as u64);
+        Ok(())
+    })?;
+    progress.stage_finished(Stage::Survey, started.elapsed());
+    Ok((min, max))
+}
+
+/// The tiles to cut `points` into within the budget.
+fn tile_count(
+    count: TileCount,
+    points: u64,
+    settings: &PrepSettings,
+    budget: &StreamBudget,
+    input: &Path,
+) -> Result<usize, StreamError> {
+    let over = |problem: String| StreamError::OverBudget { path: input.to_path_buf(), problem };
+    let core = budget.core_capacity(settings);
+    if core < MIN_TILE_POINTS {
+        return Err(over(format!(
+            "the memory budget ({} MiB for the work) cannot hold one tile of {MIN_TILE_POINTS} points \
+             with its halo: give it at least {} MiB",
+            budget.usable() >> 20,
+            ((MIN_TILE_POINTS * 3 * crate::input_validation::prep_bytes_per_point(settings)) >> 20) + 25
+        )));
+    }
+    if !budget.holds_patch_map(points) {
+        return Err(over(format!(
+            "{points} points: writing the store maps each to its patch (4 bytes a point), which \
+             the memory budget ({} MiB for the work) cannot hold",
+            budget.usable() >> 20
+        )));
+    }
+    let needed = points.div_ceil(core) as usize;
+    match count {
+        TileCount::AtLeast(wanted) => Ok(wanted.max(needed).max(1)),
+        TileCount::Exactly(wanted) if wanted >= needed => Ok(wanted.max(1)),
+        TileCount::Exactly(wanted) => Err(over(format!(
+            "{wanted} tiles of about {} points do not fit the memory budget, which holds tiles of \
+             about {core} with their halos: cut the cloud into at least {needed} tiles",
+            points.div_ceil(wanted.max(1) as u64)
+        ))),
+    }
+}

@@ -1,0 +1,98 @@
+//! Prep from a cloud read in chunks and sorted out of core writes the store that the
+//! in-memory tiled prep writes, byte for byte, whether one process preps every tile or each
+//! tile is prepped alone and the tile files merged; budgets too small are refused.
+
+use std::path::{Path, PathBuf};
+
+use pointray_io::formats::ply::write_point_cloud;
+use pointray_io::formats::read_point_cloud;
+use pointray_io::{MemoryBudget, PointStream};
+use pointray_surface::patch_store;
+use pointray_surface::stream_error::StreamError;
+use pointray_surface::streamed_prep::{prep_one_tile, prep_streamed};
+use pointray_surface::streamed_tiles::TileCount;
+use pointray_surface::tile_merge::merge_tile_files;
+use pointray_surface::tiled_prep::prep_tiled;
+use pointray_surface::{NoProgress, PrepSettings};
+
+use crate::tiled_prep::coloured_sheet;
+
+const PLENTY: MemoryBudget = MemoryBudget { bytes: 4 << 30 };
+
+/// The sheet as a PLY file, and its settings.
+fn sheet_file(dir: &Path) -> (PathBuf, PrepSettings) {
+    let (cloud, settings) = coloured_sheet();
+    let path = dir.join("sheet.ply");
+    write_point_cloud(&path, &cloud).unwrap();
+    (path, settings)
+}
+
+fn open(path: &Path) -> PointStream {
+    PointStream::open(path, None, PLENTY).unwrap()
+}
+
+/// Only the store and the input are left: scratch folders are gone.
+fn assert_no_scratch(dir: &Path, expected: usize) {
+    let names: Vec<_> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(names.len(), expected, "scratch left behind: {names:?}");
+}
+
+#[test]
+fn streamed_tiles_write_the_in_memory_tiled_store() {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, settings) = sheet_file(dir.path());
+    let cloud = read_point_cloud(&path).unwrap();
+    let in_memory = dir.path().join("in_memory.patches");
+    patch_store::write(&in_memory, &prep_tiled(&cloud, &settings, 8, &NoProgress).unwrap()).unwrap();
+    let streamed = dir.path().join("streamed.patches");
+    let summary =
+        prep_streamed(&mut open(&path), &settings, (TileCount::Exactly(8), PLENTY), &streamed, &NoProgress)
+            .unwrap();
+    assert_eq!((summary.tiles, summary.input_points), (8, cloud.len() as u64));
+    assert!(std::fs::read(&streamed).unwrap() == std::fs::read(&in_memory).unwrap(), "same bytes");
+    assert_no_scratch(dir.path(), 3);
+}
+
+#[test]
+fn tiles_prepped_alone_merge_into_the_single_process_store() {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, settings) = sheet_file(dir.path());
+    let whole = dir.path().join("whole.patches");
+    prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(4), PLENTY), &whole, &NoProgress).unwrap();
+    let tiles: Vec<PathBuf> = (0..4).rev().map(|i| dir.path().join(format!("tile{i}.tile"))).collect();
+    for (i, tile) in tiles.iter().rev().enumerate() {
+        prep_one_tile(&mut open(&path), &settings, (i, 4), PLENTY, tile, &NoProgress).unwrap();
+    }
+    let merged = dir.path().join("merged.patches");
+    merge_tile_files(&tiles, &merged, PLENTY, &NoProgress).unwrap();
+    assert!(std::fs::read(&merged).unwrap() == std::fs::read(&whole).unwrap(), "same bytes");
+
+    let error =
+        merge_tile_files(&tiles[1..], &dir.path().join("m.patches"), PLENTY, &NoProgress).unwrap_err();
+    assert!(error.to_string().contains("tile 3 of 4 is missing"), "{error}");
+    let twice = [tiles.clone(), vec![tiles[0].clone()]].concat();
+    let error = merge_tile_files(&twice, &dir.path().join("m.patches"), PLENTY, &NoProgress).unwrap_err();
+    assert!(error.to_string().contains("is also"), "{error}");
+    let error =
+        merge_tile_files(std::slice::from_ref(&path), &dir.path().join("m.patches"), PLENTY, &NoProgress)
+            .unwrap_err();
+    assert!(error.to_string().contains("sheet.ply: not a pointray tile file"), "{error}");
+}
+
+#[test]
+fn budgets_too_small_are_refused_with_what_would_fit() {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, settings) = sheet_file(dir.path());
+    let output = dir.path().join("out.patches");
+    let tiny = MemoryBudget { bytes: 25 << 20 };
+    let error =
+        prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(1), tiny), &output, &NoProgress)
+            .unwrap_err();
+    assert!(matches!(error, StreamError::OverBudget { .. }), "{error}");
+    assert!(error.to_string().contains("cannot hold one tile"), "{error}");
+    let small = MemoryBudget { bytes: 30 << 20 };
+    let error = prep_one_tile(&mut open(&path), &settings, (0, 1), small, &output, &NoProgress).unwrap_err();
+    assert!(error.to_string().contains("cut the cloud into at least"), "{error}");
+    assert!(!output.exists());
+    assert_no_scratch(dir.path(), 1);
+}
