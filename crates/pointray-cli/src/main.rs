@@ -60,7 +60,7 @@ fn main() -> std::process::ExitCode {
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(error) => {
-            eprintln!("error: {}", describe(&error));
+            eprintln!("error: {}", pointray_render::error_line(error.as_ref()));
             std::process::ExitCode::FAILURE
         }
     }
@@ -91,20 +91,4 @@ fn init_logging(verbose: u8) {
     // Colour codes only for a terminal: piped into a file or another program they are noise.
     let colour = std::io::stderr().is_terminal();
     tracing_subscriber::fmt().with_max_level(level).with_writer(std::io::stderr).with_ansi(colour).init();
-}
-
-/// The error and its causes on one line. Our library errors already quote their source in
-/// their own message, so a cause is only added when its text is not there yet.
-fn describe(error: &anyhow::Error) -> String {
-    let mut text = String::new();
-    for cause in error.chain() {
-        let cause = cause.to_string();
-        if !text.contains(&cause) {
-            if !text.is_empty() {
-                text.push_str(": ");
-            }
-            text.push_str(&cause);
-        }
-    }
-    text
 }

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use numpy::{IntoPyArray, PyArrayMethods};
 use pointray_io::MemoryBudget;
-use pointray_render::{Backend, BackendChoice, DeviceSelector, device_options_from_environment};
+use pointray_render::{Backend, BackendChoice, DeviceSelector, device_options_from_environment, error_line};
 use pointray_scene::load::{LoadOptions, load_scene_file};
 use pointray_scene::material_spec::ColorSource;
 use pointray_scene::scene_file::CameraSpec;
@@ -56,10 +56,10 @@ pub fn render<'py>(
     let frame = py
         .detach(|| -> Result<Frame, String> {
             let load_options = LoadOptions { in_memory: &in_memory, ..LoadOptions::default() };
-            let loaded = load_scene_file(&file, &load_options).map_err(|e| describe(&e))?;
+            let loaded = load_scene_file(&file, &load_options).map_err(|e| error_line(&e))?;
             let backend = Backend::open(backend, &device, device_options_from_environment())
                 .map_err(|e| format!("opening the Vulkan backend: {e}"))?;
-            let mut frame = backend.render(&loaded.scene, &settings).map_err(|e| describe(&e))?;
+            let mut frame = backend.render(&loaded.scene, &settings).map_err(|e| error_line(&e))?;
             frame.scale_depth(loaded.frame.scale as f32);
             Ok(frame)
         })
@@ -144,10 +144,6 @@ fn path_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<PathBuf>>
 
 fn flag_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<bool>> {
     option(dict, key)?.map(|value| value.extract::<bool>()).transpose()
-}
-
-fn describe(error: &(dyn std::error::Error + 'static)) -> String {
-    to_python(error).to_string().trim_start_matches("PointrayError: ").to_string()
 }
 
 /// The image as (H, W, 4) float32, linear RGB with alpha 1 where a primary ray hit the scene,

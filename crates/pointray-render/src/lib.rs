@@ -4,7 +4,9 @@
 
 mod backend;
 mod environment;
+mod error_line;
 
 pub use backend::Backend;
 pub use environment::device_options_from_environment;
+pub use error_line::error_line;
 pub use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector};
