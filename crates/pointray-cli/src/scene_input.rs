@@ -54,8 +54,8 @@ impl SceneInputArgs {
         };
         let mut file = self.columns.apply_to(file);
         if let (Some(from), Some(at)) = (self.look_from, self.look_at) {
-            let (from, at) = (up.to_scene(from).to_array(), up.to_scene(at).to_array());
-            file.camera = Some(CameraSpec::looking(from, at, self.fov));
+            file.camera =
+                Some(up.camera_to_scene(CameraSpec::looking(from.to_array(), at.to_array(), self.fov)));
         }
         Ok(file)
     }

@@ -8,7 +8,6 @@ use numpy::{IntoPyArray, PyArrayMethods};
 use pointray_io::MemoryBudget;
 use pointray_render::{Backend, BackendChoice, DeviceSelector, device_options_from_environment, error_line};
 use pointray_scene::load::{LoadOptions, load_scene_file};
-use pointray_scene::material_spec::ColorSource;
 use pointray_scene::scene_file::CameraSpec;
 use pointray_scene::{Frame, PointsScene, RenderSetting, RenderSettings, SceneFile, UpAxis};
 use pointray_surface::PatchSet;
@@ -28,18 +27,11 @@ pub fn render<'py>(
     source: &Bound<'py, PyDict>,
     options: &Bound<'py, PyDict>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (mut file, in_memory) = scene_source(source)?;
-    let up = text_option(source, "up")?
-        .map(|text| text.parse::<UpAxis>())
-        .transpose()
-        .map_err(PyValueError::new_err)?;
-    if let Some(camera) = options.get_item("camera")?.filter(|c| !c.is_none()) {
+    let SceneSource { mut file, in_memory, up } = scene_source(source)?;
+    if let Some(camera) = option(options, "camera")? {
         let spec = CameraSpec::deserialize(to_toml(&camera)?)
             .map_err(|e| PointrayError::new_err(format!("camera: {}", e.message())))?;
-        let up = up.unwrap_or(UpAxis::Y);
-        let position = up.to_scene(spec.position.into()).to_array();
-        let look_at = up.to_scene(spec.look_at.into()).to_array();
-        file.camera = Some(CameraSpec { position, look_at, ..spec });
+        file.camera = Some(up.camera_to_scene(spec));
     }
     let settings = render_settings(&file, options)?;
     settings.check_memory(&MemoryBudget::of_this_machine()).map_err(PointrayError::new_err)?;
@@ -70,8 +62,15 @@ pub fn render<'py>(
 /// Point sets given in memory, by object index (`LoadOptions::in_memory`).
 type InMemory = Vec<(usize, Arc<PatchSet>)>;
 
-/// The scene file a source describes, and the point sets it holds in memory by object index.
-fn scene_source(source: &Bound<'_, PyDict>) -> PyResult<(SceneFile, InMemory)> {
+/// What a source describes: a scene file, the point sets it holds in memory by object index,
+/// and the axis that a camera given in the file's coordinates is stood upright by.
+struct SceneSource {
+    file: SceneFile,
+    in_memory: InMemory,
+    up: UpAxis,
+}
+
+fn scene_source(source: &Bound<'_, PyDict>) -> PyResult<SceneSource> {
     if let Some(text) = text_option(source, "scene")? {
         let anchor = path_option(source, "anchor")?.unwrap_or_else(|| PathBuf::from("(scene from Python)"));
         let file = SceneFile::parse(&text, &anchor).map_err(|e| to_python(&e))?;
@@ -86,7 +85,7 @@ fn scene_source(source: &Bound<'_, PyDict>) -> PyResult<(SceneFile, InMemory)> {
                 .collect::<PyResult<_>>()?,
             None => Vec::new(),
         };
-        return Ok((file, in_memory));
+        return Ok(SceneSource { file, in_memory, up: UpAxis::Y });
     }
     let points = path_option(source, "points_file")?;
     let patches = match source.get_item("patches")? {
@@ -94,10 +93,7 @@ fn scene_source(source: &Bound<'_, PyDict>) -> PyResult<(SceneFile, InMemory)> {
         None => None,
     };
     let name = points.clone().unwrap_or_else(|| PathBuf::from("(points from Python)"));
-    let mut look = match &points {
-        Some(path) => PointsScene::conventional(path),
-        None => PointsScene { up: UpAxis::Y, floor: true, color_source: ColorSource::Auto },
-    };
+    let mut look = points.as_deref().map_or_else(PointsScene::default, PointsScene::conventional);
     if let Some(up) = text_option(source, "up")? {
         look.up = up.parse().map_err(PyValueError::new_err)?;
     }
@@ -106,7 +102,7 @@ fn scene_source(source: &Bound<'_, PyDict>) -> PyResult<(SceneFile, InMemory)> {
         look.color_source = color.parse().map_err(PyValueError::new_err)?;
     }
     let in_memory = patches.map(|set| vec![(0, set)]).unwrap_or_default();
-    Ok((look.scene_file(&name), in_memory))
+    Ok(SceneSource { file: look.scene_file(&name), in_memory, up: look.up })
 }
 
 /// The file's `[render]` settings with the call's on top, each checked as the flag is.

@@ -66,3 +66,16 @@ def test_bad_render_settings_are_refused_with_the_command_lines_words(bunny):
         pointray.render("missing.ply", backend="cpu")
     with pytest.raises(pointray.PointrayError, match="unknown field"):
         pointray.Scene.from_toml("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nzoom = 2\n")
+
+
+def test_a_camera_in_a_scans_coordinates_is_placed_as_the_command_line_places_it(autzen, tmp_path):
+    centre = pointray.read(autzen).offset
+    look_from = centre + [0.0, -900.0, 700.0]  # south of the tile and above it, Z up
+    as_flag = lambda point: ",".join(f"{c:.3f}" for c in point)
+    pointray_cli("render", autzen, "-o", "cli.exr", "--backend", "cpu", "--width", 96, "--height", 72,
+                 "--look-from", as_flag(look_from), "--look-at", as_flag(centre), cwd=tmp_path)
+    camera = dict(position=[float(f"{c:.3f}") for c in look_from], look_at=[float(f"{c:.3f}") for c in centre])
+    image = pointray.render(autzen, backend="cpu", camera=camera, **SIZE)
+    image.save(tmp_path / "python.exr")
+    assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+    assert (image[..., 3] == 1.0).mean() > 0.2, "the tile is in view"

@@ -5,13 +5,12 @@
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-use glam::DVec3;
 use pointray_io::formats::detect::PointFormat;
 use pointray_io::formats::{FileFormat, detect_file_format};
 
 use crate::material_spec::{ColorSource, MaterialSpec};
 use crate::object_spec::{ObjectSpec, ShapeSpec};
-use crate::scene_file::{LightSpec, RenderSpec, SceneFile};
+use crate::scene_file::{CameraSpec, LightSpec, RenderSpec, SceneFile};
 use crate::transform_spec::{RotationSpec, TransformSpec};
 
 /// Which of the file's axes points up. The scene is Y-up.
@@ -38,12 +37,15 @@ impl UpAxis {
         }
     }
 
-    /// A point in the file's coordinates, stood upright as the default scene stands the cloud.
-    pub fn to_scene(self, file: DVec3) -> DVec3 {
-        match self {
+    /// A camera placed in the file's coordinates, stood upright as the default scene stands
+    /// the cloud (its `up` is the scene's).
+    pub fn camera_to_scene(self, camera: CameraSpec) -> CameraSpec {
+        let upright = |file: [f64; 3]| match self {
             UpAxis::Y => file,
-            UpAxis::Z => DVec3::new(file.x, file.z, -file.y),
-        }
+            // The quarter turn of `upright`: +Z to +Y.
+            UpAxis::Z => [file[0], file[2], -file[1]],
+        };
+        CameraSpec { position: upright(camera.position), look_at: upright(camera.look_at), ..camera }
     }
 
     fn upright(self) -> TransformSpec {
@@ -70,6 +72,7 @@ impl FromStr for UpAxis {
     }
 }
 
+/// Points with no file to go by (from a program's memory) are taken as Y-up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointsScene {
     pub up: UpAxis,
@@ -77,10 +80,16 @@ pub struct PointsScene {
     pub color_source: ColorSource,
 }
 
+impl Default for PointsScene {
+    fn default() -> Self {
+        Self { up: UpAxis::Y, floor: true, color_source: ColorSource::Auto }
+    }
+}
+
 impl PointsScene {
     /// The file's conventional up axis, a floor, and colours by what the points carry.
     pub fn conventional(path: &Path) -> Self {
-        Self { up: UpAxis::conventional(path), floor: true, color_source: ColorSource::Auto }
+        Self { up: UpAxis::conventional(path), ..Self::default() }
     }
 
     pub fn scene_file(&self, points: &Path) -> SceneFile {
