@@ -153,9 +153,8 @@ fn load_object(
             }
             (Geometry::Mesh(Arc::new(mesh)), None, file_stem(&path))
         }
-        ShapeSpec::Points { path, .. } if in_memory(options, index).is_some() => {
-            let patches = in_memory(options, index).cloned().unwrap_or_else(|| unreachable!("matched"));
-            (Geometry::Patches(patches), Some(PointSetOrigin::InMemory), path.display().to_string())
+        ShapeSpec::Points { path, .. } if let Some(patches) = in_memory(options, index) => {
+            (Geometry::Patches(patches.clone()), Some(PointSetOrigin::InMemory), path.display().to_string())
         }
         ShapeSpec::Points { path, prep, columns } => {
             let path = existing_file(file, &key, path)?;
