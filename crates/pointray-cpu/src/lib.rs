@@ -21,10 +21,10 @@ pub use first_hit::RayHit;
 pub use ray_counts::RayCounts;
 pub use renderer::CpuRenderer;
 
-use pointray_scene::{Frame, RenderSettings, Scene};
+use pointray_scene::{RenderSettings, RenderedImage, Scene};
 
 /// Builds the acceleration structures and renders one frame. To render several frames of
 /// one scene, build a `CpuRenderer` once instead.
-pub fn render(scene: &Scene, settings: &RenderSettings) -> Frame {
+pub fn render(scene: &Scene, settings: &RenderSettings) -> RenderedImage {
     CpuRenderer::new(scene).render(settings)
 }

@@ -5,7 +5,7 @@
 use glam::Vec3;
 use pointray_kernels::interpolate_color::color_from_rgba8;
 use pointray_kernels::{Ray, background, face_forward, interpolate_color, patch_normal, self_clearance};
-use pointray_scene::{Background, Frame, Geometry, RenderSettings};
+use pointray_scene::{Background, Geometry, RenderSettings, RenderedImage};
 
 use crate::object_bvh::triangle_corners;
 use crate::ray_counts::RayCounts;
@@ -26,8 +26,8 @@ impl PrimaryAov {
     pub const MISS: Self = Self {
         depth: f32::INFINITY,
         normal: Vec3::ZERO,
-        instance_id: Frame::MISS,
-        primitive_id: Frame::MISS,
+        instance_id: RenderedImage::MISS,
+        primitive_id: RenderedImage::MISS,
     };
 }
 

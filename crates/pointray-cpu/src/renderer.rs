@@ -1,9 +1,9 @@
-//! The CPU renderer: acceleration structures built once, frames rendered in parallel
+//! The CPU renderer: acceleration structures built once, images rendered in parallel
 //! over pixel tiles.
 
 use glam::{UVec2, Vec3};
 use pointray_kernels::{Camera, Ray, camera_ray, sample_jitter};
-use pointray_scene::{Frame, RenderSettings, Scene};
+use pointray_scene::{RenderSettings, RenderedImage, Scene};
 use rayon::prelude::*;
 
 use crate::path::PrimaryAov;
@@ -15,7 +15,7 @@ use crate::top_level::{SceneHit, TopLevel};
 const TILE_SIZE: u32 = 16;
 
 /// The scene's BVHs, built once, and the scene itself, whose camera and lights may change
-/// between frames (`scene_updates.rs`).
+/// between images (`scene_updates.rs`).
 pub struct CpuRenderer {
     pub(crate) scene: Scene,
     pub(crate) top: TopLevel,
@@ -52,13 +52,13 @@ impl CpuRenderer {
         self.top.instances.len()
     }
 
-    /// Renders one frame. Zero samples per pixel count as one.
-    pub fn render(&self, settings: &RenderSettings) -> Frame {
+    /// Renders one image. Zero samples per pixel count as one.
+    pub fn render(&self, settings: &RenderSettings) -> RenderedImage {
         self.render_counting_rays(settings).0
     }
 
-    /// Renders one frame and says how many rays of each kind it traced.
-    pub fn render_counting_rays(&self, settings: &RenderSettings) -> (Frame, RayCounts) {
+    /// Renders one image and says how many rays of each kind it traced.
+    pub fn render_counting_rays(&self, settings: &RenderSettings) -> (RenderedImage, RayCounts) {
         let (width, height) = (settings.width, settings.height);
         let tiles: Vec<UVec2> = (0..height.div_ceil(TILE_SIZE))
             .flat_map(|ty| (0..width.div_ceil(TILE_SIZE)).map(move |tx| UVec2::new(tx, ty) * TILE_SIZE))
@@ -70,20 +70,20 @@ impl CpuRenderer {
                 (corner, self.render_tile(corner, settings, &mut counts), counts)
             })
             .collect();
-        let mut frame = empty_frame(width, height);
+        let mut image = empty_image(width, height);
         let mut total = RayCounts::default();
         for (corner, pixels, counts) in rendered {
             total += counts;
             for (pixel, result) in tile_pixels(corner, width, height).zip(pixels) {
                 let index = (pixel.y * width + pixel.x) as usize;
-                frame.color[index] = result.color;
-                frame.depth[index] = result.aov.depth;
-                frame.normal[index] = result.aov.normal;
-                frame.instance_id[index] = result.aov.instance_id;
-                frame.primitive_id[index] = result.aov.primitive_id;
+                image.color[index] = result.color;
+                image.depth[index] = result.aov.depth;
+                image.normal[index] = result.aov.normal;
+                image.instance_id[index] = result.aov.instance_id;
+                image.primitive_id[index] = result.aov.primitive_id;
             }
         }
-        (frame, total)
+        (image, total)
     }
 
     fn render_tile(&self, corner: UVec2, settings: &RenderSettings, counts: &mut RayCounts) -> Vec<Pixel> {
@@ -126,15 +126,15 @@ fn tile_pixels(corner: UVec2, width: u32, height: u32) -> impl Iterator<Item = U
     (corner.y..end.y).flat_map(move |y| (corner.x..end.x).map(move |x| UVec2::new(x, y)))
 }
 
-fn empty_frame(width: u32, height: u32) -> Frame {
+fn empty_image(width: u32, height: u32) -> RenderedImage {
     let count = width as usize * height as usize;
-    Frame {
+    RenderedImage {
         width,
         height,
         color: vec![Vec3::ZERO; count],
         depth: vec![f32::INFINITY; count],
         normal: vec![Vec3::ZERO; count],
-        instance_id: vec![Frame::MISS; count],
-        primitive_id: vec![Frame::MISS; count],
+        instance_id: vec![RenderedImage::MISS; count],
+        primitive_id: vec![RenderedImage::MISS; count],
     }
 }

@@ -64,8 +64,8 @@ pub enum FidelityError {
     EmptyMesh,
     #[error("the point set has no patches: nothing to compare")]
     EmptyPatchSet,
-    #[error("frames differ in size: mesh {mesh_width}x{mesh_height}, points {points_width}x{points_height}")]
-    FrameSizeMismatch { mesh_width: u32, mesh_height: u32, points_width: u32, points_height: u32 },
+    #[error("images differ in size: mesh {mesh_width}x{mesh_height}, points {points_width}x{points_height}")]
+    ImageSizeMismatch { mesh_width: u32, mesh_height: u32, points_width: u32, points_height: u32 },
     #[error("the renderer reported triangle {triangle} of a mesh of {triangles}")]
     TriangleOutOfRange { triangle: u32, triangles: usize },
     #[error("rendering the {what} for view {view} failed: {source}")]

@@ -1,5 +1,5 @@
 //! Holes and seams as numbers: a point set's patches and the triangle mesh it came from are
-//! rendered from the same cameras, and the two frames are compared pixel by pixel (hole rate,
+//! rendered from the same cameras, and the two images are compared pixel by pixel (hole rate,
 //! false-surface rate, depth and normal error, PSNR of the shaded images). For scans with no
 //! mesh, each return's ray from its sensor is checked against the patches instead.
 
@@ -7,7 +7,7 @@ pub mod beam_spacing;
 pub mod comparison_scenes;
 pub mod consistency_report;
 pub mod error;
-pub mod frame_renderer;
+pub mod image_renderer;
 pub mod local_spacing;
 pub mod measure;
 pub mod metrics;
@@ -33,7 +33,7 @@ pub use beam_spacing::{SupportReport, support_against_beam_spacing};
 pub use comparison_scenes::ComparisonScenes;
 pub use consistency_report::{ConsistencyCounts, ConsistencyReport};
 pub use error::FidelityError;
-pub use frame_renderer::{CpuFrameRenderer, FrameRenderer, RenderError};
+pub use image_renderer::{CpuImageRenderer, ImageRenderer, RenderError};
 pub use measure::{FidelityOptions, measure_fidelity};
 pub use metrics::FidelityMetrics;
 pub use pixel_comparison::{PixelComparison, SeenCounts};

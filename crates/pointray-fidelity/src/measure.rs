@@ -13,7 +13,7 @@ use crate::vertex_normals::VertexNormals;
 use crate::view_images::write_view_images;
 use crate::view_placement::{View, ViewSetting, place_views, validate_setting};
 use crate::{
-    ComparisonScenes, FidelityError, FidelityReport, FidelitySetup, FrameRenderer, PixelComparison,
+    ComparisonScenes, FidelityError, FidelityReport, FidelitySetup, ImageRenderer, PixelComparison,
     SensorPose, SensorVisibility, ViewReport, ViewSpec,
 };
 
@@ -82,7 +82,7 @@ pub fn measure_fidelity(
     patches: Arc<PatchSet>,
     mesh: Arc<TriangleMesh>,
     options: &FidelityOptions,
-    renderer: &dyn FrameRenderer,
+    renderer: &dyn ImageRenderer,
 ) -> Result<FidelityReport, FidelityError> {
     validate_setting(options.up, options.fov_degrees, options.size)?;
     let started = Instant::now();
@@ -135,21 +135,21 @@ fn compare_view(
     view: &View,
     index: usize,
     options: &FidelityOptions,
-    renderer: &dyn FrameRenderer,
+    renderer: &dyn ImageRenderer,
 ) -> Result<PixelComparison, FidelityError> {
     let pair = scenes.for_camera(view.camera);
     let settings = options.render_settings(view);
     let render_error = |what| move |source| FidelityError::Render { what, view: index, source };
-    let mut mesh_frame = renderer.render(&pair.mesh, &settings).map_err(render_error("mesh"))?;
-    truth.normals.smooth_frame(&mut mesh_frame, truth.mesh, &view.camera)?;
-    let points_frame = renderer.render(&pair.points, &settings).map_err(render_error("points"))?;
-    let mut comparison = PixelComparison::of_frames(&mesh_frame, &points_frame, scenes.diagonal())?;
-    let seen = truth.visibility.map(|visibility| visibility.seen_pixels(&mesh_frame, &view.camera));
+    let mut mesh_image = renderer.render(&pair.mesh, &settings).map_err(render_error("mesh"))?;
+    truth.normals.smooth_image(&mut mesh_image, truth.mesh, &view.camera)?;
+    let points_image = renderer.render(&pair.points, &settings).map_err(render_error("points"))?;
+    let mut comparison = PixelComparison::of_images(&mesh_image, &points_image, scenes.diagonal())?;
+    let seen = truth.visibility.map(|visibility| visibility.seen_pixels(&mesh_image, &view.camera));
     if let Some(seen) = &seen {
-        comparison.count_seen(&points_frame, seen);
+        comparison.count_seen(&points_image, seen);
     }
     if let Some(folder) = &options.image_folder {
-        write_view_images(folder, index, &mesh_frame, &points_frame, seen.as_deref())?;
+        write_view_images(folder, index, &mesh_image, &points_image, seen.as_deref())?;
     }
     Ok(comparison)
 }

@@ -1,8 +1,8 @@
-//! The pixel-by-pixel comparison of a points frame against the mesh frame of the same view,
+//! The pixel-by-pixel comparison of a points image against the mesh image of the same view,
 //! kept as counts and error samples so that views can be pooled before the statistics.
 
 use glam::Vec3;
-use pointray_scene::Frame;
+use pointray_scene::RenderedImage;
 
 use crate::FidelityError;
 
@@ -38,10 +38,14 @@ pub struct SeenCounts {
 }
 
 impl PixelComparison {
-    /// Compares two frames of the same camera; depth errors are divided by `diagonal`.
-    pub fn of_frames(mesh: &Frame, points: &Frame, diagonal: f32) -> Result<Self, FidelityError> {
+    /// Compares two images of the same camera; depth errors are divided by `diagonal`.
+    pub fn of_images(
+        mesh: &RenderedImage,
+        points: &RenderedImage,
+        diagonal: f32,
+    ) -> Result<Self, FidelityError> {
         if (mesh.width, mesh.height) != (points.width, points.height) {
-            return Err(FidelityError::FrameSizeMismatch {
+            return Err(FidelityError::ImageSizeMismatch {
                 mesh_width: mesh.width,
                 mesh_height: mesh.height,
                 points_width: points.width,
@@ -56,11 +60,11 @@ impl PixelComparison {
     }
 
     /// Counts the holes among the mesh pixels marked `seen` (one flag a pixel).
-    pub fn count_seen(&mut self, points: &Frame, seen: &[bool]) {
+    pub fn count_seen(&mut self, points: &RenderedImage, seen: &[bool]) {
         let mut counts = SeenCounts::default();
         for (pixel, _) in seen.iter().enumerate().filter(|(_, seen)| **seen) {
             counts.mesh_pixels += 1;
-            counts.hole_pixels += u64::from(points.instance_id[pixel] == Frame::MISS);
+            counts.hole_pixels += u64::from(points.instance_id[pixel] == RenderedImage::MISS);
         }
         self.seen = Some(counts);
     }
@@ -84,9 +88,9 @@ impl PixelComparison {
         };
     }
 
-    fn add_pixel(&mut self, mesh: &Frame, points: &Frame, pixel: usize, diagonal: f32) {
-        let mesh_hit = mesh.instance_id[pixel] != Frame::MISS;
-        let points_hit = points.instance_id[pixel] != Frame::MISS;
+    fn add_pixel(&mut self, mesh: &RenderedImage, points: &RenderedImage, pixel: usize, diagonal: f32) {
+        let mesh_hit = mesh.instance_id[pixel] != RenderedImage::MISS;
+        let points_hit = points.instance_id[pixel] != RenderedImage::MISS;
         self.mesh_pixels += u64::from(mesh_hit);
         let hole = mesh_hit && !points_hit;
         self.hole_pixels += u64::from(hole);
@@ -103,9 +107,9 @@ impl PixelComparison {
     }
 }
 
-/// Whether the mesh covers all eight neighbours of `pixel` (pixels past the frame's edge count
+/// Whether the mesh covers all eight neighbours of `pixel` (pixels past the image's edge count
 /// as uncovered).
-fn mesh_covers_around(mesh: &Frame, pixel: usize) -> bool {
+fn mesh_covers_around(mesh: &RenderedImage, pixel: usize) -> bool {
     let (width, height) = (mesh.width as i64, mesh.height as i64);
     let (x, y) = ((pixel as i64) % width, (pixel as i64) / width);
     (-1..=1).all(|dy| {
@@ -113,7 +117,7 @@ fn mesh_covers_around(mesh: &Frame, pixel: usize) -> bool {
             let (nx, ny) = (x + dx, y + dy);
             (0..width).contains(&nx)
                 && (0..height).contains(&ny)
-                && mesh.instance_id[(ny * width + nx) as usize] != Frame::MISS
+                && mesh.instance_id[(ny * width + nx) as usize] != RenderedImage::MISS
         })
     })
 }

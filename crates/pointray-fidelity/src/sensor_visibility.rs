@@ -6,7 +6,7 @@
 use glam::Vec3;
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::Ray;
-use pointray_scene::{Camera, Frame, PatchAcceptance, Scene};
+use pointray_scene::{Camera, PatchAcceptance, RenderedImage, Scene};
 use rayon::prelude::*;
 
 use crate::SensorPose;
@@ -33,17 +33,17 @@ impl SensorVisibility {
         Self { mesh: CpuRenderer::new(mesh_scene), sensor, up }
     }
 
-    /// For each pixel of `frame` (the mesh rendered by `camera`), whether the sensor could
+    /// For each pixel of `image` (the mesh rendered by `camera`), whether the sensor could
     /// have seen the mesh point there; pixels off the mesh are `false`.
-    pub fn seen_pixels(&self, frame: &Frame, camera: &Camera) -> Vec<bool> {
-        let rays = PixelRays::new(camera, frame);
-        (0..frame.pixel_count())
+    pub fn seen_pixels(&self, image: &RenderedImage, camera: &Camera) -> Vec<bool> {
+        let rays = PixelRays::new(camera, image);
+        (0..image.pixel_count())
             .into_par_iter()
             .map(|pixel| {
-                if frame.instance_id[pixel] == Frame::MISS {
+                if image.instance_id[pixel] == RenderedImage::MISS {
                     return false;
                 }
-                self.sees(rays.ray(pixel).at(frame.depth[pixel]))
+                self.sees(rays.ray(pixel).at(image.depth[pixel]))
             })
             .collect()
     }

@@ -5,7 +5,7 @@
 use glam::Vec3;
 use pointray_io::TriangleMesh;
 use pointray_kernels::face_forward;
-use pointray_scene::{Camera, Frame};
+use pointray_scene::{Camera, RenderedImage};
 
 use crate::FidelityError;
 use crate::pixel_rays::PixelRays;
@@ -47,27 +47,27 @@ impl VertexNormals {
         blended.try_normalize().unwrap_or(face)
     }
 
-    /// Replaces the normals of a frame of `mesh` alone, seen by `camera`, with the smooth
+    /// Replaces the normals of a image of `mesh` alone, seen by `camera`, with the smooth
     /// normals at each pixel's hit, facing the camera. The hit is rebuilt from the pixel's
-    /// primary ray (sample 0, as the AOVs are) and its depth, so any backend's frame will do.
-    pub fn smooth_frame(
+    /// primary ray (sample 0, as the AOVs are) and its depth, so any backend's image will do.
+    pub fn smooth_image(
         &self,
-        frame: &mut Frame,
+        image: &mut RenderedImage,
         mesh: &TriangleMesh,
         camera: &Camera,
     ) -> Result<(), FidelityError> {
-        let rays = PixelRays::new(camera, frame);
-        for pixel in 0..frame.pixel_count() {
-            if frame.instance_id[pixel] == Frame::MISS {
+        let rays = PixelRays::new(camera, image);
+        for pixel in 0..image.pixel_count() {
+            if image.instance_id[pixel] == RenderedImage::MISS {
                 continue;
             }
-            let triangle = frame.primitive_id[pixel];
+            let triangle = image.primitive_id[pixel];
             if triangle as usize >= mesh.triangles.len() {
                 return Err(FidelityError::TriangleOutOfRange { triangle, triangles: mesh.triangles.len() });
             }
             let ray = rays.ray(pixel);
-            let normal = self.at(mesh, triangle as usize, ray.at(frame.depth[pixel]));
-            frame.normal[pixel] = face_forward(normal, ray.direction);
+            let normal = self.at(mesh, triangle as usize, ray.at(image.depth[pixel]));
+            image.normal[pixel] = face_forward(normal, ray.direction);
         }
         Ok(())
     }

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use pointray_io::image_output::write_png_srgb;
-use pointray_scene::Frame;
+use pointray_scene::RenderedImage;
 
 use crate::FidelityError;
 
@@ -34,14 +34,14 @@ pub fn is_view_image(path: &Path) -> bool {
 pub fn write_view_images(
     folder: &Path,
     index: usize,
-    mesh: &Frame,
-    points: &Frame,
+    mesh: &RenderedImage,
+    points: &RenderedImage,
     seen: Option<&[bool]>,
 ) -> Result<Vec<PathBuf>, FidelityError> {
     let difference: Vec<Vec3> = (0..mesh.pixel_count())
         .map(|pixel| {
-            let mesh_hit = mesh.instance_id[pixel] != Frame::MISS;
-            let points_hit = points.instance_id[pixel] != Frame::MISS;
+            let mesh_hit = mesh.instance_id[pixel] != RenderedImage::MISS;
+            let points_hit = points.instance_id[pixel] != RenderedImage::MISS;
             match (mesh_hit, points_hit) {
                 (true, false) if seen.is_none_or(|seen| seen[pixel]) => HOLE,
                 (true, false) => UNSEEN_HOLE,

@@ -4,7 +4,7 @@
 #define POINTRAY_PATCH_FRAME_GLSL
 
 #include "layout.glsl"
-#include "packed_frame.glsl"
+#include "tangent_frame.glsl"
 
 const float PI = 3.14159265358979;
 

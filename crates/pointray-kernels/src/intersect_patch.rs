@@ -212,7 +212,7 @@ mod tests {
 
     #[test]
     fn the_support_test_follows_the_ellipse() {
-        let frame = crate::layout::PackedFrame::new(Vec3::Z, Vec3::X);
+        let frame = crate::layout::PackedTangentFrame::new(Vec3::Z, Vec3::X);
         let ellipse = PatchHot::new(Vec3::ZERO, frame, glam::Vec2::new(1.0, 0.25), [0.0; 6]).decode();
         let down = |x: f32, y: f32| Ray::new(Vec3::new(x, y, 2.0), Vec3::NEG_Z);
         assert!(hit(down(0.9, 0.0), &ellipse, PatchAcceptance::Disk).is_some());

@@ -7,8 +7,8 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 
-use crate::packed_frame::{TangentFrame, pack_normal, tangent_angle_fraction, unpack_normal};
 use crate::packing::{pack_half2x16, pack_unorm2x16, unpack_half2x16, unpack_unorm2x16};
+use crate::tangent_frame::{TangentFrame, pack_normal, tangent_angle_fraction, unpack_normal};
 
 /// What the intersection test reads for patch `i`, 36 bytes: its origin, its elliptical
 /// support, its tangent frame and its six quadratic coefficients, packed. `decode` gives the
@@ -23,7 +23,7 @@ pub struct PatchHot {
     pub origin: [f32; 3],
     /// `d_u`, the support radius along the first tangent `t1`, the larger of the two.
     pub radius: f32,
-    /// The normal `n_i`, octahedral in two snorm16 (`packed_frame::pack_normal`).
+    /// The normal `n_i`, octahedral in two snorm16 (`tangent_frame::pack_normal`).
     pub normal: u32,
     /// The angle of `t1` from the normal's basis as a fraction of π (unorm16, low half) and
     /// `d_v / d_u` (unorm16, high half).
@@ -35,12 +35,12 @@ pub struct PatchHot {
 
 /// A patch's frame as stored: what `prep` fits in, so that the fit and the stored frame agree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PackedFrame {
+pub struct PackedTangentFrame {
     normal: u32,
     angle: u16,
 }
 
-impl PackedFrame {
+impl PackedTangentFrame {
     /// The stored frame nearest to unit normal `n` with first tangent `t` (in `n`'s plane).
     pub fn new(n: Vec3, t: Vec3) -> Self {
         let normal = pack_normal(n);
@@ -59,7 +59,7 @@ impl PatchHot {
     /// Packs a patch whose frame is `frame`, whose support radii along `t1` and `t2` are
     /// `radii` (`radii.x >= radii.y`) and whose height field over that frame is
     /// `f(u,v) = c0 + c1 u + c2 v + c3 u² + c4 uv + c5 v²`.
-    pub fn new(origin: Vec3, frame: PackedFrame, radii: Vec2, coefficients: [f32; 6]) -> Self {
+    pub fn new(origin: Vec3, frame: PackedTangentFrame, radii: Vec2, coefficients: [f32; 6]) -> Self {
         let radius = radii.x;
         let aspect = if radius > 0.0 { (radii.y / radius).clamp(0.0, 1.0) } else { 1.0 };
         let angle_aspect = u32::from(frame.angle) | (pack_unorm2x16(Vec2::new(0.0, aspect)) & 0xffff_0000);
@@ -81,7 +81,7 @@ impl PatchHot {
     /// A patch with a round support of `radius`, in the stored frame nearest to `(tangent,
     /// normal)`.
     pub fn isotropic(origin: Vec3, tangent: Vec3, normal: Vec3, coefficients: [f32; 6], radius: f32) -> Self {
-        Self::new(origin, PackedFrame::new(normal, tangent), Vec2::splat(radius), coefficients)
+        Self::new(origin, PackedTangentFrame::new(normal, tangent), Vec2::splat(radius), coefficients)
     }
 
     pub fn origin(&self) -> Vec3 {
@@ -99,8 +99,8 @@ impl PatchHot {
     }
 
     /// The stored frame: the normal word and the low half of `angle_aspect`.
-    pub fn frame(&self) -> PackedFrame {
-        PackedFrame { normal: self.normal, angle: self.angle_aspect as u16 }
+    pub fn frame(&self) -> PackedTangentFrame {
+        PackedTangentFrame { normal: self.normal, angle: self.angle_aspect as u16 }
     }
 
     /// The patch as the maths works on it.
@@ -251,7 +251,7 @@ mod tests {
     #[test]
     fn a_packed_patch_decodes_to_its_support_and_coefficients() {
         let n = Vec3::new(-0.2, 0.9, 0.1).normalize();
-        let frame = PackedFrame::new(n, n.any_orthonormal_vector());
+        let frame = PackedTangentFrame::new(n, n.any_orthonormal_vector());
         let coefficients = [0.001, 0.2, -0.1, 30.0, -12.0, 5.0];
         let patch =
             PatchHot::new(Vec3::new(4.0, 5.0, 6.0), frame, Vec2::new(0.02, 0.005), coefficients).decode();

@@ -37,13 +37,13 @@ pub struct SensorPose {
 
 /// The sensor's axes in the world: forward (azimuth 0), left (azimuth 90°) and up.
 #[derive(Clone, Copy, Debug)]
-pub struct SensorFrame {
+pub struct SensorAxes {
     forward: DVec3,
     left: DVec3,
     up: DVec3,
 }
 
-impl SensorFrame {
+impl SensorAxes {
     pub fn new(up_axis: UpAxis, yaw_deg: f64) -> Self {
         let up = up_axis.vector();
         let (sin, cos) = yaw_deg.to_radians().sin_cos();
@@ -67,14 +67,14 @@ mod tests {
     #[test]
     fn frames_are_right_handed_and_turn_counterclockwise_from_above() {
         for up in [UpAxis::Y, UpAxis::Z] {
-            let frame = SensorFrame::new(up, 90.0);
+            let frame = SensorAxes::new(up, 90.0);
             assert!(frame.forward.cross(frame.left).distance(up.vector()) < 1e-12);
-            let at_zero = SensorFrame::new(up, 0.0);
+            let at_zero = SensorAxes::new(up, 0.0);
             assert!(at_zero.direction(0.0, 0.0).distance(DVec3::X) < 1e-12);
             // A quarter turn of yaw points forward where the unturned sensor's left was.
             assert!(frame.direction(0.0, 0.0).distance(at_zero.left) < 1e-12);
             assert!(frame.direction(std::f64::consts::FRAC_PI_2, 0.0).distance(up.vector()) < 1e-12);
         }
-        assert!(SensorFrame::new(UpAxis::Z, 0.0).left.distance(DVec3::Y) < 1e-12);
+        assert!(SensorAxes::new(UpAxis::Z, 0.0).left.distance(DVec3::Y) < 1e-12);
     }
 }

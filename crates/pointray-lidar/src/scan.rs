@@ -12,7 +12,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use crate::pose::SensorFrame;
+use crate::pose::SensorAxes;
 use crate::{LidarError, LidarScene, Return, ScanStats, Sensor, SensorPose};
 
 /// Told how many of the scan's columns (one azimuth of one station) are done.
@@ -37,7 +37,7 @@ pub struct Scan {
 struct Column<'a> {
     sensor: &'a Sensor,
     elevations: &'a [f64],
-    frame: SensorFrame,
+    frame: SensorAxes,
     origin: DVec3,
     azimuth: f64,
     time: f64,
@@ -64,7 +64,7 @@ pub fn scan(
             let column_rays = Column {
                 sensor,
                 elevations: &elevations,
-                frame: SensorFrame::new(scene.up(), pose.yaw_deg),
+                frame: SensorAxes::new(scene.up(), pose.yaw_deg),
                 origin: pose.position,
                 azimuth,
                 time: (station as f64 + azimuth / TAU) * sensor.sweep_seconds,

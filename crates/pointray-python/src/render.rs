@@ -9,7 +9,7 @@ use pointray_io::MemoryBudget;
 use pointray_render::{Backend, BackendChoice, DeviceSelector, device_options_from_environment, error_line};
 use pointray_scene::load::{LoadOptions, load_scene_file};
 use pointray_scene::scene_file::CameraSpec;
-use pointray_scene::{Frame, PointsScene, RenderSetting, RenderSettings, SceneFile, UpAxis};
+use pointray_scene::{PointsScene, RenderSetting, RenderSettings, RenderedImage, SceneFile, UpAxis};
 use pointray_surface::PatchSet;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -45,18 +45,18 @@ pub fn render<'py>(
         .unwrap_or("auto")
         .parse()
         .map_err(|e| PyValueError::new_err(format!("device: {e}")))?;
-    let frame = py
-        .detach(|| -> Result<Frame, String> {
+    let image = py
+        .detach(|| -> Result<RenderedImage, String> {
             let load_options = LoadOptions { in_memory: &in_memory, ..LoadOptions::default() };
             let loaded = load_scene_file(&file, &load_options).map_err(|e| error_line(&e))?;
             let backend = Backend::open(backend, &device, device_options_from_environment())
                 .map_err(|e| format!("opening the Vulkan backend: {e}"))?;
-            let mut frame = backend.render(&loaded.scene, &settings).map_err(|e| error_line(&e))?;
-            frame.scale_depth(loaded.frame.scale as f32);
-            Ok(frame)
+            let mut image = backend.render(&loaded.scene, &settings).map_err(|e| error_line(&e))?;
+            image.scale_depth(loaded.space.scale as f32);
+            Ok(image)
         })
         .map_err(PointrayError::new_err)?;
-    frame_to_dict(py, frame)
+    image_to_dict(py, image)
 }
 
 /// Point sets given in memory, by object index (`LoadOptions::in_memory`).
@@ -144,10 +144,10 @@ fn flag_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<bool>> {
 
 /// The image as (H, W, 4) float32, linear RGB with alpha 1 where a primary ray hit the scene,
 /// and the AOVs as (H, W, ...) arrays.
-fn frame_to_dict(py: Python<'_>, frame: Frame) -> PyResult<Bound<'_, PyDict>> {
-    let (width, height) = (frame.width as usize, frame.height as usize);
-    let hit = frame.hit_mask();
-    let rgba: Vec<f32> = frame
+fn image_to_dict(py: Python<'_>, image: RenderedImage) -> PyResult<Bound<'_, PyDict>> {
+    let (width, height) = (image.width as usize, image.height as usize);
+    let hit = image.hit_mask();
+    let rgba: Vec<f32> = image
         .color
         .iter()
         .zip(&hit)
@@ -155,13 +155,15 @@ fn frame_to_dict(py: Python<'_>, frame: Frame) -> PyResult<Bound<'_, PyDict>> {
         .collect();
     let result = PyDict::new(py);
     result.set_item("image", rgba.into_pyarray(py).reshape([height, width, 4])?)?;
-    result.set_item("depth", frame.depth.into_pyarray(py).reshape([height, width])?)?;
-    let normals: Vec<f32> = frame.normal.iter().flat_map(|n| n.to_array()).collect();
+    result.set_item("depth", image.depth.into_pyarray(py).reshape([height, width])?)?;
+    let normals: Vec<f32> = image.normal.iter().flat_map(|n| n.to_array()).collect();
     result.set_item("normal", normals.into_pyarray(py).reshape([height, width, 3])?)?;
     let ids = |ids: Vec<u32>| {
-        ids.into_iter().map(|id| if id == Frame::MISS { -1 } else { i64::from(id) }).collect::<Vec<i64>>()
+        ids.into_iter()
+            .map(|id| if id == RenderedImage::MISS { -1 } else { i64::from(id) })
+            .collect::<Vec<i64>>()
     };
-    result.set_item("instance", ids(frame.instance_id).into_pyarray(py).reshape([height, width])?)?;
-    result.set_item("primitive", ids(frame.primitive_id).into_pyarray(py).reshape([height, width])?)?;
+    result.set_item("instance", ids(image.instance_id).into_pyarray(py).reshape([height, width])?)?;
+    result.set_item("primitive", ids(image.primitive_id).into_pyarray(py).reshape([height, width])?)?;
     Ok(result)
 }

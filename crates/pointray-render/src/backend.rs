@@ -1,6 +1,6 @@
 //! The renderer a scene is drawn by.
 
-use pointray_scene::{Frame, RenderSettings, Scene};
+use pointray_scene::{RenderSettings, RenderedImage, Scene};
 use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector, VulkanError, VulkanRenderer};
 
 pub enum Backend {
@@ -26,7 +26,7 @@ impl Backend {
         }
     }
 
-    pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<Frame, VulkanError> {
+    pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<RenderedImage, VulkanError> {
         match self {
             Backend::Vulkan(renderer) => renderer.render(scene, settings),
             Backend::Cpu => Ok(pointray_cpu::render(scene, settings)),

@@ -16,7 +16,7 @@ pub(crate) fn finite_dvec3(key: &str, value: [f64; 3]) -> Result<DVec3, InvalidV
     if v.is_finite() { Ok(v) } else { Err(InvalidValue::new(key, format!("must be finite, got {value:?}"))) }
 }
 
-/// A position in the render frame, as f32: refused when it lies so far out (a camera 1e120
+/// A position in the render space, as f32: refused when it lies so far out (a camera 1e120
 /// units away, say) that f32 cannot hold it.
 pub(crate) fn placeable(key: &str, position: DVec3) -> Result<Vec3, InvalidValue> {
     let limit = f64::from(pointray_surface::geometry_range::MAX_COORDINATE);

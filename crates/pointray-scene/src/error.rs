@@ -1,4 +1,4 @@
-//! Errors from reading scene files, loading what they name and writing frames. Every message
+//! Errors from reading scene files, loading what they name and writing images. Every message
 //! names the file it is about.
 
 use std::path::PathBuf;
@@ -21,10 +21,10 @@ pub enum SceneError {
     PatchStore { scene: PathBuf, key: String, source: pointray_surface::patch_store::StoreError },
     #[error("{path}: cannot create the patch cache folder: {source}")]
     CacheDir { path: PathBuf, source: std::io::Error },
-    #[error("{path}: cannot write the frame: {source}")]
-    FrameOutput { path: PathBuf, source: pointray_io::IoError },
+    #[error("{path}: cannot write the image: {source}")]
+    ImageOutput { path: PathBuf, source: pointray_io::IoError },
     #[error("{path}: {problem}")]
-    FrameFormat { path: PathBuf, problem: String },
+    ImageFormat { path: PathBuf, problem: String },
 }
 
 /// A value that parsed but makes no sense, found before the scene file's path is known to the

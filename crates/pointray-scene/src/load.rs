@@ -17,7 +17,7 @@ use crate::material_spec::ColorSource;
 use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::point_sets::{self, PointSetOrigin};
 use crate::procedural;
-use crate::render_frame::{RenderFrame, WorldBounds, placed_bounds, recentred_mesh};
+use crate::render_space::{RenderSpace, WorldBounds, placed_bounds, recentred_mesh};
 use crate::scene_file::SceneFile;
 use crate::{Camera, Geometry, RenderSettings, Scene, SceneObject};
 
@@ -53,9 +53,9 @@ pub struct LoadedScene {
     /// How each point-set object got its patches, by object index.
     pub point_sets: Vec<(usize, PointSetOrigin)>,
     /// Where the scene lies in the file's coordinates: it was recentred and scaled in f64
-    /// (`RenderFrame::around`), so `file = origin + scale * scene`. Depths in a rendered frame
+    /// (`RenderSpace::around`), so `file = origin + scale * scene`. Depths in a rendered space
     /// are in scene units: `scale` times them is file units.
-    pub frame: RenderFrame,
+    pub space: RenderSpace,
 }
 
 pub fn load_scene(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
@@ -73,7 +73,7 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
     let mut slots: Vec<Option<(SceneObject, DAffine3)>> = vec![None; file.objects.len()];
     let mut point_sets = Vec::new();
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| !is_ground(spec)) {
-        let (object, placement, origin) = load_object(file, index, spec, options, (None, RenderFrame::FILE))?;
+        let (object, placement, origin) = load_object(file, index, spec, options, (None, RenderSpace::FILE))?;
         point_sets.extend(origin.map(|origin| (index, origin)));
         slots[index] = Some((object, placement));
     }
@@ -84,15 +84,15 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
     {
         return Err(SceneError::Invalid { path: file.path.clone(), key: "objects".into(), problem });
     }
-    let frame = RenderFrame::around(bounds);
+    let space = RenderSpace::around(bounds);
     for (object, placement) in slots.iter_mut().flatten() {
-        object.transform = frame.transform(placement);
+        object.transform = space.transform(placement);
     }
     let others =
         slots.iter().flatten().filter_map(|(object, _)| object.world_bounds()).reduce(|a, b| a.union(&b));
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| is_ground(spec)) {
-        let (mut ground, placement, _) = load_object(file, index, spec, options, (others.as_ref(), frame))?;
-        ground.transform = frame.transform(&placement);
+        let (mut ground, placement, _) = load_object(file, index, spec, options, (others.as_ref(), space))?;
+        ground.transform = space.transform(&placement);
         slots[index] = Some((ground, placement));
     }
     let objects: Vec<SceneObject> = slots.into_iter().flatten().map(|(object, _)| object).collect();
@@ -101,14 +101,14 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
         .lights
         .iter()
         .enumerate()
-        .map(|(i, light)| light.to_light(&frame).map_err(|e| e.within(&format!("lights[{i}]"))))
+        .map(|(i, light)| light.to_light(&space).map_err(|e| e.within(&format!("lights[{i}]"))))
         .collect::<Result<_, _>>()
         .map_err(in_file)?;
     let camera = match &file.camera {
-        Some(camera) => camera.to_camera(&frame).map_err(|e| in_file(e.within("camera")))?,
+        Some(camera) => camera.to_camera(&space).map_err(|e| in_file(e.within("camera")))?,
         None => default_camera(others.as_ref(), &settings),
     };
-    Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets, frame })
+    Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets, space })
 }
 
 fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
@@ -119,13 +119,13 @@ fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
 
 /// Loads one object, with its local-to-file placement in f64, and says where a point set's
 /// patches came from. A ground is fitted to `others`, the bounds of every other object in the
-/// render frame, the second member.
+/// render space, the second member.
 fn load_object(
     file: &SceneFile,
     index: usize,
     spec: &ObjectSpec,
     options: &LoadOptions,
-    (others, frame): (Option<&Aabb>, RenderFrame),
+    (others, space): (Option<&Aabb>, RenderSpace),
 ) -> Result<(SceneObject, DAffine3, Option<PointSetOrigin>), SceneError> {
     let key = object_key(index, spec);
     let transform =
@@ -177,15 +177,15 @@ fn load_object(
             procedural_object(&cloud, "torus", options).map_err(|e| e.in_scene(&file.path, &key))?
         }
         &ShapeSpec::Ground { auto, height, size } => {
-            let in_frame = |value: f64, name: &str| {
+            let in_space = |value: f64, name: &str| {
                 checks::placeable(name, DVec3::splat(value))
                     .map(|v| v.x)
                     .map_err(|e| e.within(&key).in_file(&file.path))
             };
             let height = height
-                .map(|h| in_frame((f64::from(h) - frame.origin.y) / frame.scale, "height"))
+                .map(|h| in_space((f64::from(h) - space.origin.y) / space.scale, "height"))
                 .transpose()?;
-            let size = size.map(|s| in_frame(f64::from(s) / frame.scale, "size")).transpose()?;
+            let size = size.map(|s| in_space(f64::from(s) / space.scale, "size")).transpose()?;
             let mesh = GroundPlacement::new(others, auto, height, size).mesh();
             (Geometry::Mesh(Arc::new(mesh)), None, "ground".to_string())
         }
@@ -212,9 +212,9 @@ fn load_object(
             let offset = DAffine3::from_translation(patches.offset);
             (Geometry::Patches(patches), offset)
         }
-        // A ground is built in the render frame.
+        // A ground is built in the render space.
         Geometry::Mesh(mesh) if matches!(spec.shape, ShapeSpec::Ground { .. }) => {
-            (Geometry::Mesh(mesh), frame.to_file())
+            (Geometry::Mesh(mesh), space.to_file())
         }
         Geometry::Mesh(mesh) => {
             let (mesh, offset) = recentred_mesh(Arc::unwrap_or_clone(mesh));
@@ -223,7 +223,7 @@ fn load_object(
     };
     let placement = transform * local_to_model;
     let name = spec.name.clone().unwrap_or(default_name);
-    let object = SceneObject { name, transform: RenderFrame::FILE.transform(&placement), material, geometry };
+    let object = SceneObject { name, transform: RenderSpace::FILE.transform(&placement), material, geometry };
     Ok((object, placement, point_set_origin))
 }
 

@@ -56,7 +56,7 @@ pub const MAX_SAMPLES_PER_PIXEL: u32 = 1 << 16;
 /// Beyond this many segments the reflection weights (< 1 each) leave nothing to see.
 pub const MAX_RAY_DEPTH: u32 = 64;
 
-/// What one pixel of a render holds on the host at its peak: the frame with its AOVs (36
+/// What one pixel of a render holds on the host at its peak: the image with its AOVs (36
 /// bytes), the renderer's own copy of them (the CPU's tiles, the GPU's readback) and the
 /// encoder's buffers, with room to spare.
 pub const FRAME_BYTES_PER_PIXEL: u64 = 112;
@@ -94,7 +94,7 @@ impl RenderSetting {
 }
 
 impl RenderSettings {
-    /// Whether a frame of this size fits in `budget`; the error says which size would.
+    /// Whether an image of this size fits in `budget`; the error says which size would.
     pub fn check_memory(&self, budget: &pointray_io::MemoryBudget) -> Result<(), String> {
         let pixels = u64::from(self.width) * u64::from(self.height);
         budget.check(pixels, FRAME_BYTES_PER_PIXEL, "pixels").map_err(|shortfall| {

@@ -36,8 +36,8 @@ use crate::checks;
 use crate::error::{InvalidValue, SceneError};
 use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::points_scene::PointsScene;
-use crate::render_frame::RenderFrame;
 use crate::render_settings::RenderSetting;
+use crate::render_space::RenderSpace;
 use crate::{Background, Camera, Light, RenderSettings};
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -231,10 +231,10 @@ impl SceneFile {
     /// Every check that needs no file, so that a typo fails before any slow loading.
     fn check(&self) -> Result<(), InvalidValue> {
         if let Some(camera) = &self.camera {
-            camera.to_camera(&RenderFrame::FILE).map_err(|e| e.within("camera"))?;
+            camera.to_camera(&RenderSpace::FILE).map_err(|e| e.within("camera"))?;
         }
         for (i, light) in self.lights.iter().enumerate() {
-            light.to_light(&RenderFrame::FILE).map_err(|e| e.within(&format!("lights[{i}]")))?;
+            light.to_light(&RenderSpace::FILE).map_err(|e| e.within(&format!("lights[{i}]")))?;
         }
         self.background()?;
         self.render.settings()?;
@@ -261,10 +261,10 @@ impl CameraSpec {
         }
     }
 
-    /// The camera in the scene's render frame (`RenderFrame`).
-    pub(crate) fn to_camera(&self, frame: &RenderFrame) -> Result<Camera, InvalidValue> {
-        let position = frame.point(checks::finite_dvec3("position", self.position)?);
-        let look_at = frame.point(checks::finite_dvec3("look_at", self.look_at)?);
+    /// The camera in the scene's render space (`RenderSpace`).
+    pub(crate) fn to_camera(&self, space: &RenderSpace) -> Result<Camera, InvalidValue> {
+        let position = space.point(checks::finite_dvec3("position", self.position)?);
+        let look_at = space.point(checks::finite_dvec3("look_at", self.look_at)?);
         let up = checks::nonzero_vec3("up", self.up)?;
         let forward = look_at - position;
         if forward.length_squared() == 0.0 {
@@ -289,13 +289,13 @@ impl CameraSpec {
 }
 
 impl LightSpec {
-    /// The light in the scene's render frame (`RenderFrame`).
-    pub(crate) fn to_light(&self, frame: &RenderFrame) -> Result<Light, InvalidValue> {
+    /// The light in the scene's render space (`RenderSpace`).
+    pub(crate) fn to_light(&self, space: &RenderSpace) -> Result<Light, InvalidValue> {
         Ok(match self {
             Self::Point { position, color, intensity } => Light::Point {
                 position: checks::placeable(
                     "position",
-                    frame.point(checks::finite_dvec3("position", *position)?),
+                    space.point(checks::finite_dvec3("position", *position)?),
                 )?,
                 color: checks::color("color", *color)?,
                 intensity: checks::non_negative("intensity", *intensity)?,

@@ -13,7 +13,7 @@ use pointray_kernels::Aabb;
 pub const CLOUD_EXTENTS: RangeInclusive<f64> = 1e-9..=1e12;
 
 /// The extents a scene's objects may span together, in file units: the loader places them in
-/// f64 and scales the scene to a size near 1 (`pointray_scene::RenderFrame`), so only f32's
+/// f64 and scales the scene to a size near 1 (`pointray_scene::RenderSpace`), so only f32's
 /// own range for the transforms bounds it.
 pub const SCENE_EXTENTS: RangeInclusive<f64> = 1e-30..=1e30;
 

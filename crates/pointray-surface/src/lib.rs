@@ -53,7 +53,7 @@ pub use density_radius::RadiusMode;
 pub use outlier_removal::OutlierFilter;
 pub use patch_bounds::BoxKind;
 pub use patch_set::PatchSet;
-pub use prep::{PREP_REVISION, PrepFrame, prep, prep_in_frame, prep_owned};
+pub use prep::{PREP_REVISION, TileContext, prep, prep_in_context, prep_owned};
 pub use prep_error::PrepError;
 pub use prep_progress::{NoProgress, PrepProgress, Stage};
 pub use prep_report::{FitCounts, PrepReport, RadiusFallbacks, ScanSummary};

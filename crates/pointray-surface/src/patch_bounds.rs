@@ -100,7 +100,7 @@ mod tests {
 
     fn sample_patch() -> PatchHot {
         let n = Vec3::new(0.3, -0.2, 1.0).normalize();
-        let frame = pointray_kernels::PackedFrame::new(n, n.any_orthonormal_vector());
+        let frame = pointray_kernels::PackedTangentFrame::new(n, n.any_orthonormal_vector());
         PatchHot::new(
             Vec3::new(1.0, 2.0, 3.0),
             frame,

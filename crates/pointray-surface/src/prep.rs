@@ -5,8 +5,8 @@ use std::borrow::Cow;
 use glam::{DVec3, Vec2, Vec3};
 use pointray_io::{MemoryBudget, PointCloud};
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
-use pointray_kernels::packed_frame::normal_basis;
-use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PackedFrame, PatchCold, PatchHot, TangentFrame};
+use pointray_kernels::tangent_frame::normal_basis;
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PackedTangentFrame, PatchCold, PatchHot, TangentFrame};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
@@ -66,18 +66,18 @@ pub fn prep_owned(
 /// As `prep`, for a tile of a larger cloud (`tiled_prep`): recentred on the whole cloud's
 /// offset and merging duplicates within its distance, so that the tile's patches are the
 /// ones a single pass over the whole cloud makes.
-pub fn prep_in_frame(
+pub fn prep_in_context(
     cloud: &PointCloud,
     settings: &PrepSettings,
-    frame: &PrepFrame,
+    context: &TileContext,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
-    prep_framed(Cow::Borrowed(cloud), settings, Some(frame), progress)
+    prep_with_context(Cow::Borrowed(cloud), settings, Some(context), progress)
 }
 
 /// What a tile of a cloud takes from the whole cloud.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PrepFrame {
+pub struct TileContext {
     /// The recentring offset: `input = local + offset`.
     pub offset: DVec3,
     /// Points closer than this (local units) merge as duplicates.
@@ -89,24 +89,24 @@ fn prep_cloud(
     settings: &PrepSettings,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
-    prep_framed(cloud, settings, None, progress)
+    prep_with_context(cloud, settings, None, progress)
 }
 
 /// Each array is dropped as soon as its last stage is done, so that the peak (in the
 /// support radii and the fit) holds little more than the neighbour table, the frames and
 /// the patches.
-fn prep_framed(
+fn prep_with_context(
     mut cloud: Cow<'_, PointCloud>,
     settings: &PrepSettings,
-    frame: Option<&PrepFrame>,
+    context: Option<&TileContext>,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
     let (k, normal_k) = (settings.k as usize, settings.normal_k as usize);
     let mut clock = StageClock { progress, times: Vec::new() };
     let count = cloud.len();
     clock.run(Stage::Validate, count, || validate(&cloud, settings))?;
-    let (offset, recentred) = clock.run(Stage::Recentre, count, || match frame {
-        Some(frame) => (frame.offset, recentre_on(&cloud.positions, frame.offset)),
+    let (offset, recentred) = clock.run(Stage::Recentre, count, || match context {
+        Some(context) => (context.offset, recentre_on(&cloud.positions, context.offset)),
         None => recentre(&cloud.positions),
     });
     // Only the attributes are read from here on (gathered through `source`).
@@ -118,7 +118,8 @@ fn prep_framed(
     let sorted = gather(&recentred, &order);
     drop(recentred);
     let merge = clock.run(Stage::MergeDuplicates, count, || {
-        let distance = frame.map_or_else(|| duplicate_distance(settings, &sorted), |f| f.duplicate_distance);
+        let distance =
+            context.map_or_else(|| duplicate_distance(settings, &sorted), |f| f.duplicate_distance);
         merge_duplicates(&sorted, distance)
     });
     if merge.kept.len() < k + 1 {
@@ -194,7 +195,7 @@ fn unstructured_shaped(
     clock.run(Stage::Orientation, patches, || {
         orient(points, &mut normals, neighbors, cloud, settings, offset)
     });
-    let (packed_frames, frames) = clock.run(Stage::Frames, patches, || stored_frames(&normals));
+    let (tangent_frames, frames) = clock.run(Stage::Frames, patches, || stored_frames(&normals));
     let radii = clock.run(Stage::SupportRadii, patches, || {
         support_radii(points, &normals, &frames, neighbors, k, settings.radius)
     });
@@ -205,7 +206,7 @@ fn unstructured_shaped(
     let (hot, fits) = clock.run(Stage::QuadraticFit, patches, || {
         fit_patches(
             points,
-            (&packed_frames, &frames),
+            (&tangent_frames, &frames),
             &radii.chosen,
             neighbors,
             k,
@@ -400,11 +401,11 @@ fn paper_radii(
 }
 
 /// Each patch's frame as stored, and what it decodes to: the frame the fit works in.
-fn stored_frames(normals: &[Vec3]) -> (Vec<PackedFrame>, Vec<TangentFrame>) {
+fn stored_frames(normals: &[Vec3]) -> (Vec<PackedTangentFrame>, Vec<TangentFrame>) {
     normals
         .par_iter()
         .map(|&n| {
-            let packed = PackedFrame::new(n, normal_basis(n).0);
+            let packed = PackedTangentFrame::new(n, normal_basis(n).0);
             (packed, packed.decode())
         })
         .unzip()
@@ -412,7 +413,7 @@ fn stored_frames(normals: &[Vec3]) -> (Vec<PackedFrame>, Vec<TangentFrame>) {
 
 fn fit_patches(
     points: &[Vec3],
-    (packed_frames, frames): (&[PackedFrame], &[TangentFrame]),
+    (tangent_frames, frames): (&[PackedTangentFrame], &[TangentFrame]),
     radii: &[f32],
     neighbors: &Neighbors,
     k: usize,
@@ -428,7 +429,7 @@ fn fit_patches(
             }
             let fit = fit_one(points, &frames[i], radii[i], neighbors, k, i);
             let support = Vec2::splat(radii[i] * disk_scale);
-            (PatchHot::new(points[i], packed_frames[i], support, fit.coefficients), fit.kind)
+            (PatchHot::new(points[i], tangent_frames[i], support, fit.coefficients), fit.kind)
         })
         .unzip();
     (hot, count_fits(&kinds))

@@ -3,8 +3,8 @@
 //! lines; small disks facing the sensor where the neighbours agree on no surface.
 
 use glam::{Vec2, Vec3};
-use pointray_kernels::packed_frame::normal_basis;
-use pointray_kernels::{PackedFrame, TangentFrame};
+use pointray_kernels::tangent_frame::normal_basis;
+use pointray_kernels::{PackedTangentFrame, TangentFrame};
 use rayon::prelude::*;
 
 use crate::quadratic_fit::{FitKind, PatchFit};
@@ -51,7 +51,7 @@ const BEHIND_REACH: f32 = 1.5;
 #[derive(Clone, Copy, Debug)]
 pub struct ScanPatch {
     pub normal: Vec3,
-    pub frame: PackedFrame,
+    pub frame: PackedTangentFrame,
     pub radii: Vec2,
     pub fit: PatchFit,
     /// Whether its neighbours agreed on a surface (else it is a small disk facing the sensor).
@@ -108,7 +108,7 @@ fn surface_patch(
     } else {
         (axes.t2, Vec2::new(across_spacing, along_spacing) * COVER)
     };
-    let frame = PackedFrame::new(normal, major_axis);
+    let frame = PackedTangentFrame::new(normal, major_axis);
     let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Plane };
     ScanPatch { normal, frame, radii, fit, on_surface: true }
 }
@@ -203,7 +203,7 @@ fn footprint_patch(points: &[Vec3], scan: &ScanLines, i: usize, toward_sensor: V
         (toward_sensor.cross(across_axis), Vec2::new(radii.y, radii.x))
     };
     let radii = radii.max(Vec2::splat(f32::MIN_POSITIVE));
-    let frame = PackedFrame::new(toward_sensor, major_axis);
+    let frame = PackedTangentFrame::new(toward_sensor, major_axis);
     let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Flat };
     ScanPatch { normal: toward_sensor, frame, radii, fit, on_surface: false }
 }

@@ -16,7 +16,7 @@ use crate::cloud_subset::{concatenated, subset};
 use crate::morton::MortonGrid;
 use crate::out_of_core_sort::{SortPlan, sort_points};
 use crate::patch_tiles::even_ranges;
-use crate::prep::{PrepFrame, prep_in_frame};
+use crate::prep::{TileContext, prep_in_context};
 use crate::prep_error::PrepError;
 use crate::prep_progress::{NoProgress, PrepProgress, Stage};
 use crate::prep_settings::PrepSettings;
@@ -38,7 +38,7 @@ pub enum TileCount {
 /// A cloud sorted along its curve in scratch files, cut into tiles.
 pub struct StreamPlan {
     input: PathBuf,
-    pub frame: PrepFrame,
+    pub frame: TileContext,
     sorted: SortedPoints,
     tiles: Vec<Range<u64>>,
     budget: StreamBudget,
@@ -70,7 +70,7 @@ impl StreamPlan {
         let offset = (min + max) * 0.5;
         let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
         let frame =
-            PrepFrame { offset, duplicate_distance: settings.duplicate_tolerance * (high - low).length() };
+            TileContext { offset, duplicate_distance: settings.duplicate_tolerance * (high - low).length() };
         let plan = SortPlan {
             grid: MortonGrid::over(low, high),
             offset,
@@ -145,7 +145,7 @@ impl StreamPlan {
         let members: Vec<u32> =
             core_inputs.iter().copied().chain(by_input.iter().map(|&j| halo_inputs[j as usize])).collect();
         let cloud = subset(&concatenated(core, halo), &order);
-        let (patches, report) = prep_in_frame(&cloud, settings, &self.frame, &NoProgress)
+        let (patches, report) = prep_in_context(&cloud, settings, &self.frame, &NoProgress)
             .map_err(|source| StreamError::Prep { path: self.input.clone(), source })?;
         Ok(TileOutcome::Prepped(own_patches(patches, &report.patch_sources, &members, core_len as usize)))
     }

@@ -1,6 +1,6 @@
 //! Prep in tiles: the cloud is sorted along one Morton curve over its whole bounding box and
 //! cut into tiles of equal point counts; each tile is prepped with a halo of the points
-//! around it, recentred and deduplicated as the whole cloud is (`PrepFrame`), and keeps the
+//! around it, recentred and deduplicated as the whole cloud is (`TileContext`), and keeps the
 //! patches of its own points. A tile needs only its points and its halo, so tiles can run
 //! one after another in bounded memory or as separate jobs, and the merged patches are the
 //! ones a single pass makes wherever a patch depends only on its neighbourhood: positions,
@@ -21,7 +21,7 @@ use crate::morton::morton_order;
 use crate::neighbors::k_nearest;
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
-use crate::prep::{PrepFrame, duplicate_distance, prep_in_frame, recentre};
+use crate::prep::{TileContext, duplicate_distance, prep_in_context, recentre};
 use crate::prep_error::PrepError;
 use crate::prep_progress::PrepProgress;
 use crate::prep_settings::PrepSettings;
@@ -34,7 +34,7 @@ const HALO_REACHES: f32 = 2.0;
 /// How a cloud is cut into tiles; the same input and count always give the same plan, so
 /// separate jobs agree on it.
 pub struct TilePlan {
-    pub frame: PrepFrame,
+    pub frame: TileContext,
     /// Input indices along the Morton curve of the whole cloud.
     order: Vec<u32>,
     tiles: Vec<Range<usize>>,
@@ -52,7 +52,7 @@ impl TilePlan {
     /// `tiles` tiles (at least 1) of `cloud` prepped with `settings`.
     pub fn new(cloud: &PointCloud, settings: &PrepSettings, tiles: usize) -> Self {
         let (offset, recentred) = recentre(&cloud.positions);
-        let frame = PrepFrame { offset, duplicate_distance: duplicate_distance(settings, &recentred) };
+        let frame = TileContext { offset, duplicate_distance: duplicate_distance(settings, &recentred) };
         let order = morton_order(&recentred);
         let tiles = even_ranges(order.len(), tiles.max(1));
         Self { frame, order, tiles }
@@ -85,7 +85,7 @@ pub fn prep_tile(
     let reaches = halo_reaches(&core_points, settings);
     let halo = halo_of(cloud.len(), core, &core_points, &reaches, local);
     let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
-    let (patches, report) = prep_in_frame(&subset(cloud, &members), settings, &plan.frame, progress)?;
+    let (patches, report) = prep_in_context(&subset(cloud, &members), settings, &plan.frame, progress)?;
     Ok(own_patches(patches, &report.patch_sources, &members, core.len()))
 }
 

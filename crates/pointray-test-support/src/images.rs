@@ -14,18 +14,18 @@ pub fn psnr_bytes(a: &[u8], b: &[u8]) -> f64 {
     decibels(squared / a.len() as f64, 255.0)
 }
 
-/// The largest difference of any colour channel of two frames.
-#[cfg(feature = "frames")]
-pub fn largest_color_difference(a: &pointray_scene::Frame, b: &pointray_scene::Frame) -> f32 {
-    assert_eq!(a.pixel_count(), b.pixel_count(), "frames of different sizes");
+/// The largest difference of any colour channel of two images.
+#[cfg(feature = "images")]
+pub fn largest_color_difference(a: &pointray_scene::RenderedImage, b: &pointray_scene::RenderedImage) -> f32 {
+    assert_eq!(a.pixel_count(), b.pixel_count(), "images of different sizes");
     a.color.iter().zip(&b.color).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0, f32::max)
 }
 
-/// The PSNR of two frames' colours, each channel clamped to `[0, 1]`, in dB.
-#[cfg(feature = "frames")]
-pub fn psnr(a: &pointray_scene::Frame, b: &pointray_scene::Frame) -> f64 {
+/// The PSNR of two images' colours, each channel clamped to `[0, 1]`, in dB.
+#[cfg(feature = "images")]
+pub fn psnr(a: &pointray_scene::RenderedImage, b: &pointray_scene::RenderedImage) -> f64 {
     use glam::Vec3;
-    assert_eq!(a.pixel_count(), b.pixel_count(), "frames of different sizes");
+    assert_eq!(a.pixel_count(), b.pixel_count(), "images of different sizes");
     let squared: f64 = a
         .color
         .iter()

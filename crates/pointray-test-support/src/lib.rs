@@ -10,5 +10,5 @@ pub use data::{data_dir, data_file};
 pub use device::vulkan_renderer;
 pub use device::{in_ci, skip_without_device};
 pub use images::{largest_byte_difference, psnr_bytes};
-#[cfg(feature = "frames")]
+#[cfg(feature = "images")]
 pub use images::{largest_color_difference, psnr};

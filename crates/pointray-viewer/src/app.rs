@@ -5,7 +5,7 @@ use std::collections::HashSet;
 use std::time::Instant;
 
 use glam::{Vec2, Vec3};
-use pointray_scene::{Camera, Frame, RenderSettings};
+use pointray_scene::{Camera, RenderSettings, RenderedImage};
 use winit::application::ApplicationHandler;
 use winit::dpi::{PhysicalPosition, PhysicalSize};
 use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
@@ -51,7 +51,7 @@ pub(crate) struct App {
     stats: FrameStats,
     /// The frame on screen, when it is on the host (always on the host path; on the direct
     /// path only frames read back for a screenshot).
-    shown: Option<Frame>,
+    shown: Option<RenderedImage>,
     /// The settings of the last full pass, to draw it again for a screenshot.
     last_pass: Option<RenderSettings>,
     mouse: Mouse,
@@ -159,7 +159,7 @@ impl App {
         Ok(())
     }
 
-    /// Frame `i` of the turntable, at the settings' size and samples, so that it is the
+    /// RenderedImage `i` of the turntable, at the settings' size and samples, so that it is the
     /// image `pointray render` makes from that camera. Frames to be saved are kept.
     fn scripted_frame(&mut self) -> Result<Drawn, ViewerError> {
         let run = self.script.as_mut().expect("scripted");

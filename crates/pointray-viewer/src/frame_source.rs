@@ -5,7 +5,7 @@
 //! the lights.
 
 use pointray_cpu::CpuRenderer;
-use pointray_scene::{Frame, Light, RenderSettings, Scene};
+use pointray_scene::{Light, RenderSettings, RenderedImage, Scene};
 use pointray_vulkan::{
     BackendChoice, DeviceOptions, DeviceSelector, MessageCounter, PreparedScene, ReadBack, VulkanRenderer,
     WindowTarget,
@@ -13,9 +13,9 @@ use pointray_vulkan::{
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use std::sync::Arc;
 
-use crate::display_frame::frame_from_display;
+use crate::display_image::image_from_display;
 use crate::error::ViewerError;
-use crate::pixels::frame_bytes;
+use crate::pixels::image_bytes;
 use crate::present::Presenter;
 
 /// How frames reach the window.
@@ -32,7 +32,7 @@ pub enum Presentation {
 pub(crate) struct Drawn {
     pub(crate) shown: bool,
     /// The frame as shown: always on the host path, when asked for on the direct path.
-    pub(crate) frame: Option<Frame>,
+    pub(crate) frame: Option<RenderedImage>,
 }
 
 pub(crate) enum FrameSource {
@@ -177,7 +177,7 @@ impl FrameSource {
                 let presented = window.present(renderer, prepared, settings, read_back)?;
                 let shown = presented == pointray_vulkan::Presented::Shown;
                 let frame =
-                    if keep && shown { Some(frame_from_display(&window.shown_rgba8()?)) } else { None };
+                    if keep && shown { Some(image_from_display(&window.shown_rgba8()?)) } else { None };
                 Ok(Drawn { shown, frame })
             }
             Self::Vulkan { window: None, .. } => Ok(Drawn { shown: false, frame: None }),
@@ -193,7 +193,7 @@ impl FrameSource {
     }
 
     /// Shows an already rendered frame again (the host path re-presents after a resize).
-    pub(crate) fn show_again(&mut self, frame: &Frame) -> Result<bool, ViewerError> {
+    pub(crate) fn show_again(&mut self, frame: &RenderedImage) -> Result<bool, ViewerError> {
         match self {
             Self::Cpu { presenter: Some(presenter), .. } => show_on_host(presenter, frame),
             _ => Ok(false),
@@ -221,9 +221,9 @@ impl FrameSource {
 }
 
 /// The host path: the frame's bytes, scaled to the swapchain, uploaded and presented.
-fn show_on_host(presenter: &mut Presenter, frame: &Frame) -> Result<bool, ViewerError> {
+fn show_on_host(presenter: &mut Presenter, frame: &RenderedImage) -> Result<bool, ViewerError> {
     let Some((extent, order)) = presenter.target()? else { return Ok(false) };
-    let bytes = frame_bytes(frame, extent.width, extent.height, order);
+    let bytes = image_bytes(frame, extent.width, extent.height, order);
     Ok(presenter.present(&bytes)? == pointray_vulkan::Presented::Shown)
 }
 
@@ -244,7 +244,7 @@ mod tests {
         Scene { camera: orbit_camera(&scene.camera, 1, 4, 360.0), lights, ..scene.clone() }
     }
 
-    fn fresh_render(backend: BackendChoice, scene: &Scene, settings: &RenderSettings) -> Frame {
+    fn fresh_render(backend: BackendChoice, scene: &Scene, settings: &RenderSettings) -> RenderedImage {
         match backend {
             BackendChoice::Cpu => pointray_cpu::render(scene, settings),
             _ => {
@@ -258,7 +258,7 @@ mod tests {
 
     /// The source's renderer with its scene updated to `scene`, into host memory (the
     /// windowless twin of `draw`).
-    fn render(source: &mut FrameSource, scene: &Scene, settings: &RenderSettings) -> Frame {
+    fn render(source: &mut FrameSource, scene: &Scene, settings: &RenderSettings) -> RenderedImage {
         source.update_scene(scene).expect("the scene updates");
         match source {
             FrameSource::Vulkan { prepared, renderer, .. } => {

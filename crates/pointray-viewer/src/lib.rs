@@ -16,7 +16,7 @@
 mod app;
 mod camera_rig;
 mod controls;
-mod display_frame;
+mod display_image;
 mod error;
 mod frame_source;
 mod frame_stats;
@@ -50,7 +50,7 @@ use view_state::ViewState;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Script {
     pub frames: u32,
-    /// Frame `i` is the scene camera turned by `arc_degrees * i / frames` (see `orbit_camera`).
+    /// RenderedImage `i` is the scene camera turned by `arc_degrees * i / frames` (see `orbit_camera`).
     pub arc_degrees: f32,
     /// The last frame is saved here (PNG or EXR).
     pub screenshot: Option<PathBuf>,

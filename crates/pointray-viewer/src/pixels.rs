@@ -1,19 +1,19 @@
-//! A rendered frame as swapchain bytes: sRGB-encoded 8-bit, 4 per pixel, scaled (nearest) to
-//! the swapchain's size, since a reduced-resolution or pre-resize frame may differ from it.
+//! A rendered image as swapchain bytes: sRGB-encoded 8-bit, 4 per pixel, scaled (nearest) to
+//! the swapchain's size, since a reduced-resolution or pre-resize image may differ from it.
 
 use pointray_io::image_output::srgb_encode;
-use pointray_scene::Frame;
+use pointray_scene::RenderedImage;
 
 use crate::present::ByteOrder;
 
-pub(crate) fn frame_bytes(frame: &Frame, width: u32, height: u32, order: ByteOrder) -> Vec<u8> {
+pub(crate) fn image_bytes(image: &RenderedImage, width: u32, height: u32, order: ByteOrder) -> Vec<u8> {
     let mut bytes = Vec::with_capacity(width as usize * height as usize * 4);
     for y in 0..height {
-        let source_y = nearest(y, height, frame.height);
+        let source_y = nearest(y, height, image.height);
         for x in 0..width {
-            let source_x = nearest(x, width, frame.width);
+            let source_x = nearest(x, width, image.width);
             let [r, g, b] =
-                frame.color[(source_y * frame.width + source_x) as usize].to_array().map(srgb_encode);
+                image.color[(source_y * image.width + source_x) as usize].to_array().map(srgb_encode);
             let pixel = match order {
                 ByteOrder::Bgra => [b, g, r, 255],
                 ByteOrder::Rgba => [r, g, b, 255],
@@ -35,9 +35,9 @@ mod tests {
     use super::*;
     use glam::Vec3;
 
-    fn frame(width: u32, height: u32, color: impl Fn(u32, u32) -> Vec3) -> Frame {
+    fn image(width: u32, height: u32, color: impl Fn(u32, u32) -> Vec3) -> RenderedImage {
         let n = (width * height) as usize;
-        Frame {
+        RenderedImage {
             width,
             height,
             color: (0..height)
@@ -46,22 +46,22 @@ mod tests {
                 .collect(),
             depth: vec![0.0; n],
             normal: vec![Vec3::ZERO; n],
-            instance_id: vec![Frame::MISS; n],
-            primitive_id: vec![Frame::MISS; n],
+            instance_id: vec![RenderedImage::MISS; n],
+            primitive_id: vec![RenderedImage::MISS; n],
         }
     }
 
     #[test]
     fn same_size_keeps_pixels_and_orders_bytes() {
-        let f = frame(2, 1, |x, _| if x == 0 { Vec3::new(1.0, 0.0, 0.0) } else { Vec3::new(0.0, 0.0, 1.0) });
-        assert_eq!(frame_bytes(&f, 2, 1, ByteOrder::Bgra), vec![0, 0, 255, 255, 255, 0, 0, 255]);
-        assert_eq!(frame_bytes(&f, 2, 1, ByteOrder::Rgba), vec![255, 0, 0, 255, 0, 0, 255, 255]);
+        let f = image(2, 1, |x, _| if x == 0 { Vec3::new(1.0, 0.0, 0.0) } else { Vec3::new(0.0, 0.0, 1.0) });
+        assert_eq!(image_bytes(&f, 2, 1, ByteOrder::Bgra), vec![0, 0, 255, 255, 255, 0, 0, 255]);
+        assert_eq!(image_bytes(&f, 2, 1, ByteOrder::Rgba), vec![255, 0, 0, 255, 0, 0, 255, 255]);
     }
 
     #[test]
     fn upscaling_repeats_each_source_pixel() {
-        let f = frame(2, 2, |x, y| Vec3::splat(if (x + y) % 2 == 0 { 1.0 } else { 0.0 }));
-        let bytes = frame_bytes(&f, 4, 4, ByteOrder::Rgba);
+        let f = image(2, 2, |x, y| Vec3::splat(if (x + y) % 2 == 0 { 1.0 } else { 0.0 }));
+        let bytes = image_bytes(&f, 4, 4, ByteOrder::Rgba);
         let red = |x: usize, y: usize| bytes[(y * 4 + x) * 4];
         assert_eq!(
             [red(0, 0), red(1, 1), red(2, 0), red(3, 1), red(2, 2), red(0, 3)],

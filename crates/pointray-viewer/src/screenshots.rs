@@ -1,14 +1,14 @@
 //! Saving frames: the `P` key's numbered screenshots, the scripted screenshot and the
-//! turntable sequence. `write_frame` writes atomically (temporary file, then rename).
+//! turntable sequence. `write_image` writes atomically (temporary file, then rename).
 
 use std::path::{Path, PathBuf};
 
-use pointray_scene::{AovSelection, Frame, write_frame};
+use pointray_scene::{AovSelection, RenderedImage, write_image};
 
 use crate::error::ViewerError;
 
-pub(crate) fn save(frame: &Frame, path: &Path) -> Result<(), ViewerError> {
-    write_frame(frame, path, &AovSelection::default())
+pub(crate) fn save(frame: &RenderedImage, path: &Path) -> Result<(), ViewerError> {
+    write_image(frame, path, &AovSelection::default())
         .map(|_| ())
         .map_err(|source| ViewerError::Screenshot { path: path.to_path_buf(), source: Box::new(source) })
 }

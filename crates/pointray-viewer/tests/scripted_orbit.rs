@@ -7,7 +7,7 @@
 mod common;
 
 use common::{Orbit, missing, psnr, read_png, scripted_run};
-use pointray_scene::{AovSelection, Frame, write_frame};
+use pointray_scene::{AovSelection, RenderedImage, write_image};
 use pointray_viewer::{Presentation, ViewerError, orbit_camera, run_viewer};
 use pointray_vulkan::BackendChoice;
 
@@ -15,8 +15,9 @@ const FRAMES: u32 = 30;
 const ARC_DEGREES: f32 = 360.0;
 const MIN_PSNR_DB: f64 = 35.0;
 
-fn covered_objects(frame: &Frame) -> usize {
-    let mut ids: Vec<u32> = frame.instance_id.iter().copied().filter(|&id| id != Frame::MISS).collect();
+fn covered_objects(frame: &RenderedImage) -> usize {
+    let mut ids: Vec<u32> =
+        frame.instance_id.iter().copied().filter(|&id| id != RenderedImage::MISS).collect();
     ids.sort_unstable();
     ids.dedup();
     ids.len()
@@ -49,13 +50,13 @@ fn scripted_orbit_screenshot_matches_the_renderer() {
     assert_eq!(renderer.validation_messages(), 0, "validation messages (printed above)");
     assert!(covered_objects(&reference) >= 2, "the reference view shows the demo's objects");
     let reference_path = dir.path().join("reference.png");
-    write_frame(&reference, &reference_path, &AovSelection::default()).expect("the reference is written");
+    write_image(&reference, &reference_path, &AovSelection::default()).expect("the reference is written");
 
     // `pointray render --backend auto` picks the CPU renderer on CPU Vulkan drivers: the
     // screenshot must match it too.
     let cpu_reference = pointray_cpu::render(&final_scene, &settings);
     let cpu_path = dir.path().join("cpu.png");
-    write_frame(&cpu_reference, &cpu_path, &AovSelection::default()).expect("the CPU reference is written");
+    write_image(&cpu_reference, &cpu_path, &AovSelection::default()).expect("the CPU reference is written");
 
     let shot = read_png(screenshot);
     // Every frame was read back for the sequence; the last is the screenshot.

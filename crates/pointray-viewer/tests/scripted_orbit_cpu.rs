@@ -7,7 +7,7 @@
 mod common;
 
 use common::{Orbit, missing, psnr, read_png, scripted_run};
-use pointray_scene::{AovSelection, write_frame};
+use pointray_scene::{AovSelection, write_image};
 use pointray_viewer::{Presentation, ViewerError, orbit_camera, run_viewer};
 use pointray_vulkan::BackendChoice;
 
@@ -34,10 +34,10 @@ fn cpu_scripted_orbit_ends_on_a_fresh_renderers_image() {
     final_scene.camera = final_camera;
     let fresh = pointray_cpu::render(&final_scene, &settings);
     let fresh_path = dir.path().join("fresh.png");
-    write_frame(&fresh, &fresh_path, &AovSelection::default()).expect("the fresh render is written");
+    write_image(&fresh, &fresh_path, &AovSelection::default()).expect("the fresh render is written");
     let start = pointray_cpu::render(&loaded.scene, &settings);
     let start_path = dir.path().join("start.png");
-    write_frame(&start, &start_path, &AovSelection::default()).expect("the first view is written");
+    write_image(&start, &start_path, &AovSelection::default()).expect("the first view is written");
 
     let shot = read_png(screenshot);
     assert!(psnr(&shot, &read_png(&start_path)) < 40.0, "the orbit changed the view");

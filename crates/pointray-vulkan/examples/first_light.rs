@@ -16,7 +16,7 @@ use glam::Vec3;
 use pointray_io::formats::ply::read_triangle_mesh;
 use pointray_io::image_output::write_png_srgb;
 use pointray_io::write_atomically;
-use pointray_scene::{BufferLayout, Frame, Material, RenderSettings, Scene, demo_scene};
+use pointray_scene::{BufferLayout, Material, RenderSettings, RenderedImage, Scene, demo_scene};
 use pointray_vulkan::{BlasLayout, DeviceSelector, PreparedScene, SceneLayout, VulkanRenderer};
 
 type Error = Box<dyn std::error::Error>;
@@ -57,7 +57,7 @@ fn bunny_scenes(data: &Path) -> Result<Vec<(&'static str, Scene)>, Error> {
 }
 
 /// Colour (3 floats) then instance id (1 u32) per pixel, little-endian, after width and height.
-fn write_raw(path: &Path, frame: &Frame) -> Result<(), Error> {
+fn write_raw(path: &Path, frame: &RenderedImage) -> Result<(), Error> {
     write_atomically(path, |w| {
         use std::io::Write;
         w.write_all(&frame.width.to_le_bytes())?;
@@ -89,7 +89,7 @@ fn read_raw(path: &Path) -> Result<(Vec<Vec3>, Vec<u32>), Error> {
 }
 
 /// PSNR in dB of colours clamped to [0, 1], and the fraction of pixels whose hit/miss agrees.
-fn compare(frame: &Frame, reference: &Path) -> Result<(f64, f64), Error> {
+fn compare(frame: &RenderedImage, reference: &Path) -> Result<(f64, f64), Error> {
     let (colors, ids) = read_raw(reference)?;
     if colors.len() != frame.color.len() {
         return Err(format!("{} has another size", reference.display()).into());
@@ -103,7 +103,7 @@ fn compare(frame: &Frame, reference: &Path) -> Result<(f64, f64), Error> {
         .sum();
     let mse = squared / (3 * colors.len()) as f64;
     let psnr = if mse == 0.0 { f64::INFINITY } else { 10.0 * (1.0 / mse).log10() };
-    let miss = pointray_scene::Frame::MISS;
+    let miss = pointray_scene::RenderedImage::MISS;
     let agree = frame.instance_id.iter().zip(&ids).filter(|(a, b)| (**a == miss) == (**b == miss)).count();
     Ok((psnr, agree as f64 / ids.len() as f64))
 }

@@ -3,7 +3,7 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use pointray_scene::{Frame, RenderSettings, Scene};
+use pointray_scene::{RenderSettings, RenderedImage, Scene};
 use raw_window_handle::RawDisplayHandle;
 
 use crate::binding_table::ShaderBindingTable;
@@ -117,7 +117,11 @@ impl VulkanRenderer {
     }
 
     /// Traces a prepared scene into a frame (colour and AOVs).
-    pub fn trace(&self, scene: &PreparedScene, settings: &RenderSettings) -> Result<Frame, VulkanError> {
+    pub fn trace(
+        &self,
+        scene: &PreparedScene,
+        settings: &RenderSettings,
+    ) -> Result<RenderedImage, VulkanError> {
         self.trace_timed(scene, settings).map(|(frame, _)| frame)
     }
 
@@ -126,10 +130,10 @@ impl VulkanRenderer {
         &self,
         scene: &PreparedScene,
         settings: &RenderSettings,
-    ) -> Result<(Frame, TraceTiming), VulkanError> {
+    ) -> Result<(RenderedImage, TraceTiming), VulkanError> {
         let mut target = TraceTarget::new(PixelOutput::Aovs);
         let timing = self.trace_into(scene, settings, &mut target)?;
-        Ok((target.frame()?, timing))
+        Ok((target.image()?, timing))
     }
 
     /// Traces a prepared scene into a reusable target, from the scene's current camera and
@@ -156,7 +160,7 @@ impl VulkanRenderer {
     }
 
     /// Prepares and traces in one go.
-    pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<Frame, VulkanError> {
+    pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<RenderedImage, VulkanError> {
         self.trace(&self.prepare_with_layout(scene, SceneLayout::for_settings(settings))?, settings)
     }
 }

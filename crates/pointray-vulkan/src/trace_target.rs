@@ -7,7 +7,7 @@ use std::sync::Arc;
 use ash::vk;
 use glam::Vec3;
 use gpu_allocator::MemoryLocation;
-use pointray_scene::{Frame, RenderSettings};
+use pointray_scene::{RenderSettings, RenderedImage};
 
 use crate::buffer::Buffer;
 use crate::context::GpuContext;
@@ -22,7 +22,7 @@ use crate::prepared_scene::PreparedScene;
 /// What a trace writes per pixel.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum PixelOutput {
-    /// Linear colour with the AOVs (normal, depth, ids): 48 bytes a pixel, for `Frame`s.
+    /// Linear colour with the AOVs (normal, depth, ids): 48 bytes a pixel, for `RenderedImage`s.
     #[default]
     Aovs,
     /// sRGB8 RGBA colour only: 4 bytes a pixel, what a window shows.
@@ -71,14 +71,14 @@ impl TraceTarget {
         self.output
     }
 
-    /// The last trace as a frame with its AOVs; an error for a display target or before any trace.
-    pub fn frame(&self) -> Result<Frame, VulkanError> {
+    /// The last trace as a image with its AOVs; an error for a display target or before any trace.
+    pub fn image(&self) -> Result<RenderedImage, VulkanError> {
         match (&self.buffers, self.output) {
             (Some(buffers), PixelOutput::Aovs) => {
                 let pixels: Vec<PixelRecord> = bytemuck::pod_collect_to_vec(buffers.readback.read());
-                Ok(frame_from_pixels(buffers.width, buffers.height, &pixels))
+                Ok(image_from_pixels(buffers.width, buffers.height, &pixels))
             }
-            _ => Err(VulkanError::InvalidSettings("this target holds no traced frame with AOVs".into())),
+            _ => Err(VulkanError::InvalidSettings("this target holds no traced image with AOVs".into())),
         }
     }
 
@@ -268,9 +268,9 @@ impl Drop for TargetBuffers {
     }
 }
 
-fn frame_from_pixels(width: u32, height: u32, pixels: &[PixelRecord]) -> Frame {
+fn image_from_pixels(width: u32, height: u32, pixels: &[PixelRecord]) -> RenderedImage {
     let hit = |p: &PixelRecord| p.normal_depth[3] >= 0.0;
-    Frame {
+    RenderedImage {
         width,
         height,
         color: pixels.iter().map(|p| Vec3::from_slice(&p.color[..3])).collect(),
@@ -279,7 +279,7 @@ fn frame_from_pixels(width: u32, height: u32, pixels: &[PixelRecord]) -> Frame {
             .iter()
             .map(|p| if hit(p) { Vec3::from_slice(&p.normal_depth[..3]) } else { Vec3::ZERO })
             .collect(),
-        instance_id: pixels.iter().map(|p| if hit(p) { p.ids[0] } else { Frame::MISS }).collect(),
-        primitive_id: pixels.iter().map(|p| if hit(p) { p.ids[1] } else { Frame::MISS }).collect(),
+        instance_id: pixels.iter().map(|p| if hit(p) { p.ids[0] } else { RenderedImage::MISS }).collect(),
+        primitive_id: pixels.iter().map(|p| if hit(p) { p.ids[1] } else { RenderedImage::MISS }).collect(),
     }
 }

@@ -7,9 +7,9 @@ use anyhow::Context;
 use clap::Args;
 use pointray_fidelity::view_images::is_view_image;
 use pointray_fidelity::view_placement::validate_setting;
-use pointray_fidelity::{FidelityOptions, FrameRenderer, RenderError, SensorPose, measure_fidelity};
+use pointray_fidelity::{FidelityOptions, ImageRenderer, RenderError, SensorPose, measure_fidelity};
 use pointray_io::MemoryBudget;
-use pointray_scene::{Frame, RenderSetting, RenderSettings, Scene};
+use pointray_scene::{RenderSetting, RenderSettings, RenderedImage, Scene};
 use pointray_vulkan::{BackendChoice, DeviceSelector};
 
 use crate::backend::{backend_choice, open_backend};
@@ -51,12 +51,12 @@ pub struct FidelityArgs {
 /// The CLI's backend choice (CPU or Vulkan) as the fidelity crate's renderer.
 struct ChosenBackend(Backend);
 
-impl FrameRenderer for ChosenBackend {
+impl ImageRenderer for ChosenBackend {
     fn name(&self) -> String {
         self.0.describe()
     }
 
-    fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<Frame, RenderError> {
+    fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<RenderedImage, RenderError> {
         Ok(self.0.render(scene, settings)?)
     }
 }

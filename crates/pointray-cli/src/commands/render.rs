@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use pointray_io::MemoryBudget;
-use pointray_scene::frame_output::{AovSelection, check_frame_outputs, write_frame};
+use pointray_scene::image_output::{AovSelection, check_image_outputs, write_image};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
 use pointray_scene::{BufferLayout, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera};
 
@@ -68,13 +68,13 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let aovs = if args.aovs { AovSelection::ALL } else { AovSelection::default() };
     let outputs = output_paths(&args.output, args.turntable);
     for output in &outputs {
-        check_frame_outputs(output, &aovs, &file.input_files())?;
+        check_image_outputs(output, &aovs, &file.input_files())?;
     }
     settings.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     let cache_dir = cache_dir_for(&args.output);
     let bar = PrepBar::default();
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar, ..LoadOptions::default() };
-    let LoadedScene { mut scene, frame: render_frame, .. } = load_scene_file(&file, &options)?;
+    let LoadedScene { mut scene, space, .. } = load_scene_file(&file, &options)?;
     let backend = open_backend(args.backend.backend, &args.backend.device)?;
     println!("backend: {}", backend.describe());
     let start = scene.camera;
@@ -82,13 +82,13 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     for (index, output) in (0..).zip(&outputs) {
         scene.camera = orbit_camera(&start, index, frames, 360.0);
         let started = Instant::now();
-        let mut frame = backend.render(&scene, &settings)?;
+        let mut image = backend.render(&scene, &settings)?;
         let elapsed = started.elapsed();
-        frame.scale_depth(render_frame.scale as f32);
-        let written = write_frame(&frame, output, &aovs)?;
+        image.scale_depth(space.scale as f32);
+        let written = write_image(&image, output, &aovs)?;
         println!("rendered {}x{} in {:.2?}", settings.width, settings.height, elapsed);
         if args.turntable.is_some() {
-            let at = render_frame.point_to_file(scene.camera.position.as_dvec3());
+            let at = space.point_to_file(scene.camera.position.as_dvec3());
             println!("frame {index}: camera at {:.6},{:.6},{:.6}", at.x, at.y, at.z);
         }
         for path in written {

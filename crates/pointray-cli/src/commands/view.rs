@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use pointray_io::MemoryBudget;
-use pointray_scene::frame_output::check_frame_outputs;
+use pointray_scene::image_output::check_image_outputs;
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
 use pointray_scene::{AovSelection, RenderSetting, SceneFile};
 use pointray_viewer::{Script, ViewerOptions, run_viewer, sequence_path};
@@ -83,7 +83,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
 /// the scene's inputs, before anything is loaded.
 fn check_outputs(args: &ViewArgs, inputs: &[PathBuf]) -> anyhow::Result<()> {
     if let Some(screenshot) = &args.screenshot {
-        check_frame_outputs(screenshot, &AovSelection::default(), inputs)?;
+        check_image_outputs(screenshot, &AovSelection::default(), inputs)?;
     }
     if let (Some(dir), Some(frames)) = (&args.sequence, args.frames) {
         if dir.exists() && !dir.is_dir() {

@@ -27,17 +27,17 @@ fn read_exr(path: &Path) -> Vec<Vec3> {
     image.pixels().map(|p| Vec3::from(p.0)).collect()
 }
 
-/// The cloud (object 0) covers a fair part of the frame and lies inside it, and it is lit:
+/// The cloud (object 0) covers a fair part of the image and lies inside it, and it is lit:
 /// its pixels are neither black nor all one shade.
 fn assert_framed_and_lit(name: &str, (color, instance): &(Vec<Vec3>, Vec<f32>)) {
     let cloud: Vec<usize> = (0..instance.len()).filter(|&i| instance[i] == 0.0).collect();
     let coverage = cloud.len() as f32 / instance.len() as f32;
-    assert!(coverage > 0.05, "{name}: the cloud covers only {:.1}% of the frame", 100.0 * coverage);
+    assert!(coverage > 0.05, "{name}: the cloud covers only {:.1}% of the image", 100.0 * coverage);
     let (width, height) = (80, 60);
     let touches_border = cloud
         .iter()
         .any(|&i| i % width == 0 || i % width == width - 1 || i / width == 0 || i / width == height - 1);
-    assert!(!touches_border, "{name}: the cloud runs off the frame; the framing should fit it");
+    assert!(!touches_border, "{name}: the cloud runs off the image; the framing should fit it");
     let brightness: Vec<f32> = cloud.iter().map(|&i| color[i].element_sum() / 3.0).collect();
     let mean = brightness.iter().sum::<f32>() / brightness.len() as f32;
     let spread = brightness.iter().fold(0.0f32, |m, &b| m.max((b - mean).abs()));
@@ -50,9 +50,9 @@ fn a_bare_ply_renders_framed_and_lit_on_a_floor() {
     let dir = tempfile::tempdir().unwrap();
     let points = dir.path().join("grid.ply");
     write_grid_ply(&points);
-    let frame = render(dir.path(), &points, &[]);
-    assert_framed_and_lit("grid.ply", &frame);
-    assert!(frame.1.contains(&1.0), "the floor (object 1) is under the cloud");
+    let image = render(dir.path(), &points, &[]);
+    assert_framed_and_lit("grid.ply", &image);
+    assert!(image.1.contains(&1.0), "the floor (object 1) is under the cloud");
     let without_floor = render(dir.path(), &points, &["--floor", "false"]);
     assert!(!without_floor.1.contains(&1.0), "--floor false leaves the floor out");
 }
@@ -70,23 +70,23 @@ fn a_kitti_sweep_stands_upright() {
         }
     }
     std::fs::write(&points, bytes).unwrap();
-    let frame = render(dir.path(), &points, &[]);
-    assert_framed_and_lit("sweep.bin", &frame);
+    let image = render(dir.path(), &points, &[]);
+    assert_framed_and_lit("sweep.bin", &image);
     // Stood upright, the ground is seen from above like the floor under it; taken as Y-up it
     // would stand on edge and hide the floor behind a wall.
     let on_edge = render(dir.path(), &points, &["--up-axis", "y"]);
     let cloud_pixels =
         |(_, instance): &(Vec<Vec3>, Vec<f32>)| instance.iter().filter(|&&id| id == 0.0).count();
-    assert!(cloud_pixels(&frame) != cloud_pixels(&on_edge), "--up-axis changes how the sweep stands");
+    assert!(cloud_pixels(&image) != cloud_pixels(&on_edge), "--up-axis changes how the sweep stands");
 }
 
 #[test]
 fn a_las_tile_renders_in_its_own_colours() {
     let tile = data_file("scans/autzen_trim.las");
     let dir = tempfile::tempdir().unwrap();
-    let frame = render(dir.path(), &tile, &[]);
-    assert_framed_and_lit("autzen_trim.las", &frame);
-    let (color, instance) = &frame;
+    let image = render(dir.path(), &tile, &[]);
+    assert_framed_and_lit("autzen_trim.las", &image);
+    let (color, instance) = &image;
     let tinted = (0..color.len())
         .filter(|&i| instance[i] == 0.0)
         .filter(|&i| color[i].max_element() - color[i].min_element() > 0.05)
@@ -113,7 +113,7 @@ fn a_turntable_orbits_the_cloud() {
         .collect();
     assert_eq!(cameras.len(), 8, "{stdout}");
     for index in 0..8 {
-        assert!(dir.path().join(format!("spin-{index:04}.png")).is_file(), "frame {index} is written");
+        assert!(dir.path().join(format!("spin-{index:04}.png")).is_file(), "image {index} is written");
     }
     // The orbit is about the vertical through the look-at point: same height, same distance
     // from its axis, an eighth of a turn apart.

@@ -41,7 +41,7 @@ fn srgb_to_linear(srgb: [u8; 3]) -> Vec3 {
     }))
 }
 
-fn render(scene: &Path) -> pointray_scene::Frame {
+fn render(scene: &Path) -> pointray_scene::RenderedImage {
     let loaded = load_scene(scene, &LoadOptions::default()).unwrap();
     pointray_cpu::render(&loaded.scene, &RenderSettings { width: 60, height: 60, ..loaded.settings })
 }
@@ -49,12 +49,12 @@ fn render(scene: &Path) -> pointray_scene::Frame {
 #[test]
 fn ground_and_buildings_show_in_their_asprs_colours() {
     let dir = tempfile::tempdir().unwrap();
-    let frame = render(&write_scene(dir.path(), &write_plane(dir.path()), "classification"));
+    let image = render(&write_scene(dir.path(), &write_plane(dir.path()), "classification"));
     let (ground, building) =
         (srgb_to_linear(classification_color(2)), srgb_to_linear(classification_color(6)));
     // Columns 12 and 48 look at x = -0.48 and 0.48, well inside each half.
     for row in [15, 30, 45] {
-        let (left, right) = (frame.color[row * 60 + 12], frame.color[row * 60 + 48]);
+        let (left, right) = (image.color[row * 60 + 12], image.color[row * 60 + 48]);
         assert!((left - ground).length() < 0.01, "row {row}: {left} is not ground {ground}");
         assert!((right - building).length() < 0.01, "row {row}: {right} is not building {building}");
     }
@@ -64,14 +64,14 @@ fn ground_and_buildings_show_in_their_asprs_colours() {
 fn height_colours_the_plane_from_bottom_to_top() {
     let dir = tempfile::tempdir().unwrap();
     // The plane stands upright in the world (z = 0 faces the camera): world Y is the file's y.
-    let frame = render(&write_scene(dir.path(), &write_plane(dir.path()), "height"));
+    let image = render(&write_scene(dir.path(), &write_plane(dir.path()), "height"));
     let viridis = pointray_scene::color_ramp::ColorRamp::named("viridis").unwrap();
     let half_height = 3.0 * 15f32.to_radians().tan();
     for row in [8, 20, 30, 40, 51] {
         // The plane's y at the pixel's centre, as a fraction of the way from y = -1 to 0.96.
         let y = half_height * (1.0 - 2.0 * (row as f32 + 0.5) / 60.0);
         let expected = viridis.color_at((y + 1.0) / 1.96);
-        let seen = frame.color[row * 60 + 30];
+        let seen = image.color[row * 60 + 30];
         assert!((seen - expected).length() < 0.05, "row {row} (y = {y}): {seen}, expected {expected}");
     }
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use glam::DVec3;
 use pointray_io::PointCloud;
-use pointray_scene::{Frame, LoadOptions, RenderSettings, load_scene};
+use pointray_scene::{LoadOptions, RenderSettings, RenderedImage, load_scene};
 
 /// A UTM-sized position (easting, northing, height).
 const UTM: DVec3 = DVec3::new(640_000.0, 5_000_000.0, 100.0);
@@ -22,9 +22,9 @@ fn wavy_grid(offset: DVec3) -> PointCloud {
 }
 
 /// A scene of `points` at `translate`, seen by a camera and lit by a light placed relative to
-/// `frame` (the coordinates the scene lives in).
-fn write_scene(dir: &Path, name: &str, points: &str, translate: DVec3, frame: DVec3) -> std::path::PathBuf {
-    let at = |p: DVec3| format!("[{}, {}, {}]", frame.x + p.x, frame.y + p.y, frame.z + p.z);
+/// `space` (the coordinates the scene lives in).
+fn write_scene(dir: &Path, name: &str, points: &str, translate: DVec3, space: DVec3) -> std::path::PathBuf {
+    let at = |p: DVec3| format!("[{}, {}, {}]", space.x + p.x, space.y + p.y, space.z + p.z);
     let text = format!(
         "[camera]\nposition = {}\nlook_at = {}\n\n[[lights]]\ntype = \"point\"\nposition = {}\n\n\
          [[objects]]\ntype = \"points\"\npath = \"{points}\"\n[objects.transform]\ntranslate = [{}, {}, {}]\n\n\
@@ -42,16 +42,16 @@ fn write_scene(dir: &Path, name: &str, points: &str, translate: DVec3, frame: DV
 }
 
 /// Rendered as `pointray render` does: depths in the file's units.
-fn render(scene: &Path) -> Frame {
+fn render(scene: &Path) -> RenderedImage {
     let loaded = load_scene(scene, &LoadOptions::default()).expect("the scene loads");
     let settings = RenderSettings { width: 96, height: 72, ..loaded.settings };
-    let mut frame = pointray_cpu::render(&loaded.scene, &settings);
-    frame.scale_depth(loaded.frame.scale as f32);
-    frame
+    let mut image = pointray_cpu::render(&loaded.scene, &settings);
+    image.scale_depth(loaded.space.scale as f32);
+    image
 }
 
 /// The mean colour difference and the share of pixels whose hit object differs.
-fn difference(a: &Frame, b: &Frame) -> (f32, f32) {
+fn difference(a: &RenderedImage, b: &RenderedImage) -> (f32, f32) {
     let n = a.pixel_count() as f32;
     let colour = a.color.iter().zip(&b.color).map(|(x, y)| (*x - *y).abs().max_element()).sum::<f32>() / n;
     let hits = a.instance_id.iter().zip(&b.instance_id).filter(|(x, y)| x != y).count() as f32 / n;
@@ -68,11 +68,11 @@ fn utm_scenes_render_as_the_same_scene_at_the_origin() {
     write("utm.ply", UTM);
     let reference = render(&write_scene(dir.path(), "origin.toml", "local.ply", DVec3::ZERO, DVec3::ZERO));
     let model = reference.instance_id.iter().filter(|&&id| id == 0).count();
-    assert!(model > reference.pixel_count() / 10, "the model fills part of the reference frame");
+    assert!(model > reference.pixel_count() / 10, "the model fills part of the reference image");
     let geo_points = render(&write_scene(dir.path(), "points.toml", "utm.ply", DVec3::ZERO, UTM));
     let geo_translate = render(&write_scene(dir.path(), "moved.toml", "local.ply", UTM, UTM));
-    for (what, frame) in [("UTM points", geo_points), ("a UTM translation", geo_translate)] {
-        let (colour, hits) = difference(&reference, &frame);
+    for (what, image) in [("UTM points", geo_points), ("a UTM translation", geo_translate)] {
+        let (colour, hits) = difference(&reference, &image);
         assert!(hits < 0.01, "{what}: {:.1}% of pixels hit another object", 100.0 * hits);
         assert!(colour < 0.01, "{what}: colours differ by {colour} on average");
     }

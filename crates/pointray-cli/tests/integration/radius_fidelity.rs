@@ -16,7 +16,7 @@ use pointray_test_support::data_file;
 
 use std::sync::Arc;
 
-use pointray_fidelity::{CpuFrameRenderer, FidelityMetrics, FidelityOptions, measure_fidelity};
+use pointray_fidelity::{CpuImageRenderer, FidelityMetrics, FidelityOptions, measure_fidelity};
 use pointray_io::PointCloud;
 use pointray_scene::PatchAcceptance;
 use pointray_surface::uneven_sampling::{Unevenness, sample_mesh_unevenly};
@@ -42,7 +42,7 @@ fn measure(
     options.disk_scale = disk_scale;
     let (patches, _) = prep(cloud, &options, &NoProgress).expect("the samples prep");
     let fidelity = FidelityOptions::around(6, size, PatchAcceptance::Disk).unwrap();
-    measure_fidelity(Arc::new(patches), mesh.clone(), &fidelity, &CpuFrameRenderer).unwrap().overall
+    measure_fidelity(Arc::new(patches), mesh.clone(), &fidelity, &CpuImageRenderer).unwrap().overall
 }
 
 fn row(

@@ -6,7 +6,7 @@ use common::*;
 use glam::{Affine3A, Vec3};
 use pointray_cpu::render;
 use pointray_io::TriangleMesh;
-use pointray_scene::{Frame, RenderSettings};
+use pointray_scene::{RenderSettings, RenderedImage};
 
 fn settings() -> RenderSettings {
     RenderSettings { width: 16, height: 16, ..RenderSettings::default() }
@@ -24,9 +24,9 @@ fn broken_objects_are_left_out_and_good_ones_still_render() {
     let floor = mesh_object("floor", floor_mesh(10.0), matte());
     let scene =
         scene(camera(Vec3::new(0.0, 3.0, 3.0), Vec3::ZERO), vec![], vec![flattened, dangling, empty, floor]);
-    let frame = render(&scene, &settings());
-    assert!(frame.instance_id.iter().all(|&id| id == 3 || id == Frame::MISS));
-    assert!(frame.instance_id.contains(&3), "the floor should still be visible");
+    let image = render(&scene, &settings());
+    assert!(image.instance_id.iter().all(|&id| id == 3 || id == RenderedImage::MISS));
+    assert!(image.instance_id.contains(&3), "the floor should still be visible");
 }
 
 #[test]
@@ -46,15 +46,15 @@ fn non_finite_and_huge_geometry_is_left_out_instead_of_panicking_the_bvh_build()
         mesh_object("floor", floor_mesh(10.0), matte()),
     ];
     let scene = scene(camera(Vec3::new(0.0, 3.0, 3.0), Vec3::ZERO), vec![], objects);
-    let frame = render(&scene, &settings());
-    assert!(frame.instance_id.iter().all(|&id| id == 4 || id == Frame::MISS));
-    assert!(frame.instance_id.contains(&4), "the floor should still be visible");
+    let image = render(&scene, &settings());
+    assert!(image.instance_id.iter().all(|&id| id == 4 || id == RenderedImage::MISS));
+    assert!(image.instance_id.contains(&4), "the floor should still be visible");
 }
 
 #[test]
 fn an_empty_scene_is_all_background() {
     let scene = scene(camera(Vec3::new(0.0, 3.0, 3.0), Vec3::ZERO), vec![], vec![]);
-    let frame = render(&scene, &settings());
-    assert!(frame.color.iter().all(|&c| c == BACKGROUND));
-    assert!(frame.depth.iter().all(|d| d.is_infinite()));
+    let image = render(&scene, &settings());
+    assert!(image.color.iter().all(|&c| c == BACKGROUND));
+    assert!(image.depth.iter().all(|d| d.is_infinite()));
 }

@@ -7,7 +7,7 @@ use crate::common;
 use common::*;
 use glam::{Affine3A, Vec3};
 use pointray_cpu::CpuRenderer;
-use pointray_scene::{Camera, Frame, Light, Material, RenderSettings, Scene};
+use pointray_scene::{Camera, Light, Material, RenderSettings, RenderedImage, Scene};
 
 fn reflective_floor_and_sphere(camera: Camera, lights: Vec<Light>) -> Scene {
     let sphere = patches_object(
@@ -44,7 +44,7 @@ fn two_low_lights() -> Vec<Light> {
     ]
 }
 
-fn fresh_render(camera: Camera, lights: Vec<Light>) -> Frame {
+fn fresh_render(camera: Camera, lights: Vec<Light>) -> RenderedImage {
     CpuRenderer::new(&reflective_floor_and_sphere(camera, lights)).render(&settings())
 }
 

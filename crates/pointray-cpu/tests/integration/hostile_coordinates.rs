@@ -62,8 +62,8 @@ fn hostile_cloud() -> impl Strategy<Value = PointCloud> {
 
 fn render_is_sane(scene: &pointray_scene::Scene) -> Result<(), TestCaseError> {
     let settings = RenderSettings { width: 12, height: 9, ..RenderSettings::default() };
-    let frame = pointray_cpu::render(scene, &settings);
-    prop_assert!(frame.color.iter().all(|c| c.is_finite()), "a pixel is not finite");
+    let image = pointray_cpu::render(scene, &settings);
+    prop_assert!(image.color.iter().all(|c| c.is_finite()), "a pixel is not finite");
     Ok(())
 }
 

@@ -6,7 +6,7 @@ use crate::common;
 use common::*;
 use glam::{Affine3A, Quat, Vec3};
 use pointray_cpu::{CpuRenderer, render};
-use pointray_scene::{Frame, PatchAcceptance, RenderSettings};
+use pointray_scene::{PatchAcceptance, RenderSettings, RenderedImage};
 
 fn settings(width: u32, height: u32) -> RenderSettings {
     RenderSettings { width, height, ..RenderSettings::default() }
@@ -20,7 +20,7 @@ fn a_point_set_plane_renders_without_holes() {
     let scene = scene(camera, vec![], vec![plane]);
     let (width, height) = (96, 80);
     for acceptance in [PatchAcceptance::Box, PatchAcceptance::Disk] {
-        let frame = render(&scene, &RenderSettings { acceptance, ..settings(width, height) });
+        let image = render(&scene, &RenderSettings { acceptance, ..settings(width, height) });
         let mut inside = 0;
         for y in 0..height {
             for x in 0..width {
@@ -31,13 +31,13 @@ fn a_point_set_plane_renders_without_holes() {
                 let index = (y * width + x) as usize;
                 if t > 0.0 && on_plane.x.abs() < 0.95 * half && on_plane.z.abs() < 0.95 * half {
                     inside += 1;
-                    assert_eq!(frame.instance_id[index], 0, "hole at pixel ({x}, {y}) with {acceptance:?}");
-                    assert!((frame.depth[index] - t).abs() < 1e-3 * t, "depth at ({x}, {y})");
-                    assert!((frame.normal[index] - Vec3::Y).length() < 1e-5);
+                    assert_eq!(image.instance_id[index], 0, "hole at pixel ({x}, {y}) with {acceptance:?}");
+                    assert!((image.depth[index] - t).abs() < 1e-3 * t, "depth at ({x}, {y})");
+                    assert!((image.normal[index] - Vec3::Y).length() < 1e-5);
                 }
                 if t <= 0.0 || on_plane.x.abs() > 1.5 * half || on_plane.z.abs() > 1.5 * half {
-                    assert_eq!(frame.instance_id[index], Frame::MISS, "false surface at ({x}, {y})");
-                    assert_eq!(frame.color[index], BACKGROUND);
+                    assert_eq!(image.instance_id[index], RenderedImage::MISS, "false surface at ({x}, {y})");
+                    assert_eq!(image.color[index], BACKGROUND);
                 }
             }
         }
@@ -54,7 +54,7 @@ fn sphere_normals_and_depths_match_the_analytic_sphere() {
     let sphere = patches_object("sphere", sphere_patches(0.5, 4000), transform, matte());
     let scene = scene(camera(Vec3::new(0.5, 1.0, 5.0), centre), vec![], vec![sphere]);
     let (width, height) = (96, 96);
-    let frame = CpuRenderer::new(&scene).render(&settings(width, height));
+    let image = CpuRenderer::new(&scene).render(&settings(width, height));
     let mut angles = Vec::new();
     for y in 0..height {
         for x in 0..width {
@@ -65,14 +65,14 @@ fn sphere_normals_and_depths_match_the_analytic_sphere() {
             if (ray.at(t) - centre).normalize().dot(-ray.direction) < 0.2 {
                 continue;
             }
-            assert_eq!(frame.instance_id[index], 0, "missed the sphere at ({x}, {y})");
+            assert_eq!(image.instance_id[index], 0, "missed the sphere at ({x}, {y})");
             assert!(
-                (frame.depth[index] - t).abs() < 0.01,
+                (image.depth[index] - t).abs() < 0.01,
                 "depth {} vs {t} at ({x}, {y})",
-                frame.depth[index]
+                image.depth[index]
             );
-            let truth = (ray.at(frame.depth[index]) - centre).normalize();
-            angles.push(frame.normal[index].angle_between(truth).to_degrees());
+            let truth = (ray.at(image.depth[index]) - centre).normalize();
+            angles.push(image.normal[index].angle_between(truth).to_degrees());
         }
     }
     assert!(angles.len() > 1000, "too few sphere pixels: {}", angles.len());
@@ -98,7 +98,7 @@ fn samples_average_and_aovs_come_from_the_first_sample() {
     // Jittered samples straddle the plane's edge: some edge pixels blend plane and background.
     let blended = one.color.iter().zip(&four.color).filter(|(a, b)| (**a - **b).length() > 1e-3).count();
     assert!(blended > 0, "supersampling changed nothing");
-    let hit_ids = one.primitive_id.iter().filter(|&&id| id != Frame::MISS);
+    let hit_ids = one.primitive_id.iter().filter(|&&id| id != RenderedImage::MISS);
     assert!(hit_ids.clone().all(|&id| id < 21 * 21));
 }
 

@@ -7,7 +7,7 @@ use common::*;
 use glam::{Affine3A, DVec3, Vec3};
 use pointray_cpu::render;
 use pointray_io::PointCloud;
-use pointray_scene::{Camera, Frame, Light, Material, RenderSettings};
+use pointray_scene::{Camera, Light, Material, RenderSettings, RenderedImage};
 use pointray_surface::{NoProgress, PatchSet, PrepSettings, RadiusMode, prep};
 
 /// A deterministic value in [-0.5, 0.5).
@@ -51,7 +51,7 @@ fn view() -> Camera {
     camera(Vec3::new(0.0, 2.2, 1.2), Vec3::ZERO)
 }
 
-fn render_plane(patches: PatchSet) -> Frame {
+fn render_plane(patches: PatchSet) -> RenderedImage {
     let material = Material { use_point_colors: true, ..matte() };
     let plane = patches_object("plane", patches, Affine3A::IDENTITY, material);
     let light = Light::Directional { direction: Vec3::NEG_Y, color: Vec3::ONE, intensity: 1.0 };
@@ -71,20 +71,20 @@ fn expected(hit: Vec3) -> Vec3 {
 /// Only pixels on the plane within the points' extent count: beyond it, on the rim that
 /// patches reach past the last points, no point's colour reaches and each takes its nearest
 /// point's.
-fn largest_step(frame: &Frame) -> f32 {
-    let (width, height) = (frame.width as usize, frame.height as usize);
+fn largest_step(image: &RenderedImage) -> f32 {
+    let (width, height) = (image.width as usize, image.height as usize);
     let hit = |i: usize| {
         let ray = pixel_ray(&view(), SIZE, SIZE, (i % width) as u32, (i / width) as u32);
-        ray.at(frame.depth[i])
+        ray.at(image.depth[i])
     };
-    let on_plane = |i: usize| frame.instance_id[i] == 0 && hit(i).x.abs() < 0.95 && hit(i).z.abs() < 0.95;
+    let on_plane = |i: usize| image.instance_id[i] == 0 && hit(i).x.abs() < 0.95 && hit(i).z.abs() < 0.95;
     let mut largest = 0.0f32;
     for y in 0..height {
         for x in 0..width {
             let here = y * width + x;
             for next in [(x + 1 < width).then_some(here + 1), (y + 1 < height).then_some(here + width)] {
                 if let Some(next) = next.filter(|&next| on_plane(here) && on_plane(next)) {
-                    let step = frame.color[here] - frame.color[next];
+                    let step = image.color[here] - image.color[next];
                     let gradient = expected(hit(here)) - expected(hit(next));
                     largest = largest.max((step - gradient).abs().max_element());
                 }

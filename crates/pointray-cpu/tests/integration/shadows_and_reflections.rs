@@ -6,7 +6,7 @@ use common::*;
 use glam::{Affine3A, Vec3};
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::Ray;
-use pointray_scene::{Frame, Light, Material, RenderSettings, Scene};
+use pointray_scene::{Light, Material, RenderSettings, RenderedImage, Scene};
 
 const SPHERE_CENTRE: Vec3 = Vec3::new(0.0, 1.0, 0.0);
 const SPHERE_RADIUS: f32 = 0.5;
@@ -35,7 +35,7 @@ fn settings() -> RenderSettings {
 }
 
 /// Floor pixels the camera sees directly: `(pixel index, floor point, primary ray)`.
-fn floor_pixels(scene: &Scene, frame: &Frame) -> Vec<(usize, Vec3, Ray)> {
+fn floor_pixels(scene: &Scene, image: &RenderedImage) -> Vec<(usize, Vec3, Ray)> {
     let mut pixels = Vec::new();
     for y in 0..SIZE {
         for x in 0..SIZE {
@@ -46,7 +46,7 @@ fn floor_pixels(scene: &Scene, frame: &Frame) -> Vec<(usize, Vec3, Ray)> {
                 distance_to_line(SPHERE_CENTRE, ray.origin, ray.direction) < 1.3 * SPHERE_RADIUS;
             if t > 0.0 && point.x.abs() < 2.9 && point.z.abs() < 2.9 && !in_view_of_sphere {
                 let index = (y * SIZE + x) as usize;
-                assert_eq!(frame.instance_id[index], 0, "expected the floor at ({x}, {y})");
+                assert_eq!(image.instance_id[index], 0, "expected the floor at ({x}, {y})");
                 pixels.push((index, point, ray));
             }
         }
@@ -67,11 +67,11 @@ fn shadow_clearance(floor_point: Vec3) -> f32 {
 #[test]
 fn the_sphere_shadows_the_floor_exactly_where_the_geometry_says() {
     let scene = floor_and_sphere(matte(), point_light());
-    let frame = CpuRenderer::new(&scene).render(&settings());
+    let image = CpuRenderer::new(&scene).render(&settings());
     let (mut shadowed, mut lit) = (0, 0);
-    for (index, point, _) in floor_pixels(&scene, &frame) {
+    for (index, point, _) in floor_pixels(&scene, &image) {
         let clearance = shadow_clearance(point);
-        let brightness = frame.color[index].x;
+        let brightness = image.color[index].x;
         if clearance < 0.9 * SPHERE_RADIUS {
             shadowed += 1;
             assert!((brightness - AMBIENT).abs() < 1e-5, "shadowed floor at {point} has {brightness}");
@@ -86,14 +86,14 @@ fn the_sphere_shadows_the_floor_exactly_where_the_geometry_says() {
 #[test]
 fn without_shadow_rays_or_without_the_light_the_shadow_disappears() {
     let no_shadow_rays = floor_and_sphere(matte(), point_light());
-    let frame = CpuRenderer::new(&no_shadow_rays).render(&RenderSettings { shadows: false, ..settings() });
-    for (index, point, _) in floor_pixels(&no_shadow_rays, &frame) {
-        assert!(frame.color[index].x > AMBIENT + 0.1, "floor at {point} is dark with shadows off");
+    let image = CpuRenderer::new(&no_shadow_rays).render(&RenderSettings { shadows: false, ..settings() });
+    for (index, point, _) in floor_pixels(&no_shadow_rays, &image) {
+        assert!(image.color[index].x > AMBIENT + 0.1, "floor at {point} is dark with shadows off");
     }
     let unlit = floor_and_sphere(matte(), vec![]);
-    let frame = CpuRenderer::new(&unlit).render(&settings());
-    for (index, point, _) in floor_pixels(&unlit, &frame) {
-        assert!((frame.color[index].x - AMBIENT).abs() < 1e-6, "unlit floor at {point} is not ambient only");
+    let image = CpuRenderer::new(&unlit).render(&settings());
+    for (index, point, _) in floor_pixels(&unlit, &image) {
+        assert!((image.color[index].x - AMBIENT).abs() < 1e-6, "unlit floor at {point} is not ambient only");
     }
 }
 

@@ -26,7 +26,7 @@ fn the_demo_in_many_tiles_finds_the_same_hits() {
     let settings = RenderSettings { width: 96, height: 96, ..RenderSettings::default() };
     let (a, b) = (tiled.render(&settings), whole.render(&settings));
     let depth_bits =
-        |frame: &pointray_scene::Frame| frame.depth.iter().map(|d| d.to_bits()).collect::<Vec<_>>();
+        |image: &pointray_scene::RenderedImage| image.depth.iter().map(|d| d.to_bits()).collect::<Vec<_>>();
     assert_eq!(a.instance_id, b.instance_id, "the same objects");
     assert_eq!(depth_bits(&a), depth_bits(&b), "the same nearest depths");
     // Where two overlapping patches tie at one depth either may be kept; elsewhere the

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 use pointray_fidelity::{
-    CpuFrameRenderer, FidelityOptions, FidelityReport, SensorPose, ViewSpec, measure_fidelity,
+    CpuImageRenderer, FidelityOptions, FidelityReport, SensorPose, ViewSpec, measure_fidelity,
 };
 use pointray_io::{PointCloud, TriangleMesh};
 use pointray_scene::PatchAcceptance;
@@ -38,7 +38,7 @@ fn square_points(centre: Vec3, half: f32, per_side: usize) -> PointCloud {
 
 fn measure(points: &PointCloud, mesh: TriangleMesh, options: &FidelityOptions) -> FidelityReport {
     let (patches, _) = prep(points, &PrepSettings::default(), &NoProgress).unwrap();
-    let report = measure_fidelity(Arc::new(patches), Arc::new(mesh), options, &CpuFrameRenderer).unwrap();
+    let report = measure_fidelity(Arc::new(patches), Arc::new(mesh), options, &CpuImageRenderer).unwrap();
     println!("{report}");
     report
 }
@@ -113,7 +113,7 @@ fn sensor_views_without_a_sensor_are_an_error() {
         FidelityOptions::with_views(vec![ViewSpec::Sensor { yaws: 4 }], SIZE, PatchAcceptance::Disk);
     let (patches, _) = prep(&cloud, &PrepSettings::default(), &NoProgress).unwrap();
     let result =
-        measure_fidelity(Arc::new(patches), Arc::new(square(Vec3::ZERO, 1.0)), &options, &CpuFrameRenderer);
+        measure_fidelity(Arc::new(patches), Arc::new(square(Vec3::ZERO, 1.0)), &options, &CpuImageRenderer);
     assert!(result.unwrap_err().to_string().contains("no sensor position"));
     let no_position = SensorPose::of_cloud(&cloud, Vec3::Z, None).unwrap_err();
     assert!(no_position.to_string().contains("--sensor"), "{no_position}");
@@ -139,8 +139,8 @@ fn bad_lenses_up_axes_and_sizes_are_errors() {
         FidelityOptions { views: vec![ViewSpec::Above { height: -1.0 }], ..base.clone() },
     ];
     for options in broken {
-        let result = measure_fidelity(patches.clone(), mesh.clone(), &options, &CpuFrameRenderer);
+        let result = measure_fidelity(patches.clone(), mesh.clone(), &options, &CpuImageRenderer);
         assert!(result.is_err(), "{options:?} should be refused");
     }
-    assert!(measure_fidelity(patches, mesh, &base, &CpuFrameRenderer).is_ok());
+    assert!(measure_fidelity(patches, mesh, &base, &CpuImageRenderer).is_ok());
 }

@@ -1,7 +1,7 @@
 //! The fidelity crate's integration tests, in one binary so that CI links it once.
 
 mod chosen_views;
-mod hand_made_frames;
+mod hand_made_images;
 mod paraboloid_cap;
 mod ring_scan;
 mod sensor_rays;

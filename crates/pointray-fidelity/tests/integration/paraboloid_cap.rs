@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
-use pointray_fidelity::{CpuFrameRenderer, FidelityOptions, FidelityReport, ViewSpec, measure_fidelity};
+use pointray_fidelity::{CpuImageRenderer, FidelityOptions, FidelityReport, ViewSpec, measure_fidelity};
 use pointray_io::{PointCloud, TriangleMesh};
 use pointray_scene::PatchAcceptance;
 use pointray_surface::{NoProgress, PrepSettings, prep};
@@ -61,7 +61,7 @@ fn measure(points: &PointCloud, mesh: TriangleMesh) -> FidelityReport {
     let (patches, _) = prep(points, &PrepSettings::default(), &NoProgress).expect("prep of the cap");
     let views = views_that_see_the_cap().into_iter().map(ViewSpec::Direction).collect();
     let options = FidelityOptions::with_views(views, SIZE, PatchAcceptance::Box);
-    let report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &CpuFrameRenderer).unwrap();
+    let report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &CpuImageRenderer).unwrap();
     println!("{report}");
     report
 }

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 use pointray_fidelity::{
-    ConsistencyOptions, CpuFrameRenderer, FidelityMetrics, FidelityOptions, ReturnOrigins, SensorPose,
+    ConsistencyOptions, CpuImageRenderer, FidelityMetrics, FidelityOptions, ReturnOrigins, SensorPose,
     ViewSpec, measure_fidelity, sensor_ray_consistency, support_against_beam_spacing,
 };
 use pointray_io::{PointCloud, TriangleMesh};
@@ -67,7 +67,7 @@ fn fidelity(scanned: &Scanned, view: ViewSpec, name: &str) -> FidelityMetrics {
         options.image_folder = Some(folder);
     }
     options.sensor = Some(SensorPose::of_cloud(&scanned.cloud, Vec3::Z, None).expect("a sensor"));
-    let report = measure_fidelity(scanned.patches.clone(), scanned.mesh.clone(), &options, &CpuFrameRenderer)
+    let report = measure_fidelity(scanned.patches.clone(), scanned.mesh.clone(), &options, &CpuImageRenderer)
         .expect("fidelity");
     report.overall
 }

@@ -6,7 +6,9 @@ use std::sync::Arc;
 use glam::{Affine3A, Vec3};
 use pointray_fidelity::VertexNormals;
 use pointray_io::TriangleMesh;
-use pointray_scene::{Background, Camera, Frame, Geometry, Material, RenderSettings, Scene, SceneObject};
+use pointray_scene::{
+    Background, Camera, Geometry, Material, RenderSettings, RenderedImage, Scene, SceneObject,
+};
 
 /// The regular icosahedron on the unit sphere: by symmetry each vertex's angle-weighted
 /// normal is radial, and between the vertices the interpolated normal of a point on a facet
@@ -53,7 +55,7 @@ fn icosahedron() -> TriangleMesh {
     TriangleMesh { positions: positions.to_vec(), triangles }
 }
 
-fn render(mesh: &Arc<TriangleMesh>, camera: Camera, size: u32) -> Frame {
+fn render(mesh: &Arc<TriangleMesh>, camera: Camera, size: u32) -> RenderedImage {
     let object = SceneObject {
         name: "sphere".into(),
         transform: Affine3A::IDENTITY,
@@ -69,16 +71,16 @@ fn render(mesh: &Arc<TriangleMesh>, camera: Camera, size: u32) -> Frame {
 /// The largest angle in degrees between each hit pixel's normal and the radius through its
 /// hit point, and the number of hit pixels. The angle is unsigned, as fidelity measures it:
 /// near the silhouette of a coarse polyhedron the radius at a hit can face away from the
-/// camera, and the frame's normal is turned toward it.
-fn worst_against_radius(frame: &Frame, camera: &Camera) -> (f32, usize) {
-    let size = glam::UVec2::new(frame.width, frame.height);
+/// camera, and the image's normal is turned toward it.
+fn worst_against_radius(image: &RenderedImage, camera: &Camera) -> (f32, usize) {
+    let size = glam::UVec2::new(image.width, image.height);
     let mut worst = 0.0f32;
     let mut hits = 0;
-    for pixel in (0..frame.pixel_count()).filter(|&p| frame.instance_id[p] != Frame::MISS) {
-        let coordinates = glam::UVec2::new(pixel as u32 % frame.width, pixel as u32 / frame.width);
+    for pixel in (0..image.pixel_count()).filter(|&p| image.instance_id[p] != RenderedImage::MISS) {
+        let coordinates = glam::UVec2::new(pixel as u32 % image.width, pixel as u32 / image.width);
         let ray = pointray_kernels::camera_ray(camera, size, coordinates, pointray_kernels::sample_jitter(0));
-        let radius = ray.at(frame.depth[pixel]).normalize();
-        worst = worst.max(frame.normal[pixel].dot(radius).abs().min(1.0).acos().to_degrees());
+        let radius = ray.at(image.depth[pixel]).normalize();
+        worst = worst.max(image.normal[pixel].dot(radius).abs().min(1.0).acos().to_degrees());
         hits += 1;
     }
     (worst, hits)
@@ -93,13 +95,13 @@ fn interpolated_vertex_normals_are_exact_on_the_icosahedron() {
     }
     for position in [Vec3::new(0.3, 2.0, 3.0), Vec3::new(-3.0, -0.5, 0.4)] {
         let camera = Camera { position, look_at: Vec3::ZERO, up: Vec3::Y, vertical_fov_degrees: 50.0 };
-        let mut frame = render(&mesh, camera, 96);
-        let (flat, hits) = worst_against_radius(&frame, &camera);
+        let mut image = render(&mesh, camera, 96);
+        let (flat, hits) = worst_against_radius(&image, &camera);
         assert!(hits > 2000, "the sphere fills too little: {hits} pixels");
         // The facets are 37° apart: their own normals are far off the sphere's.
         assert!(flat > 20.0, "face normals within {flat}° of the radius");
-        normals.smooth_frame(&mut frame, &mesh, &camera).unwrap();
-        let (smooth, _) = worst_against_radius(&frame, &camera);
+        normals.smooth_image(&mut image, &mesh, &camera).unwrap();
+        let (smooth, _) = worst_against_radius(&image, &camera);
         assert!(smooth < 0.05, "interpolated normals within {smooth}° of the radius, not exact");
     }
 }

@@ -2,8 +2,8 @@
 
 mod color_sources;
 mod common;
-mod frame_output;
 mod fuzz_regressions;
+mod image_output;
 mod loading;
 mod point_set_cache;
 mod procedural;

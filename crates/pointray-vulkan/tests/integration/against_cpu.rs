@@ -8,7 +8,7 @@ use common::{
     assert_no_validation_messages, model_on_floor, prepped_points_with_boxes, renderer, settings,
     sphere_on_floor,
 };
-use pointray_scene::{Frame, Geometry, Material, PatchAcceptance, RenderSettings, Scene, demo_scene};
+use pointray_scene::{Geometry, Material, PatchAcceptance, RenderSettings, RenderedImage, Scene, demo_scene};
 use pointray_surface::BoxKind;
 
 struct Agreement {
@@ -17,11 +17,11 @@ struct Agreement {
     psnr_db: f64,
 }
 
-fn agreement(cpu: &Frame, gpu: &Frame) -> Agreement {
+fn agreement(cpu: &RenderedImage, gpu: &RenderedImage) -> Agreement {
     let pixels = cpu.pixel_count();
     let masks_equal = (0..pixels).filter(|&i| cpu.hit_mask()[i] == gpu.hit_mask()[i]).count();
     let both_hit: Vec<usize> = (0..pixels)
-        .filter(|&i| cpu.instance_id[i] != Frame::MISS && gpu.instance_id[i] != Frame::MISS)
+        .filter(|&i| cpu.instance_id[i] != RenderedImage::MISS && gpu.instance_id[i] != RenderedImage::MISS)
         .collect();
     let close = both_hit
         .iter()
@@ -45,12 +45,12 @@ fn agreement(cpu: &Frame, gpu: &Frame) -> Agreement {
 fn assert_backends_agree(name: &str, scene: &Scene, settings: &RenderSettings) {
     let Some(renderer) = renderer() else { return };
     let gpu = renderer.render(scene, settings).expect("the Vulkan backend renders");
-    assert_frames_agree(name, &pointray_cpu::render(scene, settings), &gpu);
+    assert_images_agree(name, &pointray_cpu::render(scene, settings), &gpu);
     assert_no_validation_messages(&renderer);
 }
 
 /// The CPU's and the GPU's frames of one scene meet the thresholds above.
-pub fn assert_frames_agree(name: &str, cpu: &Frame, gpu: &Frame) {
+pub fn assert_images_agree(name: &str, cpu: &RenderedImage, gpu: &RenderedImage) {
     let agreement = agreement(cpu, gpu);
     eprintln!(
         "{name}: masks {:.4}%, normals {:.4}%, PSNR {:.1} dB",

@@ -9,13 +9,13 @@ use pointray_scene::demo_scene;
 fn the_procedural_demo_renders() {
     let Some(renderer) = renderer() else { return };
     let scene = demo_scene().expect("the demo scene builds");
-    let frame = renderer.render(&scene, &settings(128)).expect("the demo renders");
+    let image = renderer.render(&scene, &settings(128)).expect("the demo renders");
     assert!(
-        frame.color.iter().all(|c| c.is_finite() && c.min_element() >= 0.0),
+        image.color.iter().all(|c| c.is_finite() && c.min_element() >= 0.0),
         "colours must be finite and non-negative"
     );
     for index in 0..scene.objects.len() as u32 {
-        let pixels = frame.instance_id.iter().filter(|&&id| id == index).count();
+        let pixels = image.instance_id.iter().filter(|&&id| id == index).count();
         assert!(
             pixels > 20,
             "object {index} ({}) covers only {pixels} pixels",

@@ -40,8 +40,9 @@ fn a_utm_scene_renders_as_at_the_origin() {
         let scene = load_scene_file(&file, &LoadOptions::default()).expect("the scene loads").scene;
         renderer.render(&scene, &settings(96)).expect("the scene renders")
     });
-    let hits =
-        |frame: &pointray_scene::Frame| frame.instance_id.iter().map(|&id| id == 1).collect::<Vec<_>>();
+    let hits = |frame: &pointray_scene::RenderedImage| {
+        frame.instance_id.iter().map(|&id| id == 1).collect::<Vec<_>>()
+    };
     let overlap = iou(&hits(&reference), &hits(&moved));
     assert!(overlap > 0.98, "the sphere's pixels overlap by {overlap}");
     let n = reference.pixel_count() as f32;

@@ -22,13 +22,13 @@ fn blas_and_buffer_layouts_render_the_same_image() {
     let per_box_layout = SceneLayout { blas: BlasLayout::GeometryPerAabb, ..SceneLayout::default() };
     let per_box = renderer.prepare_with_layout(&scene, per_box_layout).expect("prepares");
     let reference = renderer.trace(&one, &split).expect("traces");
-    for (name, frame) in [
+    for (name, image) in [
         ("combined buffer", renderer.trace(&one_combined, &combined).expect("traces")),
         ("geometry per box", renderer.trace(&per_box, &split).expect("traces")),
     ] {
-        assert_eq!(frame.instance_id, reference.instance_id, "{name}: hit objects differ");
-        assert_eq!(frame.primitive_id, reference.primitive_id, "{name}: hit patches differ");
-        let difference = largest_color_difference(&frame, &reference);
+        assert_eq!(image.instance_id, reference.instance_id, "{name}: hit objects differ");
+        assert_eq!(image.primitive_id, reference.primitive_id, "{name}: hit patches differ");
+        let difference = largest_color_difference(&image, &reference);
         assert!(difference < 1e-5, "{name}: colours differ by {difference}");
     }
     assert_no_validation_messages(&renderer);

@@ -12,7 +12,9 @@ use common::{
 };
 use glam::{Affine3A, DVec3, Quat, Vec3};
 use pointray_io::PointCloud;
-use pointray_scene::{Background, Camera, Frame, Geometry, Material, RenderSettings, Scene, SceneObject};
+use pointray_scene::{
+    Background, Camera, Geometry, Material, RenderSettings, RenderedImage, Scene, SceneObject,
+};
 use pointray_surface::{NoProgress, PatchSet, PrepSettings, prep};
 use pointray_test_support::psnr;
 
@@ -98,23 +100,23 @@ pub fn lit_on_floor(patches: PatchSet) -> Scene {
 /// The largest step between neighbouring sphere pixels beyond what the colour field changes
 /// between their hit points. Pixels at grazing angles (normal within 60 degrees of the
 /// silhouette) are left out: there one pixel spans several patches anyway.
-fn largest_step_beyond_the_field(frame: &Frame, patches: &PatchSet) -> f32 {
+fn largest_step_beyond_the_field(image: &RenderedImage, patches: &PatchSet) -> f32 {
     let to_input = placement().inverse();
     let facing = |i: usize| {
-        let ray = primary_ray(&camera(), frame, i);
-        frame.instance_id[i] == 0 && frame.normal[i].dot(-ray.direction) > 0.5
+        let ray = primary_ray(&camera(), image, i);
+        image.instance_id[i] == 0 && image.normal[i].dot(-ray.direction) > 0.5
     };
     let field_at = |i: usize| {
-        let world = primary_ray(&camera(), frame, i).at(frame.depth[i]);
+        let world = primary_ray(&camera(), image, i).at(image.depth[i]);
         color_field(to_input.transform_point3(world).as_dvec3() + patches.offset)
     };
-    let width = frame.width as usize;
+    let width = image.width as usize;
     let mut largest = 0.0f32;
-    for here in 0..frame.pixel_count() {
+    for here in 0..image.pixel_count() {
         let (right, below) = ((here % width + 1 < width).then_some(here + 1), Some(here + width));
-        for next in [right, below].into_iter().flatten().filter(|&n| n < frame.pixel_count()) {
+        for next in [right, below].into_iter().flatten().filter(|&n| n < image.pixel_count()) {
             if facing(here) && facing(next) {
-                let step = frame.color[here] - frame.color[next];
+                let step = image.color[here] - image.color[next];
                 largest = largest.max((step - (field_at(here) - field_at(next))).abs().max_element());
             }
         }

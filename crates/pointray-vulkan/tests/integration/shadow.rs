@@ -7,7 +7,7 @@ use common::{
     assert_no_validation_messages, mean_luminance, primary_ray, renderer, settings, sphere_on_floor,
 };
 use glam::Vec3;
-use pointray_scene::{Frame, Light, Scene};
+use pointray_scene::{Light, RenderedImage, Scene};
 
 const FLOOR: u32 = 1;
 
@@ -33,15 +33,15 @@ fn light_position(scene: &Scene) -> Vec3 {
 }
 
 /// Floor pixels split by whether the sphere shadows them (from the geometry).
-fn floor_pixels(scene: &Scene, frame: &Frame) -> (Vec<bool>, Vec<bool>) {
+fn floor_pixels(scene: &Scene, image: &RenderedImage) -> (Vec<bool>, Vec<bool>) {
     let light = light_position(scene);
-    let shadowed: Vec<bool> = (0..frame.pixel_count())
+    let shadowed: Vec<bool> = (0..image.pixel_count())
         .map(|i| {
-            frame.instance_id[i] == FLOOR
-                && sphere_blocks(primary_ray(&scene.camera, frame, i).at(frame.depth[i]), light)
+            image.instance_id[i] == FLOOR
+                && sphere_blocks(primary_ray(&scene.camera, image, i).at(image.depth[i]), light)
         })
         .collect();
-    let lit = (0..frame.pixel_count()).map(|i| frame.instance_id[i] == FLOOR && !shadowed[i]).collect();
+    let lit = (0..image.pixel_count()).map(|i| image.instance_id[i] == FLOOR && !shadowed[i]).collect();
     (shadowed, lit)
 }
 
@@ -50,16 +50,16 @@ fn the_shadow_is_darker_and_vanishes_with_the_light_off() {
     let Some(renderer) = renderer() else { return };
     let settings = settings(128);
     let lit_scene = sphere_on_floor(0.0, 1.0);
-    let frame = renderer.render(&lit_scene, &settings).expect("renders");
-    let (shadowed, lit) = floor_pixels(&lit_scene, &frame);
+    let image = renderer.render(&lit_scene, &settings).expect("renders");
+    let (shadowed, lit) = floor_pixels(&lit_scene, &image);
     assert!(shadowed.iter().filter(|s| **s).count() > 100, "the shadow should cover floor pixels");
-    let (in_shadow, in_light) = (mean_luminance(&frame, |i| shadowed[i]), mean_luminance(&frame, |i| lit[i]));
+    let (in_shadow, in_light) = (mean_luminance(&image, |i| shadowed[i]), mean_luminance(&image, |i| lit[i]));
     assert!(in_shadow < 0.5 * in_light, "shadowed floor {in_shadow} is not darker than lit floor {in_light}");
 
     let dark_scene = sphere_on_floor(0.0, 0.0);
-    let frame = renderer.render(&dark_scene, &settings).expect("renders");
-    let (shadowed, lit) = floor_pixels(&dark_scene, &frame);
-    let (in_shadow, in_light) = (mean_luminance(&frame, |i| shadowed[i]), mean_luminance(&frame, |i| lit[i]));
+    let image = renderer.render(&dark_scene, &settings).expect("renders");
+    let (shadowed, lit) = floor_pixels(&dark_scene, &image);
+    let (in_shadow, in_light) = (mean_luminance(&image, |i| shadowed[i]), mean_luminance(&image, |i| lit[i]));
     assert!(
         (in_shadow - in_light).abs() < 1e-4,
         "with the light off: shadowed {in_shadow} vs lit {in_light}"

@@ -11,11 +11,11 @@ use common::{
     assert_no_validation_messages, iou, mesh, model_on_floor, object, prepped_points, renderer, settings,
 };
 use pointray_io::formats::ply::read_triangle_mesh;
-use pointray_scene::{Frame, Material, PatchAcceptance, RenderSettings};
+use pointray_scene::{Material, PatchAcceptance, RenderSettings, RenderedImage};
 
 const MODEL: u32 = 0;
 
-fn model_mask(frame: &Frame) -> Vec<bool> {
+fn model_mask(frame: &RenderedImage) -> Vec<bool> {
     frame.instance_id.iter().map(|&id| id == MODEL).collect()
 }
 

@@ -11,15 +11,15 @@ fn mean_normal_error_degrees(acceptance: PatchAcceptance) -> Option<(f64, usize)
     let renderer = renderer()?;
     let scene = sphere_on_floor(0.0, 1.0);
     let settings = pointray_scene::RenderSettings { acceptance, ..settings(128) };
-    let frame = renderer.render(&scene, &settings).expect("the sphere renders");
+    let image = renderer.render(&scene, &settings).expect("the sphere renders");
     assert_no_validation_messages(&renderer);
     let center = glam::Vec3::Y;
-    let errors: Vec<f64> = (0..frame.pixel_count())
-        .filter(|&i| frame.instance_id[i] == SPHERE)
+    let errors: Vec<f64> = (0..image.pixel_count())
+        .filter(|&i| image.instance_id[i] == SPHERE)
         .map(|i| {
-            let hit = primary_ray(&scene.camera, &frame, i).at(frame.depth[i]);
+            let hit = primary_ray(&scene.camera, &image, i).at(image.depth[i]);
             let truth = (hit - center).normalize();
-            f64::from(frame.normal[i].dot(truth).clamp(-1.0, 1.0).acos().to_degrees())
+            f64::from(image.normal[i].dot(truth).clamp(-1.0, 1.0).acos().to_degrees())
         })
         .collect();
     Some((errors.iter().sum::<f64>() / errors.len().max(1) as f64, errors.len()))

@@ -2,7 +2,7 @@
 //! into many small tiles draws exactly the image it draws whole, on the GPU and on the CPU,
 //! and the two backends agree; a scene over its GPU memory budget is refused before upload.
 
-use crate::against_cpu::assert_frames_agree;
+use crate::against_cpu::assert_images_agree;
 use crate::common;
 use crate::point_colors::{coloured_sphere, lit_on_floor};
 use pointray_test_support::psnr as psnr_db;
@@ -13,7 +13,7 @@ use common::{
 use glam::Vec3;
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::Aabb;
-use pointray_scene::{Frame, Geometry, Material, Scene};
+use pointray_scene::{Geometry, Material, RenderedImage, Scene};
 use pointray_vulkan::{SceneLayout, VulkanError};
 
 /// Small enough that every point set here splits into dozens of tiles, and not a divisor of
@@ -43,7 +43,7 @@ fn patch_count(scene: &Scene) -> usize {
 /// pixel in twenty does; the backends disagree on those as much): the renderer keeps
 /// whichever its traversal reports first, tiled or not, so there the image may differ
 /// only by what separates two patches through the same point.
-fn assert_same_hits(name: &str, tiled: &Frame, whole: &Frame) {
+fn assert_same_hits(name: &str, tiled: &RenderedImage, whole: &RenderedImage) {
     let pixels = whole.pixel_count();
     let same_nearest = |i: usize| {
         tiled.instance_id[i] == whole.instance_id[i] && tiled.depth[i].to_bits() == whole.depth[i].to_bits()
@@ -101,16 +101,16 @@ fn a_cloud_in_many_tiles_draws_the_untiled_image() {
         // One BLAS per tile of the sphere, and the floor's.
         assert_eq!(tiled.build_report().blas_count, tiles + 1, "{name}");
         assert_eq!(whole.build_report().blas_count, 2, "{name}");
-        let whole_frame = renderer.trace(&whole, &settings).expect("traces whole");
-        let tiled_frame = renderer.trace(&tiled, &settings).expect("traces in tiles");
+        let whole_image = renderer.trace(&whole, &settings).expect("traces whole");
+        let tiled_image = renderer.trace(&tiled, &settings).expect("traces in tiles");
         assert!(
-            tiled_frame.hit_mask().iter().filter(|&&hit| hit).count() > 128 * 128 / 4,
+            tiled_image.hit_mask().iter().filter(|&&hit| hit).count() > 128 * 128 / 4,
             "{name}: the view is filled"
         );
-        assert_same_hits(&format!("{name}, GPU"), &tiled_frame, &whole_frame);
+        assert_same_hits(&format!("{name}, GPU"), &tiled_image, &whole_image);
         let cpu = CpuRenderer::with_max_tile_patches(&scene, SMALL_TILE as usize);
         assert_eq!(cpu.tile_count(), tiles + 1, "{name}: the CPU's tiles");
-        assert_frames_agree(&format!("{name} in tiles"), &cpu.render(&settings), &tiled_frame);
+        assert_images_agree(&format!("{name} in tiles"), &cpu.render(&settings), &tiled_image);
     }
     assert_no_validation_messages(&renderer);
 }

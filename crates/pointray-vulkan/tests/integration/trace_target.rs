@@ -19,14 +19,14 @@ fn display_output_is_the_aov_colour_in_srgb8() {
     let Some(renderer) = renderer() else { return };
     let prepared = renderer.prepare(&sphere_on_floor(0.5, 1.0)).expect("prepares");
     let settings = small(48, 32);
-    let frame = renderer.trace(&prepared, &settings).expect("traces");
+    let image = renderer.trace(&prepared, &settings).expect("traces");
     let mut display = TraceTarget::new(PixelOutput::Display);
     renderer.trace_into(&prepared, &settings, &mut display).expect("traces");
-    let expected: Vec<u8> = frame.color.iter().flat_map(|&c| srgb_encode_rgba8(c).to_le_bytes()).collect();
+    let expected: Vec<u8> = image.color.iter().flat_map(|&c| srgb_encode_rgba8(c).to_le_bytes()).collect();
     let got = display.display_rgba8().expect("a display image");
     // pow() on the GPU may round the last bit differently from the CPU's powf().
     assert!(largest_byte_difference(got, &expected) <= 1, "display bytes differ from the encoded AOV colour");
-    assert!(display.frame().is_err(), "a display target has no AOV frame");
+    assert!(display.image().is_err(), "a display target has no AOV image");
     assert_no_validation_messages(&renderer);
 }
 
@@ -35,16 +35,16 @@ fn a_target_follows_size_changes() {
     let Some(renderer) = renderer() else { return };
     let prepared = renderer.prepare(&sphere_on_floor(0.5, 1.0)).expect("prepares");
     let mut target = TraceTarget::new(PixelOutput::Aovs);
-    assert!(target.frame().is_err(), "nothing traced yet");
+    assert!(target.image().is_err(), "nothing traced yet");
     for (width, height) in [(40, 30), (40, 30), (17, 9)] {
         renderer.trace_into(&prepared, &small(width, height), &mut target).expect("traces");
-        let frame = target.frame().expect("a frame");
+        let image = target.image().expect("a image");
         assert_eq!(
-            (frame.width, frame.height, frame.color.len()),
+            (image.width, image.height, image.color.len()),
             (width, height, (width * height) as usize)
         );
         let fresh = renderer.trace(&prepared, &small(width, height)).expect("traces");
-        assert_eq!(frame, fresh, "a reused target traces what a fresh one does");
+        assert_eq!(image, fresh, "a reused target traces what a fresh one does");
     }
     assert_no_validation_messages(&renderer);
 }
@@ -57,7 +57,7 @@ fn moving_the_camera_and_the_light_matches_a_fresh_preparation() {
     let mut target = TraceTarget::new(PixelOutput::Aovs);
     let settings = small(40, 30);
     renderer.trace_into(&prepared, &settings, &mut target).expect("traces");
-    let before = target.frame().expect("a frame");
+    let before = target.image().expect("a image");
 
     scene.camera.position += Vec3::new(0.4, 0.3, 0.0);
     scene.lights =
@@ -65,7 +65,7 @@ fn moving_the_camera_and_the_light_matches_a_fresh_preparation() {
     prepared.camera = scene.camera;
     prepared.set_lights(&scene.lights).expect("sets the lights");
     renderer.trace_into(&prepared, &settings, &mut target).expect("traces");
-    let moved = target.frame().expect("a frame");
+    let moved = target.image().expect("a image");
 
     let fresh = renderer.trace(&renderer.prepare(&scene).expect("prepares"), &settings).expect("traces");
     assert_ne!(moved.color, before.color, "the move changed the picture");

@@ -8,7 +8,7 @@ use pointray_io::TriangleMesh;
 use pointray_io::formats::ply::read_point_cloud;
 use pointray_kernels::{Aabb, PatchCold, PatchHot, camera_ray};
 use pointray_scene::{
-    Background, Camera, Frame, Geometry, Light, Material, RenderSettings, Scene, SceneObject,
+    Background, Camera, Geometry, Light, Material, RenderSettings, RenderedImage, Scene, SceneObject,
 };
 use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepSettings, prep};
 use pointray_vulkan::VulkanRenderer;
@@ -97,9 +97,9 @@ pub fn sphere_on_floor(floor_reflectivity: f32, light_intensity: f32) -> Scene {
 }
 
 /// The world-space ray of pixel `index`'s first sample, as the renderer shot it.
-pub fn primary_ray(camera: &Camera, frame: &Frame, index: usize) -> pointray_kernels::Ray {
-    let pixel = UVec2::new(index as u32 % frame.width, index as u32 / frame.width);
-    camera_ray(camera, UVec2::new(frame.width, frame.height), pixel, pointray_kernels::sample_jitter(0))
+pub fn primary_ray(camera: &Camera, image: &RenderedImage, index: usize) -> pointray_kernels::Ray {
+    let pixel = UVec2::new(index as u32 % image.width, index as u32 / image.width);
+    camera_ray(camera, UVec2::new(image.width, image.height), pixel, pointray_kernels::sample_jitter(0))
 }
 
 /// Intersection over union of two hit masks.
@@ -110,10 +110,10 @@ pub fn iou(a: &[bool], b: &[bool]) -> f64 {
 }
 
 /// Mean of the colour's channels over the selected pixels.
-pub fn mean_luminance(frame: &Frame, select: impl Fn(usize) -> bool) -> f32 {
-    let (sum, count) = (0..frame.pixel_count())
+pub fn mean_luminance(image: &RenderedImage, select: impl Fn(usize) -> bool) -> f32 {
+    let (sum, count) = (0..image.pixel_count())
         .filter(|&i| select(i))
-        .fold((0.0, 0usize), |(sum, count), i| (sum + frame.color[i].element_sum() / 3.0, count + 1));
+        .fold((0.0, 0usize), |(sum, count), i| (sum + image.color[i].element_sum() / 3.0, count + 1));
     sum / count.max(1) as f32
 }
 

@@ -1,26 +1,26 @@
-//! A presented display image (sRGB8 RGBA, read back from the GPU) as a `Frame`, so that the
+//! A presented display image (sRGB8 RGBA, read back from the GPU) as a `RenderedImage`, so that the
 //! direct path's screenshots go through the same writers (PNG, EXR) as the host path's.
 
 use glam::Vec3;
-use pointray_scene::Frame;
+use pointray_scene::RenderedImage;
 use pointray_vulkan::DisplayImage;
 
 /// Colour only: the display output has no AOVs (depth infinite, no normals, no ids).
-pub(crate) fn frame_from_display(image: &DisplayImage) -> Frame {
+pub(crate) fn image_from_display(image: &DisplayImage) -> RenderedImage {
     let pixels = (image.width * image.height) as usize;
     let color = image
         .rgba8
         .chunks_exact(4)
         .map(|p| Vec3::new(srgb_decode(p[0]), srgb_decode(p[1]), srgb_decode(p[2])))
         .collect();
-    Frame {
+    RenderedImage {
         width: image.width,
         height: image.height,
         color,
         depth: vec![f32::INFINITY; pixels],
         normal: vec![Vec3::ZERO; pixels],
-        instance_id: vec![Frame::MISS; pixels],
-        primitive_id: vec![Frame::MISS; pixels],
+        instance_id: vec![RenderedImage::MISS; pixels],
+        primitive_id: vec![RenderedImage::MISS; pixels],
     }
 }
 
@@ -46,9 +46,9 @@ mod tests {
 
     #[test]
     fn pixels_keep_their_channels_and_order() {
-        let image = DisplayImage { width: 2, height: 1, rgba8: vec![255, 0, 0, 255, 0, 0, 255, 255] };
-        let frame = frame_from_display(&image);
-        assert_eq!(frame.color, vec![Vec3::X, Vec3::Z]);
-        assert_eq!(frame.instance_id, vec![Frame::MISS; 2]);
+        let display = DisplayImage { width: 2, height: 1, rgba8: vec![255, 0, 0, 255, 0, 0, 255, 255] };
+        let image = image_from_display(&display);
+        assert_eq!(image.color, vec![Vec3::X, Vec3::Z]);
+        assert_eq!(image.instance_id, vec![RenderedImage::MISS; 2]);
     }
 }

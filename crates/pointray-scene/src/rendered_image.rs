@@ -4,7 +4,7 @@ use glam::Vec3;
 
 /// Row-major, top row first. Per-pixel AOVs come from the first sample's primary ray.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Frame {
+pub struct RenderedImage {
     pub width: u32,
     pub height: u32,
     /// Linear RGB radiance.
@@ -13,21 +13,21 @@ pub struct Frame {
     pub depth: Vec<f32>,
     /// World-space shading normal at the first hit, facing the camera; zero where it missed.
     pub normal: Vec<Vec3>,
-    /// Index of the scene object hit; `Frame::MISS` where it missed.
+    /// Index of the scene object hit; `RenderedImage::MISS` where it missed.
     pub instance_id: Vec<u32>,
-    /// Index of the patch or triangle hit within its object; `Frame::MISS` where it missed.
+    /// Index of the patch or triangle hit within its object; `RenderedImage::MISS` where it missed.
     pub primitive_id: Vec<u32>,
 }
 
-impl Frame {
+impl RenderedImage {
     pub const MISS: u32 = u32::MAX;
 
     pub fn pixel_count(&self) -> usize {
         (self.width * self.height) as usize
     }
 
-    /// Depths into another unit: a scene loaded in a scaled render frame (`RenderFrame`) is
-    /// rendered in that frame's units, and `factor = frame.scale` gives the file's.
+    /// Depths into another unit: a scene loaded in a scaled render space (`RenderSpace`) is
+    /// rendered in that space's units, and `factor = space.scale` gives the file's.
     pub fn scale_depth(&mut self, factor: f32) {
         self.depth.iter_mut().for_each(|depth| *depth *= factor);
     }

@@ -1,4 +1,4 @@
-// Twin of src/packed_frame.rs: a patch's tangent frame from a normal and an angle.
+// Twin of src/tangent_frame.rs: a patch's tangent frame from a normal and an angle.
 #ifndef POINTRAY_PACKED_FRAME_GLSL
 #define POINTRAY_PACKED_FRAME_GLSL
 

@@ -1,4 +1,4 @@
-//! A patch's tangent frame in a normal and an angle. Twin of `shaders/packed_frame.glsl`.
+//! A patch's tangent frame in a normal and an angle. Twin of `shaders/tangent_frame.glsl`.
 //!
 //! The normal is stored octahedrally (two snorm16) and the first tangent as its angle from
 //! a fixed basis of the normal (unorm16 over half a turn: an elliptical support is symmetric

@@ -1,11 +1,11 @@
-//! The render frame: scenes are loaded in f64, then recentred on their objects and scaled to a
+//! The render space: scenes are loaded in f64, then recentred on their objects and scaled to a
 //! size near 1 before anything goes to f32.
 //! - Geo-referenced scenes sit 10^5 to 10^7 units from the origin, where an f32 keeps only
 //!   decimetres to metres: rays, hits and BVH boxes there come out scattered or missing.
 //! - The renderers' tolerances are in ray units (a quadratic is solved as linear when its far
 //!   root lies beyond 10^6); a scene 10^10 across breaks them.
 //!
-//! In the render frame the renderers see the same numbers as for the scene at the origin at
+//! In the render space the renderers see the same numbers as for the scene at the origin at
 //! its usual size. The scale is a power of two, so scaling loses no bit.
 
 use glam::{Affine3A, DAffine3, DVec3, Vec3};
@@ -52,19 +52,19 @@ const RECENTRE_BEYOND_SIZES: f64 = 16.0;
 /// Scenes whose size lies between these (in file units) keep their scale.
 const USUAL_SIZES: std::ops::RangeInclusive<f64> = 1e-3..=1e4;
 
-/// The render frame in file coordinates: `file = origin + scale * render`.
+/// The render space in file coordinates: `file = origin + scale * render`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RenderFrame {
+pub struct RenderSpace {
     pub origin: DVec3,
     pub scale: f64,
 }
 
-impl RenderFrame {
+impl RenderSpace {
     pub const FILE: Self = Self { origin: DVec3::ZERO, scale: 1.0 };
 
-    /// The frame for objects within `bounds` (file coordinates): recentred on them when they
+    /// The space for objects within `bounds` (file coordinates): recentred on them when they
     /// lie far from the file's origin for their size, and scaled by a power of two near their
-    /// size when that is unusually small or large; else the file's own frame, so that a scene
+    /// size when that is unusually small or large; else the file's own space, so that a scene
     /// of usual size near the origin renders exactly as written.
     pub(crate) fn around(bounds: Option<WorldBounds>) -> Self {
         let Some(bounds) = bounds else { return Self::FILE };
@@ -77,17 +77,17 @@ impl RenderFrame {
         }
     }
 
-    /// A file position in the render frame.
+    /// A file position in the render space.
     pub fn point(&self, file: DVec3) -> DVec3 {
         (file - self.origin) / self.scale
     }
 
-    /// A render-frame position in the file's coordinates (after the objects' transforms).
+    /// A render-space position in the file's coordinates (after the objects' transforms).
     pub fn point_to_file(&self, render: DVec3) -> DVec3 {
         self.origin + render * self.scale
     }
 
-    /// `local_to_file` seen from the render frame, in f32.
+    /// `local_to_file` seen from the render space, in f32.
     pub(crate) fn transform(&self, local_to_file: &DAffine3) -> Affine3A {
         let to_render =
             DAffine3::from_scale(DVec3::splat(1.0 / self.scale)) * DAffine3::from_translation(-self.origin);
@@ -95,7 +95,7 @@ impl RenderFrame {
         Affine3A::from_mat3_translation(placed.matrix3.as_mat3(), placed.translation.as_vec3())
     }
 
-    /// From the render frame to the file's coordinates.
+    /// From the render space to the file's coordinates.
     pub(crate) fn to_file(self) -> DAffine3 {
         DAffine3::from_translation(self.origin) * DAffine3::from_scale(DVec3::splat(self.scale))
     }
@@ -109,7 +109,7 @@ pub(crate) fn recentred_mesh(mut mesh: TriangleMesh) -> (TriangleMesh, DVec3) {
     };
     let bounds =
         WorldBounds { min: Vec3::from(bounds.min).as_dvec3(), max: Vec3::from(bounds.max).as_dvec3() };
-    let offset = RenderFrame::around(Some(bounds)).origin;
+    let offset = RenderSpace::around(Some(bounds)).origin;
     let shift = offset.as_vec3();
     mesh.positions.iter_mut().for_each(|p| *p -= shift);
     (mesh, shift.as_dvec3())
@@ -122,22 +122,22 @@ mod tests {
     #[test]
     fn only_scenes_far_away_or_of_unusual_size_move() {
         let near = WorldBounds { min: DVec3::splat(-1.0), max: DVec3::new(2.0, 1.0, 1.0) };
-        assert_eq!(RenderFrame::around(Some(near)), RenderFrame::FILE);
-        assert_eq!(RenderFrame::around(None), RenderFrame::FILE);
+        assert_eq!(RenderSpace::around(Some(near)), RenderSpace::FILE);
+        assert_eq!(RenderSpace::around(None), RenderSpace::FILE);
         let utm = WorldBounds {
             min: DVec3::new(640_000.0, 5e6, 100.0),
             max: DVec3::new(640_010.0, 5e6 + 4.0, 102.0),
         };
-        let frame = RenderFrame::around(Some(utm));
-        assert_eq!(frame, RenderFrame { origin: DVec3::new(640_005.0, 5e6 + 2.0, 101.0), scale: 1.0 });
+        let space = RenderSpace::around(Some(utm));
+        assert_eq!(space, RenderSpace { origin: DVec3::new(640_005.0, 5e6 + 2.0, 101.0), scale: 1.0 });
         let huge = WorldBounds { min: DVec3::splat(-1e10), max: DVec3::splat(1e10) };
-        assert_eq!(RenderFrame::around(Some(huge)).scale, 2f64.powi(35));
+        assert_eq!(RenderSpace::around(Some(huge)).scale, 2f64.powi(35));
     }
 
     #[test]
     fn a_geo_referenced_translation_keeps_its_centimetres() {
-        let frame = RenderFrame { origin: DVec3::new(640_000.0, 5_000_000.0, 100.0), scale: 1.0 };
-        let placed = DAffine3::from_translation(frame.origin + DVec3::new(0.37, 0.01, -0.25));
-        assert_eq!(frame.transform(&placed).translation, glam::Vec3A::new(0.37, 0.01, -0.25));
+        let space = RenderSpace { origin: DVec3::new(640_000.0, 5_000_000.0, 100.0), scale: 1.0 };
+        let placed = DAffine3::from_translation(space.origin + DVec3::new(0.37, 0.01, -0.25));
+        assert_eq!(space.transform(&placed).translation, glam::Vec3A::new(0.37, 0.01, -0.25));
     }
 }

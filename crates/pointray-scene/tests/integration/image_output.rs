@@ -1,17 +1,17 @@
-//! Frames reach disk: the colour image by extension and each AOV next to it, all readable by
+//! Images reach disk: the colour image by extension and each AOV next to it, all readable by
 //! the `image` crate with the values that went in.
 
 use std::path::Path;
 
 use glam::Vec3;
-use pointray_scene::frame_output::aov_path;
-use pointray_scene::{AovSelection, Frame, SceneError, write_frame};
+use pointray_scene::image_output::aov_path;
+use pointray_scene::{AovSelection, RenderedImage, SceneError, write_image};
 
 /// 3x2 pixels: the top row hits objects 0, 1 and 2, the bottom row misses but for one pixel.
-fn test_frame() -> Frame {
+fn test_image() -> RenderedImage {
     let hit = [true, true, true, false, true, false];
-    let pick = |i: usize, value: u32| if hit[i] { value } else { Frame::MISS };
-    Frame {
+    let pick = |i: usize, value: u32| if hit[i] { value } else { RenderedImage::MISS };
+    RenderedImage {
         width: 3,
         height: 2,
         color: vec![
@@ -38,8 +38,8 @@ fn read_rgb32f(path: &Path) -> Vec<[f32; 3]> {
 fn png_colour_and_every_aov_read_back() {
     let dir = tempfile::tempdir().unwrap();
     let output = dir.path().join("out.png");
-    let frame = test_frame();
-    let written = write_frame(&frame, &output, &AovSelection::ALL).unwrap();
+    let image = test_image();
+    let written = write_image(&image, &output, &AovSelection::ALL).unwrap();
     let names: Vec<String> =
         written.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
     assert_eq!(
@@ -87,9 +87,9 @@ fn png_colour_and_every_aov_read_back() {
 fn exr_colour_is_linear_and_only_the_selected_aovs_are_written() {
     let dir = tempfile::tempdir().unwrap();
     let output = dir.path().join("render.EXR");
-    let frame = test_frame();
+    let image = test_image();
     let selection = AovSelection { mask: true, ..AovSelection::default() };
-    let written = write_frame(&frame, &output, &selection).unwrap();
+    let written = write_image(&image, &output, &selection).unwrap();
     assert_eq!(written, [output.clone(), dir.path().join("render.mask.png")]);
     let color = read_rgb32f(&output);
     assert_eq!(color[2], [0.0, 0.0, 0.2159]);
@@ -103,8 +103,8 @@ fn exr_colour_is_linear_and_only_the_selected_aovs_are_written() {
 fn an_unknown_image_type_is_refused_and_nothing_is_written() {
     let dir = tempfile::tempdir().unwrap();
     let output = dir.path().join("out.jpg");
-    let error = write_frame(&test_frame(), &output, &AovSelection::ALL).unwrap_err();
-    assert!(matches!(error, SceneError::FrameFormat { .. }), "{error:?}");
+    let error = write_image(&test_image(), &output, &AovSelection::ALL).unwrap_err();
+    assert!(matches!(error, SceneError::ImageFormat { .. }), "{error:?}");
     assert!(error.to_string().contains("out.jpg"), "{error}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
@@ -112,21 +112,21 @@ fn an_unknown_image_type_is_refused_and_nothing_is_written() {
 #[test]
 fn ids_a_float_cannot_hold_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let mut frame = test_frame();
-    frame.primitive_id[0] = (1 << 24) + 1;
+    let mut image = test_image();
+    image.primitive_id[0] = (1 << 24) + 1;
     let output = dir.path().join("out.png");
-    let error = write_frame(&frame, &output, &AovSelection::ALL).unwrap_err();
+    let error = write_image(&image, &output, &AovSelection::ALL).unwrap_err();
     assert!(error.to_string().contains("primitive"), "{error}");
-    // Without the primitive AOV the frame is fine.
+    // Without the primitive AOV the image is fine.
     let selection = AovSelection { primitive: false, ..AovSelection::ALL };
-    write_frame(&frame, &output, &selection).unwrap();
+    write_image(&image, &output, &selection).unwrap();
 }
 
 #[test]
-fn a_frame_whose_buffers_do_not_match_its_size_is_an_error() {
+fn an_image_whose_buffers_do_not_match_its_size_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
-    let mut frame = test_frame();
-    frame.color.pop();
-    let error = write_frame(&frame, &dir.path().join("out.png"), &AovSelection::default()).unwrap_err();
+    let mut image = test_image();
+    image.color.pop();
+    let error = write_image(&image, &dir.path().join("out.png"), &AovSelection::default()).unwrap_err();
     assert!(error.to_string().contains("out.png"), "{error}");
 }
