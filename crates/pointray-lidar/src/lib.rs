@@ -13,7 +13,7 @@
 //! - `scan.rs`: the casting, deterministic for a seed; `returns.rs`: what it records;
 //!   `ply_output.rs`: the points file.
 //!
-//! Positions are in the scene's frame: Z up for the street (as KITTI and nuScenes frames are),
+//! Positions are in the scene's coordinates: Z up for the street (as KITTI and nuScenes frames are),
 //! Y up for pointray scene files.
 
 pub mod classification;

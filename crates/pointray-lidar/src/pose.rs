@@ -65,15 +65,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn frames_are_right_handed_and_turn_counterclockwise_from_above() {
+    fn axes_are_right_handed_and_turn_counterclockwise_from_above() {
         for up in [UpAxis::Y, UpAxis::Z] {
-            let frame = SensorAxes::new(up, 90.0);
-            assert!(frame.forward.cross(frame.left).distance(up.vector()) < 1e-12);
+            let axes = SensorAxes::new(up, 90.0);
+            assert!(axes.forward.cross(axes.left).distance(up.vector()) < 1e-12);
             let at_zero = SensorAxes::new(up, 0.0);
             assert!(at_zero.direction(0.0, 0.0).distance(DVec3::X) < 1e-12);
             // A quarter turn of yaw points forward where the unturned sensor's left was.
-            assert!(frame.direction(0.0, 0.0).distance(at_zero.left) < 1e-12);
-            assert!(frame.direction(std::f64::consts::FRAC_PI_2, 0.0).distance(up.vector()) < 1e-12);
+            assert!(axes.direction(0.0, 0.0).distance(at_zero.left) < 1e-12);
+            assert!(axes.direction(std::f64::consts::FRAC_PI_2, 0.0).distance(up.vector()) < 1e-12);
         }
         assert!(SensorAxes::new(UpAxis::Z, 0.0).left.distance(DVec3::Y) < 1e-12);
     }

@@ -37,7 +37,7 @@ pub struct Scan {
 struct Column<'a> {
     sensor: &'a Sensor,
     elevations: &'a [f64],
-    frame: SensorAxes,
+    axes: SensorAxes,
     origin: DVec3,
     azimuth: f64,
     time: f64,
@@ -64,7 +64,7 @@ pub fn scan(
             let column_rays = Column {
                 sensor,
                 elevations: &elevations,
-                frame: SensorAxes::new(scene.up(), pose.yaw_deg),
+                axes: SensorAxes::new(scene.up(), pose.yaw_deg),
                 origin: pose.position,
                 azimuth,
                 time: (station as f64 + azimuth / TAU) * sensor.sweep_seconds,
@@ -115,7 +115,7 @@ impl Column<'_> {
         let mut stats = ScanStats { rays: self.elevations.len() as u64, ..ScanStats::default() };
         for (ring, &elevation) in self.elevations.iter().enumerate() {
             let (dropout_draw, noise) = (rng.random::<f64>(), standard_normal(rng));
-            let direction = self.frame.direction(elevation, self.azimuth);
+            let direction = self.axes.direction(elevation, self.azimuth);
             let Some(hit) = scene.first_hit(self.origin, direction, sensor.max_range) else {
                 stats.misses += 1;
                 continue;

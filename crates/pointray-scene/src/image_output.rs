@@ -43,7 +43,7 @@ pub fn write_image(
     path: &Path,
     aovs: &AovSelection,
 ) -> Result<Vec<PathBuf>, SceneError> {
-    frame_paths(path, aovs)?;
+    image_paths(path, aovs)?;
     check_ids(image, path, aovs)?;
     let (width, height) = (image.width, image.height);
     let written = |path: &Path, result: Result<(), pointray_io::IoError>| {
@@ -81,7 +81,7 @@ pub fn write_image(
 
 /// Every file `write_image` would write for `path` and `aovs`, the colour image first; an
 /// error for an image type it cannot write. Nothing is touched.
-pub fn frame_paths(path: &Path, aovs: &AovSelection) -> Result<Vec<PathBuf>, SceneError> {
+pub fn image_paths(path: &Path, aovs: &AovSelection) -> Result<Vec<PathBuf>, SceneError> {
     if !matches!(extension(path).as_deref(), Some("png" | "exr")) {
         return Err(SceneError::ImageFormat {
             path: path.to_path_buf(),
@@ -107,7 +107,7 @@ pub fn check_image_outputs(
     aovs: &AovSelection,
     inputs: &[PathBuf],
 ) -> Result<Vec<PathBuf>, SceneError> {
-    let paths = frame_paths(path, aovs)?;
+    let paths = image_paths(path, aovs)?;
     pointray_io::ensure_outputs_spare_inputs(inputs, &paths)
         .map_err(|source| SceneError::ImageOutput { path: path.to_path_buf(), source })?;
     Ok(paths)

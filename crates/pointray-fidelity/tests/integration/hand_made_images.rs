@@ -88,7 +88,7 @@ fn identical_images_have_no_holes_no_errors_and_infinite_psnr() {
 }
 
 #[test]
-fn an_empty_mesh_frame_has_no_rates() {
+fn an_empty_mesh_image_has_no_rates() {
     let empty = image(&[(None, GREY), (None, GREY)]);
     let metrics = PixelComparison::of_images(&empty, &empty, 1.0).unwrap().metrics();
     assert_eq!((metrics.hole_rate, metrics.depth_error_mean), (None, None));
