@@ -1,7 +1,8 @@
-//! Compiles every ray-tracing entry point in `pointray-kernels/shaders/` to SPIR-V 1.4
-//! (Vulkan 1.2) into `OUT_DIR`, where `src/shaders.rs` embeds it with `include_bytes!`.
+//! Compiles every shader stage in `shaders/` to SPIR-V 1.4 (Vulkan 1.2) into `OUT_DIR`,
+//! where `src/shaders.rs` embeds it with `include_bytes!`. Includes resolve against this
+//! crate's `shaders/` (the pipeline's interface) and then the kernels' GLSL twins.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use glslang::include::{IncludeHandler, IncludeResult, IncludeType};
 use glslang::{
@@ -9,7 +10,8 @@ use glslang::{
     VulkanVersion,
 };
 
-/// The entry points this crate's pipeline uses, with their stages.
+/// The entry points this crate's pipeline uses, with their stages, and the probe that the
+/// interface tests reflect on (`src/spirv_reflection.rs`).
 const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
     ("primary.rgen", ShaderStage::RayGeneration),
     ("background.rmiss", ShaderStage::Miss),
@@ -17,6 +19,7 @@ const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
     ("patch.rint", ShaderStage::Intersect),
     ("patch.rchit", ShaderStage::ClosestHit),
     ("triangle.rchit", ShaderStage::ClosestHit),
+    ("interface_probe.rgen", ShaderStage::RayGeneration),
 ];
 
 /// Entry points compiled a second time with a define, as `(source, define, output name)`:
@@ -26,9 +29,9 @@ const VARIANTS: &[(&str, ShaderStage, &str, &str)] = &[
     ("primary.rgen", ShaderStage::RayGeneration, "REORDER_HITS", "primary_reordering.rgen"),
 ];
 
-/// Resolves `#include "NAME"` against the shaders folder only.
+/// Resolves `#include "NAME"` against the given folders, in order.
 struct ShaderFolderIncludes {
-    folder: PathBuf,
+    folders: Vec<PathBuf>,
 }
 
 impl IncludeHandler for ShaderFolderIncludes {
@@ -39,14 +42,19 @@ impl IncludeHandler for ShaderFolderIncludes {
         _includer: &str,
         _depth: usize,
     ) -> Option<IncludeResult> {
-        let path = self.folder.join(header);
+        let path = self.folders.iter().map(|folder| folder.join(header)).find(|path| path.is_file())?;
         let data = std::fs::read_to_string(&path).ok()?;
         Some(IncludeResult { name: path.display().to_string(), data })
     }
 }
 
-fn compile(folder: &Path, name: &str, stage: ShaderStage, define: Option<&str>) -> Result<Vec<u32>, String> {
-    let path = folder.join(name);
+fn compile(
+    folders: &[PathBuf],
+    name: &str,
+    stage: ShaderStage,
+    define: Option<&str>,
+) -> Result<Vec<u32>, String> {
+    let path = folders[0].join(name);
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let source = ShaderSource::from(text);
     let options = CompilerOptions {
@@ -55,7 +63,7 @@ fn compile(folder: &Path, name: &str, stage: ShaderStage, define: Option<&str>) 
         version_profile: None,
         ..CompilerOptions::default()
     };
-    let mut includes = ShaderFolderIncludes { folder: folder.to_path_buf() };
+    let mut includes = ShaderFolderIncludes { folders: folders.to_vec() };
     let defines: Vec<(&str, Option<&str>)> = define.map(|d| (d, None)).into_iter().collect();
     let input = ShaderInput::new(&source, stage, &options, Some(&defines[..]), Some(&mut includes))
         .map_err(|e| format!("{}: {e}", path.display()))?;
@@ -66,17 +74,19 @@ fn compile(folder: &Path, name: &str, stage: ShaderStage, define: Option<&str>) 
 
 fn main() {
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
-    let folder = manifest.join("../pointray-kernels/shaders");
+    let folders = [manifest.join("shaders"), PathBuf::from(pointray_kernels::SHADER_FOLDER)];
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
-    println!("cargo:rerun-if-changed={}", folder.display());
-    for entry in std::fs::read_dir(&folder).into_iter().flatten().flatten() {
-        println!("cargo:rerun-if-changed={}", entry.path().display());
+    for folder in &folders {
+        println!("cargo:rerun-if-changed={}", folder.display());
+        for entry in std::fs::read_dir(folder).into_iter().flatten().flatten() {
+            println!("cargo:rerun-if-changed={}", entry.path().display());
+        }
     }
     let mut failures = Vec::new();
     let plain = ENTRY_POINTS.iter().map(|&(name, stage)| (name, stage, None, name));
     let variants = VARIANTS.iter().map(|&(name, stage, define, output)| (name, stage, Some(define), output));
     for (name, stage, define, output) in plain.chain(variants) {
-        match compile(&folder, name, stage, define) {
+        match compile(&folders, name, stage, define) {
             Ok(words) => {
                 let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
                 std::fs::write(out.join(format!("{output}.spv")), bytes).expect("OUT_DIR is writable");

@@ -3,7 +3,8 @@
 //! Every function here has a twin of the same name in `shaders/NAME.glsl`; the file
 //! `src/NAME.rs` and `shaders/NAME.glsl` describe the same maths. Change both together.
 //! `Patch` and its decoding from `PatchHot` (`src/layout.rs`) have their twins in
-//! `shaders/patch_frame.glsl`; `src/packing.rs` twins the GLSL packing built-ins.
+//! `shaders/patch_frame.glsl`; `src/packing.rs` twins the GLSL packing built-ins. The shader
+//! stages that include these twins belong to the crate that builds their pipeline.
 
 pub mod background;
 pub mod camera_ray;
@@ -33,3 +34,6 @@ pub use ray::Ray;
 pub use self_clearance::self_clearance;
 pub use srgb_encode::{srgb_encode, srgb_encode_rgba8};
 pub use tangent_frame::TangentFrame;
+
+/// The folder of the GLSL twins, for the build scripts that compile shaders including them.
+pub const SHADER_FOLDER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/shaders");

@@ -147,16 +147,26 @@ impl TraceSettings {
             max_depth: settings.max_depth,
             shadows: settings.shadows.into(),
             acceptance: settings.acceptance.code(),
-            buffer_layout: match settings.buffer_layout {
-                BufferLayout::Split => 0,
-                BufferLayout::Combined => 1,
-            },
-            output_kind: match output {
-                PixelOutput::Aovs => 0,
-                PixelOutput::Display => 1,
-                PixelOutput::DisplayBgra => 2,
-            },
+            buffer_layout: layout_code(settings.buffer_layout),
+            output_kind: output_code(output),
         }
+    }
+}
+
+/// The value the shaders receive for `layout` (`LAYOUT_*` in bindings.glsl).
+fn layout_code(layout: BufferLayout) -> u32 {
+    match layout {
+        BufferLayout::Split => 0,
+        BufferLayout::Combined => 1,
+    }
+}
+
+/// The value the shaders receive for `output` (`OUTPUT_*` in bindings.glsl).
+fn output_code(output: PixelOutput) -> u32 {
+    match output {
+        PixelOutput::Aovs => 0,
+        PixelOutput::Display => 1,
+        PixelOutput::DisplayBgra => 2,
     }
 }
 
@@ -172,14 +182,171 @@ pub(crate) struct PixelRecord {
 
 #[cfg(test)]
 mod tests {
+    use std::mem::{offset_of, size_of};
+
+    use pointray_kernels::PatchAcceptance;
+    use pointray_kernels::interpolate_color::{COLOR_NEIGHBORS, COLOR_WALK_SCANS, NO_NEIGHBOR};
+    use pointray_scene::RenderedImage;
+
     use super::*;
+    use crate::spirv_reflection::Reflection;
+
+    fn probe() -> Reflection {
+        Reflection::of(crate::shaders::INTERFACE_PROBE_RGEN)
+    }
+
+    fn assert_members(reflection: &Reflection, glsl_struct: &str, rust: &[(&str, usize)]) {
+        let expected: Vec<(String, u32)> =
+            rust.iter().map(|&(name, offset)| (name.to_owned(), offset as u32)).collect();
+        assert_eq!(reflection.member_offsets(glsl_struct), expected, "{glsl_struct}: members and offsets");
+    }
 
     #[test]
-    fn records_have_the_glsl_sizes() {
-        assert_eq!(std::mem::size_of::<PatchCombined>(), 48);
-        assert_eq!(std::mem::size_of::<ObjectRecord>(), 96);
-        assert_eq!(std::mem::size_of::<LightRecord>(), 32);
-        assert_eq!(std::mem::size_of::<FrameUniforms>(), 96);
-        assert_eq!(std::mem::size_of::<PixelRecord>(), 48);
+    fn every_record_has_the_compiled_shaders_offsets_and_size() {
+        let probe = probe();
+        assert_members(
+            &probe,
+            "PatchHot",
+            &[
+                ("origin_x", offset_of!(PatchHot, origin)),
+                ("origin_y", offset_of!(PatchHot, origin) + 4),
+                ("origin_z", offset_of!(PatchHot, origin) + 8),
+                ("radius", offset_of!(PatchHot, radius)),
+                ("normal", offset_of!(PatchHot, normal)),
+                ("angle_aspect", offset_of!(PatchHot, angle_aspect)),
+                ("c0_c1", offset_of!(PatchHot, coefficients)),
+                ("c2_c3", offset_of!(PatchHot, coefficients) + 4),
+                ("c4_c5", offset_of!(PatchHot, coefficients) + 8),
+            ],
+        );
+        assert_members(
+            &probe,
+            "PatchCold",
+            &[
+                ("color_rgba8", offset_of!(PatchCold, color_rgba8)),
+                ("intensity", offset_of!(PatchCold, intensity)),
+                ("color_reach", offset_of!(PatchCold, color_reach)),
+            ],
+        );
+        assert_members(
+            &probe,
+            "PatchCombined",
+            &[("hot", offset_of!(PatchCombined, hot)), ("cold", offset_of!(PatchCombined, cold))],
+        );
+        assert_members(
+            &probe,
+            "ObjectRecord",
+            &[
+                ("hot", offset_of!(ObjectRecord, hot)),
+                ("cold", offset_of!(ObjectRecord, cold)),
+                ("combined", offset_of!(ObjectRecord, combined)),
+                ("vertices", offset_of!(ObjectRecord, vertices)),
+                ("indices", offset_of!(ObjectRecord, indices)),
+                ("color_neighbors", offset_of!(ObjectRecord, color_neighbors)),
+                ("diffuse_ambient", offset_of!(ObjectRecord, diffuse_ambient)),
+                (
+                    "specular_shininess_reflect_colors",
+                    offset_of!(ObjectRecord, specular_shininess_reflect_colors),
+                ),
+                ("object_index", offset_of!(ObjectRecord, object_index)),
+                ("first_patch", offset_of!(ObjectRecord, first_patch)),
+                ("pad0", offset_of!(ObjectRecord, pad)),
+                ("pad1", offset_of!(ObjectRecord, pad) + 4),
+            ],
+        );
+        assert_members(
+            &probe,
+            "LightRecord",
+            &[
+                ("position_or_direction", offset_of!(LightRecord, position_or_direction)),
+                ("radiance", offset_of!(LightRecord, radiance)),
+            ],
+        );
+        assert_members(
+            &probe,
+            "PixelRecord",
+            &[
+                ("color", offset_of!(PixelRecord, color)),
+                ("normal_depth", offset_of!(PixelRecord, normal_depth)),
+                ("ids", offset_of!(PixelRecord, ids)),
+            ],
+        );
+        for (glsl_struct, size) in [
+            ("PatchHot", size_of::<PatchHot>()),
+            ("PatchCold", size_of::<PatchCold>()),
+            ("PatchCombined", size_of::<PatchCombined>()),
+            ("ObjectRecord", size_of::<ObjectRecord>()),
+            ("LightRecord", size_of::<LightRecord>()),
+            ("PixelRecord", size_of::<PixelRecord>()),
+        ] {
+            assert_eq!(
+                probe.array_stride_of(glsl_struct),
+                size as u32,
+                "{glsl_struct}: size (its array stride)"
+            );
+        }
+    }
+
+    #[test]
+    fn the_uniform_and_push_constant_blocks_have_the_compiled_shaders_offsets() {
+        let probe = probe();
+        assert_members(
+            &probe,
+            "FrameUniforms",
+            &[
+                ("camera_position_fov", offset_of!(FrameUniforms, camera_position_fov)),
+                ("camera_look_at", offset_of!(FrameUniforms, camera_look_at)),
+                ("camera_up", offset_of!(FrameUniforms, camera_up)),
+                ("background_top", offset_of!(FrameUniforms, background_top)),
+                ("background_bottom", offset_of!(FrameUniforms, background_bottom)),
+                ("light_count", offset_of!(FrameUniforms, light_count)),
+                ("ray_epsilon", offset_of!(FrameUniforms, ray_epsilon)),
+                ("pad0", offset_of!(FrameUniforms, pad)),
+                ("pad1", offset_of!(FrameUniforms, pad) + 4),
+            ],
+        );
+        assert_eq!(
+            size_of::<FrameUniforms>(),
+            offset_of!(FrameUniforms, pad) + 8,
+            "FrameUniforms ends with its pad"
+        );
+        assert_members(
+            &probe,
+            "TraceSettings",
+            &[
+                ("width", offset_of!(TraceSettings, width)),
+                ("height", offset_of!(TraceSettings, height)),
+                ("samples_per_pixel", offset_of!(TraceSettings, samples_per_pixel)),
+                ("max_depth", offset_of!(TraceSettings, max_depth)),
+                ("shadows", offset_of!(TraceSettings, shadows)),
+                ("acceptance", offset_of!(TraceSettings, acceptance)),
+                ("buffer_layout", offset_of!(TraceSettings, buffer_layout)),
+                ("output_kind", offset_of!(TraceSettings, output_kind)),
+            ],
+        );
+        assert_eq!(size_of::<TraceSettings>(), offset_of!(TraceSettings, output_kind) + 4);
+    }
+
+    #[test]
+    fn every_shared_code_has_the_compiled_shaders_value() {
+        // In the order interface_probe.rgen stores them.
+        let host = [
+            ("OUTPUT_AOVS", output_code(PixelOutput::Aovs)),
+            ("OUTPUT_DISPLAY", output_code(PixelOutput::Display)),
+            ("OUTPUT_DISPLAY_BGRA", output_code(PixelOutput::DisplayBgra)),
+            ("LAYOUT_SPLIT", layout_code(BufferLayout::Split)),
+            ("LAYOUT_COMBINED", layout_code(BufferLayout::Combined)),
+            ("ACCEPTANCE_BOX", PatchAcceptance::Box.code()),
+            ("ACCEPTANCE_DISK", PatchAcceptance::Disk.code()),
+            ("COLOR_NEIGHBORS", COLOR_NEIGHBORS as u32),
+            ("NO_NEIGHBOR", NO_NEIGHBOR),
+            ("COLOR_WALK_SCANS", COLOR_WALK_SCANS),
+            ("MISS_ID", RenderedImage::MISS),
+        ];
+        let stored = probe().stored_constants("ProbeCodes");
+        assert_eq!(stored.len(), host.len(), "the probe stores every code once: {stored:?}");
+        for (index, (name, value)) in host.into_iter().enumerate() {
+            assert_eq!(stored.get(&(index as u32)), Some(&value), "{name}");
+        }
     }
 }

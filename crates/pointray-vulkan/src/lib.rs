@@ -32,6 +32,8 @@ mod present_loop;
 mod ray_counter;
 mod renderer;
 mod shaders;
+#[cfg(test)]
+mod spirv_reflection;
 mod surface_choice;
 mod swapchain;
 mod trace;

@@ -183,3 +183,24 @@ fn create_pipeline(
         .map(|p| p[0])
         .map_err(|(_, result)| VulkanError::from_vk("creating the ray-tracing pipeline", result))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spirv_reflection::Reflection;
+
+    #[test]
+    fn every_binding_has_the_compiled_shaders_number() {
+        let probe = Reflection::of(crate::shaders::INTERFACE_PROBE_RGEN);
+        for (glsl_name, binding) in [
+            ("scene_tlas", BINDING_TLAS),
+            ("FrameUniforms", BINDING_FRAME),
+            ("Objects", BINDING_OBJECTS),
+            ("Lights", BINDING_LIGHTS),
+            ("Pixels", BINDING_PIXELS),
+            ("DisplayPixels", BINDING_DISPLAY_PIXELS),
+        ] {
+            assert_eq!(probe.binding_of(glsl_name), (0, binding), "{glsl_name}: (set, binding)");
+        }
+    }
+}

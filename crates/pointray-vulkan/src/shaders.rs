@@ -1,4 +1,4 @@
-//! The SPIR-V that `build.rs` compiled from `pointray-kernels/shaders/`.
+//! The SPIR-V that `build.rs` compiled from `shaders/`.
 
 macro_rules! spirv {
     ($name:literal) => {
@@ -16,6 +16,9 @@ pub(crate) const SHADOW_RMISS: &[u8] = spirv!("shadow.rmiss");
 pub(crate) const PATCH_RINT: &[u8] = spirv!("patch.rint");
 pub(crate) const PATCH_RCHIT: &[u8] = spirv!("patch.rchit");
 pub(crate) const TRIANGLE_RCHIT: &[u8] = spirv!("triangle.rchit");
+/// Never run: the interface tests reflect on it.
+#[cfg(test)]
+pub(crate) const INTERFACE_PROBE_RGEN: &[u8] = spirv!("interface_probe.rgen");
 
 /// SPIR-V bytes as the u32 words Vulkan wants (`include_bytes!` gives no alignment).
 pub(crate) fn words(bytes: &[u8]) -> Vec<u32> {

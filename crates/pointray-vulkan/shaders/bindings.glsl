@@ -1,5 +1,6 @@
 // The ray-tracing pipeline's resources, shared by its entry points. Mirrored on the Rust
-// side in pointray-vulkan's `gpu_records.rs` (records) and `pipeline.rs` (bindings).
+// side in `src/gpu_records.rs` (records and codes) and `src/pipeline.rs` (bindings); the
+// tests of both check them against the compiled SPIR-V (`src/spirv_reflection.rs`).
 #ifndef POINTRAY_BINDINGS_GLSL
 #define POINTRAY_BINDINGS_GLSL
 
@@ -70,9 +71,11 @@ layout(set = 0, binding = 4, std430) writeonly buffer Pixels { PixelRecord pixel
 // The display output: one sRGB8 RGBA pixel each (srgb_encode_rgba8), what a window shows.
 layout(set = 0, binding = 5, std430) writeonly buffer DisplayPixels { uint display_pixels[]; };
 
-// Which of the two outputs a trace writes; the other is left untouched.
+// Which output a trace writes; the other is left untouched. The display output is sRGB8
+// RGBA, or with blue in the low byte for B8G8R8A8 swapchains.
 const uint OUTPUT_AOVS = 0u;
 const uint OUTPUT_DISPLAY = 1u;
+const uint OUTPUT_DISPLAY_BGRA = 2u;
 
 const uint LAYOUT_SPLIT = 0u;
 const uint LAYOUT_COMBINED = 1u;
