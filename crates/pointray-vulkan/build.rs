@@ -1,6 +1,8 @@
 //! Compiles every shader stage in `shaders/` to SPIR-V 1.4 (Vulkan 1.2) into `OUT_DIR`,
 //! where `src/shaders.rs` embeds it with `include_bytes!`. Includes resolve against this
-//! crate's `shaders/` (the pipeline's interface) and then the kernels' GLSL twins.
+//! crate's `shaders/` (the pipeline's interface) and then the kernels' GLSL twins. The
+//! probes in `shaders/twins/` (one compute stage per group of twins, which the twin tests
+//! run against the Rust twins) come out as `twins/NAME.comp.spv`.
 
 use std::path::PathBuf;
 
@@ -74,8 +76,10 @@ fn compile(
 
 fn main() {
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
-    let folders = [manifest.join("shaders"), PathBuf::from(pointray_kernels::SHADER_FOLDER)];
+    let twins = manifest.join("shaders/twins");
+    let folders = [manifest.join("shaders"), twins.clone(), PathBuf::from(pointray_kernels::SHADER_FOLDER)];
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
+    std::fs::create_dir_all(out.join("twins")).expect("OUT_DIR is writable");
     for folder in &folders {
         println!("cargo:rerun-if-changed={}", folder.display());
         for entry in std::fs::read_dir(folder).into_iter().flatten().flatten() {
@@ -85,7 +89,9 @@ fn main() {
     let mut failures = Vec::new();
     let plain = ENTRY_POINTS.iter().map(|&(name, stage)| (name, stage, None, name));
     let variants = VARIANTS.iter().map(|&(name, stage, define, output)| (name, stage, Some(define), output));
-    for (name, stage, define, output) in plain.chain(variants) {
+    let probes = twin_probes(&twins);
+    let probes = probes.iter().map(|name| (name.as_str(), ShaderStage::Compute, None, name.as_str()));
+    for (name, stage, define, output) in plain.chain(variants).chain(probes) {
         match compile(&folders, name, stage, define) {
             Ok(words) => {
                 let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
@@ -97,4 +103,16 @@ fn main() {
     if !failures.is_empty() {
         panic!("shader compilation failed:\n{}", failures.join("\n"));
     }
+}
+
+/// The twin probes, as paths relative to `shaders/`: `twins/NAME.comp`.
+fn twin_probes(folder: &std::path::Path) -> Vec<String> {
+    let entries = std::fs::read_dir(folder).into_iter().flatten().flatten();
+    let mut names: Vec<String> = entries
+        .filter_map(|entry| entry.file_name().into_string().ok())
+        .filter(|name| name.ends_with(".comp"))
+        .map(|name| format!("twins/{name}"))
+        .collect();
+    names.sort();
+    names
 }

@@ -38,6 +38,10 @@ mod surface_choice;
 mod swapchain;
 mod trace;
 mod trace_target;
+#[cfg(test)]
+mod twin_agreement;
+#[cfg(test)]
+mod twin_probe;
 pub mod validation;
 mod window_target;
 

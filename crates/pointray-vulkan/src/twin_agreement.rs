@@ -1,0 +1,292 @@
+//! The GLSL twins against their Rust twins, on the device: thousands of random cases and the
+//! edge cases of each, through the probes of `shaders/twins/`. GPU arithmetic may contract
+//! `a * b + c` into one rounding and computes `pow`, `sqrt` and division to a few ulp, so
+//! values agree within a stated relative bound, not bit for bit; a decision that hinges on a
+//! rounding (a root of zero discriminant, a hit on a support's edge) may differ in at most
+//! `BORDERLINE_FRACTION` of the cases, and only in a case that is borderline.
+
+use std::sync::Arc;
+
+use glam::{UVec2, Vec2, Vec3};
+use pointray_kernels::tangent_frame::{pack_normal, unpack_normal};
+use pointray_kernels::{
+    Camera, PackedTangentFrame, PatchAcceptance, PatchHot, PhongSurface, Ray, TangentFrame, camera_ray,
+    face_forward, intersect_patch, patch_normal, phong, quadratic_roots, sample_jitter, self_clearance,
+    srgb_encode_rgba8,
+};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use crate::context::GpuContext;
+use crate::twin_probe::{self, probe_context, run_probe};
+
+const CASES: usize = 4096;
+/// The relative bound on values (about 80 ulp of f32).
+const RELATIVE: f32 = 1e-5;
+/// At most this fraction of the cases may decide differently, each of them borderline.
+const BORDERLINE_FRACTION: f64 = 0.002;
+
+fn close(gpu: f32, cpu: f32, scale: f32) -> bool {
+    (gpu - cpu).abs() <= RELATIVE * scale.max(cpu.abs()).max(f32::MIN_POSITIVE)
+}
+
+fn close3(gpu: Vec3, cpu: Vec3, scale: f32) -> bool {
+    (0..3).all(|i| close(gpu[i], cpu[i], scale))
+}
+
+fn xyz(v: [f32; 4]) -> Vec3 {
+    Vec3::new(v[0], v[1], v[2])
+}
+
+fn word(bits: u32) -> f32 {
+    f32::from_bits(bits)
+}
+
+fn unit(rng: &mut ChaCha8Rng) -> Vec3 {
+    loop {
+        let v =
+            Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        if (0.01..=1.0).contains(&v.length_squared()) {
+            return v.normalize();
+        }
+    }
+}
+
+/// A magnitude from 1e-8 to 1e8, evenly in its logarithm, with a random sign; zero at times.
+fn any_scale(rng: &mut ChaCha8Rng) -> f32 {
+    if rng.random_range(0..16) == 0 {
+        return 0.0;
+    }
+    let magnitude = 10f32.powf(rng.random_range(-8.0..8.0));
+    if rng.random() { magnitude } else { -magnitude }
+}
+
+fn run(context: &Arc<GpuContext>, probe: &[u8], inputs: &[[f32; 4]], shape: (usize, usize)) -> Vec<[f32; 4]> {
+    let outputs = run_probe(context, probe, inputs, shape).expect("the probe runs");
+    assert_eq!(context.validation_messages(), 0, "the validation layer reported problems");
+    outputs
+}
+
+fn assert_few_borderline(what: &str, borderline: usize) {
+    let fraction = borderline as f64 / CASES as f64;
+    assert!(
+        fraction <= BORDERLINE_FRACTION,
+        "{what}: {borderline} borderline cases of {CASES} decide differently"
+    );
+}
+
+#[test]
+fn quadratic_roots_agree() {
+    let Some(context) = probe_context() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let edges = [
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 2.0, -1.0],
+        [1.0, 2.0, 1.0],
+        [1.0, 0.0, -4.0],
+        [1.0, 0.0, 1.0],
+        [1e-7, 1.0, 1.0],
+        [-3.0, 0.0, 0.0],
+    ];
+    let mut cases: Vec<[f32; 3]> = edges.to_vec();
+    cases.extend(
+        (edges.len()..CASES).map(|_| [any_scale(&mut rng), any_scale(&mut rng), any_scale(&mut rng)]),
+    );
+    let inputs: Vec<[f32; 4]> = cases.iter().map(|&[a, b, c]| [a, b, c, 0.0]).collect();
+    let outputs = run(&context, twin_probe::QUADRATIC_ROOTS, &inputs, (1, 1));
+    let mut borderline = 0;
+    for (index, (&[a, b, c], gpu)) in cases.iter().zip(&outputs).enumerate() {
+        let cpu = quadratic_roots(a, b, c);
+        let scale = cpu.as_slice().iter().fold(0.0f32, |m, r| m.max(r.abs()));
+        if gpu[2] as u32 == cpu.count {
+            for (k, &root) in cpu.as_slice().iter().enumerate() {
+                assert!(
+                    close(gpu[k], root, scale),
+                    "case {index} ({a}, {b}, {c}): root {k} {} against {root}",
+                    gpu[k]
+                );
+            }
+            continue;
+        }
+        let discriminant = f64::from(b) * f64::from(b) - 4.0 * f64::from(a) * f64::from(c);
+        let size = f64::from(b) * f64::from(b) + (4.0 * f64::from(a) * f64::from(c)).abs();
+        let near_linear = (f64::from(a.abs()) - 1e-6 * f64::from(b.abs())).abs() <= 1e-5 * f64::from(a.abs());
+        assert!(index >= edges.len(), "edge case ({a}, {b}, {c}): {} roots against {}", gpu[2], cpu.count);
+        assert!(
+            discriminant.abs() <= 1e-5 * size || near_linear,
+            "case {index} ({a}, {b}, {c}) is no borderline case"
+        );
+        borderline += 1;
+    }
+    assert_few_borderline("quadratic roots", borderline);
+}
+
+/// A random patch about the origin and a ray from a few units away aimed near it.
+fn patch_case(rng: &mut ChaCha8Rng) -> (PatchHot, PatchAcceptance, Ray, f32) {
+    let normal = unit(rng);
+    let radius = rng.random_range(0.1..1.0);
+    let radii = Vec2::new(radius, radius * rng.random_range(0.2..=1.0));
+    let coefficients = std::array::from_fn(|_| rng.random_range(-0.6..0.6));
+    let origin =
+        Vec3::new(rng.random_range(-0.2..0.2), rng.random_range(-0.2..0.2), rng.random_range(-0.2..0.2));
+    let hot = PatchHot::new(
+        origin,
+        PackedTangentFrame::new(normal, unit(rng).cross(normal).normalize()),
+        radii,
+        coefficients,
+    );
+    let acceptance = if rng.random() { PatchAcceptance::Disk } else { PatchAcceptance::Box };
+    let from = 3.0 * unit(rng);
+    let toward = origin
+        + radius
+            * Vec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            );
+    let t_max = if rng.random_range(0..4) == 0 { rng.random_range(0.5..4.0) } else { 100.0 };
+    (hot, acceptance, Ray { origin: from, direction: (toward - from).normalize() }, t_max)
+}
+
+fn patch_inputs(hot: &PatchHot, acceptance: PatchAcceptance, ray: &Ray, t_max: f32) -> [[f32; 4]; 5] {
+    let [x, y, z] = hot.origin;
+    let [c0, c1, c2] = hot.coefficients;
+    [
+        [x, y, z, hot.radius],
+        [word(hot.normal), word(hot.angle_aspect), word(c0), word(c1)],
+        [word(c2), word(acceptance.code()), 0.0, 0.0],
+        [ray.origin.x, ray.origin.y, ray.origin.z, t_max],
+        [ray.direction.x, ray.direction.y, ray.direction.z, 0.0],
+    ]
+}
+
+#[test]
+fn patch_intersection_and_normal_agree() {
+    let Some(context) = probe_context() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(2);
+    let cases: Vec<_> = (0..CASES).map(|_| patch_case(&mut rng)).collect();
+    let inputs: Vec<[f32; 4]> = cases
+        .iter()
+        .flat_map(|(hot, acceptance, ray, t_max)| patch_inputs(hot, *acceptance, ray, *t_max))
+        .collect();
+    let outputs = run(&context, twin_probe::INTERSECT_PATCH, &inputs, (5, 2));
+    let (mut hits, mut borderline) = (0, 0);
+    for (index, ((hot, acceptance, ray, t_max), gpu)) in cases.iter().zip(outputs.chunks(2)).enumerate() {
+        let patch = hot.decode();
+        let cpu = intersect_patch(ray, &patch, 0.0, *t_max, *acceptance);
+        match (cpu, gpu[0][0] == 1.0) {
+            (Some(hit), true) => {
+                hits += 1;
+                let uv = Vec2::new(gpu[0][2], gpu[0][3]);
+                if !close(gpu[0][1], hit.t, 1.0)
+                    || !close(uv.x, hit.uv.x, hot.radius)
+                    || !close(uv.y, hit.uv.y, hot.radius)
+                {
+                    // Two roots a rounding apart, or a root picked across the range's end.
+                    borderline += 1;
+                    continue;
+                }
+                let normal = patch_normal(&patch, hit.uv);
+                assert!(
+                    close3(xyz(gpu[1]), normal, 1.0),
+                    "case {index}: normal {:?} against {normal}",
+                    gpu[1]
+                );
+            }
+            (None, false) => {}
+            _ => borderline += 1,
+        }
+    }
+    assert!(hits > CASES / 8, "only {hits} of {CASES} rays hit: the cases miss the point");
+    assert_few_borderline("patch intersection", borderline);
+}
+
+#[test]
+fn shading_encoding_clearance_and_frames_agree() {
+    let Some(context) = probe_context() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let mut cases = Vec::with_capacity(CASES);
+    let mut inputs = Vec::with_capacity(CASES * 6);
+    for _ in 0..CASES {
+        let (normal, to_viewer, to_light) = (unit(&mut rng), unit(&mut rng), unit(&mut rng));
+        let radiance =
+            Vec3::new(rng.random_range(0.0..2.0), rng.random_range(0.0..2.0), rng.random_range(0.0..2.0));
+        let surface = PhongSurface {
+            base_color: Vec3::new(rng.random(), rng.random(), rng.random()),
+            specular: rng.random(),
+            shininess: rng.random_range(1.0..128.0),
+        };
+        let radius = 10f32.powf(rng.random_range(-4.0..3.0));
+        let packed = pack_normal(unit(&mut rng));
+        let angle = rng.random_range(0.0..std::f32::consts::PI);
+        inputs.extend([
+            normal.extend(0.0).to_array(),
+            to_viewer.extend(0.0).to_array(),
+            to_light.extend(0.0).to_array(),
+            radiance.extend(0.0).to_array(),
+            surface.base_color.extend(surface.specular).to_array(),
+            [surface.shininess, radius, word(packed), angle],
+        ]);
+        cases.push((normal, to_viewer, to_light, radiance, surface, radius, packed, angle));
+    }
+    let outputs = run(&context, twin_probe::SHADING, &inputs, (6, 3));
+    for (index, (case, gpu)) in cases.iter().zip(outputs.chunks(3)).enumerate() {
+        let &(normal, to_viewer, to_light, radiance, surface, radius, packed, angle) = case;
+        let lit = phong(normal, to_viewer, to_light, radiance, &surface);
+        assert!(close3(xyz(gpu[0]), lit, 1e-3), "case {index}: Phong {:?} against {lit}", gpu[0]);
+        assert_eq!(xyz(gpu[1]), face_forward(normal, to_viewer), "case {index}: face_forward");
+        let (gpu_bytes, cpu_bytes) =
+            (gpu[1][3].to_bits().to_le_bytes(), srgb_encode_rgba8(radiance).to_le_bytes());
+        let off_by = gpu_bytes.iter().zip(cpu_bytes).map(|(&g, c)| g.abs_diff(c)).max();
+        assert!(off_by <= Some(1), "case {index}: sRGB {gpu_bytes:?} against {cpu_bytes:?}");
+        assert!(close(gpu[2][3], self_clearance(radius), 0.0), "case {index}: self-clearance");
+        let frame = TangentFrame::from_normal_and_angle(unpack_normal(packed), angle);
+        assert!(
+            close3(xyz(gpu[2]), frame.t1, 1.0),
+            "case {index}: tangent {:?} against {}",
+            gpu[2],
+            frame.t1
+        );
+    }
+}
+
+#[test]
+fn camera_rays_agree() {
+    let Some(context) = probe_context() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    let mut cases = Vec::with_capacity(CASES);
+    for _ in 0..CASES {
+        let position = 10.0 * unit(&mut rng);
+        let look_at =
+            Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        let forward = (look_at - position).normalize();
+        let up = (unit(&mut rng) - forward).normalize();
+        let camera = Camera { position, look_at, up, vertical_fov_degrees: rng.random_range(5.0..150.0) };
+        let size = UVec2::new(rng.random_range(1..4096), rng.random_range(1..4096));
+        let pixel = UVec2::new(rng.random_range(0..size.x), rng.random_range(0..size.y));
+        cases.push((camera, size, pixel));
+    }
+    let inputs: Vec<[f32; 4]> = cases
+        .iter()
+        .flat_map(|(camera, size, pixel)| {
+            [
+                camera.position.extend(camera.vertical_fov_degrees).to_array(),
+                camera.look_at.extend(0.0).to_array(),
+                camera.up.extend(0.0).to_array(),
+                [word(size.x), word(size.y), word(pixel.x), word(pixel.y)],
+            ]
+        })
+        .collect();
+    let outputs = run(&context, twin_probe::CAMERA_RAY, &inputs, (4, 2));
+    for (index, ((camera, size, pixel), gpu)) in cases.iter().zip(outputs.chunks(2)).enumerate() {
+        let ray = camera_ray(camera, *size, *pixel, sample_jitter(index as u32 % 16));
+        assert_eq!(xyz(gpu[0]), ray.origin, "case {index}: origin");
+        assert!(
+            close3(xyz(gpu[1]), ray.direction, 1.0),
+            "case {index}: direction {:?} against {}",
+            gpu[1],
+            ray.direction
+        );
+    }
+}
