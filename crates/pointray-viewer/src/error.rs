@@ -25,17 +25,14 @@ pub enum ViewerError {
 }
 
 impl ViewerError {
-    pub(crate) fn vk(what: &'static str) -> impl FnOnce(vk::Result) -> Self {
-        move |result| Self::Present { what, result }
-    }
-
-    /// A failure of the host-copy presenter's swapchain (pointray-vulkan's `Swapchain` on the
-    /// presenter's own device) as a presentation error, not a renderer's: a failed call keeps
-    /// its result; an unsuitable surface is a setup problem.
+    /// A failure of the host-copy presenter (pointray-vulkan's `PresentDevice` and its
+    /// swapchain) as a presentation error, not a renderer's: a failed call keeps its result;
+    /// an unsuitable device or surface is a setup problem.
     pub(crate) fn from_swapchain(error: pointray_vulkan::VulkanError) -> Self {
         use pointray_vulkan::VulkanError;
         match error {
             VulkanError::NoSuitableDevice(problem) => Self::PresentSetup(problem),
+            error @ VulkanError::NoPresentingDevice(_) => Self::PresentSetup(error.to_string()),
             VulkanError::Call { during, result } => Self::Present { what: during, result },
             VulkanError::DeviceLost(during) => {
                 Self::Present { what: during, result: vk::Result::ERROR_DEVICE_LOST }

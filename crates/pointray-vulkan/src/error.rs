@@ -14,6 +14,8 @@ pub enum VulkanError {
     ValidationLayerMissing,
     #[error("no Vulkan device can ray trace point sets:\n{0}")]
     NoSuitableDevice(String),
+    #[error("no Vulkan device can present to this window: {0}")]
+    NoPresentingDevice(String),
     #[error("the GPU was lost (device lost) during {0}; the driver may have reset it after a hang")]
     DeviceLost(&'static str),
     #[error("out of {kind} memory during {during}; try a smaller scene or resolution")]
@@ -35,7 +37,13 @@ impl VulkanError {
     /// when one was asked for, or no device that can ray trace. Callers fall back (or, in
     /// tests outside CI, skip) on these; every other error is a real failure.
     pub fn is_no_device(&self) -> bool {
-        matches!(self, Self::LoaderMissing(_) | Self::ValidationLayerMissing | Self::NoSuitableDevice(_))
+        matches!(
+            self,
+            Self::LoaderMissing(_)
+                | Self::ValidationLayerMissing
+                | Self::NoSuitableDevice(_)
+                | Self::NoPresentingDevice(_)
+        )
     }
 
     /// Classifies a failed Vulkan call so that device loss and exhaustion read clearly.
@@ -75,6 +83,7 @@ mod tests {
     fn only_a_missing_loader_layer_or_device_means_no_device() {
         assert!(VulkanError::ValidationLayerMissing.is_no_device());
         assert!(VulkanError::NoSuitableDevice("none".into()).is_no_device());
+        assert!(VulkanError::NoPresentingDevice("none".into()).is_no_device());
         assert!(!VulkanError::DeviceLost("tracing").is_no_device());
         assert!(!VulkanError::InvalidSettings("zero width".into()).is_no_device());
         assert!(!VulkanError::from_vk("tracing", vk::Result::ERROR_INITIALIZATION_FAILED).is_no_device());

@@ -3,10 +3,7 @@
 //! `WindowTarget` instead.
 
 mod byte_order;
-mod context;
-mod instance;
 mod presenter;
-mod staging;
 
 pub(crate) use byte_order::ByteOrder;
 pub use presenter::Presenter;

@@ -6,16 +6,14 @@ use ash::vk;
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 
 use super::ByteOrder;
-use super::context::PresentContext;
-use super::staging::StagingBuffer;
 use crate::error::ViewerError;
 use pointray_vulkan::validation::MessageCounter;
-use pointray_vulkan::{PresentLoop, Presented, record_copy_to_present_image};
+use pointray_vulkan::{PresentDevice, PresentLoop, Presented, record_copy_to_present_image};
 
 pub struct Presenter {
     frames: PresentLoop,
-    staging: Option<StagingBuffer>,
-    context: PresentContext,
+    // After the loop: dropped once `Drop` has destroyed the loop.
+    device: PresentDevice,
 }
 
 impl Presenter {
@@ -26,12 +24,12 @@ impl Presenter {
         vsync: bool,
         validation: bool,
     ) -> Result<Self, ViewerError> {
-        let context = PresentContext::new(display, window, validation)?;
-        // SAFETY: the context's live device, queue, surface and loaders; `Drop` destroys the
-        // loop before the context (on failure the loop cleans up what it made).
-        let frames = unsafe { PresentLoop::new(context.swapchain_device(), window_size, vsync) }
+        let device = PresentDevice::new(display, window, validation).map_err(ViewerError::from_swapchain)?;
+        // SAFETY: the device's live device, queue, surface and loaders; `Drop` destroys the
+        // loop before the device (on failure the loop cleans up what it made).
+        let frames = unsafe { PresentLoop::new(device.swapchain_device(), window_size, vsync) }
             .map_err(ViewerError::from_swapchain)?;
-        Ok(Self { frames, staging: None, context })
+        Ok(Self { frames, device })
     }
 
     /// The window's frames: `resize` and `set_vsync` go to them directly.
@@ -47,7 +45,7 @@ impl Presenter {
 
     /// Validation messages of the presentation context; still counting during teardown.
     pub fn message_counter(&self) -> std::sync::Arc<MessageCounter> {
-        self.context.instance.message_counter()
+        self.device.message_counter()
     }
 
     /// Shows `pixels` (4 bytes each, in `target()`'s size and byte order).
@@ -68,7 +66,7 @@ impl Presenter {
         let Some(index) = self.frames.acquire().map_err(ViewerError::from_swapchain)? else {
             return Ok(Presented::Skipped);
         };
-        let buffer = self.staged(pixels)?;
+        let buffer = self.device.stage(pixels).map_err(ViewerError::from_swapchain)?;
         let image = self.frames.swapchain().expect("an image was just acquired").image(index);
         // SAFETY: the staging buffer lives until the next acquire has waited for this frame;
         // the image is the acquired one, of `extent`.
@@ -80,31 +78,11 @@ impl Presenter {
         .map_err(ViewerError::from_swapchain)?;
         self.frames.present(index).map_err(ViewerError::from_swapchain)
     }
-
-    /// `pixels` in the staging buffer, grown when it is too small; the last frame is done.
-    fn staged(&mut self, pixels: &[u8]) -> Result<vk::Buffer, ViewerError> {
-        let staging = match self.staging.take() {
-            Some(staging) if staging.size >= pixels.len() as u64 => staging,
-            old => {
-                if let Some(mut old) = old {
-                    old.destroy(&self.context.device);
-                }
-                StagingBuffer::new(&self.context, pixels.len() as u64)?
-            }
-        };
-        staging.write(pixels);
-        let buffer = staging.buffer;
-        self.staging = Some(staging);
-        Ok(buffer)
-    }
 }
 
 impl Drop for Presenter {
     fn drop(&mut self) {
         // Waits for the device first.
         self.frames.destroy();
-        if let Some(mut staging) = self.staging.take() {
-            staging.destroy(&self.context.device);
-        }
     }
 }
