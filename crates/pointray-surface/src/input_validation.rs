@@ -26,10 +26,12 @@ const COLLINEAR_TOLERANCE: f64 = 1e-6;
 /// Beyond this, patches reach past twice their farthest neighbour: no longer local.
 const MAX_DISK_SCALE: f32 = 2.0;
 
-/// What `prep` holds per point at its peak, beyond 8 bytes per neighbour: the input and
-/// recentred positions, the sort, normals, frames, radii, the hot, cold and box records and
-/// the colour neighbours (about 330 bytes), with room for the search tree.
-const PREP_BYTES_PER_POINT: u64 = 400;
+/// What `prep` holds per point at its peak, beyond 8 bytes per neighbour of the larger
+/// neighbour table: measured peaks come to 205 to 216 bytes a point from 4M to 100M points
+/// sampled on a mesh (k = 9, normal_k = 16, so 128 of them are the table), and each array is
+/// dropped after its last stage (`prep.rs`). The rest is margin, so the estimate (240 bytes
+/// at the defaults) stays above the peak without refusing clouds that fit.
+const PREP_BYTES_PER_POINT: u64 = 112;
 
 /// Every prep setting, whichever route it came by (flags, a scene file, code): the one place
 /// they are checked.
