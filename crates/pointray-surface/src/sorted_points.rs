@@ -10,12 +10,16 @@ use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
+use rayon::prelude::*;
 
 use crate::point_records::{RecordLayout, record_key, record_position};
 use crate::stream_error::StreamError;
 
 /// Records per block of the index.
 const BLOCK_POINTS: u64 = 4096;
+
+/// Blocks each thread reads at a time when gathering the points in a box.
+const BLOCKS_AT_A_TIME: usize = 4;
 
 pub(crate) struct SortedPoints {
     path: PathBuf,
@@ -59,7 +63,8 @@ impl SortedPoints {
 
     /// The points within the box from `min` to `max` (local coordinates), outside the
     /// sorted positions `skip`, handed to `batch` with their sorted positions (ascending) at
-    /// most `batch_points` at a time.
+    /// most about `batch_points` at a time. Blocks are read and filtered in parallel, a few
+    /// per thread at a time, so the memory held stays bounded.
     pub(crate) fn near(
         &self,
         (min, max): (Vec3, Vec3),
@@ -67,23 +72,21 @@ impl SortedPoints {
         batch_points: usize,
         mut batch: impl FnMut(&[Vec3], &[u64]),
     ) -> Result<(), StreamError> {
-        let size = self.layout.bytes();
+        let meeting: Vec<usize> = (0..self.blocks.len())
+            .filter(|&block| {
+                let (lo, hi) = self.blocks[block];
+                !(lo.cmpgt(max).any() || hi.cmplt(min).any())
+            })
+            .collect();
         let (mut points, mut positions) = (Vec::new(), Vec::new());
-        let mut bytes = Vec::new();
-        for (block, &(lo, hi)) in self.blocks.iter().enumerate() {
-            if lo.cmpgt(max).any() || hi.cmplt(min).any() {
-                continue;
-            }
-            let first = block as u64 * BLOCK_POINTS;
-            let count = BLOCK_POINTS.min(self.count - first);
-            bytes.resize(count as usize * size, 0);
-            self.file.read_exact_at(&mut bytes, first * size as u64).map_err(|e| self.scratch(e))?;
-            for (i, record) in bytes.chunks_exact(size).enumerate() {
-                let (position, local) = (first + i as u64, (record_position(record) - self.offset).as_vec3());
-                if !skip.contains(&position) && local.cmpge(min).all() && local.cmple(max).all() {
-                    points.push(local);
-                    positions.push(position);
-                }
+        for group in meeting.chunks(BLOCKS_AT_A_TIME * rayon::current_num_threads()) {
+            let found: Vec<(Vec<Vec3>, Vec<u64>)> = group
+                .par_iter()
+                .map(|&block| self.block_points_within(block, (min, max), skip))
+                .collect::<Result<_, _>>()?;
+            for (block_points, block_positions) in found {
+                points.extend(block_points);
+                positions.extend(block_positions);
             }
             if points.len() >= batch_points {
                 batch(&points, &positions);
@@ -95,6 +98,29 @@ impl SortedPoints {
             batch(&points, &positions);
         }
         Ok(())
+    }
+
+    /// The points of `block` within the box, outside `skip`, with their sorted positions.
+    fn block_points_within(
+        &self,
+        block: usize,
+        (min, max): (Vec3, Vec3),
+        skip: &Range<u64>,
+    ) -> Result<(Vec<Vec3>, Vec<u64>), StreamError> {
+        let size = self.layout.bytes();
+        let first = block as u64 * BLOCK_POINTS;
+        let count = BLOCK_POINTS.min(self.count - first);
+        let mut bytes = vec![0; count as usize * size];
+        self.file.read_exact_at(&mut bytes, first * size as u64).map_err(|e| self.scratch(e))?;
+        let mut found = (Vec::new(), Vec::new());
+        for (i, record) in bytes.chunks_exact(size).enumerate() {
+            let (position, local) = (first + i as u64, (record_position(record) - self.offset).as_vec3());
+            if !skip.contains(&position) && local.cmpge(min).all() && local.cmple(max).all() {
+                found.0.push(local);
+                found.1.push(position);
+            }
+        }
+        Ok(found)
     }
 
     fn scratch(&self, source: std::io::Error) -> StreamError {
