@@ -106,6 +106,31 @@ pub fn read_tile_file(path: &Path) -> Result<(TileHeader, TilePatches), StreamEr
     Ok((header, TilePatches { patches, sources }))
 }
 
+/// The bytes of store section `section` (0: boxes, 1: hot, 2: cold, 3: colour neighbours as
+/// input points) of a tile file that `read_tile_file` has already checked: a merge reads
+/// each section of each tile once, not the whole tile per section.
+pub(crate) fn read_tile_section(
+    path: &Path,
+    header: &TileHeader,
+    section: usize,
+) -> Result<Vec<u8>, StreamError> {
+    let (n, m) = (header.patches, u64::from(header.neighbor_slots));
+    let tables = HEADER_BYTES as u64 + 4 * n;
+    let (offset, length) = match section {
+        3 => (tables, 4 * m * n),
+        _ => {
+            let layout = patch_store::Layout::new(n, 0).ok_or_else(|| bad(path, "malformed tile header"))?;
+            let store = layout.sections[section];
+            (tables + 4 * m * n + store.offset, store.length)
+        }
+    };
+    let file = std::fs::File::open(path).map_err(|e| StreamError::scratch(path, e))?;
+    let mut bytes = vec![0; length as usize];
+    std::os::unix::fs::FileExt::read_exact_at(&file, &mut bytes, offset)
+        .map_err(|e| StreamError::scratch(path, e))?;
+    Ok(bytes)
+}
+
 fn checked_header(bytes: &[u8], path: &Path) -> Result<TileHeader, StreamError> {
     let header: TileHeader = bytemuck::try_pod_read_unaligned(bytes)
         .map_err(|_| bad(path, "not a pointray tile file (too short)"))?;

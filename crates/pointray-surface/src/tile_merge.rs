@@ -11,7 +11,8 @@ use crate::patch_store::{self, StoreSummary};
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::stream_budget::StreamBudget;
 use crate::stream_error::StreamError;
-use crate::tile_file::{TileHeader, read_tile_file, read_tile_header};
+use crate::tile_file::{TileHeader, read_tile_file, read_tile_header, read_tile_section};
+use rayon::prelude::*;
 
 /// What a merge wrote.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,24 +51,20 @@ pub(crate) fn merge_ordered_tile_files(
     }
     progress.stage_started(Stage::MergeTiles, first.input_points);
     let started = std::time::Instant::now();
-    let (summary, patch_of) = survey_tiles(ordered, progress)?;
+    let (summary, patch_of, headers) = survey_tiles(ordered, progress)?;
     patch_store::write_sections(output, &summary, |section, sink| {
-        for path in ordered {
-            let (_, tile) = read_tile_file(path).map_err(|e| std::io::Error::other(e.to_string()))?;
-            let set = tile.patches;
-            match section {
-                0 => sink(bytemuck::cast_slice(&set.aabbs))?,
-                1 => sink(bytemuck::cast_slice(&set.hot))?,
-                2 => sink(bytemuck::cast_slice(&set.cold))?,
-                _ => {
-                    let patches: Vec<u32> = set
-                        .color_neighbors
-                        .iter()
-                        .map(|&input| patch_of.get(input as usize).copied().unwrap_or(NO_NEIGHBOR))
-                        .collect();
-                    sink(bytemuck::cast_slice(&patches))?
-                }
+        for (path, header) in ordered.iter().zip(&headers) {
+            let bytes =
+                read_tile_section(path, header, section).map_err(|e| std::io::Error::other(e.to_string()))?;
+            if section < 3 {
+                sink(&bytes)?;
+                continue;
             }
+            let patches: Vec<u32> = bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)
+                .into_par_iter()
+                .map(|input| patch_of.get(input as usize).copied().unwrap_or(NO_NEIGHBOR))
+                .collect();
+            sink(bytemuck::cast_slice(&patches))?
         }
         Ok(())
     })?;
@@ -116,16 +113,18 @@ fn in_tile_order(tiles: &[PathBuf]) -> Result<Vec<PathBuf>, StreamError> {
     Ok(slots.into_iter().flatten().collect())
 }
 
-/// The store's header from every tile, and each input point's patch; tiles must agree on
-/// the settings and the offset.
+/// The store's header from every tile, each input point's patch, and each tile's header,
+/// with every tile file checked whole; tiles must agree on the settings and the offset.
 fn survey_tiles(
     ordered: &[PathBuf],
     progress: &dyn PrepProgress,
-) -> Result<(StoreSummary, Vec<u32>), StreamError> {
+) -> Result<(StoreSummary, Vec<u32>, Vec<TileHeader>), StreamError> {
     let mut summary: Option<StoreSummary> = None;
     let mut patch_of: Vec<u32> = Vec::new();
+    let mut headers = Vec::with_capacity(ordered.len());
     for path in ordered {
         let (header, tile): (TileHeader, _) = read_tile_file(path)?;
+        headers.push(header);
         patch_of.resize(header.input_points as usize, NO_NEIGHBOR);
         let set = &tile.patches;
         let total = summary.get_or_insert(StoreSummary {
@@ -152,5 +151,5 @@ fn survey_tiles(
         };
         progress.advanced(tile.sources.len() as u64);
     }
-    Ok((summary.expect("at least one tile"), patch_of))
+    Ok((summary.expect("at least one tile"), patch_of, headers))
 }
