@@ -99,7 +99,7 @@ impl CpuRenderer {
 
     /// How far secondary rays leaving the hit ignore what they meet: a fraction of the hit
     /// patch's support radius in world units, nothing for triangles.
-    fn clearance(&self, hit: &SceneHit) -> f32 {
+    pub(crate) fn clearance(&self, hit: &SceneHit) -> f32 {
         let instance = &self.top.instances[hit.instance];
         match instance.blas.geometry() {
             Geometry::Patches(patches) => {
@@ -111,7 +111,7 @@ impl CpuRenderer {
 
     /// The material's diffuse colour, or where the material asks for point colours, the
     /// point colours interpolated at the hit (white for meshes, which have none).
-    fn base_color(&self, hit: &SceneHit, ray: &Ray) -> Vec3 {
+    pub(crate) fn base_color(&self, hit: &SceneHit, ray: &Ray) -> Vec3 {
         let instance = &self.top.instances[hit.instance];
         let material = &self.scene.objects[instance.object_index as usize].material;
         if !material.use_point_colors {
@@ -128,7 +128,7 @@ impl CpuRenderer {
         }
     }
 
-    fn background(&self, direction: Vec3) -> Vec3 {
+    pub(crate) fn background(&self, direction: Vec3) -> Vec3 {
         match self.scene.background {
             Background::Solid(color) => background(direction, color, color),
             Background::Gradient { top, bottom } => background(direction, top, bottom),

@@ -2,8 +2,8 @@
 //! over pixel tiles.
 
 use glam::{UVec2, Vec3};
-use pointray_kernels::{Camera, Ray, camera_ray, sample_jitter};
-use pointray_scene::{RenderSettings, RenderedImage, Scene};
+use pointray_kernels::{Camera, Ray, camera_ray, random_sequence, sample_jitter};
+use pointray_scene::{Integrator, RenderSettings, RenderedImage, Scene};
 use rayon::prelude::*;
 
 use crate::path::PrimaryAov;
@@ -104,8 +104,17 @@ impl CpuRenderer {
         counts: &mut RayCounts,
     ) -> Pixel {
         let samples = settings.samples_per_pixel.max(1);
-        let mut sample =
-            |s| self.trace_path(camera_ray(camera, size, pixel, sample_jitter(s)), settings, counts);
+        let mut sample = |s| {
+            let ray = camera_ray(camera, size, pixel, sample_jitter(s));
+            match settings.integrator {
+                Integrator::Whitted => self.trace_path(ray, settings, counts),
+                Integrator::Path => {
+                    let random = random_sequence(settings.seed, pixel, s);
+                    let (color, aov, _albedo) = self.path_trace(ray, random, settings, counts);
+                    (color, aov)
+                }
+            }
+        };
         let (first_color, aov) = sample(0);
         let rest: Vec3 = (1..samples).map(|s| sample(s).0).sum();
         Pixel { color: (first_color + rest) / samples as f32, aov }

@@ -337,7 +337,7 @@ impl LightSpec {
                     checks::finite_dvec3(key, *value).map(|v| (v / space.scale).as_vec3())
                 };
                 let (edge_u, edge_v) = (edge("edge_u", edge_u)?, edge("edge_v", edge_v)?);
-                if !(edge_u.cross(edge_v).length() > 0.0) {
+                if edge_u.cross(edge_v).length() == 0.0 {
                     return Err(InvalidValue::new(
                         "edge_v",
                         "must not be parallel to edge_u (nor either zero)",

@@ -8,7 +8,9 @@ use clap::{Args, ValueEnum};
 use pointray_io::MemoryBudget;
 use pointray_scene::image_output::{AovSelection, check_image_outputs, write_image};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
-use pointray_scene::{BufferLayout, Integrator, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera};
+use pointray_scene::{
+    BufferLayout, Integrator, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera,
+};
 
 use crate::backend::{BackendArgs, open_backend};
 use crate::progress::PrepBar;
