@@ -20,9 +20,10 @@ RandomSequence random_sequence(uint seed, uvec2 pixel, uint sample_index) {
     return RandomSequence(key, 0u);
 }
 
-// Uniform in [0, 1): the hash's top 24 bits, exactly representable.
+// Uniform in [0, 1): the hash's top 24 bits, exactly representable. Two rounds: one leaves
+// the dimensions of a sample correlated enough to bias rare joint events.
 float random_next(inout RandomSequence sequence) {
-    uint bits = pcg_hash(sequence.key ^ pcg_hash(sequence.dimension));
+    uint bits = pcg_hash(pcg_hash(sequence.key ^ pcg_hash(sequence.dimension)));
     sequence.dimension += 1u;
     return float(bits >> 8u) * (1.0 / 16777216.0);
 }

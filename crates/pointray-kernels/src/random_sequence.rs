@@ -32,8 +32,12 @@ pub fn random_sequence(seed: u32, pixel: UVec2, sample: u32) -> RandomSequence {
 }
 
 /// The next number, uniform in `[0, 1)`: the hash's top 24 bits, exactly representable.
+/// The key and dimension go through two rounds: with one, the draws of different dimensions
+/// of one sample are correlated enough to bias rare joint events (a glass slab's double
+/// inner reflection came out 3 standard errors low over 2.4 million samples; two rounds
+/// agree with an ideal generator).
 pub fn random_next(sequence: &mut RandomSequence) -> f32 {
-    let bits = pcg_hash(sequence.key ^ pcg_hash(sequence.dimension));
+    let bits = pcg_hash(pcg_hash(sequence.key ^ pcg_hash(sequence.dimension)));
     sequence.dimension = sequence.dimension.wrapping_add(1);
     (bits >> 8) as f32 * (1.0 / 16_777_216.0)
 }
