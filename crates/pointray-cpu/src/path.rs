@@ -20,6 +20,8 @@ pub struct PrimaryAov {
     pub normal: Vec3,
     pub instance_id: u32,
     pub primitive_id: u32,
+    /// The BSDF's colour at the hit (path integrator only; zero under Whitted).
+    pub albedo: Vec3,
 }
 
 impl PrimaryAov {
@@ -28,6 +30,7 @@ impl PrimaryAov {
         normal: Vec3::ZERO,
         instance_id: RenderedImage::MISS,
         primitive_id: RenderedImage::MISS,
+        albedo: Vec3::ZERO,
     };
 }
 
@@ -62,6 +65,7 @@ impl CpuRenderer {
                     normal,
                     instance_id: instance.object_index,
                     primitive_id: hit.primitive,
+                    albedo: Vec3::ZERO,
                 };
             }
             let point = ShadingPoint {

@@ -43,19 +43,18 @@ pub(crate) struct Arrival {
 }
 
 impl CpuRenderer {
-    /// One sample of the radiance along a camera ray, the primary ray's AOVs, and the
-    /// albedo at the first hit (zero where it missed).
+    /// One sample of the radiance along a camera ray, and the primary ray's AOVs with the
+    /// albedo at the first hit.
     pub(crate) fn path_trace(
         &self,
         mut ray: Ray,
         mut random: RandomSequence,
         settings: &RenderSettings,
         counts: &mut RayCounts,
-    ) -> (Vec3, PrimaryAov, Vec3) {
+    ) -> (Vec3, PrimaryAov) {
         let mut radiance = Vec3::ZERO;
         let mut throughput = Vec3::ONE;
         let mut aov = PrimaryAov::MISS;
-        let mut albedo = Vec3::ZERO;
         let mut arrival = Arrival { origin: ray.origin, pdf: 0.0, unweighted: true };
         let mut t_min = 0.0;
         for depth in 0..settings.max_depth {
@@ -82,8 +81,8 @@ impl CpuRenderer {
                     normal: face_forward(surface.normal, ray.direction),
                     instance_id: surface.object,
                     primitive_id: hit.primitive,
+                    albedo: surface.bsdf.color,
                 };
-                albedo = surface.bsdf.color;
             }
             radiance += throughput * surface.emission;
             if depth + 1 >= settings.max_depth {
@@ -112,7 +111,7 @@ impl CpuRenderer {
                 throughput /= survival;
             }
         }
-        (radiance, aov, albedo)
+        (radiance, aov)
     }
 }
 

@@ -71,6 +71,9 @@ impl CpuRenderer {
             })
             .collect();
         let mut image = empty_image(width, height);
+        if settings.integrator == Integrator::Path {
+            image.albedo = Some(vec![Vec3::ZERO; image.pixel_count()]);
+        }
         let mut total = RayCounts::default();
         for (corner, pixels, counts) in rendered {
             total += counts;
@@ -81,6 +84,9 @@ impl CpuRenderer {
                 image.normal[index] = result.aov.normal;
                 image.instance_id[index] = result.aov.instance_id;
                 image.primitive_id[index] = result.aov.primitive_id;
+                if let Some(albedo) = &mut image.albedo {
+                    albedo[index] = result.aov.albedo;
+                }
             }
         }
         (image, total)
@@ -109,9 +115,7 @@ impl CpuRenderer {
             match settings.integrator {
                 Integrator::Whitted => self.trace_path(ray, settings, counts),
                 Integrator::Path => {
-                    let random = random_sequence(settings.seed, pixel, s);
-                    let (color, aov, _albedo) = self.path_trace(ray, random, settings, counts);
-                    (color, aov)
+                    self.path_trace(ray, random_sequence(settings.seed, pixel, s), settings, counts)
                 }
             }
         };
@@ -145,5 +149,6 @@ fn empty_image(width: u32, height: u32) -> RenderedImage {
         normal: vec![Vec3::ZERO; count],
         instance_id: vec![RenderedImage::MISS; count],
         primitive_id: vec![RenderedImage::MISS; count],
+        albedo: None,
     }
 }

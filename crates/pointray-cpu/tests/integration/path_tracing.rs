@@ -109,9 +109,17 @@ fn a_diffuse_plane_under_a_uniform_sky_shows_its_albedo() {
         ),
         (mesh_object("plane", floor_mesh(1.0), diffuse(albedo)), "mesh plane"),
     ] {
-        let image =
-            CpuRenderer::new(&under_sky(vec![object], sky, from, 30.0)).render(&path_settings(24, 8, 4));
+        let renderer = CpuRenderer::new(&under_sky(vec![object], sky, from, 30.0));
+        let image = renderer.render(&path_settings(24, 8, 4));
         estimate(hit_values(&image)).assert_near(f64::from(albedo), SIGMAS, 1e-4, what);
+        // The albedo AOV is the plane's colour where it was hit, zero elsewhere.
+        let aov = image.albedo.as_ref().expect("the path integrator writes the albedo");
+        for (index, &id) in image.instance_id.iter().enumerate() {
+            let expected = if id == RenderedImage::MISS { Vec3::ZERO } else { Vec3::splat(albedo) };
+            assert_eq!(aov[index], expected, "{what}: albedo at pixel {index}");
+        }
+        let whitted = RenderSettings { integrator: Integrator::Whitted, ..path_settings(4, 1, 2) };
+        assert_eq!(renderer.render(&whitted).albedo, None);
     }
 }
 
