@@ -12,11 +12,11 @@ fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
 }
 
-fn parse(text: &str) -> Result<SceneFile, SceneError> {
+pub fn parse(text: &str) -> Result<SceneFile, SceneError> {
     SceneFile::parse(text, Path::new("test/scene.toml"))
 }
 
-fn error_message(text: &str) -> String {
+pub fn error_message(text: &str) -> String {
     parse(text).expect_err("the scene should be rejected").to_string()
 }
 
