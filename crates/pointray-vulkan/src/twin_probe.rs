@@ -22,6 +22,7 @@ pub(crate) const QUADRATIC_ROOTS: &[u8] = twin_probe!("quadratic_roots");
 pub(crate) const INTERSECT_PATCH: &[u8] = twin_probe!("intersect_patch");
 pub(crate) const SHADING: &[u8] = twin_probe!("shading");
 pub(crate) const CAMERA_RAY: &[u8] = twin_probe!("camera_ray");
+pub(crate) const PATH_SAMPLING: &[u8] = twin_probe!("path_sampling");
 
 const WORKGROUP_SIZE: u32 = 64;
 
