@@ -8,6 +8,8 @@
 use std::sync::Arc;
 
 use glam::{UVec2, Vec2, Vec3};
+use pointray_kernels::PatchCold;
+use pointray_kernels::interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
 use pointray_kernels::tangent_frame::{pack_normal, unpack_normal};
 use pointray_kernels::{
     Camera, PackedTangentFrame, PatchAcceptance, PatchHot, PhongSurface, Ray, TangentFrame, camera_ray,
@@ -17,6 +19,7 @@ use pointray_kernels::{
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use crate::buffer::{Buffer, storage_usage};
 use crate::context::GpuContext;
 use crate::twin_probe::{self, probe_context, run_probe};
 
@@ -289,4 +292,98 @@ fn camera_rays_agree() {
             ray.direction
         );
     }
+}
+
+/// Patches scattered in a unit cube, each with a colour, a reach and its nearest patches as
+/// colour neighbours (some slots empty).
+fn coloured_patches(rng: &mut ChaCha8Rng, count: usize) -> (Vec<PatchHot>, Vec<PatchCold>, Vec<u32>) {
+    let origins: Vec<Vec3> =
+        (0..count).map(|_| Vec3::new(rng.random(), rng.random(), rng.random())).collect();
+    let hot = origins
+        .iter()
+        .map(|&origin| {
+            let normal = unit(rng);
+            PatchHot::new(
+                origin,
+                PackedTangentFrame::new(normal, unit(rng).cross(normal).normalize()),
+                Vec2::splat(0.1),
+                [0.0; 6],
+            )
+        })
+        .collect();
+    let cold = (0..count)
+        .map(|_| PatchCold {
+            color_rgba8: rng.random(),
+            intensity: rng.random(),
+            color_reach: rng.random_range(0.0..0.3),
+        })
+        .collect();
+    let neighbors = origins
+        .iter()
+        .enumerate()
+        .flat_map(|(i, &origin)| {
+            let mut others: Vec<usize> = (0..count).filter(|&j| j != i).collect();
+            others.sort_by(|&a, &b| origin.distance(origins[a]).total_cmp(&origin.distance(origins[b])));
+            let kept = rng.random_range(0..=COLOR_NEIGHBORS);
+            (0..COLOR_NEIGHBORS).map(move |slot| if slot < kept { others[slot] as u32 } else { NO_NEIGHBOR })
+        })
+        .collect();
+    (hot, cold, neighbors)
+}
+
+fn address_bits(buffer: &Buffer) -> [f32; 2] {
+    let address = buffer.device_address();
+    [word(address as u32), word((address >> 32) as u32)]
+}
+
+#[test]
+fn colour_interpolation_agrees() {
+    let Some(context) = probe_context() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let (hot, cold, neighbors) = coloured_patches(&mut rng, 256);
+    let upload =
+        |name, bytes: &[u8]| Buffer::host_with_data(&context, name, bytes, storage_usage()).expect("uploads");
+    let hot_buffer = upload("twin hot patches", bytemuck::cast_slice(&hot));
+    let cold_buffer = upload("twin cold patches", bytemuck::cast_slice(&cold));
+    let neighbor_buffer = upload("twin colour neighbours", bytemuck::cast_slice(&neighbors));
+    let [hot_low, hot_high] = address_bits(&hot_buffer);
+    let [cold_low, cold_high] = address_bits(&cold_buffer);
+    let queries: Vec<(Vec3, u32)> = (0..CASES)
+        .map(|_| {
+            let hit = rng.random_range(0..hot.len() as u32);
+            let [x, y, z] = hot[hit as usize].origin;
+            let jitter = Vec3::new(
+                rng.random_range(-0.1..0.1),
+                rng.random_range(-0.1..0.1),
+                rng.random_range(-0.1..0.1),
+            );
+            (Vec3::new(x, y, z) + jitter, hit)
+        })
+        .collect();
+    let mut inputs: Vec<[f32; 4]> = queries
+        .iter()
+        .flat_map(|&(position, hit)| {
+            [position.extend(word(hit)).to_array(), [hot_low, hot_high, cold_low, cold_high]]
+        })
+        .collect();
+    let [low, high] = address_bits(&neighbor_buffer);
+    inputs.push([low, high, 0.0, 0.0]);
+    let outputs = run(&context, twin_probe::INTERPOLATE_COLOR, &inputs, (2, 1));
+    let (mut rounded, mut borderline) = (0, 0);
+    for (index, (&(position, hit), gpu)) in queries.iter().zip(&outputs).enumerate() {
+        let (gpu, cpu) = (
+            gpu[0].to_bits().to_le_bytes(),
+            interpolate_color(position, hit, &hot, &cold, &neighbors).to_le_bytes(),
+        );
+        match gpu.iter().zip(cpu).map(|(&g, c)| g.abs_diff(c)).max() {
+            Some(0) => {}
+            // A blend that lands on a byte's rounding edge.
+            Some(1) => rounded += 1,
+            // The walk to the nearest point took another turn at a distance tie.
+            _ => borderline += 1,
+        }
+        assert!(borderline <= CASES / 100, "case {index}: colour {gpu:?} against {cpu:?}");
+    }
+    assert!(rounded <= CASES / 100, "{rounded} of {CASES} colours are a byte off: more than rounding");
+    assert_few_borderline("colour interpolation", borderline);
 }

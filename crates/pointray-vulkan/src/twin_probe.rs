@@ -22,6 +22,7 @@ pub(crate) const QUADRATIC_ROOTS: &[u8] = twin_probe!("quadratic_roots");
 pub(crate) const INTERSECT_PATCH: &[u8] = twin_probe!("intersect_patch");
 pub(crate) const SHADING: &[u8] = twin_probe!("shading");
 pub(crate) const CAMERA_RAY: &[u8] = twin_probe!("camera_ray");
+pub(crate) const INTERPOLATE_COLOR: &[u8] = twin_probe!("interpolate_color");
 
 const WORKGROUP_SIZE: u32 = 64;
 
@@ -49,6 +50,7 @@ pub(crate) fn run_probe(
     inputs: &[[f32; 4]],
     (inputs_per_case, outputs_per_case): (usize, usize),
 ) -> Result<Vec<[f32; 4]>, VulkanError> {
+    // A probe may read one shared vec4 after the cases (`interpolate_color.comp`).
     let cases = inputs.len() / inputs_per_case;
     let input = Buffer::host_with_data(
         context,
