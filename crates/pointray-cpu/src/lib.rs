@@ -6,10 +6,12 @@
 //! A `CpuRenderer` builds its BVHs once; its camera and lights can then be changed between
 //! frames (`set_camera`, `set_lights`) without rebuilding anything.
 
+mod direct_light;
 mod first_hit;
 mod instance;
 mod object_bvh;
 mod path;
+mod path_tracer;
 mod ray_counts;
 mod renderer;
 mod scene_updates;

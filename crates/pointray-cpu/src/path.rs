@@ -20,6 +20,8 @@ pub struct PrimaryAov {
     pub normal: Vec3,
     pub instance_id: u32,
     pub primitive_id: u32,
+    /// The BSDF's colour at the hit (path integrator only; zero under Whitted).
+    pub albedo: Vec3,
 }
 
 impl PrimaryAov {
@@ -28,6 +30,7 @@ impl PrimaryAov {
         normal: Vec3::ZERO,
         instance_id: RenderedImage::MISS,
         primitive_id: RenderedImage::MISS,
+        albedo: Vec3::ZERO,
     };
 }
 
@@ -62,6 +65,7 @@ impl CpuRenderer {
                     normal,
                     instance_id: instance.object_index,
                     primitive_id: hit.primitive,
+                    albedo: Vec3::ZERO,
                 };
             }
             let point = ShadingPoint {
@@ -99,7 +103,7 @@ impl CpuRenderer {
 
     /// How far secondary rays leaving the hit ignore what they meet: a fraction of the hit
     /// patch's support radius in world units, nothing for triangles.
-    fn clearance(&self, hit: &SceneHit) -> f32 {
+    pub(crate) fn clearance(&self, hit: &SceneHit) -> f32 {
         let instance = &self.top.instances[hit.instance];
         match instance.blas.geometry() {
             Geometry::Patches(patches) => {
@@ -111,7 +115,7 @@ impl CpuRenderer {
 
     /// The material's diffuse colour, or where the material asks for point colours, the
     /// point colours interpolated at the hit (white for meshes, which have none).
-    fn base_color(&self, hit: &SceneHit, ray: &Ray) -> Vec3 {
+    pub(crate) fn base_color(&self, hit: &SceneHit, ray: &Ray) -> Vec3 {
         let instance = &self.top.instances[hit.instance];
         let material = &self.scene.objects[instance.object_index as usize].material;
         if !material.use_point_colors {
@@ -128,7 +132,7 @@ impl CpuRenderer {
         }
     }
 
-    fn background(&self, direction: Vec3) -> Vec3 {
+    pub(crate) fn background(&self, direction: Vec3) -> Vec3 {
         match self.scene.background {
             Background::Solid(color) => background(direction, color, color),
             Background::Gradient { top, bottom } => background(direction, top, bottom),

@@ -2,8 +2,8 @@
 //! over pixel tiles.
 
 use glam::{UVec2, Vec3};
-use pointray_kernels::{Camera, Ray, camera_ray, sample_jitter};
-use pointray_scene::{RenderSettings, RenderedImage, Scene};
+use pointray_kernels::{Camera, Ray, camera_ray, random_sequence, sample_jitter};
+use pointray_scene::{Integrator, RenderSettings, RenderedImage, Scene};
 use rayon::prelude::*;
 
 use crate::path::PrimaryAov;
@@ -71,6 +71,9 @@ impl CpuRenderer {
             })
             .collect();
         let mut image = empty_image(width, height);
+        if settings.integrator == Integrator::Path {
+            image.albedo = Some(vec![Vec3::ZERO; image.pixel_count()]);
+        }
         let mut total = RayCounts::default();
         for (corner, pixels, counts) in rendered {
             total += counts;
@@ -81,6 +84,9 @@ impl CpuRenderer {
                 image.normal[index] = result.aov.normal;
                 image.instance_id[index] = result.aov.instance_id;
                 image.primitive_id[index] = result.aov.primitive_id;
+                if let Some(albedo) = &mut image.albedo {
+                    albedo[index] = result.aov.albedo;
+                }
             }
         }
         (image, total)
@@ -104,8 +110,15 @@ impl CpuRenderer {
         counts: &mut RayCounts,
     ) -> Pixel {
         let samples = settings.samples_per_pixel.max(1);
-        let mut sample =
-            |s| self.trace_path(camera_ray(camera, size, pixel, sample_jitter(s)), settings, counts);
+        let mut sample = |s| {
+            let ray = camera_ray(camera, size, pixel, sample_jitter(s));
+            match settings.integrator {
+                Integrator::Whitted => self.trace_path(ray, settings, counts),
+                Integrator::Path => {
+                    self.path_trace(ray, random_sequence(settings.seed, pixel, s), settings, counts)
+                }
+            }
+        };
         let (first_color, aov) = sample(0);
         let rest: Vec3 = (1..samples).map(|s| sample(s).0).sum();
         Pixel { color: (first_color + rest) / samples as f32, aov }
@@ -136,5 +149,6 @@ fn empty_image(width: u32, height: u32) -> RenderedImage {
         normal: vec![Vec3::ZERO; count],
         instance_id: vec![RenderedImage::MISS; count],
         primitive_id: vec![RenderedImage::MISS; count],
+        albedo: None,
     }
 }

@@ -2,6 +2,7 @@
 
 use glam::Vec3;
 use pointray_kernels::{PhongSurface, Ray, phong};
+use pointray_scene::light::WhittedLight;
 use pointray_scene::{Light, Material, RenderSettings};
 
 use crate::ray_counts::RayCounts;
@@ -55,13 +56,14 @@ impl CpuRenderer {
 }
 
 /// Unit direction to the light, how far along it the light is, and its `color * intensity`.
+/// Area lights shine from their centres (`Light::as_whitted`).
 fn toward_light(light: &Light, position: Vec3) -> (Vec3, f32, Vec3) {
-    match *light {
-        Light::Point { position: light_position, color, intensity } => {
+    match light.as_whitted() {
+        WhittedLight::Point { position: light_position, color, intensity } => {
             let offset = light_position - position;
             (offset.normalize_or_zero(), offset.length(), color * intensity)
         }
-        Light::Directional { direction, color, intensity } => {
+        WhittedLight::Directional { direction, color, intensity } => {
             (-direction.normalize_or_zero(), f32::INFINITY, color * intensity)
         }
     }

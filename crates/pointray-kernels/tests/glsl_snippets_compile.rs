@@ -88,6 +88,41 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
         "background.glsl",
         "result = background(vec3(0.0, 1.0, 0.0), vec3(0.2, 0.4, 1.0), vec3(1.0));",
     ),
+    (
+        "random_sequence.glsl",
+        "RandomSequence sequence = random_sequence(7u, gl_GlobalInvocationID.xy, 3u);
+             result = vec3(random_next(sequence), random_next2(sequence));",
+    ),
+    (
+        "sampling.glsl",
+        "vec3 d = to_world(cosine_hemisphere(vec2(0.3, 0.6)), vec3(0.0, 1.0, 0.0));
+             result = d + uniform_sphere(vec2(0.1)) + uniform_cone(vec2(0.2), 0.9)
+                 + vec3(cosine_hemisphere_pdf(d.z), uniform_cone_pdf(0.9), power_heuristic(1.0, UNIFORM_SPHERE_PDF))
+                 + to_local(d, vec3(0.0, 0.0, -1.0));",
+    ),
+    (
+        "fresnel.glsl",
+        "vec3 refracted; bool through = refract_direction(vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), 1.5, refracted);
+             result = refracted + fresnel_schlick(0.5, vec3(0.9)) + vec3(fresnel_dielectric(1.0, 1.5), float(through), 0.0);",
+    ),
+    (
+        "microfacet.glsl",
+        "vec3 m = ggx_sample_visible(vec3(0.0, 0.6, 0.8), 0.3, vec2(0.4, 0.7));
+             result = m * ggx_d(m, 0.3) * smith_g2(m, m, 0.3) + vec3(ggx_visible_pdf(vec3(0.0, 0.0, 1.0), m, 0.3));",
+    ),
+    (
+        "bsdf.glsl",
+        "Bsdf bsdf = Bsdf(BSDF_PLASTIC, vec3(0.8), 0.2, 1.5);
+             BsdfSample s = bsdf_sample(bsdf, vec3(0.0, 0.0, 1.0), vec3(0.1, 0.2, 0.3));
+             result = s.weight + bsdf_eval(bsdf, vec3(0.0, 0.0, 1.0), s.direction)
+                 + vec3(bsdf_pdf(bsdf, vec3(0.0, 0.0, 1.0), s.direction), float(bsdf_is_two_sided(bsdf)), float(bsdf_samples_lights(bsdf)));",
+    ),
+    (
+        "light_source.glsl",
+        "LightSource light = LightSource(LIGHT_QUAD, vec3(0.0, 0.0, 2.0), vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), 0.0, vec3(1.0));
+             LightSample s = light_sample(light, vec3(0.0), vec2(0.5));
+             result = s.radiance * s.pdf + vec3(light_hit(light, vec3(0.0), s.direction), light_pdf(light, vec3(0.0), s.direction, s.distance), float(light_is_delta(light)));",
+    ),
 ];
 
 fn wrapper(snippet: &str, calls: &str) -> String {

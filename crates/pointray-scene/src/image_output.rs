@@ -8,6 +8,7 @@
 //! | instance | `out.instance.exr` | object index as a float; -1 where it missed |
 //! | primitive | `out.primitive.exr` | patch or triangle index as a float; -1 where it missed |
 //! | mask | `out.mask.png` | 255 where the primary ray hit, 0 elsewhere |
+//! | albedo | `out.albedo.exr` | the base colour at the first hit, linear RGB; 0 where it missed (path integrator only) |
 //!
 //! Ids are stored as 32-bit floats, which hold integers exactly up to 2^24; a image with a
 //! larger id is refused rather than written with rounded ids.
@@ -27,10 +28,13 @@ pub struct AovSelection {
     pub instance: bool,
     pub primitive: bool,
     pub mask: bool,
+    /// Written only where the image has one (`RenderedImage::albedo`).
+    pub albedo: bool,
 }
 
 impl AovSelection {
-    pub const ALL: Self = Self { depth: true, normal: true, instance: true, primitive: true, mask: true };
+    pub const ALL: Self =
+        Self { depth: true, normal: true, instance: true, primitive: true, mask: true, albedo: true };
 }
 
 /// The largest id a float holds exactly.
@@ -76,11 +80,16 @@ pub fn write_image(
         let aov = aov_path(path, "mask.png");
         paths.push(written(&aov, write_png_mask(&aov, width, height, &image.hit_mask()))?);
     }
+    if let (true, Some(albedo)) = (aovs.albedo, &image.albedo) {
+        let aov = aov_path(path, "albedo.exr");
+        paths.push(written(&aov, write_exr_linear(&aov, width, height, albedo))?);
+    }
     Ok(paths)
 }
 
-/// Every file `write_image` would write for `path` and `aovs`, the colour image first; an
-/// error for an image type it cannot write. Nothing is touched.
+/// Every file `write_image` may write for `path` and `aovs`, the colour image first (the
+/// albedo only where the image has one); an error for an image type it cannot write.
+/// Nothing is touched.
 pub fn image_paths(path: &Path, aovs: &AovSelection) -> Result<Vec<PathBuf>, SceneError> {
     if !matches!(extension(path).as_deref(), Some("png" | "exr")) {
         return Err(SceneError::ImageFormat {
@@ -94,6 +103,7 @@ pub fn image_paths(path: &Path, aovs: &AovSelection) -> Result<Vec<PathBuf>, Sce
         (aovs.instance, "instance.exr"),
         (aovs.primitive, "primitive.exr"),
         (aovs.mask, "mask.png"),
+        (aovs.albedo, "albedo.exr"),
     ];
     let aov_paths =
         selected.into_iter().filter(|(wanted, _)| *wanted).map(|(_, suffix)| aov_path(path, suffix));

@@ -13,7 +13,17 @@
 //! ramp = "viridis"            # for "intensity" and "height": "grey", "viridis", or evenly
 //!                             # spaced linear RGB stops, e.g. [[0, 0, 0.2], [1, 1, 0.8]]
 //! intensity_range = [0.0, 1.0] # for "intensity": the intensities the ramp spans
+//! bsdf = "plastic"            # the path integrator's: "phong" (the default, below),
+//!                             # "diffuse", "conductor", "plastic" or "dielectric" (glass),
+//!                             # each coloured by the base colour above
+//! roughness = 0.1             # GGX alpha, 0 to 1 (0 makes glass smooth)
+//! ior = 1.5                   # glass's and a plastic coating's index of refraction
+//! emission = [0.0, 0.0, 0.0]  # radiance the surface emits (path integrator)
 //! ```
+//!
+//! Under the path integrator a material without `bsdf` (every scene written for the Whitted
+//! integrator) is Lambertian of its base colour, and with `reflectivity > 0` a glossy
+//! plastic of that colour (GGX alpha `PHONG_REFLECTION_ROUGHNESS`, ior 1.5).
 //!
 //! `use_point_colors = true` (older scenes) means `color_source = "points"`, and `false`
 //! means `"fixed"`; a material gives one key or the other, not both.
@@ -24,6 +34,7 @@ use crate::Material;
 use crate::checks;
 use crate::color_ramp::{ColorRamp, RAMP_NAMES};
 use crate::error::InvalidValue;
+use crate::material::SurfaceKind;
 
 /// Where a point set's diffuse colour comes from.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
@@ -82,6 +93,10 @@ pub struct MaterialSpec {
     pub color_source: Option<ColorSource>,
     pub ramp: Option<RampSpec>,
     pub intensity_range: Option<[f32; 2]>,
+    pub bsdf: Option<SurfaceKind>,
+    pub roughness: Option<f32>,
+    pub ior: Option<f32>,
+    pub emission: Option<[f32; 3]>,
 }
 
 impl MaterialSpec {
@@ -100,6 +115,13 @@ impl MaterialSpec {
                 self.reflectivity.unwrap_or(default.reflectivity),
             )?,
             use_point_colors: self.color_source()? != ColorSource::Fixed,
+            surface: self.bsdf.unwrap_or(default.surface),
+            roughness: checks::in_unit_interval("roughness", self.roughness.unwrap_or(default.roughness))?,
+            ior: checks::positive("ior", self.ior.unwrap_or(default.ior))?,
+            emission: match self.emission {
+                Some(emission) => checks::color("emission", emission)?,
+                None => default.emission,
+            },
         })
     }
 

@@ -2,6 +2,8 @@
 
 use pointray_kernels::PatchAcceptance;
 
+use crate::integrator::Integrator;
+
 /// How the per-patch data reaches the GPU (METHOD.md §2.7).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum BufferLayout {
@@ -23,6 +25,9 @@ pub struct RenderSettings {
     pub shadows: bool,
     pub acceptance: PatchAcceptance,
     pub buffer_layout: BufferLayout,
+    pub integrator: Integrator,
+    /// The path integrator's random sequence: one seed gives one image on every backend.
+    pub seed: u32,
 }
 
 impl Default for RenderSettings {
@@ -35,6 +40,8 @@ impl Default for RenderSettings {
             shadows: true,
             acceptance: PatchAcceptance::default(),
             buffer_layout: BufferLayout::default(),
+            integrator: Integrator::default(),
+            seed: 0,
         }
     }
 }

@@ -17,6 +17,9 @@ pub struct RenderedImage {
     pub instance_id: Vec<u32>,
     /// Index of the patch or triangle hit within its object; `RenderedImage::MISS` where it missed.
     pub primitive_id: Vec<u32>,
+    /// The surface's base colour (its BSDF's colour) at the first hit, zero where it missed;
+    /// from the path integrator, which has it at hand, and `None` from the others.
+    pub albedo: Option<Vec<Vec3>>,
 }
 
 impl RenderedImage {

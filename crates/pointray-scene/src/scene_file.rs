@@ -9,10 +9,10 @@
 //! vfov_degrees = 40.0       # default 45
 //!
 //! [[lights]]
-//! type = "point"            # or "directional" with `direction` (the way the light travels)
-//! position = [1.0, 2.0, 1.0]
-//! color = [1.0, 1.0, 1.0]   # default white
-//! intensity = 1.0           # default 1
+//! type = "point"            # or "directional" with `direction` (the way the light travels),
+//! position = [1.0, 2.0, 1.0] # "sphere" with `center` and `radius`, or "quad" with `corner`,
+//! color = [1.0, 1.0, 1.0]   # `edge_u` and `edge_v` (emitting toward edge_u x edge_v);
+//! intensity = 1.0           # default white, 1 (see `light.rs` for their units)
 //!
 //! background = [0.1, 0.1, 0.1]                        # a colour, or
 //! # background = { top = [0.5, 0.7, 1.0], bottom = [1.0, 1.0, 1.0] }
@@ -22,6 +22,8 @@
 //! height = 640
 //! spp = 1
 //! max_depth = 2
+//! integrator = "whitted"    # or "path"
+//! seed = 0                  # the path integrator's random sequence
 //! ```
 //!
 //! Objects are described in `object_spec`, their transforms in `transform_spec` and their
@@ -38,7 +40,7 @@ use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::points_scene::PointsScene;
 use crate::render_settings::RenderSetting;
 use crate::render_space::RenderSpace;
-use crate::{Background, Camera, Light, RenderSettings};
+use crate::{Background, Camera, Integrator, Light, RenderSettings};
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -84,6 +86,23 @@ pub enum LightSpec {
         #[serde(default = "unit_intensity")]
         intensity: f32,
     },
+    Sphere {
+        center: [f64; 3],
+        radius: f64,
+        #[serde(default = "white")]
+        color: [f32; 3],
+        #[serde(default = "unit_intensity")]
+        intensity: f32,
+    },
+    Quad {
+        corner: [f64; 3],
+        edge_u: [f64; 3],
+        edge_v: [f64; 3],
+        #[serde(default = "white")]
+        color: [f32; 3],
+        #[serde(default = "unit_intensity")]
+        intensity: f32,
+    },
 }
 
 /// A colour `[r, g, b]`, or a table `{ top = [r, g, b], bottom = [r, g, b] }`.
@@ -120,6 +139,8 @@ pub struct RenderSpec {
     pub height: Option<u32>,
     pub spp: Option<u32>,
     pub max_depth: Option<u32>,
+    pub integrator: Option<Integrator>,
+    pub seed: Option<u32>,
 }
 
 /// Where a TOML error is and what it is, without the source line that `toml` quotes: a file
@@ -305,6 +326,34 @@ impl LightSpec {
                 color: checks::color("color", *color)?,
                 intensity: checks::non_negative("intensity", *intensity)?,
             },
+            Self::Sphere { center, radius, color, intensity } => Light::Sphere {
+                center: checks::placeable("center", space.point(checks::finite_dvec3("center", *center)?))?,
+                radius: checks::positive("radius", (*radius / space.scale) as f32)?,
+                color: checks::color("color", *color)?,
+                intensity: checks::non_negative("intensity", *intensity)?,
+            },
+            Self::Quad { corner, edge_u, edge_v, color, intensity } => {
+                let edge = |key: &str, value: &[f64; 3]| {
+                    checks::finite_dvec3(key, *value).map(|v| (v / space.scale).as_vec3())
+                };
+                let (edge_u, edge_v) = (edge("edge_u", edge_u)?, edge("edge_v", edge_v)?);
+                if edge_u.cross(edge_v).length() == 0.0 {
+                    return Err(InvalidValue::new(
+                        "edge_v",
+                        "must not be parallel to edge_u (nor either zero)",
+                    ));
+                }
+                Light::Quad {
+                    corner: checks::placeable(
+                        "corner",
+                        space.point(checks::finite_dvec3("corner", *corner)?),
+                    )?,
+                    edge_u,
+                    edge_v,
+                    color: checks::color("color", *color)?,
+                    intensity: checks::non_negative("intensity", *intensity)?,
+                }
+            }
         })
     }
 }
@@ -323,6 +372,8 @@ impl RenderSpec {
             height: value(RenderSetting::Height, self.height, default.height)?,
             samples_per_pixel: value(RenderSetting::SamplesPerPixel, self.spp, default.samples_per_pixel)?,
             max_depth: value(RenderSetting::MaxDepth, self.max_depth, default.max_depth)?,
+            integrator: self.integrator.unwrap_or(default.integrator),
+            seed: self.seed.unwrap_or(default.seed),
             ..default
         })
     }

@@ -1,9 +1,10 @@
 //! What the crates' tests share (a dev-dependency only): the checkout's data files, a Vulkan
-//! renderer or a clear failure under CI, and image comparison.
+//! renderer or a clear failure under CI, image comparison, and Monte Carlo error bounds.
 
 mod data;
 mod device;
 mod images;
+mod monte_carlo;
 
 pub use data::{data_dir, data_file};
 #[cfg(feature = "vulkan")]
@@ -12,3 +13,4 @@ pub use device::{in_ci, skip_without_device};
 pub use images::{largest_byte_difference, psnr_bytes};
 #[cfg(feature = "images")]
 pub use images::{largest_color_difference, psnr};
+pub use monte_carlo::{Estimate, estimate};

@@ -21,6 +21,7 @@ pub(crate) fn image_from_display(image: &DisplayImage) -> RenderedImage {
         normal: vec![Vec3::ZERO; pixels],
         instance_id: vec![RenderedImage::MISS; pixels],
         primitive_id: vec![RenderedImage::MISS; pixels],
+        albedo: None,
     }
 }
 

@@ -48,6 +48,7 @@ mod tests {
             normal: vec![Vec3::ZERO; n],
             instance_id: vec![RenderedImage::MISS; n],
             primitive_id: vec![RenderedImage::MISS; n],
+            albedo: None,
         }
     }
 

@@ -65,9 +65,19 @@ impl ViewState {
     }
 }
 
-/// A point light moves about `pivot`; a directional light turns its direction.
+/// A point or area light moves about `pivot`; a directional light turns its direction.
 fn turned(light: &Light, pivot: Vec3, turn: Quat) -> Light {
     match *light {
+        Light::Sphere { center, radius, color, intensity } => {
+            Light::Sphere { center: pivot + turn * (center - pivot), radius, color, intensity }
+        }
+        Light::Quad { corner, edge_u, edge_v, color, intensity } => Light::Quad {
+            corner: pivot + turn * (corner - pivot),
+            edge_u: turn * edge_u,
+            edge_v: turn * edge_v,
+            color,
+            intensity,
+        },
         Light::Point { position, color, intensity } => {
             Light::Point { position: pivot + turn * (position - pivot), color, intensity }
         }

@@ -3,6 +3,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use pointray_kernels::{PatchCold, PatchHot};
+use pointray_scene::light::WhittedLight;
 use pointray_scene::{Background, BufferLayout, Camera, Light, Material, RenderSettings};
 
 use crate::trace_target::PixelOutput;
@@ -74,9 +75,10 @@ pub(crate) struct LightRecord {
 
 impl From<&Light> for LightRecord {
     fn from(light: &Light) -> Self {
-        let (place, kind, color, intensity) = match *light {
-            Light::Point { position, color, intensity } => (position, 0.0, color, intensity),
-            Light::Directional { direction, color, intensity } => (direction, 1.0, color, intensity),
+        // Area lights shine from their centres under the Whitted integrator.
+        let (place, kind, color, intensity) = match light.as_whitted() {
+            WhittedLight::Point { position, color, intensity } => (position, 0.0, color, intensity),
+            WhittedLight::Directional { direction, color, intensity } => (direction, 1.0, color, intensity),
         };
         let radiance = color * intensity;
         Self {

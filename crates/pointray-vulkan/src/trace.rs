@@ -5,7 +5,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use ash::vk;
-use pointray_scene::RenderSettings;
+use pointray_scene::{Integrator, RenderSettings};
 
 use crate::barrier::record_memory_barrier;
 use crate::binding_table::ShaderBindingTable;
@@ -26,6 +26,9 @@ pub(crate) fn validate(settings: &RenderSettings, context: &GpuContext) -> Resul
     }
     if settings.samples_per_pixel == 0 || settings.max_depth == 0 {
         return invalid("samples per pixel and max depth must be at least 1".into());
+    }
+    if settings.integrator != Integrator::Whitted {
+        return invalid("the path integrator runs on the CPU backend (--backend cpu) only so far".into());
     }
     let limit = u64::from(context.ray_tracing_properties.max_ray_dispatch_invocation_count);
     if u64::from(settings.width) * u64::from(settings.height) > limit {

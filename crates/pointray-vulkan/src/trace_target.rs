@@ -281,5 +281,6 @@ fn image_from_pixels(width: u32, height: u32, pixels: &[PixelRecord]) -> Rendere
             .collect(),
         instance_id: pixels.iter().map(|p| if hit(p) { p.ids[0] } else { RenderedImage::MISS }).collect(),
         primitive_id: pixels.iter().map(|p| if hit(p) { p.ids[1] } else { RenderedImage::MISS }).collect(),
+        albedo: None,
     }
 }

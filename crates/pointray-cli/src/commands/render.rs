@@ -8,7 +8,9 @@ use clap::{Args, ValueEnum};
 use pointray_io::MemoryBudget;
 use pointray_scene::image_output::{AovSelection, check_image_outputs, write_image};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
-use pointray_scene::{BufferLayout, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera};
+use pointray_scene::{
+    BufferLayout, Integrator, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera,
+};
 
 use crate::backend::{BackendArgs, open_backend};
 use crate::progress::PrepBar;
@@ -34,9 +36,17 @@ pub struct RenderArgs {
     /// Samples per pixel (jittered supersampling).
     #[arg(long, value_parser = setting_flag(RenderSetting::SamplesPerPixel))]
     spp: Option<u32>,
-    /// Ray depth: 1 = primary only, 2 = one reflection bounce (the paper's setting).
+    /// Ray depth: 1 = primary only, 2 = one reflection bounce (the paper's setting); for the
+    /// path integrator, path segments (2 = direct light only).
     #[arg(long, value_parser = setting_flag(RenderSetting::MaxDepth))]
     max_depth: Option<u32>,
+    /// `whitted` (Phong, hard shadows, mirror reflections) or `path` (path tracing with the
+    /// materials' BSDFs, area lights and the sky).
+    #[arg(long)]
+    integrator: Option<Integrator>,
+    /// The path integrator's random seed: the same seed gives the same image.
+    #[arg(long)]
+    seed: Option<u32>,
     /// Turn shadow rays off.
     #[arg(long)]
     no_shadows: bool,
@@ -111,6 +121,8 @@ fn apply_flags(args: &RenderArgs, mut settings: RenderSettings) -> RenderSetting
     settings.height = args.height.unwrap_or(settings.height);
     settings.samples_per_pixel = args.spp.unwrap_or(settings.samples_per_pixel);
     settings.max_depth = args.max_depth.unwrap_or(settings.max_depth);
+    settings.integrator = args.integrator.unwrap_or(settings.integrator);
+    settings.seed = args.seed.unwrap_or(settings.seed);
     settings.shadows &= !args.no_shadows;
     settings.acceptance = args.acceptance;
     settings.buffer_layout = match args.buffers {

@@ -23,6 +23,7 @@ fn image(pixels: &[(Option<Hit>, Vec3)]) -> RenderedImage {
             .iter()
             .map(|(hit, _)| if hit.is_some() { 7 } else { RenderedImage::MISS })
             .collect(),
+        albedo: None,
     }
 }
 

@@ -26,6 +26,7 @@ fn test_image() -> RenderedImage {
         normal: (0..6).map(|i| if hit[i] { Vec3::new(0.0, -0.6, 0.8) } else { Vec3::ZERO }).collect(),
         instance_id: (0..6).map(|i| pick(i, i as u32 % 3)).collect(),
         primitive_id: (0..6).map(|i| pick(i, 1000 * i as u32 + 7)).collect(),
+        albedo: None,
     }
 }
 
@@ -129,4 +130,17 @@ fn an_image_whose_buffers_do_not_match_its_size_is_an_error() {
     image.color.pop();
     let error = write_image(&image, &dir.path().join("out.png"), &AovSelection::default()).unwrap_err();
     assert!(error.to_string().contains("out.png"), "{error}");
+}
+
+#[test]
+fn the_albedo_is_written_only_where_the_image_has_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = dir.path().join("out.png");
+    let selection = AovSelection { albedo: true, ..AovSelection::default() };
+    assert_eq!(write_image(&test_image(), &output, &selection).unwrap().len(), 1, "no albedo to write");
+    let albedo = vec![Vec3::new(0.25, 0.5, 0.75); 6];
+    let image = RenderedImage { albedo: Some(albedo), ..test_image() };
+    let written = write_image(&image, &output, &selection).unwrap();
+    assert_eq!(written, [output.clone(), dir.path().join("out.albedo.exr")]);
+    assert_eq!(read_rgb32f(&written[1])[4], [0.25, 0.5, 0.75]);
 }

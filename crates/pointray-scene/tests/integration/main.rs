@@ -5,6 +5,7 @@ mod common;
 mod fuzz_regressions;
 mod image_output;
 mod loading;
+mod path_tracing_settings;
 mod point_set_cache;
 mod procedural;
 mod scene_file_parsing;

@@ -1,0 +1,176 @@
+//! The path integrator against cases whose answer is known: a white closed surface under a
+//! white sky (the furnace: no energy lost, no light leaking between patches), a diffuse
+//! plane under a uniform sky, a glass slab seen head on. Each tolerance is computed from the
+//! render's own noise (`pointray_test_support::estimate`).
+
+use crate::common;
+
+use common::*;
+use glam::{Affine3A, Quat, Vec3};
+use pointray_cpu::CpuRenderer;
+use pointray_scene::procedural::sphere_points;
+use pointray_scene::{Background, Integrator, Material, RenderSettings, RenderedImage, Scene, SurfaceKind};
+use pointray_surface::{NoProgress, PatchSet, PrepSettings, prep};
+use pointray_test_support::estimate;
+
+/// Standard errors a mean may stray: a false failure once in 1.7 million runs.
+const SIGMAS: f64 = 5.0;
+
+fn path_settings(size: u32, spp: u32, max_depth: u32) -> RenderSettings {
+    RenderSettings {
+        width: size,
+        height: size,
+        samples_per_pixel: spp,
+        max_depth,
+        integrator: Integrator::Path,
+        seed: 7,
+        ..RenderSettings::default()
+    }
+}
+
+fn diffuse(albedo: f32) -> Material {
+    Material { surface: SurfaceKind::Diffuse, diffuse: Vec3::splat(albedo), ..Material::default() }
+}
+
+fn glass() -> Material {
+    Material {
+        surface: SurfaceKind::Dielectric,
+        diffuse: Vec3::ONE,
+        roughness: 0.0,
+        ior: 1.5,
+        ..Material::default()
+    }
+}
+
+fn under_sky(objects: Vec<pointray_scene::SceneObject>, sky: Background, from: Vec3, fov: f32) -> Scene {
+    let camera = pointray_scene::Camera { vertical_fov_degrees: fov, ..camera(from, Vec3::ZERO) };
+    Scene { background: sky, ..scene(camera, vec![], objects) }
+}
+
+/// The green channel of every pixel whose primary ray hit an object.
+fn hit_values(image: &RenderedImage) -> Vec<f64> {
+    let hits: Vec<f64> = (0..image.pixel_count())
+        .filter(|&i| image.instance_id[i] != RenderedImage::MISS)
+        .map(|i| f64::from(image.color[i].y))
+        .collect();
+    assert!(hits.len() > image.pixel_count() / 4, "the object should fill much of the image");
+    hits
+}
+
+/// A furnace: every pixel of a white closed surface under a white sky is 1 in expectation;
+/// paths that leak inside the surface never see the sky and are cut by `max_depth`.
+fn assert_furnace(object: pointray_scene::SceneObject, what: &str) {
+    let scene = under_sky(vec![object], Background::Solid(Vec3::ONE), Vec3::new(0.0, 0.5, 3.0), 45.0);
+    let image = CpuRenderer::new(&scene).render(&path_settings(32, 16, 6));
+    let values = hit_values(&image);
+    let e = estimate(values.iter().copied());
+    e.assert_near(1.0, SIGMAS, 1e-4, what);
+    // A leak darkens a seam, not the whole sphere: no pixel may stray far below 1.
+    let darkest = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let pixel_sigma = e.standard_error * (e.count as f64).sqrt();
+    assert!(
+        darkest > 1.0 - 8.0 * pixel_sigma - 1e-3,
+        "{what}: a pixel of {darkest:.4} (pixel sigma {pixel_sigma:.4})"
+    );
+}
+
+#[test]
+fn a_white_mesh_sphere_in_a_white_furnace_is_white() {
+    assert_furnace(mesh_object("sphere", sphere_mesh(1.0, 24, 48), diffuse(1.0)), "mesh sphere");
+}
+
+/// A scanned sphere: points with 1% radial noise, prepped with their normals recomputed, so
+/// that neighbouring patches overlap unevenly as on a real scan.
+fn noisy_sphere_patches(count: u32) -> PatchSet {
+    let mut cloud = sphere_points(Vec3::ZERO, 1.0, count);
+    for (i, position) in cloud.positions.iter_mut().enumerate() {
+        let noise = ((i as f64 * 12.9898).sin() * 43_758.545_3).fract();
+        *position *= 1.0 + 0.01 * noise;
+    }
+    let settings = PrepSettings { recompute_normals: true, ..PrepSettings::default() };
+    prep(&cloud, &settings, &NoProgress).expect("a sphere preps").0
+}
+
+#[test]
+fn a_white_point_set_sphere_in_a_white_furnace_is_white() {
+    let sphere = patches_object("sphere", noisy_sphere_patches(3000), Affine3A::IDENTITY, diffuse(1.0));
+    assert_furnace(sphere, "point-set sphere");
+}
+
+#[test]
+fn a_diffuse_plane_under_a_uniform_sky_shows_its_albedo() {
+    let albedo = 0.45;
+    let sky = Background::Solid(Vec3::ONE);
+    let from = Vec3::new(0.2, 2.0, 0.6);
+    for (object, what) in [
+        (
+            patches_object("plane", plane_patches(1.0, 41), Affine3A::IDENTITY, diffuse(albedo)),
+            "point-set plane",
+        ),
+        (mesh_object("plane", floor_mesh(1.0), diffuse(albedo)), "mesh plane"),
+    ] {
+        let renderer = CpuRenderer::new(&under_sky(vec![object], sky, from, 30.0));
+        let image = renderer.render(&path_settings(24, 8, 4));
+        estimate(hit_values(&image)).assert_near(f64::from(albedo), SIGMAS, 1e-4, what);
+        // The albedo AOV is the plane's colour where it was hit, zero elsewhere.
+        let aov = image.albedo.as_ref().expect("the path integrator writes the albedo");
+        for (index, &id) in image.instance_id.iter().enumerate() {
+            let expected = if id == RenderedImage::MISS { Vec3::ZERO } else { Vec3::splat(albedo) };
+            assert_eq!(aov[index], expected, "{what}: albedo at pixel {index}");
+        }
+        let whitted = RenderSettings { integrator: Integrator::Whitted, ..path_settings(4, 1, 2) };
+        assert_eq!(renderer.render(&whitted).albedo, None);
+    }
+}
+
+/// Looking straight down through a glass slab at a sky that is 1 below and 0 above: what
+/// comes through is the slab's transmittance with every inner reflection,
+/// `(1 - R) / (1 + R)` for R = ((n - 1) / (n + 1))², the 1/n² of radiance entering undone on
+/// the way out, times the sky in the pixel's direction (a slab lets rays out parallel).
+#[test]
+fn a_glass_slab_head_on_transmits_as_fresnel_says() {
+    let reflectance = (0.5f64 / 2.5).powi(2);
+    let transmittance = (1.0 - reflectance) / (1.0 + reflectance);
+    let below = Background::Gradient { top: Vec3::ZERO, bottom: Vec3::ONE };
+    let flip = Affine3A::from_rotation_translation(
+        Quat::from_rotation_x(std::f32::consts::PI),
+        Vec3::new(0.0, -0.2, 0.0),
+    );
+    let point_slab = vec![
+        patches_object("top", plane_patches(1.0, 41), Affine3A::IDENTITY, glass()),
+        patches_object("bottom", plane_patches(1.0, 41), flip, glass()),
+    ];
+    let mut bottom_mesh = floor_mesh(1.0);
+    bottom_mesh.triangles.iter_mut().for_each(|t| t.swap(1, 2));
+    bottom_mesh.positions.iter_mut().for_each(|p| p.y = -0.2);
+    let mesh_slab =
+        vec![mesh_object("top", floor_mesh(1.0), glass()), mesh_object("bottom", bottom_mesh, glass())];
+    let size = 24;
+    for (objects, what) in [(point_slab, "point-set slab"), (mesh_slab, "mesh slab")] {
+        let scene = under_sky(objects, below, Vec3::new(0.0, 1.0, 1e-3), 6.0);
+        let sky: f64 = (0..size * size)
+            .map(|i| {
+                f64::from(
+                    1.0 - 0.5 * (pixel_ray(&scene.camera, size, size, i % size, i / size).direction.y + 1.0),
+                )
+            })
+            .sum::<f64>()
+            / f64::from(size * size);
+        let image = CpuRenderer::new(&scene).render(&path_settings(size, 64, 24));
+        // The slack: Fresnel's change over the 4 degrees from the axis, and the jitter's.
+        estimate(hit_values(&image)).assert_near(transmittance * sky, SIGMAS, 1e-4, what);
+    }
+}
+
+#[test]
+fn one_seed_gives_one_image_and_another_seed_another() {
+    let sphere = patches_object("sphere", sphere_patches(1.0, 2000), Affine3A::IDENTITY, diffuse(0.7));
+    let scene = under_sky(vec![sphere], Background::Solid(Vec3::ONE), Vec3::new(0.0, 0.5, 3.0), 45.0);
+    let renderer = CpuRenderer::new(&scene);
+    let settings = path_settings(16, 2, 4);
+    assert_eq!(renderer.render(&settings), renderer.render(&settings));
+    assert_ne!(
+        renderer.render(&settings).color,
+        renderer.render(&RenderSettings { seed: 8, ..settings }).color
+    );
+}
