@@ -23,6 +23,7 @@ pub(crate) const INTERSECT_PATCH: &[u8] = twin_probe!("intersect_patch");
 pub(crate) const SHADING: &[u8] = twin_probe!("shading");
 pub(crate) const CAMERA_RAY: &[u8] = twin_probe!("camera_ray");
 pub(crate) const INTERPOLATE_COLOR: &[u8] = twin_probe!("interpolate_color");
+pub(crate) const PATH_SAMPLING: &[u8] = twin_probe!("path_sampling");
 
 const WORKGROUP_SIZE: u32 = 64;
 
