@@ -409,8 +409,14 @@ fn bsdf_relative_bounds(bsdf: &Bsdf) -> (f32, f32) {
     }
 }
 
+/// A random sequence's seed, pixel and sample.
+type SequenceCase = (u32, UVec2, u32);
+
+/// A BSDF, `wo`, `wi` and the sample's three numbers.
+type BsdfCase = (Bsdf, Vec3, Vec3, Vec3);
+
 /// A BSDF of any kind, rough or smooth, and two directions on either side.
-fn bsdf_case(rng: &mut ChaCha8Rng) -> (Bsdf, Vec3, Vec3, Vec3) {
+fn bsdf_case(rng: &mut ChaCha8Rng) -> BsdfCase {
     let roughness = if rng.random_range(0..4) == 0 { 0.0 } else { rng.random_range(0.01..1.0) };
     let color = Vec3::new(rng.random(), rng.random(), rng.random());
     let bsdf = Bsdf { kind: rng.random_range(0..4), color, roughness, ior: rng.random_range(1.1..2.0) };
@@ -422,7 +428,7 @@ fn bsdf_case(rng: &mut ChaCha8Rng) -> (Bsdf, Vec3, Vec3, Vec3) {
 fn random_sequences_and_bsdfs_agree() {
     let Some(context) = probe_context() else { return };
     let mut rng = ChaCha8Rng::seed_from_u64(6);
-    let cases: Vec<((u32, UVec2, u32), (Bsdf, Vec3, Vec3, Vec3))> = (0..CASES)
+    let cases: Vec<(SequenceCase, BsdfCase)> = (0..CASES)
         .map(|_| {
             (
                 (
