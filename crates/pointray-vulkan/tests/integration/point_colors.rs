@@ -173,7 +173,7 @@ fn combined_buffers_colour_as_split_buffers_do() {
     let Some(renderer) = renderer() else { return };
     let scene = lit_on_floor(coloured_sphere());
     let split = settings(96);
-    let combined = RenderSettings { buffer_layout: pointray_scene::BufferLayout::Combined, ..split.clone() };
+    let combined = RenderSettings { buffer_layout: pointray_scene::BufferLayout::Combined, ..split };
     let from_split = renderer.render(&scene, &split).expect("renders with split buffers");
     let from_combined = renderer.render(&scene, &combined).expect("renders with combined buffers");
     assert_eq!(from_combined.color, from_split.color, "the combined layout colours the points differently");
