@@ -25,10 +25,11 @@ const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
 ];
 
 /// Entry points compiled a second time with a define, as `(source, define, output name)`:
-/// the benchmark's ray-counting ray generation and the hit-reordering one.
+/// the benchmark's ray-counting ray generation, the hit-reordering one and the path integrator's.
 const VARIANTS: &[(&str, ShaderStage, &str, &str)] = &[
     ("primary.rgen", ShaderStage::RayGeneration, "COUNT_RAYS", "primary_counting.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "REORDER_HITS", "primary_reordering.rgen"),
+    ("primary.rgen", ShaderStage::RayGeneration, "PATH_TRACING", "path.rgen"),
 ];
 
 /// Resolves `#include "NAME"` against the given folders, in order.

@@ -35,14 +35,21 @@ struct ObjectRecord {
     vec4 specular_shininess_reflect_colors; // x = specular, y = shininess, z = reflectivity, w = use point colours
     uint object_index;                      // the object's index in the scene (the instance AOV)
     uint first_patch;                       // the patch index of the tile's primitive 0
-    uint pad0;
-    uint pad1;
+    uint bsdf_kind;                         // the path integrator's BSDF (BSDF_* of bsdf.glsl)
+    float roughness;                        // its GGX alpha
+    vec4 emission_ior;                      // rgb = emitted radiance, a = index of refraction
 };
 
-// Point light: xyz = position, w = 0. Directional: xyz = travel direction, w = 1.
+// Whitted: position_or_direction.xyz = a point light's position (w = 0) or a directional
+// light's travel direction (w = 1); area lights come as points at their centres. The path
+// integrator reads the light as light_source.glsl's LightSource: kind in radiance.a,
+// position, edges and radius in the rest.
 struct LightRecord {
     vec4 position_or_direction;
-    vec4 radiance; // colour * intensity
+    vec4 radiance;      // rgb = colour * intensity, a = LIGHT_* of light_source.glsl
+    vec4 origin_radius; // xyz = LightSource.position, w = LightSource.radius
+    vec4 edge_u;        // xyz = LightSource.edge_u
+    vec4 edge_v;        // xyz = LightSource.edge_v
 };
 
 layout(set = 0, binding = 0) uniform accelerationStructureEXT scene_tlas;
@@ -90,6 +97,7 @@ layout(push_constant) uniform TraceSettings {
     uint acceptance; // ACCEPTANCE_BOX or ACCEPTANCE_DISK of intersect_patch.glsl
     uint buffer_layout;
     uint output_kind; // OUTPUT_AOVS or OUTPUT_DISPLAY
+    uint seed;        // the path integrator's random sequence (path.rgen)
 } settings;
 
 PatchHot load_hot(ObjectRecord object, uint patch_index) {

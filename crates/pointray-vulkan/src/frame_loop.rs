@@ -80,7 +80,7 @@ impl VulkanRenderer {
         output: PixelOutput,
     ) -> Result<FrameLoopTimes, VulkanError> {
         self.ensure_prepared_here(scene)?;
-        validate(settings, &self.context)?;
+        validate(settings, &self.context, &self.pipeline)?;
         let Some(period_ns) = self.context.timestamp_period_ns else {
             return Err(VulkanError::InvalidSettings(format!(
                 "{} has no timestamps on its compute queue; the frame loop times with them",

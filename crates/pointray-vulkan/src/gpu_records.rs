@@ -41,14 +41,23 @@ pub(crate) struct ObjectRecord {
     pub(crate) object_index: u32,
     /// The patch index of the tile's primitive 0; 0 for meshes and untiled sets.
     pub(crate) first_patch: u32,
-    pub(crate) pad: [u32; 2],
+    /// The path integrator's BSDF (`pointray_kernels::bsdf::BSDF_*`) and its GGX alpha.
+    pub(crate) bsdf_kind: u32,
+    pub(crate) roughness: f32,
+    /// Emitted radiance in rgb, the index of refraction in a.
+    pub(crate) emission_ior: [f32; 4],
 }
 
 impl ObjectRecord {
     /// This record (its addresses) with `material`'s values.
     pub(crate) fn with_material(self, material: &Material) -> Self {
         let d = material.diffuse;
+        // The kind, roughness and index do not depend on the colour, which a hit supplies.
+        let bsdf = material.bsdf(d);
         Self {
+            bsdf_kind: bsdf.kind,
+            roughness: bsdf.roughness,
+            emission_ior: vec4(material.emission, bsdf.ior),
             diffuse_ambient: [d.x, d.y, d.z, material.ambient],
             specular_shininess_reflect_colors: [
                 material.specular,
@@ -71,6 +80,9 @@ impl ObjectRecord {
 pub(crate) struct LightRecord {
     position_or_direction: [f32; 4],
     radiance: [f32; 4],
+    origin_radius: [f32; 4],
+    edge_u: [f32; 4],
+    edge_v: [f32; 4],
 }
 
 impl From<&Light> for LightRecord {
@@ -80,10 +92,14 @@ impl From<&Light> for LightRecord {
             WhittedLight::Point { position, color, intensity } => (position, 0.0, color, intensity),
             WhittedLight::Directional { direction, color, intensity } => (direction, 1.0, color, intensity),
         };
+        let source = light.source();
         let radiance = color * intensity;
         Self {
             position_or_direction: [place.x, place.y, place.z, kind],
-            radiance: [radiance.x, radiance.y, radiance.z, 0.0],
+            radiance: vec4(radiance, source.kind as f32),
+            origin_radius: vec4(source.position, source.radius),
+            edge_u: vec4(source.edge_u, 0.0),
+            edge_v: vec4(source.edge_v, 0.0),
         }
     }
 }
@@ -138,6 +154,7 @@ pub(crate) struct TraceSettings {
     acceptance: u32,
     buffer_layout: u32,
     output_kind: u32,
+    seed: u32,
 }
 
 impl TraceSettings {
@@ -151,6 +168,7 @@ impl TraceSettings {
             acceptance: settings.acceptance.code(),
             buffer_layout: layout_code(settings.buffer_layout),
             output_kind: output_code(output),
+            seed: settings.seed,
         }
     }
 }
@@ -186,8 +204,8 @@ pub(crate) struct PixelRecord {
 mod tests {
     use std::mem::{offset_of, size_of};
 
-    use pointray_kernels::PatchAcceptance;
     use pointray_kernels::interpolate_color::{COLOR_NEIGHBORS, COLOR_WALK_SCANS, NO_NEIGHBOR};
+    use pointray_kernels::{PatchAcceptance, bsdf, light_source};
     use pointray_scene::RenderedImage;
 
     use super::*;
@@ -252,8 +270,9 @@ mod tests {
                 ),
                 ("object_index", offset_of!(ObjectRecord, object_index)),
                 ("first_patch", offset_of!(ObjectRecord, first_patch)),
-                ("pad0", offset_of!(ObjectRecord, pad)),
-                ("pad1", offset_of!(ObjectRecord, pad) + 4),
+                ("bsdf_kind", offset_of!(ObjectRecord, bsdf_kind)),
+                ("roughness", offset_of!(ObjectRecord, roughness)),
+                ("emission_ior", offset_of!(ObjectRecord, emission_ior)),
             ],
         );
         assert_members(
@@ -262,6 +281,9 @@ mod tests {
             &[
                 ("position_or_direction", offset_of!(LightRecord, position_or_direction)),
                 ("radiance", offset_of!(LightRecord, radiance)),
+                ("origin_radius", offset_of!(LightRecord, origin_radius)),
+                ("edge_u", offset_of!(LightRecord, edge_u)),
+                ("edge_v", offset_of!(LightRecord, edge_v)),
             ],
         );
         assert_members(
@@ -324,9 +346,10 @@ mod tests {
                 ("acceptance", offset_of!(TraceSettings, acceptance)),
                 ("buffer_layout", offset_of!(TraceSettings, buffer_layout)),
                 ("output_kind", offset_of!(TraceSettings, output_kind)),
+                ("seed", offset_of!(TraceSettings, seed)),
             ],
         );
-        assert_eq!(size_of::<TraceSettings>(), offset_of!(TraceSettings, output_kind) + 4);
+        assert_eq!(size_of::<TraceSettings>(), offset_of!(TraceSettings, seed) + 4);
     }
 
     #[test]
@@ -344,6 +367,14 @@ mod tests {
             ("NO_NEIGHBOR", NO_NEIGHBOR),
             ("COLOR_WALK_SCANS", COLOR_WALK_SCANS),
             ("MISS_ID", RenderedImage::MISS),
+            ("BSDF_DIFFUSE", bsdf::BSDF_DIFFUSE),
+            ("BSDF_CONDUCTOR", bsdf::BSDF_CONDUCTOR),
+            ("BSDF_PLASTIC", bsdf::BSDF_PLASTIC),
+            ("BSDF_DIELECTRIC", bsdf::BSDF_DIELECTRIC),
+            ("LIGHT_POINT", light_source::LIGHT_POINT),
+            ("LIGHT_DIRECTIONAL", light_source::LIGHT_DIRECTIONAL),
+            ("LIGHT_SPHERE", light_source::LIGHT_SPHERE),
+            ("LIGHT_QUAD", light_source::LIGHT_QUAD),
         ];
         let stored = probe().stored_constants("ProbeCodes");
         assert_eq!(stored.len(), host.len(), "the probe stores every code once: {stored:?}");

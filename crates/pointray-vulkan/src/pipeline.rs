@@ -5,6 +5,7 @@
 use std::sync::Arc;
 
 use ash::vk;
+use pointray_scene::Integrator;
 
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
@@ -33,11 +34,18 @@ pub(crate) struct RayTracingPipeline {
     pub(crate) set_layout: vk::DescriptorSetLayout,
     pub(crate) layout: vk::PipelineLayout,
     pub(crate) pipeline: vk::Pipeline,
+    /// The integrator its ray generation shader implements.
+    pub(crate) integrator: Integrator,
 }
 
 impl RayTracingPipeline {
-    /// The pipeline with one of the ray generation shaders of `shaders.rs`.
-    pub(crate) fn with_raygen(context: &Arc<GpuContext>, raygen: &[u8]) -> Result<Self, VulkanError> {
+    /// The pipeline with one of the ray generation shaders of `shaders.rs`, which implements
+    /// `integrator`.
+    pub(crate) fn with_raygen(
+        context: &Arc<GpuContext>,
+        raygen: &[u8],
+        integrator: Integrator,
+    ) -> Result<Self, VulkanError> {
         let device = &context.device;
         let set_layout = create_set_layout(device)?;
         let mut owned = Self {
@@ -45,6 +53,7 @@ impl RayTracingPipeline {
             set_layout,
             layout: vk::PipelineLayout::null(),
             pipeline: vk::Pipeline::null(),
+            integrator,
         };
         let push_constants = [vk::PushConstantRange::default()
             .stage_flags(all_ray_stages())

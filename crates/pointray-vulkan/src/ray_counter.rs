@@ -1,7 +1,7 @@
 //! Counting every ray a frame traces (primary, shadow and reflection) on the GPU, with the
 //! `COUNT_RAYS` variant of the ray generation shader; the timed pipeline does not count.
 
-use pointray_scene::RenderSettings;
+use pointray_scene::{Integrator, RenderSettings};
 
 use crate::binding_table::ShaderBindingTable;
 use crate::error::VulkanError;
@@ -18,7 +18,11 @@ impl VulkanRenderer {
     /// and summed here. Builds the counting pipeline for this call only.
     pub fn count_rays(&self, scene: &PreparedScene, settings: &RenderSettings) -> Result<u64, VulkanError> {
         self.ensure_prepared_here(scene)?;
-        let pipeline = RayTracingPipeline::with_raygen(&self.context, shaders::PRIMARY_COUNTING_RGEN)?;
+        let pipeline = RayTracingPipeline::with_raygen(
+            &self.context,
+            shaders::PRIMARY_COUNTING_RGEN,
+            Integrator::Whitted,
+        )?;
         let table = ShaderBindingTable::new(&self.context, &pipeline)?;
         let mut target = TraceTarget::new(PixelOutput::Aovs);
         trace_into(&self.context, &pipeline, &table, scene, settings, &mut target)?;

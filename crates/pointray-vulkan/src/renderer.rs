@@ -3,7 +3,7 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use pointray_scene::{RenderSettings, RenderedImage, Scene};
+use pointray_scene::{Integrator, RenderSettings, RenderedImage, Scene};
 use raw_window_handle::RawDisplayHandle;
 
 use crate::binding_table::ShaderBindingTable;
@@ -77,7 +77,7 @@ impl VulkanRenderer {
     }
 
     fn with_raygen(context: &Arc<GpuContext>, raygen: &[u8]) -> Result<Self, VulkanError> {
-        let pipeline = RayTracingPipeline::with_raygen(context, raygen)?;
+        let pipeline = RayTracingPipeline::with_raygen(context, raygen, Integrator::Whitted)?;
         let table = ShaderBindingTable::new(context, &pipeline)?;
         Ok(Self { table, pipeline, context: context.clone() })
     }
@@ -147,7 +147,19 @@ impl VulkanRenderer {
     ) -> Result<TraceTiming, VulkanError> {
         self.ensure_prepared_here(scene)?;
         let start = Instant::now();
-        let gpu = trace_into(&self.context, &self.pipeline, &self.table, scene, settings, target)?;
+        let gpu = match settings.integrator {
+            Integrator::Whitted => {
+                trace_into(&self.context, &self.pipeline, &self.table, scene, settings, target)?
+            }
+            Integrator::Path => {
+                // Built for this trace only, as the ray-counting pipeline is: renderers that
+                // never path trace (windows, benchmarks of Table 1) pay nothing for it.
+                let pipeline =
+                    RayTracingPipeline::with_raygen(&self.context, shaders::PATH_RGEN, Integrator::Path)?;
+                let table = ShaderBindingTable::new(&self.context, &pipeline)?;
+                trace_into(&self.context, &pipeline, &table, scene, settings, target)?
+            }
+        };
         Ok(TraceTiming { gpu, wall: start.elapsed() })
     }
 

@@ -11,6 +11,8 @@ pub(crate) const PRIMARY_RGEN: &[u8] = spirv!("primary.rgen");
 pub(crate) const PRIMARY_COUNTING_RGEN: &[u8] = spirv!("primary_counting.rgen");
 /// `primary.rgen` with `REORDER_HITS`: shader execution reordering of every path segment.
 pub(crate) const PRIMARY_REORDERING_RGEN: &[u8] = spirv!("primary_reordering.rgen");
+/// `primary.rgen` with `PATH_TRACING`: the path integrator (`shaders/path_tracer.glsl`).
+pub(crate) const PATH_RGEN: &[u8] = spirv!("path.rgen");
 pub(crate) const BACKGROUND_RMISS: &[u8] = spirv!("background.rmiss");
 pub(crate) const SHADOW_RMISS: &[u8] = spirv!("shadow.rmiss");
 pub(crate) const PATCH_RINT: &[u8] = spirv!("patch.rint");

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use ash::vk;
-use pointray_scene::{Integrator, RenderSettings};
+use pointray_scene::RenderSettings;
 
 use crate::barrier::record_memory_barrier;
 use crate::binding_table::ShaderBindingTable;
@@ -16,7 +16,12 @@ use crate::pipeline::{RayTracingPipeline, all_ray_stages};
 use crate::prepared_scene::PreparedScene;
 use crate::trace_target::{TargetBuffers, TraceTarget};
 
-pub(crate) fn validate(settings: &RenderSettings, context: &GpuContext) -> Result<(), VulkanError> {
+/// Checks `settings` against the device and against the integrator `pipeline` implements.
+pub(crate) fn validate(
+    settings: &RenderSettings,
+    context: &GpuContext,
+    pipeline: &RayTracingPipeline,
+) -> Result<(), VulkanError> {
     let invalid = |m: String| Err(VulkanError::InvalidSettings(m));
     if settings.width == 0 || settings.height == 0 {
         return invalid(format!(
@@ -27,8 +32,12 @@ pub(crate) fn validate(settings: &RenderSettings, context: &GpuContext) -> Resul
     if settings.samples_per_pixel == 0 || settings.max_depth == 0 {
         return invalid("samples per pixel and max depth must be at least 1".into());
     }
-    if settings.integrator != Integrator::Whitted {
-        return invalid("the path integrator runs on the CPU backend (--backend cpu) only so far".into());
+    if settings.integrator != pipeline.integrator {
+        return invalid(format!(
+            "this pipeline traces the {:?} integrator, not {:?}; the path integrator renders through \
+             VulkanRenderer::trace and render, not frame loops or windows",
+            pipeline.integrator, settings.integrator
+        ));
     }
     let limit = u64::from(context.ray_tracing_properties.max_ray_dispatch_invocation_count);
     if u64::from(settings.width) * u64::from(settings.height) > limit {
@@ -183,7 +192,7 @@ pub(crate) fn trace_into(
     settings: &RenderSettings,
     target: &mut TraceTarget,
 ) -> Result<Option<Duration>, VulkanError> {
-    validate(settings, context)?;
+    validate(settings, context, pipeline)?;
     let buffers = target.bind(context, pipeline, scene, settings)?;
     context.submit_and_wait("tracing rays", |command| {
         record(context, command, pipeline, table, buffers, settings)

@@ -115,7 +115,7 @@ impl WindowTarget {
         let Some(swapchain) = self.frames.swapchain() else { return Ok(Presented::Skipped) };
         let (extent, output) = (swapchain.extent(), swapchain.output());
         let settings = RenderSettings { width: extent.width, height: extent.height, ..*settings };
-        validate(&settings, &self.context)?;
+        validate(&settings, &self.context, &renderer.pipeline)?;
         let Some(index) = self.frames.acquire()? else { return Ok(Presented::Skipped) };
         if self.target.output() != output {
             self.target = TraceTarget::new(output);

@@ -9,6 +9,7 @@ mod devices;
 mod hit_reordering;
 mod large_coordinates;
 mod layouts;
+mod path_tracing;
 mod point_colors;
 mod reflection;
 mod shadow;

@@ -1,0 +1,191 @@
+// The path integrator of path.rgen (primary.rgen compiled with PATH_TRACING): the same
+// algorithm as pointray-cpu's path_tracer.rs and direct_light.rs, over the kernels' GLSL
+// twins, drawing the same random numbers in the same order, so that both backends follow the
+// same paths. Included by primary.rgen after its payloads and trace_segment.
+#ifndef POINTRAY_PATH_TRACER_GLSL
+#define POINTRAY_PATH_TRACER_GLSL
+
+#include "background.glsl"
+#include "bsdf.glsl"
+#include "light_source.glsl"
+#include "random_sequence.glsl"
+
+// The numbers each bounce draws: light choice (1), light position (2), BSDF (3), roulette (1).
+const uint BOUNCE_DIMENSIONS = 7u;
+const uint ROULETTE_AFTER = 3u;
+const float MAX_SURVIVAL = 0.95;
+
+LightSource light_source_of(uint index) {
+    LightRecord record = lights[index];
+    return LightSource(uint(record.radiance.a), record.origin_radius.xyz, record.edge_u.xyz, record.edge_v.xyz,
+                       record.origin_radius.w, record.radiance.rgb);
+}
+
+vec3 sky(vec3 direction) {
+    return background(direction, frame.background_top.rgb, frame.background_bottom.rgb);
+}
+
+// The lights, and the sky unless it is black.
+uint emitter_count() {
+    bool lit = any(notEqual(frame.background_top.rgb, vec3(0.0))) || any(notEqual(frame.background_bottom.rgb, vec3(0.0)));
+    return frame.light_count + (lit ? 1u : 0u);
+}
+
+bool is_black(vec3 v) {
+    return all(equal(v, vec3(0.0)));
+}
+
+// Off the surface by the scene's epsilon on the side `direction` leaves to.
+vec3 leaving(vec3 position, vec3 normal, vec3 direction) {
+    float side = dot(direction, normal) >= 0.0 ? 1.0 : -1.0;
+    return position + normal * (side * frame.ray_epsilon);
+}
+
+// Whether a surface or another area light lies between the point and the light sample.
+bool blocked(vec3 position, vec3 normal, float clearance, LightSample arriving, uint light) {
+    vec3 origin = leaving(position, normal, arriving.direction);
+    float distance = isinf(arriving.distance) ? INFINITE_T : arriving.distance * (1.0 - 1e-4);
+    for (uint i = 0u; i < frame.light_count; ++i) {
+        if (i != light && light_hit(light_source_of(i), origin, arriving.direction) < distance) {
+            return true;
+        }
+    }
+    shadow.visible = 0u;
+    uint flags = gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT;
+    COUNT_RAY();
+    traceRayEXT(scene_tlas, flags, 0xffu, HIT_SHADER_OFFSET, HIT_SHADER_STRIDE, SHADOW_MISS, origin, clearance,
+                arriving.direction, distance, SHADOW_PAYLOAD_LOCATION);
+    return shadow.visible == 0u;
+}
+
+// Next-event estimation: one light (or the sky) drawn, weighed against the BSDF.
+vec3 direct_light(vec3 position, vec3 normal, float clearance, Bsdf bsdf, vec3 shading, vec3 wo,
+                  inout RandomSequence random) {
+    float pick = random_next(random);
+    vec2 u = random_next2(random);
+    uint count = emitter_count();
+    if (count == 0u || !bsdf_samples_lights(bsdf)) {
+        return vec3(0.0);
+    }
+    uint index = min(uint(pick * float(count)), count - 1u);
+    LightSample arriving;
+    bool delta = false;
+    if (index < frame.light_count) {
+        LightSource source = light_source_of(index);
+        arriving = light_sample(source, position, u);
+        delta = light_is_delta(source);
+    } else {
+        vec3 direction = uniform_sphere(u);
+        arriving = LightSample(direction, LIGHT_INFINITY, sky(direction), UNIFORM_SPHERE_PDF);
+    }
+    if (is_black(arriving.radiance) || (!delta && arriving.pdf <= 0.0)) {
+        return vec3(0.0);
+    }
+    vec3 wi = to_local(arriving.direction, shading);
+    vec3 reflected = bsdf_eval(bsdf, wo, wi);
+    if (is_black(reflected) || blocked(position, normal, clearance, arriving, index)) {
+        return vec3(0.0);
+    }
+    float choice = 1.0 / float(count);
+    if (delta) {
+        return reflected * arriving.radiance / choice;
+    }
+    float weight = power_heuristic(choice * arriving.pdf, bsdf_pdf(bsdf, wo, wi));
+    return reflected * arriving.radiance * (weight / (choice * arriving.pdf));
+}
+
+// The nearest area light on the ray before `surface_t`, or -1.
+int light_on(Ray ray, float surface_t, out float light_t) {
+    int nearest = -1;
+    light_t = surface_t;
+    for (uint i = 0u; i < frame.light_count; ++i) {
+        float t = light_hit(light_source_of(i), ray.origin, ray.direction);
+        if (t < light_t) {
+            nearest = int(i);
+            light_t = t;
+        }
+    }
+    return nearest;
+}
+
+// What the light or the sky that a path's ray met gives, weighed against light sampling
+// from the last vertex (`arrival_*`; unweighted from the camera or a delta lobe).
+vec3 emitted(int light, float light_t, Ray ray, vec3 arrival_origin, float arrival_pdf, bool arrival_unweighted) {
+    float choice = 1.0 / float(max(emitter_count(), 1u));
+    vec3 radiance;
+    float density;
+    if (light >= 0) {
+        LightSource source = light_source_of(uint(light));
+        radiance = source.radiance;
+        density = light_pdf(source, arrival_origin, ray.direction, light_t);
+    } else {
+        radiance = sky(ray.direction);
+        density = UNIFORM_SPHERE_PDF;
+    }
+    return arrival_unweighted ? radiance : radiance * power_heuristic(arrival_pdf, choice * density);
+}
+
+vec3 path_trace(Ray ray, RandomSequence random, bool record, uint pixel_index) {
+    vec3 radiance = vec3(0.0);
+    vec3 throughput = vec3(1.0);
+    vec3 arrival_origin = ray.origin;
+    float arrival_pdf = 0.0;
+    bool arrival_unweighted = true;
+    float t_min = 0.0;
+    for (uint depth = 0u; depth < settings.max_depth; ++depth) {
+        random.dimension = depth * BOUNCE_DIMENSIONS;
+        COUNT_RAY();
+        trace_segment(ray, t_min);
+        bool first = record && depth == 0u;
+        bool hit = payload.instance != MISS_ID;
+        float light_t;
+        int light = light_on(ray, hit ? payload.t : INFINITE_T, light_t);
+        if (light >= 0 || !hit) {
+            if (first) {
+                record_aov(pixel_index, vec3(0.0), -1.0, MISS_ID, MISS_ID);
+            }
+            radiance += throughput * emitted(light, light_t, ray, arrival_origin, arrival_pdf, arrival_unweighted);
+            break;
+        }
+        vec3 normal = payload.normal_or_background;
+        vec3 position = ray_at(ray, payload.t);
+        float clearance = payload.clearance;
+        ObjectRecord object = objects[payload.instance];
+        bool point_colors = object.specular_shininess_reflect_colors.w != 0.0;
+        vec3 base_color = point_colors ? unpack_color(payload.color_rgba8) : object.diffuse_ambient.rgb;
+        Bsdf bsdf = Bsdf(object.bsdf_kind, base_color, object.roughness, object.emission_ior.a);
+        if (first) {
+            record_aov(pixel_index, face_forward(normal, ray.direction), payload.t, object.object_index,
+                       payload.primitive);
+        }
+        radiance += throughput * object.emission_ior.rgb;
+        if (depth + 1u >= settings.max_depth) {
+            break;
+        }
+        vec3 shading = bsdf_is_two_sided(bsdf) ? face_forward(normal, ray.direction) : normal;
+        vec3 wo = to_local(-ray.direction, shading);
+        radiance += throughput * direct_light(position, normal, clearance, bsdf, shading, wo, random);
+        vec2 u = random_next2(random);
+        BsdfSample drawn = bsdf_sample(bsdf, wo, vec3(u, random_next(random)));
+        if (is_black(drawn.weight)) {
+            break;
+        }
+        throughput *= drawn.weight;
+        vec3 direction = to_world(drawn.direction, shading);
+        arrival_origin = position;
+        arrival_pdf = drawn.pdf;
+        arrival_unweighted = drawn.delta;
+        ray = Ray(leaving(position, normal, direction), direction);
+        t_min = clearance;
+        if (depth + 1u >= ROULETTE_AFTER) {
+            float survival = min(max(throughput.x, max(throughput.y, throughput.z)), MAX_SURVIVAL);
+            if (random_next(random) >= survival) {
+                break;
+            }
+            throughput /= survival;
+        }
+    }
+    return radiance;
+}
+
+#endif
