@@ -24,12 +24,14 @@ const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
     ("interface_probe.rgen", ShaderStage::RayGeneration),
 ];
 
-/// Entry points compiled a second time with a define, as `(source, define, output name)`:
-/// the benchmark's ray-counting ray generation, the hit-reordering one and the path integrator's.
+/// Entry points compiled again with defines (separated by spaces), as `(source, defines,
+/// output name)`: the benchmark's ray-counting ray generation, the hit-reordering one, and the
+/// path integrator's with and without ray counting.
 const VARIANTS: &[(&str, ShaderStage, &str, &str)] = &[
     ("primary.rgen", ShaderStage::RayGeneration, "COUNT_RAYS", "primary_counting.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "REORDER_HITS", "primary_reordering.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "PATH_TRACING", "path.rgen"),
+    ("primary.rgen", ShaderStage::RayGeneration, "PATH_TRACING COUNT_RAYS", "path_counting.rgen"),
 ];
 
 /// Resolves `#include "NAME"` against the given folders, in order.
@@ -67,7 +69,8 @@ fn compile(
         ..CompilerOptions::default()
     };
     let mut includes = ShaderFolderIncludes { folders: folders.to_vec() };
-    let defines: Vec<(&str, Option<&str>)> = define.map(|d| (d, None)).into_iter().collect();
+    let defines: Vec<(&str, Option<&str>)> =
+        define.into_iter().flat_map(str::split_whitespace).map(|name| (name, None)).collect();
     let input = ShaderInput::new(&source, stage, &options, Some(&defines[..]), Some(&mut includes))
         .map_err(|e| format!("{}: {e}", path.display()))?;
     let compiler = glslang::Compiler::acquire().ok_or("glslang failed to initialise")?;

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use pointray_scene::load::{LoadOptions, load_scene};
-use pointray_scene::{BufferLayout, Geometry, PatchAcceptance, RenderSettings, Scene};
+use pointray_scene::{BufferLayout, Geometry, Integrator, PatchAcceptance, RenderSettings, Scene};
 use pointray_surface::{BoxKind, NoProgress, PrepSettings, RadiusMode};
 use pointray_vulkan::{BlasLayout, PixelOutput, VulkanError, VulkanRenderer};
 
@@ -29,6 +29,9 @@ pub struct BenchOptions<'a> {
     pub frames: FrameCounts,
     /// Replaces every model's sizes.
     pub size: Option<(u32, u32)>,
+    /// Replaces every scene's integrator (one sample a pixel a frame under `Path`, so that
+    /// frames per second are samples per second).
+    pub integrator: Option<Integrator>,
     /// Time the mesh twin of each model (the limit).
     pub limit: bool,
     pub ablations: bool,
@@ -76,7 +79,8 @@ pub fn run_scene_file(
     let loaded =
         load_scene(path, &LoadOptions { cache_dir: Some(&options.cache), ..LoadOptions::default() })?;
     let (width, height) = options.size.unwrap_or((loaded.settings.width, loaded.settings.height));
-    let settings = RenderSettings { width, height, ..loaded.settings };
+    let integrator = options.integrator.unwrap_or(loaded.settings.integrator);
+    let settings = RenderSettings { width, height, integrator, ..loaded.settings };
     let name = path.display().to_string();
     let measured = measure(
         renderer,
@@ -137,7 +141,8 @@ impl ModelRun<'_> {
             })?;
         let mesh = if self.options.limit { self.load(ModelGeometry::Mesh)? } else { None };
         for (index, &(width, height)) in sizes.iter().enumerate() {
-            let settings = RenderSettings { width, height, ..file_settings };
+            let integrator = self.options.integrator.unwrap_or(file_settings.integrator);
+            let settings = RenderSettings { width, height, integrator, ..file_settings };
             self.time(&base, &settings, BlasLayout::OneGeometry, Variant::Points)?;
             if let Some((mesh_scene, _)) = &mesh {
                 self.time(mesh_scene, &settings, BlasLayout::OneGeometry, Variant::Mesh)?;

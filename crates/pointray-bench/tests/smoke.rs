@@ -9,8 +9,9 @@ use pointray_bench::scale::Rung;
 use pointray_bench::scale_report::{RungMeasurement, RungOutcome};
 use pointray_bench::{
     BenchError, BenchOptions, FrameCounts, ScaleBackend, ScaleOptions, ScaleReport, Suite, Variant,
-    run_scale, run_suite, scale_markdown,
+    run_scale, run_scene_file, run_suite, scale_markdown,
 };
+use pointray_scene::Integrator;
 use pointray_surface::NoProgress;
 
 use pointray_test_support::{data_dir, vulkan_renderer as renderer};
@@ -21,6 +22,7 @@ fn options<'a>(data: PathBuf, cache: &Path, size: Option<(u32, u32)>, ablations:
         cache: cache.to_path_buf(),
         frames: FrameCounts { warmup: 1, timed: 3 },
         size,
+        integrator: None,
         limit: true,
         ablations,
         reordering: None,
@@ -94,6 +96,29 @@ fn primary_rays_only_are_counted_exactly() {
     let report = run_suite(&renderer, &suite, &options).expect("runs");
     assert_eq!(report.cases.len(), 1);
     assert_eq!(report.cases[0].rays_per_frame, 24 * 16 * 2);
+}
+
+#[test]
+fn a_scene_file_times_the_path_integrator() {
+    let Some(renderer) = renderer() else { return };
+    let cache = tempfile::tempdir().expect("a temporary folder");
+    let scene = cache.path().join("lit.toml");
+    let bunny = data_dir().join("points/bunny.ply");
+    let text = format!(
+        "[render]\nwidth = 24\nheight = 16\nmax_depth = 5\n\
+         [camera]\nposition = [0.05, 0.19, 0.4]\nlook_at = [-0.017, 0.1, 0.0]\n\
+         [[lights]]\ntype = \"quad\"\ncorner = [-0.1, 0.4, -0.1]\nedge_u = [0.2, 0.0, 0.0]\nedge_v = [0.0, 0.0, 0.2]\n\
+         [[objects]]\ntype = \"points\"\npath = {bunny:?}\n[[objects]]\ntype = \"ground\"\nauto = true\n"
+    );
+    std::fs::write(&scene, text).expect("the scene is written");
+    let mut options = options(data_dir(), cache.path(), None, false);
+    options.integrator = Some(Integrator::Path);
+    let report = run_scene_file(&renderer, &scene, &options).expect("runs");
+    let case = &report.cases[0];
+    assert!(case.fps > 0.0, "{case:?}");
+    // Every pixel's path: a primary ray, and where it meets a surface a shadow ray and a bounce.
+    assert!(case.rays_per_frame > 2 * 24 * 16, "{case:?}");
+    assert_eq!(renderer.validation_messages(), 0, "the validation layer reported messages");
 }
 
 fn scale_options<'a>(data: PathBuf, cache: &Path, rungs: &[(&str, u64)]) -> ScaleOptions<'a> {

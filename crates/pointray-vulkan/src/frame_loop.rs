@@ -5,11 +5,13 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use ash::vk;
-use pointray_scene::RenderSettings;
+use pointray_scene::{Integrator, RenderSettings};
 
 use crate::barrier::record_memory_barrier;
+use crate::binding_table::ShaderBindingTable;
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
+use crate::pipeline::RayTracingPipeline;
 use crate::prepared_scene::PreparedScene;
 use crate::renderer::VulkanRenderer;
 use crate::trace::{record_copy_out, record_trace_rays, validate};
@@ -80,7 +82,12 @@ impl VulkanRenderer {
         output: PixelOutput,
     ) -> Result<FrameLoopTimes, VulkanError> {
         self.ensure_prepared_here(scene)?;
-        validate(settings, &self.context, &self.pipeline)?;
+        let path_pipeline = match settings.integrator {
+            Integrator::Whitted => None,
+            Integrator::Path => Some(self.path_pipeline()?),
+        };
+        let (pipeline, table) = path_pipeline.as_ref().map_or((&self.pipeline, &self.table), |(p, t)| (p, t));
+        validate(settings, &self.context, pipeline)?;
         let Some(period_ns) = self.context.timestamp_period_ns else {
             return Err(VulkanError::InvalidSettings(format!(
                 "{} has no timestamps on its compute queue; the frame loop times with them",
@@ -91,11 +98,11 @@ impl VulkanRenderer {
             return Err(VulkanError::InvalidSettings("the frame loop needs at least one frame".into()));
         }
         let mut target = TraceTarget::new(output);
-        let buffers = target.bind(&self.context, &self.pipeline, scene, settings)?;
+        let buffers = target.bind(&self.context, pipeline, scene, settings)?;
         let pool = TimestampPool::new(&self.context, frames * STAMPS_PER_FRAME)?;
         let started = Instant::now();
         self.context.submit_and_wait("tracing the frame loop", |command| {
-            self.record_frames(command, buffers, &pool, settings, frames)
+            self.record_frames(command, (pipeline, table), buffers, &pool, settings, frames)
         })?;
         let wall = started.elapsed();
         let ticks = pool.ticks()?;
@@ -113,6 +120,7 @@ impl VulkanRenderer {
     fn record_frames(
         &self,
         command: vk::CommandBuffer,
+        (pipeline, table): (&RayTracingPipeline, &ShaderBindingTable),
         target: &TargetBuffers,
         pool: &TimestampPool,
         settings: &RenderSettings,
@@ -128,7 +136,7 @@ impl VulkanRenderer {
             for frame in 0..frames {
                 let first = frame * STAMPS_PER_FRAME;
                 device.cmd_write_timestamp(command, all, pool.handle, first);
-                record_trace_rays(&self.context, command, &self.pipeline, &self.table, target, settings);
+                record_trace_rays(&self.context, command, pipeline, table, target, settings);
                 let traced = vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR;
                 device.cmd_write_timestamp(command, traced, pool.handle, first + 1);
                 record_copy_out(&self.context, command, target);

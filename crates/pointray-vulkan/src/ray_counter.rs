@@ -15,14 +15,14 @@ use crate::trace_target::{PixelOutput, TraceTarget};
 
 impl VulkanRenderer {
     /// How many rays one frame of `scene` traces with `settings`, counted per pixel on the GPU
-    /// and summed here. Builds the counting pipeline for this call only.
+    /// and summed here. Builds the counting pipeline of `settings.integrator` for this call only.
     pub fn count_rays(&self, scene: &PreparedScene, settings: &RenderSettings) -> Result<u64, VulkanError> {
         self.ensure_prepared_here(scene)?;
-        let pipeline = RayTracingPipeline::with_raygen(
-            &self.context,
-            shaders::PRIMARY_COUNTING_RGEN,
-            Integrator::Whitted,
-        )?;
+        let raygen = match settings.integrator {
+            Integrator::Whitted => shaders::PRIMARY_COUNTING_RGEN,
+            Integrator::Path => shaders::PATH_COUNTING_RGEN,
+        };
+        let pipeline = RayTracingPipeline::with_raygen(&self.context, raygen, settings.integrator)?;
         let table = ShaderBindingTable::new(&self.context, &pipeline)?;
         let mut target = TraceTarget::new(PixelOutput::Aovs);
         trace_into(&self.context, &pipeline, &table, scene, settings, &mut target)?;

@@ -152,11 +152,7 @@ impl VulkanRenderer {
                 trace_into(&self.context, &self.pipeline, &self.table, scene, settings, target)?
             }
             Integrator::Path => {
-                // Built for this trace only, as the ray-counting pipeline is: renderers that
-                // never path trace (windows, benchmarks of Table 1) pay nothing for it.
-                let pipeline =
-                    RayTracingPipeline::with_raygen(&self.context, shaders::PATH_RGEN, Integrator::Path)?;
-                let table = ShaderBindingTable::new(&self.context, &pipeline)?;
+                let (pipeline, table) = self.path_pipeline()?;
                 trace_into(&self.context, &pipeline, &table, scene, settings, target)?
             }
         };
@@ -164,6 +160,15 @@ impl VulkanRenderer {
     }
 
     /// Scenes hold GPU resources of the renderer that prepared them; no other may trace them.
+    /// The path integrator's pipeline and binding table, built for the call that needs them,
+    /// as the ray-counting pipeline is: renderers that never path trace (windows, Table 1)
+    /// pay nothing for them.
+    pub(crate) fn path_pipeline(&self) -> Result<(RayTracingPipeline, ShaderBindingTable), VulkanError> {
+        let pipeline = RayTracingPipeline::with_raygen(&self.context, shaders::PATH_RGEN, Integrator::Path)?;
+        let table = ShaderBindingTable::new(&self.context, &pipeline)?;
+        Ok((pipeline, table))
+    }
+
     pub(crate) fn ensure_prepared_here(&self, scene: &PreparedScene) -> Result<(), VulkanError> {
         if !Arc::ptr_eq(&scene.context, &self.context) {
             return Err(VulkanError::InvalidScene("the scene was prepared by another renderer".into()));

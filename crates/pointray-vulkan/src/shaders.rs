@@ -13,6 +13,8 @@ pub(crate) const PRIMARY_COUNTING_RGEN: &[u8] = spirv!("primary_counting.rgen");
 pub(crate) const PRIMARY_REORDERING_RGEN: &[u8] = spirv!("primary_reordering.rgen");
 /// `primary.rgen` with `PATH_TRACING`: the path integrator (`shaders/path_tracer.glsl`).
 pub(crate) const PATH_RGEN: &[u8] = spirv!("path.rgen");
+/// `path.rgen` with `COUNT_RAYS`.
+pub(crate) const PATH_COUNTING_RGEN: &[u8] = spirv!("path_counting.rgen");
 pub(crate) const BACKGROUND_RMISS: &[u8] = spirv!("background.rmiss");
 pub(crate) const SHADOW_RMISS: &[u8] = spirv!("shadow.rmiss");
 pub(crate) const PATCH_RINT: &[u8] = spirv!("patch.rint");

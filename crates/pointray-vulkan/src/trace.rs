@@ -34,8 +34,8 @@ pub(crate) fn validate(
     }
     if settings.integrator != pipeline.integrator {
         return invalid(format!(
-            "this pipeline traces the {:?} integrator, not {:?}; the path integrator renders through \
-             VulkanRenderer::trace and render, not frame loops or windows",
+            "this pipeline traces the {:?} integrator, not {:?}; windows trace the Whitted \
+             integrator only",
             pipeline.integrator, settings.integrator
         ));
     }

@@ -10,7 +10,7 @@ use pointray_bench::{
     run_scale, run_scene_file, run_suite,
 };
 use pointray_io::MemoryBudget;
-use pointray_scene::{RenderSetting, RenderSettings, SceneFile};
+use pointray_scene::{Integrator, RenderSetting, RenderSettings, SceneFile};
 use pointray_vulkan::{BackendChoice, DeviceSelector, VulkanRenderer};
 
 use crate::backend::{backend_choice, open_backend};
@@ -37,6 +37,10 @@ pub struct BenchArgs {
     width: Option<u32>,
     #[arg(long, requires = "width", value_parser = setting_flag(RenderSetting::Height))]
     height: Option<u32>,
+    /// Replace every scene's integrator: `whitted` or `path` (with the scene's max_depth and
+    /// samples per pixel; a frame of spp 1 is one sample a pixel, so FPS is spp/s).
+    #[arg(long)]
+    integrator: Option<Integrator>,
     /// Only these models of the suite (repeatable).
     #[arg(long = "model")]
     models: Vec<String>,
@@ -147,6 +151,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         cache: args.cache.clone(),
         frames: FrameCounts { warmup: args.warmup, timed: args.frames },
         size: args.width.zip(args.height),
+        integrator: args.integrator,
         limit: !args.no_limit,
         ablations: args.ablations,
         reordering: reordering.as_ref(),

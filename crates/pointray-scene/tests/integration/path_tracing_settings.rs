@@ -1,20 +1,12 @@
 //! The path integrator's settings in a scene file: the integrator and its seed, the
 //! materials' BSDFs and the area lights, and the errors that name the file and the key.
 
-use std::path::Path;
-
 use glam::Vec3;
 use pointray_kernels::bsdf::{BSDF_DIELECTRIC, BSDF_DIFFUSE, BSDF_PLASTIC};
 use pointray_scene::load::load_scene_file;
-use pointray_scene::{Integrator, Light, LoadOptions, SceneError, SceneFile, SurfaceKind};
+use pointray_scene::{Integrator, Light, LoadOptions, SurfaceKind};
 
-fn parse(text: &str) -> Result<SceneFile, SceneError> {
-    SceneFile::parse(text, Path::new("test/scene.toml"))
-}
-
-fn error_message(text: &str) -> String {
-    parse(text).expect_err("the scene should be rejected").to_string()
-}
+use crate::scene_file_parsing::{error_message, parse};
 
 const SPHERE: &str = "[[objects]]\ntype = \"sphere_points\"\nradius = 1.0\ncount = 200\n";
 
