@@ -9,8 +9,8 @@
 use glam::Vec3;
 use pointray_kernels::sampling::{UNIFORM_SPHERE_PDF, power_heuristic, to_local, uniform_sphere};
 use pointray_kernels::{
-    Bsdf, LightSample, LightSource, RandomSequence, Ray, bsdf_eval, bsdf_pdf, bsdf_samples_lights, light_hit,
-    light_is_delta, light_pdf, light_sample, random_next, random_next2,
+    Bsdf, LightSample, LightSource, RandomSequence, Ray, bsdf_eval, bsdf_pdf, bsdf_samples_lights,
+    light_emitted, light_hit, light_is_delta, light_pdf, light_sample, random_next, random_next2,
 };
 use pointray_scene::{Background, RenderSettings};
 
@@ -94,7 +94,7 @@ impl CpuRenderer {
             EmitterHit::Sky => (self.background(ray.direction), UNIFORM_SPHERE_PDF),
             EmitterHit::Light(index, t) => {
                 let light = self.scene.lights[index].source();
-                (light.radiance, light_pdf(&light, arrival.origin, ray.direction, t))
+                (light_emitted(&light, ray.direction), light_pdf(&light, arrival.origin, ray.direction, t))
             }
         };
         if arrival.unweighted {

@@ -1,6 +1,7 @@
 // Twin of src/light_source.rs: point, directional, sphere and quad lights for next-event
 // estimation. A point light's radiance is its intensity, a directional light's its
-// irradiance, an area light's its emitted radiance; a quad emits toward edge_u x edge_v.
+// irradiance, an area light's its emitted radiance; a quad emits toward edge_u x edge_v and
+// is black (and opaque) behind.
 #ifndef POINTRAY_LIGHT_SOURCE_GLSL
 #define POINTRAY_LIGHT_SOURCE_GLSL
 
@@ -49,7 +50,7 @@ float light_hit(LightSource light, vec3 origin, vec3 direction) {
     if (light.kind == LIGHT_QUAD) {
         vec3 normal = cross(light.edge_u, light.edge_v);
         float facing = dot(direction, normal);
-        if (facing >= 0.0) {
+        if (facing == 0.0) {
             return LIGHT_INFINITY;
         }
         float t = dot(light.position - origin, normal) / facing;
@@ -60,6 +61,12 @@ float light_hit(LightSource light, vec3 origin, vec3 direction) {
         return inside ? t : LIGHT_INFINITY;
     }
     return LIGHT_INFINITY;
+}
+
+// What a ray along `direction` receives from an area light it met: none from behind a quad.
+vec3 light_emitted(LightSource light, vec3 direction) {
+    bool behind = light.kind == LIGHT_QUAD && dot(direction, cross(light.edge_u, light.edge_v)) >= 0.0;
+    return light_is_delta(light) || behind ? vec3(0.0) : light.radiance;
 }
 
 float light_pdf(LightSource light, vec3 position, vec3 direction, float distance) {

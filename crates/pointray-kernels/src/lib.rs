@@ -40,7 +40,9 @@ pub use face_forward::face_forward;
 pub use interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
 pub use intersect_patch::{PatchAcceptance, PatchHit, intersect_patch};
 pub use layout::{Aabb, PackedTangentFrame, Patch, PatchCold, PatchHot};
-pub use light_source::{LightSample, LightSource, light_hit, light_is_delta, light_pdf, light_sample};
+pub use light_source::{
+    LightSample, LightSource, light_emitted, light_hit, light_is_delta, light_pdf, light_sample,
+};
 pub use patch_normal::patch_normal;
 pub use phong::{PhongSurface, phong};
 pub use quadratic_roots::{QuadraticRoots, quadratic_roots};

@@ -5,7 +5,8 @@
 //! Units follow Mitsuba's: a point light's `radiance` is its intensity (falling off with the
 //! squared distance), a directional light's its irradiance on a surface facing it, an area
 //! light's the radiance it emits. A quad emits from the side its normal `edge_u × edge_v`
-//! faces, a sphere outward.
+//! faces and is black behind, a sphere emits outward; both are opaque, as Mitsuba's area
+//! lights are.
 
 use glam::{Vec2, Vec3};
 
@@ -112,8 +113,8 @@ fn quad_light_sample(light: &LightSource, position: Vec3, u: Vec2) -> LightSampl
     LightSample { direction, distance, radiance: light.radiance, pdf }
 }
 
-/// How far along the unit `direction` from `origin` an area light's emitting side is met;
-/// infinite where it is not (and always for the delta lights).
+/// How far along the unit `direction` from `origin` an area light's surface is met (either
+/// side of a quad); infinite where it is not (and always for the delta lights).
 pub fn light_hit(light: &LightSource, origin: Vec3, direction: Vec3) -> f32 {
     match light.kind {
         LIGHT_SPHERE => {
@@ -130,7 +131,7 @@ pub fn light_hit(light: &LightSource, origin: Vec3, direction: Vec3) -> f32 {
         LIGHT_QUAD => {
             let normal = light.edge_u.cross(light.edge_v);
             let facing = direction.dot(normal);
-            if facing >= 0.0 {
+            if facing == 0.0 {
                 return f32::INFINITY;
             }
             let t = (light.position - origin).dot(normal) / facing;
@@ -141,6 +142,13 @@ pub fn light_hit(light: &LightSource, origin: Vec3, direction: Vec3) -> f32 {
         }
         _ => f32::INFINITY,
     }
+}
+
+/// The radiance a ray travelling along `direction` receives from an area light it met: none
+/// from behind a quad.
+pub fn light_emitted(light: &LightSource, direction: Vec3) -> Vec3 {
+    let behind = light.kind == LIGHT_QUAD && direction.dot(light.edge_u.cross(light.edge_v)) >= 0.0;
+    if light_is_delta(light) || behind { Vec3::ZERO } else { light.radiance }
 }
 
 /// The density per steradian with which `light_sample` from `position` draws `direction`,
@@ -211,7 +219,7 @@ mod tests {
             .map(|i| {
                 let d = uniform_sphere(halton(i));
                 if light_hit(light, Vec3::ZERO, d).is_finite() {
-                    light.radiance.x * d.z.max(0.0) / UNIFORM_SPHERE_PDF
+                    light_emitted(light, d).x * d.z.max(0.0) / UNIFORM_SPHERE_PDF
                 } else {
                     0.0
                 }
@@ -253,10 +261,12 @@ mod tests {
     }
 
     #[test]
-    fn a_quad_is_dark_from_behind_and_a_point_light_falls_off() {
+    fn a_quad_is_dark_and_opaque_from_behind_and_a_point_light_falls_off() {
         let above = Vec3::new(0.0, 0.0, 5.0);
         assert_eq!(light_sample(&quad(), above, Vec2::splat(0.5)).radiance, Vec3::ZERO);
-        assert!(!light_hit(&quad(), above, Vec3::NEG_Z).is_finite());
+        assert_eq!(light_hit(&quad(), above, Vec3::NEG_Z), 3.0, "the quad stops rays from behind");
+        assert_eq!(light_emitted(&quad(), Vec3::NEG_Z), Vec3::ZERO);
+        assert_eq!(light_emitted(&quad(), Vec3::Z), Vec3::splat(3.0));
         let point = LightSource { kind: LIGHT_POINT, position: Vec3::new(0.0, 0.0, 2.0), ..quad() };
         let s = light_sample(&point, Vec3::ZERO, Vec2::ZERO);
         assert!(light_is_delta(&point) && s.pdf == 0.0);

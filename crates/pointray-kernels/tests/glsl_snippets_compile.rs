@@ -121,7 +121,7 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
         "light_source.glsl",
         "LightSource light = LightSource(LIGHT_QUAD, vec3(0.0, 0.0, 2.0), vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), 0.0, vec3(1.0));
              LightSample s = light_sample(light, vec3(0.0), vec2(0.5));
-             result = s.radiance * s.pdf + vec3(light_hit(light, vec3(0.0), s.direction), light_pdf(light, vec3(0.0), s.direction, s.distance), float(light_is_delta(light)));",
+             result = s.radiance * s.pdf + light_emitted(light, s.direction) + vec3(light_hit(light, vec3(0.0), s.direction), light_pdf(light, vec3(0.0), s.direction, s.distance), float(light_is_delta(light)));",
     ),
 ];
 

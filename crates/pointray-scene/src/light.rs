@@ -29,7 +29,7 @@ pub enum Light {
         intensity: f32,
     },
     /// The parallelogram `corner + a edge_u + b edge_v` (`a`, `b` in [0, 1]), emitting from
-    /// the side that `edge_u × edge_v` faces.
+    /// the side that `edge_u × edge_v` faces, black and opaque on the other.
     Quad {
         corner: Vec3,
         edge_u: Vec3,

@@ -116,7 +116,7 @@ vec3 emitted(int light, float light_t, Ray ray, vec3 arrival_origin, float arriv
     float density;
     if (light >= 0) {
         LightSource source = light_source_of(uint(light));
-        radiance = source.radiance;
+        radiance = light_emitted(source, ray.direction);
         density = light_pdf(source, arrival_origin, ray.direction, light_t);
     } else {
         radiance = sky(ray.direction);

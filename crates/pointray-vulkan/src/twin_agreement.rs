@@ -8,10 +8,13 @@
 use std::sync::Arc;
 
 use glam::{UVec2, Vec2, Vec3};
+use pointray_kernels::bsdf::BSDF_PLASTIC;
 use pointray_kernels::interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
+use pointray_kernels::light_source::LIGHT_QUAD;
 use pointray_kernels::tangent_frame::{pack_normal, unpack_normal};
 use pointray_kernels::{
-    Bsdf, PatchCold, bsdf_eval, bsdf_pdf, bsdf_sample, random_next, random_next2, random_sequence,
+    Bsdf, LightSource, PatchCold, bsdf_eval, bsdf_pdf, bsdf_sample, light_sample, random_next, random_next2,
+    random_sequence,
 };
 use pointray_kernels::{
     Camera, PackedTangentFrame, PatchAcceptance, PatchHot, PhongSurface, Ray, TangentFrame, camera_ray,
@@ -28,6 +31,8 @@ use crate::twin_probe::{self, probe_context, run_probe};
 const CASES: usize = 4096;
 /// The relative bound on values (about 80 ulp of f32).
 const RELATIVE: f32 = 1e-5;
+/// The relative bound on sampling densities, which amplify their directions' rounding.
+const PDF_RELATIVE: f32 = 1e-3;
 /// At most this fraction of the cases may decide differently, each of them borderline.
 const BORDERLINE_FRACTION: f64 = 0.002;
 
@@ -480,4 +485,62 @@ fn random_sequences_and_bsdfs_agree() {
         }
     }
     assert_few_borderline("BSDF sampling and evaluation", borderline);
+}
+
+#[test]
+fn draws_from_the_random_sequence_agree_for_plastic_and_a_quad_light() {
+    let Some(context) = probe_context() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let cases: Vec<([u32; 4], Vec3, f32)> = (0..CASES)
+        .map(|_| {
+            let key = [
+                rng.random(),
+                rng.random_range(0..8192),
+                rng.random_range(0..8192),
+                rng.random_range(0..1 << 16),
+            ];
+            let wo = unit(&mut rng);
+            (key, Vec3::new(wo.x, wo.y, wo.z.abs().max(0.01)).normalize(), rng.random_range(0.05..1.0))
+        })
+        .collect();
+    let inputs: Vec<[f32; 4]> = cases
+        .iter()
+        .flat_map(|(key, wo, roughness)| [key.map(word), wo.extend(*roughness).to_array()])
+        .collect();
+    let outputs = run(&context, twin_probe::PATH_DRAWS, &inputs, (2, 3));
+    let quad = LightSource {
+        kind: LIGHT_QUAD,
+        position: Vec3::new(-0.5, 2.0, -0.5),
+        edge_u: Vec3::X,
+        edge_v: Vec3::Z,
+        radius: 0.0,
+        radiance: Vec3::ONE,
+    };
+    let mut borderline = 0;
+    for (index, ((key, wo, roughness), gpu)) in cases.iter().zip(outputs.chunks(3)).enumerate() {
+        let mut random = random_sequence(key[0], UVec2::new(key[1], key[2]), key[3]);
+        let u: [f32; 4] = std::array::from_fn(|_| random_next(&mut random));
+        assert_eq!(gpu[0].map(f32::to_bits), u.map(f32::to_bits), "case {index}: the random numbers");
+        let plastic =
+            Bsdf { kind: BSDF_PLASTIC, color: Vec3::new(0.8, 0.5, 0.3), roughness: *roughness, ior: 1.5 };
+        let drawn = bsdf_sample(&plastic, *wo, Vec3::new(u[0], u[1], u[2]));
+        // A narrow lobe's pdf turns the direction's last-ulp differences into a relative 1e-4.
+        let pdf_close = (gpu[1][3] - drawn.pdf).abs() <= PDF_RELATIVE * drawn.pdf.max(1.0);
+        let agrees = close3(xyz(gpu[1]), drawn.direction, 1.0) && pdf_close;
+        if !agrees {
+            // The lobe is chosen by u.z against a probability from Fresnel, computed to an ulp.
+            let p = pointray_kernels::rough_plastic::rough_plastic_coat_probability(plastic.color, 1.5, *wo);
+            assert!((u[2] - p).abs() < 1e-5, "case {index}: BSDF sample {:?} against {drawn:?}", gpu[1]);
+            borderline += 1;
+        }
+        let arriving = light_sample(&quad, Vec3::ZERO, Vec2::new(u[2], u[3]));
+        assert!(close3(xyz(gpu[2]), arriving.direction, 1.0), "case {index}: light direction {:?}", gpu[2]);
+        assert!(
+            close(gpu[2][3], arriving.pdf, 1.0),
+            "case {index}: light pdf {} against {}",
+            gpu[2][3],
+            arriving.pdf
+        );
+    }
+    assert_few_borderline("BSDF samples", borderline);
 }
