@@ -84,7 +84,7 @@ fn budgets_too_small_are_refused_with_what_would_fit() {
     let dir = tempfile::tempdir().unwrap();
     let (path, settings) = sheet_file(dir.path());
     let output = dir.path().join("out.patches");
-    let tiny = MemoryBudget { bytes: 25 << 20 };
+    let tiny = MemoryBudget { bytes: (24 << 20) + (512 << 10) };
     let error =
         prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(1), tiny), &output, &NoProgress)
             .unwrap_err();
