@@ -24,6 +24,8 @@ pub enum BenchError {
     Scene(#[from] pointray_scene::SceneError),
     #[error("{case}: prep failed: {source}")]
     Prep { case: String, source: pointray_surface::PrepError },
+    #[error("{case}: prep in tiles failed: {source}")]
+    StreamedPrep { case: String, source: pointray_surface::stream_error::StreamError },
     #[error("{case}: {source}")]
     Store { case: String, source: pointray_surface::patch_store::StoreError },
     #[error("{case}: {source}")]

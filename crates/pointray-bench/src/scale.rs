@@ -6,9 +6,13 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use pointray_io::{MemoryBudget, PointStream};
 use pointray_scene::RenderSettings;
 use pointray_surface::patch_store;
 use pointray_surface::peak_memory::StagePeaks;
+use pointray_surface::prep_memory::{PrepRoute, prep_route};
+use pointray_surface::streamed_prep::prep_streamed;
+use pointray_surface::streamed_tiles::TileCount;
 use pointray_surface::{PrepProgress, PrepSettings, prep_owned};
 
 use crate::data::ensure_cache_dir;
@@ -109,15 +113,8 @@ fn measure_rung(
     options: &ScaleOptions,
 ) -> Result<RungMeasurement, BenchError> {
     let points_file = stand_in_points(&options.data, spec, &options.cache)?;
-    let (cloud, read) = timed(|| pointray_io::formats::read_point_cloud(&points_file));
-    let cloud = cloud?;
-    let peaks = StagePeaks::new(options.progress);
-    let (prepped, prep) = timed(|| prep_owned(cloud, &PrepSettings::default(), &peaks));
-    let (patches, _) = prepped.map_err(|source| BenchError::Prep { case: label.into(), source })?;
     let store = options.cache.join(format!("scale-{label}.patches"));
-    let (written, store_write) = timed(|| patch_store::write(&store, &patches));
-    written.map_err(|source| BenchError::Store { case: label.into(), source })?;
-    drop(patches);
+    let prepped = prep_rung(label, &points_file, &store, options.progress)?;
     let store_bytes = std::fs::metadata(&store).map_or(0, |metadata| metadata.len());
     let started = Instant::now();
     let table: toml::Table = toml::from_str(SCENE).map_err(|e| BenchError::ParseSuite {
@@ -139,18 +136,59 @@ fn measure_rung(
         .collect::<Result<_, BenchError>>()?;
     let points = spec.count as f64;
     Ok(RungMeasurement {
-        read_seconds: read.as_secs_f64(),
-        prep_seconds: prep.as_secs_f64(),
-        prep_points_per_second: points / prep.as_secs_f64(),
-        prep_peak_rss_bytes: peaks.overall(),
+        prep_route: prepped.route.into(),
+        read_seconds: prepped.read.as_secs_f64(),
+        prep_seconds: prepped.prep.as_secs_f64(),
+        prep_points_per_second: points / prepped.prep.as_secs_f64(),
+        prep_peak_rss_bytes: prepped.peak,
         store_bytes,
-        store_write_seconds: store_write.as_secs_f64(),
+        store_write_seconds: prepped.store_write.as_secs_f64(),
         load_seconds: load.as_secs_f64(),
         blas_build_seconds: costs.blas.as_secs_f64(),
         bottom_levels: costs.tiles,
         gpu_bytes_per_point: costs.gpu_bytes.map(|bytes| bytes as f64 / points),
         fps,
     })
+}
+
+/// How a rung's prep went.
+struct RungPrep {
+    route: &'static str,
+    read: Duration,
+    prep: Duration,
+    store_write: Duration,
+    peak: Option<u64>,
+}
+
+/// Preps `points_file` into the store `store` as `pointray prep` does with its default
+/// budget: in memory when a single pass fits, else streamed in tiles.
+fn prep_rung(
+    label: &str,
+    points_file: &Path,
+    store: &Path,
+    progress: &dyn PrepProgress,
+) -> Result<RungPrep, BenchError> {
+    let settings = PrepSettings::default();
+    let budget = MemoryBudget::half_of_this_machine();
+    let mut stream = PointStream::open(points_file, None, budget)?;
+    let route = prep_route(stream.len(), &settings, stream.attribute_bytes_per_point(), budget);
+    if route == PrepRoute::Streamed {
+        let peaks = StagePeaks::new(progress);
+        let count = (TileCount::AtLeast(1), budget);
+        let (prepped, prep) = timed(|| prep_streamed(&mut stream, &settings, count, store, &peaks));
+        prepped.map_err(|source| BenchError::StreamedPrep { case: label.into(), source })?;
+        let (read, store_write) = (Duration::ZERO, Duration::ZERO);
+        return Ok(RungPrep { route: "streamed", read, prep, store_write, peak: peaks.overall() });
+    }
+    drop(stream);
+    let (cloud, read) = timed(|| pointray_io::formats::read_point_cloud(points_file));
+    let cloud = cloud?;
+    let peaks = StagePeaks::new(progress);
+    let (prepped, prep) = timed(|| prep_owned(cloud, &settings, &peaks));
+    let (patches, _) = prepped.map_err(|source| BenchError::Prep { case: label.into(), source })?;
+    let (written, store_write) = timed(|| patch_store::write(store, &patches));
+    written.map_err(|source| BenchError::Store { case: label.into(), source })?;
+    Ok(RungPrep { route: "in memory", read, prep, store_write, peak: peaks.overall() })
 }
 
 fn timed<T>(work: impl FnOnce() -> T) -> (T, Duration) {

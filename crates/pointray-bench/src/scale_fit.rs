@@ -5,13 +5,23 @@
 
 use std::path::Path;
 
+use pointray_io::MemoryBudget;
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_surface::PrepSettings;
+use pointray_surface::prep_memory::{PrepRoute, prep_route};
 use pointray_vulkan::DeviceInfo;
 
-/// Peak resident memory of `prep` per input point, with a margin: measured at 200 to 207
-/// bytes on 10M to 100M dragon points (bench/PREP.md). Reading the points and loading the
-/// store afterwards need less.
-pub const PREP_BYTES_PER_POINT: u64 = 220;
+/// Host memory per point of loading the store for the GPU: the file's bytes and the records
+/// decoded from them are held at once (twice the store), with a margin. Prep needs no
+/// limit here: a cloud whose single pass does not fit the budget is prepped in tiles.
+pub fn store_load_bytes_per_point() -> u64 {
+    2 * store_bytes_per_point() + 16
+}
+
+/// Scratch disk per point of prep in tiles at its largest, beside the points file and the
+/// store: the tile files (each patch's records, input point and a margin) while the store
+/// is written from them; the sorted runs and file before them take less.
+pub const STREAMED_SCRATCH_BYTES_PER_POINT: u64 = 96;
 
 /// Peak resident memory per point of loading the store and rendering on the CPU backend:
 /// the store read, the patches and the BVH build; measured at 361 bytes on 10M points.
@@ -38,8 +48,12 @@ pub fn gpu_build_bytes_per_point() -> u64 {
 pub struct MachineLimits {
     /// `MemAvailable` of `/proc/meminfo`, in bytes.
     pub available_memory: Option<u64>,
-    /// The most memory per point any step takes: prep, or rendering on the CPU.
+    /// The most memory per point any step takes: loading the store for the GPU, or
+    /// rendering on the CPU.
     pub memory_per_point: u64,
+    /// `pointray prep`'s default budget, which decides whether a rung is prepped in tiles
+    /// (and so needs scratch disk).
+    pub prep_budget: MemoryBudget,
     /// Free bytes on the cache folder's file system.
     pub free_disk: Option<u64>,
     /// The Vulkan device, when the suite renders on one.
@@ -62,9 +76,13 @@ impl MachineLimits {
     /// This machine's limits now, for a suite caching in `cache` (which must exist) and
     /// rendering on `device`, or on the CPU when there is none.
     pub fn now(cache: &Path, device: Option<DeviceLimits>) -> Self {
-        let memory_per_point =
-            if device.is_some() { PREP_BYTES_PER_POINT } else { CPU_RENDER_BYTES_PER_POINT };
-        Self { available_memory: available_memory(), memory_per_point, free_disk: free_disk(cache), device }
+        Self {
+            available_memory: available_memory(),
+            memory_per_point: memory_per_point(device.is_some()),
+            prep_budget: MemoryBudget::half_of_this_machine(),
+            free_disk: free_disk(cache),
+            device,
+        }
     }
 
     /// Why a rung of `points` points cannot run here; `None` when it fits. `cached_bytes` is
@@ -73,7 +91,7 @@ impl MachineLimits {
         let gigabytes = |bytes: u64| bytes as f64 / 1e9;
         let memory = points.saturating_mul(self.memory_per_point);
         if let Some(available) = self.available_memory.filter(|&available| memory > available) {
-            let step = if self.device.is_some() { "prep" } else { "rendering on the CPU" };
+            let step = if self.device.is_some() { "loading the store" } else { "rendering on the CPU" };
             return Some(format!(
                 "{step} needs about {:.1} GB of memory ({} B a point), {:.1} GB is available",
                 gigabytes(memory),
@@ -81,11 +99,14 @@ impl MachineLimits {
                 gigabytes(available)
             ));
         }
-        let files = points.saturating_mul(POINTS_FILE_BYTES_PER_POINT + store_bytes_per_point());
+        let streamed =
+            prep_route(points, &PrepSettings::default(), 0, self.prep_budget) == PrepRoute::Streamed;
+        let scratch = if streamed { STREAMED_SCRATCH_BYTES_PER_POINT } else { 0 };
+        let files = points.saturating_mul(POINTS_FILE_BYTES_PER_POINT + store_bytes_per_point() + scratch);
         let disk = files.saturating_sub(cached_bytes);
         if let Some(free) = self.free_disk.filter(|&free| disk > free) {
             return Some(format!(
-                "its points file and patch store need {:.1} GB more disk in the cache folder, {:.1} GB is free",
+                "its points file, patch store and prep's scratch files need {:.1} GB more disk in the cache folder, {:.1} GB is free",
                 gigabytes(disk),
                 gigabytes(free)
             ));
@@ -102,6 +123,10 @@ impl MachineLimits {
             )
         })
     }
+}
+
+fn memory_per_point(gpu: bool) -> u64 {
+    if gpu { store_load_bytes_per_point() } else { CPU_RENDER_BYTES_PER_POINT }
 }
 
 fn available_memory() -> Option<u64> {
@@ -121,9 +146,13 @@ mod tests {
     use super::*;
 
     fn machine(memory: u64, disk: u64, device: Option<DeviceLimits>) -> MachineLimits {
-        let memory_per_point =
-            if device.is_some() { PREP_BYTES_PER_POINT } else { CPU_RENDER_BYTES_PER_POINT };
-        MachineLimits { available_memory: Some(memory), memory_per_point, free_disk: Some(disk), device }
+        MachineLimits {
+            available_memory: Some(memory),
+            memory_per_point: memory_per_point(device.is_some()),
+            prep_budget: MemoryBudget { bytes: memory / 2 },
+            free_disk: Some(disk),
+            device,
+        }
     }
 
     #[test]
@@ -139,7 +168,17 @@ mod tests {
             "prep fits, the GPU renders"
         );
         let reason = machine(24e9 as u64, 1 << 40, gpu).why_not(300_000_000, 0).expect("too little memory");
-        assert!(reason.contains("prep needs about 66.0 GB"), "{reason}");
+        assert!(reason.contains("loading the store needs about 48.0 GB"), "{reason}");
+        // 128 GiB: prep streams 300M and 1B points; 1B cannot be loaded whole.
+        let big = machine(128 << 30, 1 << 40, gpu);
+        assert_eq!(big.why_not(300_000_000, 0), None);
+        let reason = big.why_not(1_000_000_000, 0).expect("the load");
+        assert!(reason.contains("loading the store needs about 160.0 GB"), "{reason}");
+        // Prep in tiles needs scratch disk: 250M points take 21 GB prepped in memory (a
+        // 128 GiB machine), 45 GB in tiles (a 64 GiB one).
+        assert_eq!(machine(128 << 30, 40e9 as u64, gpu).why_not(250_000_000, 0), None);
+        let reason = machine(64 << 30, 40e9 as u64, gpu).why_not(250_000_000, 0).expect("scratch");
+        assert!(reason.contains("scratch"), "{reason}");
         let reason = machine(1 << 40, 64e9 as u64, None).why_not(1_000_000_000, 0).expect("too little disk");
         assert!(reason.contains("disk"), "{reason}");
         let cached = 1_000_000_000 * POINTS_FILE_BYTES_PER_POINT;

@@ -25,14 +25,18 @@ pub enum RungOutcome {
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RungMeasurement {
-    /// Reading the points file.
+    /// How prep ran: "in memory", or "streamed" in tiles when a single pass would not fit
+    /// the budget (`pointray prep`'s rule).
+    pub prep_route: String,
+    /// Reading the points file (streamed prep reads it in its own stages: 0).
     pub read_seconds: f64,
-    /// `prep` itself, in memory.
+    /// `prep` itself (streamed: reading and writing the store included).
     pub prep_seconds: f64,
     pub prep_points_per_second: f64,
     /// The process's peak resident memory while `prep` ran (the read points included).
     pub prep_peak_rss_bytes: Option<u64>,
     pub store_bytes: u64,
+    /// Writing the store (streamed prep writes it in its own last stage: 0).
     pub store_write_seconds: f64,
     /// Reading the store and making the scene ready to trace (upload and BLAS, or the CPU BVH).
     pub load_seconds: f64,
@@ -73,8 +77,9 @@ impl ScaleRow {
                 let fps: Vec<String> =
                     m.fps.iter().map(|s| format!("{:.1} FPS at {}x{}", s.fps, s.width, s.height)).collect();
                 format!(
-                    "{}: prep {:.2} s ({:.2} M points/s, peak {}), store {:.1} MB, load {:.2} s, BLAS {:.2} s ({} bottom levels), GPU {}, {}",
+                    "{}: prep {} {:.2} s ({:.2} M points/s, peak {}), store {:.1} MB, load {:.2} s, BLAS {:.2} s ({} bottom levels), GPU {}, {}",
                     self.label,
+                    m.prep_route,
                     m.prep_seconds,
                     m.prep_points_per_second / 1e6,
                     m.prep_peak_rss_bytes.map_or("unknown".into(), |b| format!("{:.2} GB", b as f64 / 1e9)),

@@ -19,6 +19,6 @@ pub use file_roles::{
     folder_of,
 };
 pub use memory_budget::{MemoryBudget, MemoryShortfall};
-pub use point_cloud::PointCloud;
+pub use point_cloud::{AttributeBytes, PointCloud};
 pub use point_stream::PointStream;
 pub use triangle_mesh::TriangleMesh;

@@ -38,8 +38,51 @@ impl PointCloud {
         self.positions.is_empty()
     }
 
+    /// The bytes each point's attributes (all but its position) take in memory: what a
+    /// cloud held through a whole prep costs beyond the prep itself.
+    pub fn attribute_bytes_per_point(&self) -> u64 {
+        AttributeBytes {
+            normals: self.normals.is_some(),
+            colors: self.colors.is_some(),
+            intensities: self.intensities.is_some(),
+            classifications: self.classifications.is_some(),
+            rings: self.rings.is_some(),
+            sensor_origins: self.sensor_origins.is_some(),
+        }
+        .per_point()
+    }
+
     /// Where point `i` was seen from, when the file says so.
     pub fn sensor_of(&self, i: usize) -> Option<DVec3> {
         self.sensor_origins.as_ref().map(|origins| origins[i]).or(self.sensor_position)
+    }
+}
+
+/// Which per-point attributes a cloud carries, for what they cost in memory.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AttributeBytes {
+    pub normals: bool,
+    pub colors: bool,
+    pub intensities: bool,
+    pub classifications: bool,
+    pub rings: bool,
+    pub sensor_origins: bool,
+}
+
+impl AttributeBytes {
+    /// The bytes a point's attributes take in a `PointCloud`.
+    pub fn per_point(self) -> u64 {
+        [
+            (self.normals, size_of::<Vec3>()),
+            (self.colors, size_of::<[u8; 3]>()),
+            (self.intensities, size_of::<f32>()),
+            (self.classifications, size_of::<u8>()),
+            (self.rings, size_of::<u16>()),
+            (self.sensor_origins, size_of::<DVec3>()),
+        ]
+        .iter()
+        .filter(|(present, _)| *present)
+        .map(|(_, bytes)| *bytes as u64)
+        .sum()
     }
 }

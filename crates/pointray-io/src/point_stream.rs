@@ -88,6 +88,16 @@ impl PointStream {
         !matches!(self.source, Source::Whole { .. })
     }
 
+    /// The bytes each point's attributes take once read (at most: a LAS file's unfilled
+    /// fields are dropped).
+    pub fn attribute_bytes_per_point(&self) -> u64 {
+        match &self.source {
+            Source::Ply(chunks) => chunks.attributes().per_point(),
+            Source::Las(chunks) => chunks.attributes().per_point(),
+            Source::Whole { cloud, .. } => cloud.attribute_bytes_per_point(),
+        }
+    }
+
     /// Where the scanner stood, when the file says so for the whole cloud.
     pub fn sensor_position(&self) -> Option<DVec3> {
         match &self.source {

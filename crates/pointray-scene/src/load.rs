@@ -326,7 +326,7 @@ fn procedural_object(
 /// sampling them.
 fn procedural_fits(count: u32) -> Result<(), point_sets::PointSetError> {
     let budget = pointray_io::MemoryBudget::of_this_machine();
-    pointray_surface::input_validation::validate_size(count as usize, &Default::default(), &budget)
+    pointray_surface::input_validation::validate_size(count as usize, &Default::default(), 0, &budget)
         .map_err(|source| point_sets::PointSetError::Prep { file: "(procedural points)".into(), source })
 }
 

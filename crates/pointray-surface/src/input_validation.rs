@@ -10,6 +10,7 @@ use crate::geometry_range::{CLOUD_EXTENTS, extent_problem};
 
 use crate::outlier_removal::OutlierFilter;
 use crate::prep_error::PrepError;
+use crate::prep_memory::{PREP_FIXED_BYTES, prep_bytes_per_point};
 use crate::prep_settings::PrepSettings;
 
 /// Fewer neighbours than this cannot give a PCA normal or a plane fit.
@@ -25,13 +26,6 @@ const COLLINEAR_TOLERANCE: f64 = 1e-6;
 
 /// Beyond this, patches reach past twice their farthest neighbour: no longer local.
 const MAX_DISK_SCALE: f32 = 2.0;
-
-/// What `prep` holds per point at its peak, beyond 8 bytes per neighbour of the larger
-/// neighbour table: measured peaks come to 205 to 216 bytes a point from 4M to 100M points
-/// sampled on a mesh (k = 9, normal_k = 16, so 128 of them are the table), and each array is
-/// dropped after its last stage (`prep.rs`). The rest is margin, so the estimate (240 bytes
-/// at the defaults) stays above the peak without refusing clouds that fit.
-const PREP_BYTES_PER_POINT: u64 = 112;
 
 /// Every prep setting, whichever route it came by (flags, a scene file, code): the one place
 /// they are checked.
@@ -79,17 +73,19 @@ fn validate_outlier_filter(filter: &OutlierFilter) -> Result<(), PrepError> {
     Ok(())
 }
 
-/// Whether prepping `points` points with `params` fits in `budget`, checked before any stage
-/// allocates.
-pub fn validate_size(points: usize, settings: &PrepSettings, budget: &MemoryBudget) -> Result<(), PrepError> {
+/// Whether prepping `points` points with `params` (and attributes of `attribute_bytes` a
+/// point) fits in `budget`, checked before any stage allocates.
+pub fn validate_size(
+    points: usize,
+    settings: &PrepSettings,
+    attribute_bytes: u64,
+    budget: &MemoryBudget,
+) -> Result<(), PrepError> {
+    let bytes_each = prep_bytes_per_point(settings, attribute_bytes);
+    let budget = MemoryBudget { bytes: budget.bytes.saturating_sub(PREP_FIXED_BYTES) };
     budget
-        .check(points as u64, prep_bytes_per_point(settings), "points to prep")
+        .check(points as u64, bytes_each, "points to prep")
         .map_err(|shortfall| PrepError::TooLarge { problem: shortfall.to_string() })
-}
-
-/// The memory prep takes per point, at most.
-pub fn prep_bytes_per_point(settings: &PrepSettings) -> u64 {
-    PREP_BYTES_PER_POINT + 8 * u64::from(settings.k.max(settings.normal_k))
 }
 
 fn invalid(setting: &'static str, problem: String) -> Result<(), PrepError> {
@@ -216,8 +212,9 @@ mod tests {
     #[test]
     fn refuses_a_cloud_too_large_for_memory_and_says_what_fits() {
         let budget = MemoryBudget { bytes: 1 << 30 };
-        assert_eq!(validate_size(1_000_000, &PrepSettings::default(), &budget), Ok(()));
-        let error = validate_size(4_000_000_000, &PrepSettings::default(), &budget).unwrap_err().to_string();
+        assert_eq!(validate_size(1_000_000, &PrepSettings::default(), 0, &budget), Ok(()));
+        let error =
+            validate_size(4_000_000_000, &PrepSettings::default(), 0, &budget).unwrap_err().to_string();
         assert!(error.contains("4000000000 points to prep") && error.contains("at most about"), "{error}");
     }
 }

@@ -25,6 +25,7 @@ pub mod peak_memory;
 mod point_records;
 pub mod prep;
 pub mod prep_error;
+pub mod prep_memory;
 pub mod prep_progress;
 pub mod prep_report;
 pub mod prep_settings;

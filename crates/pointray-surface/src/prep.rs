@@ -245,7 +245,12 @@ fn color_table_width(colors: bool, k: usize) -> usize {
 
 fn validate(cloud: &PointCloud, settings: &PrepSettings) -> Result<(), PrepError> {
     validate_settings(settings)?;
-    validate_size(cloud.len(), settings, &MemoryBudget::of_this_machine())?;
+    validate_size(
+        cloud.len(),
+        settings,
+        cloud.attribute_bytes_per_point(),
+        &MemoryBudget::of_this_machine(),
+    )?;
     let expected = cloud.len();
     let lengths = [
         ("normals", cloud.normals.as_ref().map(Vec::len)),

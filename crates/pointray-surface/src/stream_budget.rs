@@ -3,7 +3,7 @@
 
 use pointray_io::MemoryBudget;
 
-use crate::input_validation::prep_bytes_per_point;
+use crate::prep_memory::prep_bytes_per_point;
 use crate::prep_settings::PrepSettings;
 
 /// Held back for the program itself, its threads and buffers.
@@ -20,15 +20,26 @@ pub(crate) const MIN_TILE_POINTS: u64 = 1024;
 /// record and the cloud made of it).
 const READ_BYTES_PER_POINT: u64 = 256;
 
+/// A tile's cloud, borrowed by its prep, keeps its f64 positions (24 bytes) and each
+/// member's input index (4) beside what the prep holds.
+const TILE_CLOUD_BYTES: u64 = 24 + 4;
+
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StreamBudget {
     /// What the work may use beyond the program itself.
     usable: u64,
+    /// What each point's attributes take once read.
+    attribute_bytes: u64,
 }
 
 impl StreamBudget {
-    pub(crate) fn new(memory: MemoryBudget) -> Self {
-        Self { usable: memory.bytes.saturating_sub(RESERVED_BYTES) }
+    pub(crate) fn new(memory: MemoryBudget, attribute_bytes: u64) -> Self {
+        Self { usable: memory.bytes.saturating_sub(RESERVED_BYTES), attribute_bytes }
+    }
+
+    /// Bytes a point of a tile (owned or halo) takes while the tile is prepped.
+    pub(crate) fn tile_bytes_per_point(&self, settings: &PrepSettings) -> u64 {
+        prep_bytes_per_point(settings, self.attribute_bytes) + TILE_CLOUD_BYTES
     }
 
     /// Points read from the input at a time.
@@ -43,7 +54,7 @@ impl StreamBudget {
 
     /// The most points a tile's prep may hold, its halo included.
     pub(crate) fn tile_capacity(&self, settings: &PrepSettings) -> u64 {
-        self.usable / prep_bytes_per_point(settings)
+        self.usable / self.tile_bytes_per_point(settings)
     }
 
     /// The most points a tile may own.

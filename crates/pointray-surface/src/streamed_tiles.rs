@@ -54,7 +54,7 @@ impl StreamPlan {
         progress: &dyn PrepProgress,
     ) -> Result<Self, StreamError> {
         let input = stream.path().to_path_buf();
-        let budget = StreamBudget::new(memory);
+        let budget = StreamBudget::new(memory, stream.attribute_bytes_per_point());
         let (min, max) = survey_bounds(stream, budget.chunk_points(), progress)?;
         let points = stream.len();
         let prep_error = |source| StreamError::Prep { path: input.clone(), source };
@@ -208,7 +208,7 @@ fn tile_count(
             "the memory budget ({} MiB for the work) cannot hold one tile of {MIN_TILE_POINTS} points \
              with its halo: give it at least {} MiB",
             budget.usable() >> 20,
-            ((MIN_TILE_POINTS * 3 * crate::input_validation::prep_bytes_per_point(settings)) >> 20) + 25
+            ((MIN_TILE_POINTS * 3 * budget.tile_bytes_per_point(settings)) >> 20) + 25
         )));
     }
     if !budget.holds_patch_map(points) {

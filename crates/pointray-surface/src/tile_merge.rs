@@ -41,7 +41,7 @@ pub(crate) fn merge_ordered_tile_files(
     progress: &dyn PrepProgress,
 ) -> Result<MergeSummary, StreamError> {
     let first = read_tile_header(&ordered[0])?;
-    if !StreamBudget::new(memory).holds_patch_map(first.input_points) {
+    if !StreamBudget::new(memory, 0).holds_patch_map(first.input_points) {
         let problem = format!(
             "merging tiles of {} points maps each to its patch (4 bytes a point), which the memory \
              budget cannot hold",

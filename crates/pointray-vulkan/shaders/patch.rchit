@@ -15,7 +15,7 @@ hitAttributeEXT vec2 hit_uv;
 
 // The point colours interpolated at the hit, where the material uses them (white otherwise,
 // which ray generation does not read). Blending reads the split hot and cold buffers, which
-// every patch object has whatever the buffer layout.
+// every patch object whose material uses the point colours has, whatever the buffer layout.
 uint hit_color(ObjectRecord object, uint patch_index) {
     if (object.specular_shininess_reflect_colors.w == 0.0) {
         return 0xffffffffu;

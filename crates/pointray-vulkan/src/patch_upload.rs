@@ -94,7 +94,9 @@ fn tile_bottom_levels(
 }
 
 /// The per-patch records the trace reads, in `buffers`' layout only: the hot buffer (and
-/// the cold one where the trace colours hits by the points), or the combined one.
+/// the cold one where the trace colours hits by the points), or the combined one. The colour
+/// blend walks the split hot and cold buffers (`interpolate_color`), so where the trace
+/// colours hits by the points the combined layout uploads them too.
 fn patch_records(
     context: &Arc<GpuContext>,
     patches: &PatchSet,
@@ -102,29 +104,30 @@ fn patch_records(
     colors: bool,
 ) -> Result<(ObjectRecord, Vec<Buffer>), VulkanError> {
     let upload = |name, bytes: &[u8]| Buffer::device_with_data(context, name, bytes, storage_usage());
-    Ok(match buffers {
-        BufferLayout::Split => {
-            let hot = upload("hot patch records", bytemuck::cast_slice(&patches.hot))?;
-            let mut record = ObjectRecord { hot: hot.device_address(), ..ObjectRecord::default() };
-            let mut uploaded = vec![hot];
-            if colors {
-                let cold = upload("cold patch records", bytemuck::cast_slice(&patches.cold))?;
-                record.cold = cold.device_address();
-                uploaded.push(cold);
-            }
-            (record, uploaded)
-        }
-        BufferLayout::Combined => {
-            let combined: Vec<PatchCombined> = patches
-                .hot
-                .iter()
-                .zip(&patches.cold)
-                .map(|(&hot, &cold)| PatchCombined::new(hot, cold))
-                .collect();
-            let combined = upload("combined patch records", bytemuck::cast_slice(&combined))?;
-            (ObjectRecord { combined: combined.device_address(), ..ObjectRecord::default() }, vec![combined])
-        }
-    })
+    let mut record = ObjectRecord::default();
+    let mut uploaded = Vec::new();
+    if buffers == BufferLayout::Split || colors {
+        let hot = upload("hot patch records", bytemuck::cast_slice(&patches.hot))?;
+        record.hot = hot.device_address();
+        uploaded.push(hot);
+    }
+    if colors {
+        let cold = upload("cold patch records", bytemuck::cast_slice(&patches.cold))?;
+        record.cold = cold.device_address();
+        uploaded.push(cold);
+    }
+    if buffers == BufferLayout::Combined {
+        let combined: Vec<PatchCombined> = patches
+            .hot
+            .iter()
+            .zip(&patches.cold)
+            .map(|(&hot, &cold)| PatchCombined::new(hot, cold))
+            .collect();
+        let combined = upload("combined patch records", bytemuck::cast_slice(&combined))?;
+        record.combined = combined.device_address();
+        uploaded.push(combined);
+    }
+    Ok((record, uploaded))
 }
 
 /// The GPU bytes of the records a trace of `patches` with `material` reads.
@@ -134,12 +137,14 @@ pub(crate) fn record_bytes(patches: &PatchSet, material: &Material, buffers: Buf
     let cold = size_of::<pointray_kernels::PatchCold>() as u64;
     let colors = reads_point_colors(material);
     let neighbors = if colors { patches.color_neighbors.len() as u64 * 4 } else { 0 };
-    neighbors
-        + match buffers {
-            BufferLayout::Split if colors => count * (hot + cold),
-            BufferLayout::Split => count * hot,
-            BufferLayout::Combined => count * size_of::<PatchCombined>() as u64,
-        }
+    let split = match (buffers, colors) {
+        (_, true) => count * (hot + cold),
+        (BufferLayout::Split, false) => count * hot,
+        (BufferLayout::Combined, false) => 0,
+    };
+    let combined =
+        if buffers == BufferLayout::Combined { count * size_of::<PatchCombined>() as u64 } else { 0 };
+    neighbors + split + combined
 }
 
 /// The build's input for every patch box.

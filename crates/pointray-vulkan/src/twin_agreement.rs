@@ -9,16 +9,22 @@ use std::sync::Arc;
 
 use glam::{UVec2, Vec2, Vec3};
 use pointray_kernels::bsdf::BSDF_PLASTIC;
+use pointray_kernels::interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
 use pointray_kernels::light_source::LIGHT_QUAD;
 use pointray_kernels::tangent_frame::{pack_normal, unpack_normal};
 use pointray_kernels::{
-    Bsdf, Camera, LightSource, PackedTangentFrame, PatchAcceptance, PatchHot, PhongSurface, Ray,
-    TangentFrame, bsdf_sample, camera_ray, face_forward, intersect_patch, light_sample, patch_normal, phong,
-    quadratic_roots, random_next, random_sequence, sample_jitter, self_clearance, srgb_encode_rgba8,
+    Bsdf, LightSource, PatchCold, bsdf_eval, bsdf_pdf, bsdf_sample, light_sample, random_next, random_next2,
+    random_sequence,
+};
+use pointray_kernels::{
+    Camera, PackedTangentFrame, PatchAcceptance, PatchHot, PhongSurface, Ray, TangentFrame, camera_ray,
+    face_forward, intersect_patch, patch_normal, phong, quadratic_roots, sample_jitter, self_clearance,
+    srgb_encode_rgba8,
 };
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use crate::buffer::{Buffer, storage_usage};
 use crate::context::GpuContext;
 use crate::twin_probe::{self, probe_context, run_probe};
 
@@ -31,11 +37,15 @@ const PDF_RELATIVE: f32 = 1e-3;
 const BORDERLINE_FRACTION: f64 = 0.002;
 
 fn close(gpu: f32, cpu: f32, scale: f32) -> bool {
-    (gpu - cpu).abs() <= RELATIVE * scale.max(cpu.abs()).max(f32::MIN_POSITIVE)
+    close_within(RELATIVE, gpu, cpu, scale)
 }
 
 fn close3(gpu: Vec3, cpu: Vec3, scale: f32) -> bool {
     (0..3).all(|i| close(gpu[i], cpu[i], scale))
+}
+
+fn close_within(relative: f32, gpu: f32, cpu: f32, scale: f32) -> bool {
+    (gpu - cpu).abs() <= relative * scale.max(cpu.abs()).max(f32::MIN_POSITIVE)
 }
 
 fn xyz(v: [f32; 4]) -> Vec3 {
@@ -295,8 +305,190 @@ fn camera_rays_agree() {
     }
 }
 
+/// Patches scattered in a unit cube, each with a colour, a reach and its nearest patches as
+/// colour neighbours (some slots empty).
+fn coloured_patches(rng: &mut ChaCha8Rng, count: usize) -> (Vec<PatchHot>, Vec<PatchCold>, Vec<u32>) {
+    let origins: Vec<Vec3> =
+        (0..count).map(|_| Vec3::new(rng.random(), rng.random(), rng.random())).collect();
+    let hot = origins
+        .iter()
+        .map(|&origin| {
+            let normal = unit(rng);
+            PatchHot::new(
+                origin,
+                PackedTangentFrame::new(normal, unit(rng).cross(normal).normalize()),
+                Vec2::splat(0.1),
+                [0.0; 6],
+            )
+        })
+        .collect();
+    let cold = (0..count)
+        .map(|_| PatchCold {
+            color_rgba8: rng.random(),
+            intensity: rng.random(),
+            color_reach: rng.random_range(0.0..0.3),
+        })
+        .collect();
+    let neighbors = origins
+        .iter()
+        .enumerate()
+        .flat_map(|(i, &origin)| {
+            let mut others: Vec<usize> = (0..count).filter(|&j| j != i).collect();
+            others.sort_by(|&a, &b| origin.distance(origins[a]).total_cmp(&origin.distance(origins[b])));
+            let kept = rng.random_range(0..=COLOR_NEIGHBORS);
+            (0..COLOR_NEIGHBORS).map(move |slot| if slot < kept { others[slot] as u32 } else { NO_NEIGHBOR })
+        })
+        .collect();
+    (hot, cold, neighbors)
+}
+
+fn address_bits(buffer: &Buffer) -> [f32; 2] {
+    let address = buffer.device_address();
+    [word(address as u32), word((address >> 32) as u32)]
+}
+
 #[test]
-fn the_random_sequence_is_bit_identical_and_the_draws_made_from_it_agree() {
+fn colour_interpolation_agrees() {
+    let Some(context) = probe_context() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let (hot, cold, neighbors) = coloured_patches(&mut rng, 256);
+    let upload =
+        |name, bytes: &[u8]| Buffer::host_with_data(&context, name, bytes, storage_usage()).expect("uploads");
+    let hot_buffer = upload("twin hot patches", bytemuck::cast_slice(&hot));
+    let cold_buffer = upload("twin cold patches", bytemuck::cast_slice(&cold));
+    let neighbor_buffer = upload("twin colour neighbours", bytemuck::cast_slice(&neighbors));
+    let [hot_low, hot_high] = address_bits(&hot_buffer);
+    let [cold_low, cold_high] = address_bits(&cold_buffer);
+    let queries: Vec<(Vec3, u32)> = (0..CASES)
+        .map(|_| {
+            let hit = rng.random_range(0..hot.len() as u32);
+            let [x, y, z] = hot[hit as usize].origin;
+            let jitter = Vec3::new(
+                rng.random_range(-0.1..0.1),
+                rng.random_range(-0.1..0.1),
+                rng.random_range(-0.1..0.1),
+            );
+            (Vec3::new(x, y, z) + jitter, hit)
+        })
+        .collect();
+    let mut inputs: Vec<[f32; 4]> = queries
+        .iter()
+        .flat_map(|&(position, hit)| {
+            [position.extend(word(hit)).to_array(), [hot_low, hot_high, cold_low, cold_high]]
+        })
+        .collect();
+    let [low, high] = address_bits(&neighbor_buffer);
+    inputs.push([low, high, 0.0, 0.0]);
+    let outputs = run(&context, twin_probe::INTERPOLATE_COLOR, &inputs, (2, 1));
+    let (mut rounded, mut borderline) = (0, 0);
+    for (index, (&(position, hit), gpu)) in queries.iter().zip(&outputs).enumerate() {
+        let (gpu, cpu) = (
+            gpu[0].to_bits().to_le_bytes(),
+            interpolate_color(position, hit, &hot, &cold, &neighbors).to_le_bytes(),
+        );
+        match gpu.iter().zip(cpu).map(|(&g, c)| g.abs_diff(c)).max() {
+            Some(0) => {}
+            // A blend that lands on a byte's rounding edge.
+            Some(1) => rounded += 1,
+            // The walk to the nearest point took another turn at a distance tie.
+            _ => borderline += 1,
+        }
+        assert!(borderline <= CASES / 100, "case {index}: colour {gpu:?} against {cpu:?}");
+    }
+    assert!(rounded <= CASES / 100, "{rounded} of {CASES} colours are a byte off: more than rounding");
+    assert_few_borderline("colour interpolation", borderline);
+}
+
+/// The relative bounds on a BSDF's values and on its sample's pdf. GGX's
+/// `1 + (α² - 1) cos²θ` cancels in f32 as the half vector nears the normal, so a few ulp of
+/// a cosine move the lobe by 1e-4 of its value at usual roughness and by a few percent at
+/// the smallest; there the pdf of a drawn direction (up to about 1e7) is ill-conditioned in
+/// both twins alike, while the sample's weight, which the path carries, stays close.
+fn bsdf_relative_bounds(bsdf: &Bsdf) -> (f32, f32) {
+    if bsdf.kind == pointray_kernels::bsdf::BSDF_DIELECTRIC && bsdf.roughness == 0.0 {
+        (RELATIVE, RELATIVE)
+    } else if bsdf.roughness < 0.05 {
+        (0.05, 0.5)
+    } else {
+        (2e-4, 2e-4)
+    }
+}
+
+/// A random sequence's seed, pixel and sample.
+type SequenceCase = (u32, UVec2, u32);
+
+/// A BSDF, `wo`, `wi` and the sample's three numbers.
+type BsdfCase = (Bsdf, Vec3, Vec3, Vec3);
+
+/// A BSDF of any kind, rough or smooth, and two directions on either side.
+fn bsdf_case(rng: &mut ChaCha8Rng) -> BsdfCase {
+    let roughness = if rng.random_range(0..4) == 0 { 0.0 } else { rng.random_range(0.01..1.0) };
+    let color = Vec3::new(rng.random(), rng.random(), rng.random());
+    let bsdf = Bsdf { kind: rng.random_range(0..4), color, roughness, ior: rng.random_range(1.1..2.0) };
+    let u = Vec3::new(rng.random(), rng.random(), rng.random());
+    (bsdf, unit(rng), unit(rng), u)
+}
+
+#[test]
+fn random_sequences_and_bsdfs_agree() {
+    let Some(context) = probe_context() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(6);
+    let cases: Vec<(SequenceCase, BsdfCase)> = (0..CASES)
+        .map(|_| {
+            (
+                (
+                    rng.random(),
+                    UVec2::new(rng.random_range(0..8192), rng.random_range(0..8192)),
+                    rng.random_range(0..65536),
+                ),
+                bsdf_case(&mut rng),
+            )
+        })
+        .collect();
+    let inputs: Vec<[f32; 4]> = cases
+        .iter()
+        .flat_map(|&((seed, pixel, sample), (bsdf, wo, wi, u))| {
+            [
+                [word(seed), word(pixel.x), word(pixel.y), word(sample)],
+                [word(bsdf.kind), bsdf.color.x, bsdf.color.y, bsdf.color.z],
+                [bsdf.roughness, bsdf.ior, u.x, u.y],
+                wo.extend(u.z).to_array(),
+                wi.extend(0.0).to_array(),
+            ]
+        })
+        .collect();
+    let outputs = run(&context, twin_probe::PATH_SAMPLING, &inputs, (5, 4));
+    let mut borderline = 0;
+    for (index, (&((seed, pixel, sample), (bsdf, wo, wi, u)), gpu)) in
+        cases.iter().zip(outputs.chunks(4)).enumerate()
+    {
+        let mut sequence = random_sequence(seed, pixel, sample);
+        let numbers = [random_next(&mut sequence), random_next(&mut sequence)];
+        let pair = random_next2(&mut sequence);
+        assert_eq!(gpu[0], [numbers[0], numbers[1], pair.x, pair.y], "case {index}: the random sequence");
+        let (value, pdf) = (bsdf_eval(&bsdf, wo, wi), bsdf_pdf(&bsdf, wo, wi));
+        let (value_bound, pdf_bound) = bsdf_relative_bounds(&bsdf);
+        let near = |gpu: f32, cpu: f32| close_within(value_bound, gpu, cpu, cpu.abs().max(1.0));
+        let evaluated = (0..3).all(|c| near(gpu[1][c], value[c])) && near(gpu[1][3], pdf);
+        let drawn = bsdf_sample(&bsdf, wo, u);
+        let sampled = (gpu[3][3] == 1.0) == drawn.delta
+            && close3(xyz(gpu[2]), drawn.direction, 1.0)
+            && close_within(pdf_bound, gpu[2][3], drawn.pdf, drawn.pdf.abs().max(1.0))
+            && (0..3).all(|c| near(gpu[3][c], drawn.weight[c]));
+        if !(evaluated && sampled) {
+            // GGX near grazing angles, or a reflect-or-refract draw at its Fresnel edge.
+            borderline += 1;
+            assert!(
+                borderline <= CASES / 100,
+                "case {index} ({bsdf:?}): {gpu:?} against {value}, {pdf}, {drawn:?}"
+            );
+        }
+    }
+    assert_few_borderline("BSDF sampling and evaluation", borderline);
+}
+
+#[test]
+fn draws_from_the_random_sequence_agree_for_plastic_and_a_quad_light() {
     let Some(context) = probe_context() else { return };
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     let cases: Vec<([u32; 4], Vec3, f32)> = (0..CASES)
@@ -315,7 +507,7 @@ fn the_random_sequence_is_bit_identical_and_the_draws_made_from_it_agree() {
         .iter()
         .flat_map(|(key, wo, roughness)| [key.map(word), wo.extend(*roughness).to_array()])
         .collect();
-    let outputs = run(&context, twin_probe::PATH_SAMPLING, &inputs, (2, 3));
+    let outputs = run(&context, twin_probe::PATH_DRAWS, &inputs, (2, 3));
     let quad = LightSource {
         kind: LIGHT_QUAD,
         position: Vec3::new(-0.5, 2.0, -0.5),

@@ -22,7 +22,9 @@ pub(crate) const QUADRATIC_ROOTS: &[u8] = twin_probe!("quadratic_roots");
 pub(crate) const INTERSECT_PATCH: &[u8] = twin_probe!("intersect_patch");
 pub(crate) const SHADING: &[u8] = twin_probe!("shading");
 pub(crate) const CAMERA_RAY: &[u8] = twin_probe!("camera_ray");
+pub(crate) const INTERPOLATE_COLOR: &[u8] = twin_probe!("interpolate_color");
 pub(crate) const PATH_SAMPLING: &[u8] = twin_probe!("path_sampling");
+pub(crate) const PATH_DRAWS: &[u8] = twin_probe!("path_draws");
 
 const WORKGROUP_SIZE: u32 = 64;
 
@@ -50,6 +52,7 @@ pub(crate) fn run_probe(
     inputs: &[[f32; 4]],
     (inputs_per_case, outputs_per_case): (usize, usize),
 ) -> Result<Vec<[f32; 4]>, VulkanError> {
+    // A probe may read one shared vec4 after the cases (`interpolate_color.comp`).
     let cases = inputs.len() / inputs_per_case;
     let input = Buffer::host_with_data(
         context,

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use pointray_io::MemoryBudget;
-use pointray_surface::input_validation::prep_bytes_per_point;
 use pointray_surface::peak_memory::peak_rss;
+use pointray_surface::prep_memory::{PrepRoute, prep_route};
 use pointray_surface::streamed_prep::{prep_one_tile, prep_streamed};
 use pointray_surface::streamed_tiles::TileCount;
 use pointray_surface::tile_merge::{MergeSummary, merge_tile_files};
@@ -74,7 +74,8 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     let mut stream = args.columns.open_stream(points, memory)?;
-    if args.tiles.is_none() && fits_in_memory(stream.len(), &settings, memory) {
+    let route = prep_route(stream.len(), &settings, stream.attribute_bytes_per_point(), memory);
+    if args.tiles.is_none() && route == PrepRoute::InMemory {
         drop(stream);
         return prep_in_memory(points, &args, &settings, &bar);
     }
@@ -87,12 +88,6 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     println!("prepped {points} points in {tiles} tiles within {budget} MiB{peak}");
     report_store(&merged, &args.output);
     Ok(())
-}
-
-/// Whether a single pass over the whole cloud (whose positions take 24 bytes a point
-/// before it starts) fits the budget.
-fn fits_in_memory(points: u64, settings: &PrepSettings, memory: MemoryBudget) -> bool {
-    memory.check(points, prep_bytes_per_point(settings) + 24, "points").is_ok()
 }
 
 fn prep_in_memory(

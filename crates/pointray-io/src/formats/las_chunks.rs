@@ -9,7 +9,7 @@ use las::{PointData, PointDataBuilder};
 
 use super::intensity::IntensityRange;
 use super::las::{batch_points, color_shift, las_error, open_reader, survive_decoder};
-use crate::{IoError, PointCloud};
+use crate::{AttributeBytes, IoError, PointCloud};
 
 /// What the first pass learns of the whole file's attributes.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -37,6 +37,18 @@ impl LasChunks {
 
     pub(crate) fn declared_points(&self) -> u64 {
         self.declared
+    }
+
+    /// The attributes the chunks may carry (intensities and classifications are dropped
+    /// later when the file never fills them).
+    pub(crate) fn attributes(&self) -> AttributeBytes {
+        let format = self.reader.header().point_format();
+        AttributeBytes {
+            colors: format.has_color,
+            intensities: true,
+            classifications: true,
+            ..Default::default()
+        }
     }
 
     /// Back to the first point, for the next pass.

@@ -167,3 +167,15 @@ fn lit_coloured_sphere_over_a_mirror_floor_matches_the_cpu() {
     assert!(psnr >= 45.0, "CPU and Vulkan differ: PSNR {psnr:.1} dB");
     assert_no_validation_messages(&renderer);
 }
+
+#[test]
+fn combined_buffers_colour_as_split_buffers_do() {
+    let Some(renderer) = renderer() else { return };
+    let scene = lit_on_floor(coloured_sphere());
+    let split = settings(96);
+    let combined = RenderSettings { buffer_layout: pointray_scene::BufferLayout::Combined, ..split };
+    let from_split = renderer.render(&scene, &split).expect("renders with split buffers");
+    let from_combined = renderer.render(&scene, &combined).expect("renders with combined buffers");
+    assert_eq!(from_combined.color, from_split.color, "the combined layout colours the points differently");
+    assert_no_validation_messages(&renderer);
+}

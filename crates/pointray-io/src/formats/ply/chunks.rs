@@ -13,7 +13,7 @@ use super::reader::{CheckedHeader, minimum_size, read_checked_header};
 use super::vertex::{
     Field, VertexLayout, VertexRecord, intensity_divisor, into_point_cloud_from, largest_intensity,
 };
-use crate::{IoError, PointCloud};
+use crate::{AttributeBytes, IoError, PointCloud};
 
 pub(crate) struct PlyChunks {
     path: PathBuf,
@@ -75,6 +75,19 @@ impl PlyChunks {
 
     pub(crate) fn declared_points(&self) -> u64 {
         self.count
+    }
+
+    /// The attributes the chunks carry.
+    pub(crate) fn attributes(&self) -> AttributeBytes {
+        let layout = &self.layout;
+        AttributeBytes {
+            normals: layout.has_normals,
+            colors: layout.color_unit.is_some(),
+            intensities: layout.intensity_unit.is_some(),
+            classifications: layout.has_classifications,
+            rings: layout.has_rings,
+            sensor_origins: layout.has_sensor_origins,
+        }
     }
 
     pub(crate) fn rewind(&mut self) -> Result<(), IoError> {
