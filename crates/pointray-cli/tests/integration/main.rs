@@ -13,6 +13,7 @@ mod intensity_material;
 mod large_coordinates;
 mod leftovers;
 mod outputs_spare_inputs;
+mod path_integrator_flags;
 mod prep_robustness_flags;
 mod radius_fidelity;
 mod scan_command;
