@@ -6,7 +6,7 @@ use clap::Args;
 use pointray_io::MemoryBudget;
 use pointray_scene::image_output::check_image_outputs;
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
-use pointray_scene::{AovSelection, RenderSetting, SceneFile};
+use pointray_scene::{AovSelection, Integrator, RenderSetting, SceneFile};
 use pointray_viewer::{Script, ViewerOptions, run_viewer, sequence_path};
 
 use crate::backend::BackendArgs;
@@ -55,6 +55,12 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
     settings.width = args.width.unwrap_or(settings.width);
     settings.height = args.height.unwrap_or(settings.height);
     settings.samples_per_pixel = args.spp.unwrap_or(settings.samples_per_pixel);
+    if settings.integrator != Integrator::Whitted {
+        // Windows trace with the Whitted pipeline; progressive path tracing in the viewer is
+        // yet to come.
+        println!("note: the viewer shows the Whitted integrator; `pointray render` path traces this scene");
+        settings.integrator = Integrator::Whitted;
+    }
     check_outputs(&args, &file.input_files())?;
     settings.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     let LoadedScene { scene, .. } = load(&file)?;
