@@ -72,7 +72,7 @@ layout(set = 0, binding = 3, std430) readonly buffer Lights { LightRecord lights
 struct PixelRecord {
     vec4 color;
     vec4 normal_depth;   // face-forwarded world normal, depth (negative = miss)
-    uvec4 ids;           // instance, primitive
+    uvec4 ids;           // instance, primitive; the path integrator's albedo in half floats in zw
 };
 layout(set = 0, binding = 4, std430) writeonly buffer Pixels { PixelRecord pixels[]; };
 // The display output: one sRGB8 RGBA pixel each (srgb_encode_rgba8), what a window shows.

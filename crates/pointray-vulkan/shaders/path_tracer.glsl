@@ -157,6 +157,8 @@ vec3 path_trace(Ray ray, RandomSequence random, bool record, uint pixel_index) {
         if (first) {
             record_aov(pixel_index, face_forward(normal, ray.direction), payload.t, object.object_index,
                        payload.primitive);
+            // The albedo AOV in half floats, where the Whitted path leaves zeros.
+            pixels[pixel_index].ids.zw = uvec2(packHalf2x16(base_color.rg), packHalf2x16(vec2(base_color.b, 0.0)));
         }
         radiance += throughput * object.emission_ior.rgb;
         if (depth + 1u >= settings.max_depth) {

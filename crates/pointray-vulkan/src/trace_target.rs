@@ -7,7 +7,8 @@ use std::sync::Arc;
 use ash::vk;
 use glam::Vec3;
 use gpu_allocator::MemoryLocation;
-use pointray_scene::{RenderSettings, RenderedImage};
+use pointray_kernels::packing::unpack_half2x16;
+use pointray_scene::{Integrator, RenderSettings, RenderedImage};
 
 use crate::buffer::Buffer;
 use crate::context::GpuContext;
@@ -44,6 +45,8 @@ impl PixelOutput {
 pub struct TraceTarget {
     output: PixelOutput,
     buffers: Option<TargetBuffers>,
+    /// The integrator of the last trace: the path integrator's AOVs carry the albedo.
+    integrator: Integrator,
 }
 
 /// The GPU side of a target, for one device and one image size.
@@ -64,7 +67,7 @@ pub(crate) struct TargetBuffers {
 
 impl TraceTarget {
     pub fn new(output: PixelOutput) -> Self {
-        Self { output, buffers: None }
+        Self { output, buffers: None, integrator: Integrator::Whitted }
     }
 
     pub fn output(&self) -> PixelOutput {
@@ -76,7 +79,8 @@ impl TraceTarget {
         match (&self.buffers, self.output) {
             (Some(buffers), PixelOutput::Aovs) => {
                 let pixels: Vec<PixelRecord> = bytemuck::pod_collect_to_vec(buffers.readback.read());
-                Ok(image_from_pixels(buffers.width, buffers.height, &pixels))
+                let with_albedo = self.integrator == Integrator::Path;
+                Ok(image_from_pixels(buffers.width, buffers.height, &pixels, with_albedo))
             }
             _ => Err(VulkanError::InvalidSettings("this target holds no traced image with AOVs".into())),
         }
@@ -109,6 +113,7 @@ impl TraceTarget {
         settings: &RenderSettings,
     ) -> Result<&TargetBuffers, VulkanError> {
         scene.check_buffers_for(settings)?;
+        self.integrator = pipeline.integrator;
         let buffers = self.buffers_for(context, pipeline, settings.width, settings.height)?;
         buffers.bind(scene);
         Ok(buffers)
@@ -268,7 +273,10 @@ impl Drop for TargetBuffers {
     }
 }
 
-fn image_from_pixels(width: u32, height: u32, pixels: &[PixelRecord]) -> RenderedImage {
+/// The image in `pixels`; `with_albedo` where the path integrator left each hit's albedo in
+/// half floats in `ids.zw` (path_tracer.glsl).
+fn image_from_pixels(width: u32, height: u32, pixels: &[PixelRecord], with_albedo: bool) -> RenderedImage {
+    let albedo = |p: &PixelRecord| unpack_half2x16(p.ids[2]).extend(unpack_half2x16(p.ids[3]).x);
     let hit = |p: &PixelRecord| p.normal_depth[3] >= 0.0;
     RenderedImage {
         width,
@@ -281,6 +289,7 @@ fn image_from_pixels(width: u32, height: u32, pixels: &[PixelRecord]) -> Rendere
             .collect(),
         instance_id: pixels.iter().map(|p| if hit(p) { p.ids[0] } else { RenderedImage::MISS }).collect(),
         primitive_id: pixels.iter().map(|p| if hit(p) { p.ids[1] } else { RenderedImage::MISS }).collect(),
-        albedo: None,
+        albedo: with_albedo
+            .then(|| pixels.iter().map(|p| if hit(p) { albedo(p) } else { Vec3::ZERO }).collect()),
     }
 }

@@ -111,6 +111,17 @@ fn gpu_and_cpu_path_tracing_agree_within_the_noise() {
     let spread = estimate(differences(&other_seed)).standard_error;
     let offset = estimate(differences(&gpu)).mean;
     assert!(offset.abs() <= 5.0 * spread, "mean GPU - CPU {offset:.5} beyond 5 x {spread:.5}");
+    // The albedo AOV: the CPU's in f32, the GPU's in half floats (a relative 2^-11).
+    let (cpu_albedo, gpu_albedo) =
+        (cpu.albedo.as_ref().unwrap(), gpu.albedo.as_ref().expect("the GPU's albedo"));
+    let albedo_agrees =
+        (0..cpu.pixel_count()).filter(|&i| cpu.instance_id[i] == gpu.instance_id[i]).all(|i| {
+            (cpu_albedo[i] - gpu_albedo[i]).abs().max_element()
+                <= 1e-3 * cpu_albedo[i].max_element().max(1e-3)
+        });
+    assert!(albedo_agrees, "the albedo AOVs differ beyond half precision");
+    let whitted = RenderSettings { integrator: Integrator::Whitted, ..settings };
+    assert_eq!(renderer.render(&scene, &whitted).expect("Whitted renders").albedo, None);
     let ids_agree = (0..cpu.pixel_count()).filter(|&i| cpu.instance_id[i] == gpu.instance_id[i]).count();
     assert!(
         ids_agree as f64 >= 0.99 * cpu.pixel_count() as f64,
