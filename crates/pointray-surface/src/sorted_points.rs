@@ -33,6 +33,11 @@ impl SortedPoints {
         self.count
     }
 
+    /// Bytes a record takes.
+    pub(crate) fn record_bytes(&self) -> usize {
+        self.layout.bytes()
+    }
+
     /// The points at sorted positions `range`, with their input indices.
     pub(crate) fn read_range(&self, range: Range<u64>) -> Result<(PointCloud, Vec<u32>), StreamError> {
         let size = self.layout.bytes() as u64;
@@ -41,14 +46,10 @@ impl SortedPoints {
         Ok(self.decode(bytes.chunks_exact(size as usize)))
     }
 
-    /// The points at the sorted `positions` (ascending), with their input indices.
-    pub(crate) fn read_positions(&self, positions: &[u64]) -> Result<(PointCloud, Vec<u32>), StreamError> {
-        let size = self.layout.bytes();
-        let mut bytes = vec![0u8; positions.len() * size];
-        for (record, &position) in bytes.chunks_exact_mut(size).zip(positions) {
-            self.file.read_exact_at(record, position * size as u64).map_err(|e| self.scratch(e))?;
-        }
-        Ok(self.decode(bytes.chunks_exact(size)))
+    /// The points of `records` (whole records, as `near` hands them out), with their input
+    /// indices.
+    pub(crate) fn decode_records(&self, records: &[u8]) -> (PointCloud, Vec<u32>) {
+        self.decode(records.chunks_exact(self.layout.bytes()))
     }
 
     fn decode<'a>(&self, records: impl Iterator<Item = &'a [u8]>) -> (PointCloud, Vec<u32>) {
@@ -58,17 +59,17 @@ impl SortedPoints {
     }
 
     /// The points within the box from `min` to `max` (local coordinates), outside the
-    /// sorted positions `skip`, handed to `batch` with their sorted positions (ascending) at
-    /// most `batch_points` at a time.
+    /// sorted positions `skip`, handed to `batch` with their records (in sorted order), at
+    /// most `batch_points` at a time: whoever keeps some needs not read them again.
     pub(crate) fn near(
         &self,
         (min, max): (Vec3, Vec3),
         skip: &Range<u64>,
         batch_points: usize,
-        mut batch: impl FnMut(&[Vec3], &[u64]),
+        mut batch: impl FnMut(&[Vec3], &[u8]),
     ) -> Result<(), StreamError> {
         let size = self.layout.bytes();
-        let (mut points, mut positions) = (Vec::new(), Vec::new());
+        let (mut points, mut records) = (Vec::new(), Vec::new());
         let mut bytes = Vec::new();
         for (block, &(lo, hi)) in self.blocks.iter().enumerate() {
             if lo.cmpgt(max).any() || hi.cmplt(min).any() {
@@ -82,17 +83,17 @@ impl SortedPoints {
                 let (position, local) = (first + i as u64, (record_position(record) - self.offset).as_vec3());
                 if !skip.contains(&position) && local.cmpge(min).all() && local.cmple(max).all() {
                     points.push(local);
-                    positions.push(position);
+                    records.extend_from_slice(record);
                 }
             }
             if points.len() >= batch_points {
-                batch(&points, &positions);
+                batch(&points, &records);
                 points.clear();
-                positions.clear();
+                records.clear();
             }
         }
         if !points.is_empty() {
-            batch(&points, &positions);
+            batch(&points, &records);
         }
         Ok(())
     }
