@@ -7,13 +7,20 @@ use indicatif::{ProgressBar, ProgressStyle};
 use pointray_surface::{PrepProgress, Stage};
 
 /// Shows a bar per stage of a large cloud; small clouds finish before a bar would help.
+/// Keeps each finished stage's time, for the summary prep in tiles prints.
 #[derive(Default)]
 pub struct PrepBar {
     bar: Mutex<Option<ProgressBar>>,
+    times: Mutex<Vec<(Stage, Duration)>>,
 }
 
 impl PrepBar {
     const MIN_POINTS_FOR_BAR: u64 = 200_000;
+
+    /// Each finished stage and how long it took, in order.
+    pub fn stage_times(&self) -> Vec<(Stage, Duration)> {
+        self.times.lock().unwrap().clone()
+    }
 }
 
 impl PrepProgress for PrepBar {
@@ -35,7 +42,8 @@ impl PrepProgress for PrepBar {
         }
     }
 
-    fn stage_finished(&self, _stage: Stage, _elapsed: Duration) {
+    fn stage_finished(&self, stage: Stage, elapsed: Duration) {
+        self.times.lock().unwrap().push((stage, elapsed));
         if let Some(bar) = self.bar.lock().unwrap().take() {
             bar.finish_and_clear();
         }

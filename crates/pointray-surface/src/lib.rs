@@ -46,6 +46,7 @@ pub mod streamed_tiles;
 pub mod support_radius;
 pub mod tile_file;
 pub mod tile_merge;
+mod tile_spool;
 pub mod tiled_prep;
 pub mod uneven_sampling;
 pub mod wendland;

@@ -37,6 +37,11 @@ impl SortedPoints {
         self.count
     }
 
+    /// Bytes a record takes.
+    pub(crate) fn record_bytes(&self) -> usize {
+        self.layout.bytes()
+    }
+
     /// The points at sorted positions `range`, with their input indices.
     pub(crate) fn read_range(&self, range: Range<u64>) -> Result<(PointCloud, Vec<u32>), StreamError> {
         let size = self.layout.bytes() as u64;
@@ -45,14 +50,10 @@ impl SortedPoints {
         Ok(self.decode(bytes.chunks_exact(size as usize)))
     }
 
-    /// The points at the sorted `positions` (ascending), with their input indices.
-    pub(crate) fn read_positions(&self, positions: &[u64]) -> Result<(PointCloud, Vec<u32>), StreamError> {
-        let size = self.layout.bytes();
-        let mut bytes = vec![0u8; positions.len() * size];
-        for (record, &position) in bytes.chunks_exact_mut(size).zip(positions) {
-            self.file.read_exact_at(record, position * size as u64).map_err(|e| self.scratch(e))?;
-        }
-        Ok(self.decode(bytes.chunks_exact(size)))
+    /// The points of `records` (whole records, as `near` hands them out), with their input
+    /// indices.
+    pub(crate) fn decode_records(&self, records: &[u8]) -> (PointCloud, Vec<u32>) {
+        self.decode(records.chunks_exact(self.layout.bytes()))
     }
 
     fn decode<'a>(&self, records: impl Iterator<Item = &'a [u8]>) -> (PointCloud, Vec<u32>) {
@@ -62,15 +63,16 @@ impl SortedPoints {
     }
 
     /// The points within the box from `min` to `max` (local coordinates), outside the
-    /// sorted positions `skip`, handed to `batch` with their sorted positions (ascending) at
-    /// most about `batch_points` at a time. Blocks are read and filtered in parallel, a few
-    /// per thread at a time, so the memory held stays bounded.
+    /// sorted positions `skip`, handed to `batch` with their records (in sorted order), at
+    /// most about `batch_points` at a time: whoever keeps some needs not read them again.
+    /// Blocks are read and filtered in parallel, a few per thread at a time, so the memory
+    /// held stays bounded.
     pub(crate) fn near(
         &self,
         (min, max): (Vec3, Vec3),
         skip: &Range<u64>,
         batch_points: usize,
-        mut batch: impl FnMut(&[Vec3], &[u64]),
+        mut batch: impl FnMut(&[Vec3], &[u8]),
     ) -> Result<(), StreamError> {
         let meeting: Vec<usize> = (0..self.blocks.len())
             .filter(|&block| {
@@ -78,35 +80,35 @@ impl SortedPoints {
                 !(lo.cmpgt(max).any() || hi.cmplt(min).any())
             })
             .collect();
-        let (mut points, mut positions) = (Vec::new(), Vec::new());
+        let (mut points, mut records) = (Vec::new(), Vec::new());
         for group in meeting.chunks(BLOCKS_AT_A_TIME * rayon::current_num_threads()) {
-            let found: Vec<(Vec<Vec3>, Vec<u64>)> = group
+            let found: Vec<(Vec<Vec3>, Vec<u8>)> = group
                 .par_iter()
                 .map(|&block| self.block_points_within(block, (min, max), skip))
                 .collect::<Result<_, _>>()?;
-            for (block_points, block_positions) in found {
+            for (block_points, block_records) in found {
                 points.extend(block_points);
-                positions.extend(block_positions);
+                records.extend(block_records);
             }
             if points.len() >= batch_points {
-                batch(&points, &positions);
+                batch(&points, &records);
                 points.clear();
-                positions.clear();
+                records.clear();
             }
         }
         if !points.is_empty() {
-            batch(&points, &positions);
+            batch(&points, &records);
         }
         Ok(())
     }
 
-    /// The points of `block` within the box, outside `skip`, with their sorted positions.
+    /// The points of `block` within the box, outside `skip`, with their records.
     fn block_points_within(
         &self,
         block: usize,
         (min, max): (Vec3, Vec3),
         skip: &Range<u64>,
-    ) -> Result<(Vec<Vec3>, Vec<u64>), StreamError> {
+    ) -> Result<(Vec<Vec3>, Vec<u8>), StreamError> {
         let size = self.layout.bytes();
         let first = block as u64 * BLOCK_POINTS;
         let count = BLOCK_POINTS.min(self.count - first);
@@ -117,7 +119,7 @@ impl SortedPoints {
             let (position, local) = (first + i as u64, (record_position(record) - self.offset).as_vec3());
             if !skip.contains(&position) && local.cmpge(min).all() && local.cmple(max).all() {
                 found.0.push(local);
-                found.1.push(position);
+                found.1.extend_from_slice(record);
             }
         }
         Ok(found)

@@ -73,6 +73,12 @@ impl StreamBudget {
         points.saturating_mul(4) <= self.usable / 2
     }
 
+    /// What is left once the map from `points` input points to their patches is held
+    /// through the tiles' prep.
+    pub(crate) fn with_patch_map(self, points: u64) -> Self {
+        Self { usable: self.usable.saturating_sub(points.saturating_mul(4)), ..self }
+    }
+
     pub(crate) fn usable(&self) -> u64 {
         self.usable
     }

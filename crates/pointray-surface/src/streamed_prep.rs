@@ -5,7 +5,7 @@
 
 use std::collections::VecDeque;
 use std::ops::Range;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use pointray_io::temporaries::TemporaryFolder;
 use pointray_io::{MemoryBudget, PointStream};
@@ -16,7 +16,8 @@ use crate::stream_budget::MIN_TILE_POINTS;
 use crate::stream_error::StreamError;
 use crate::streamed_tiles::{StreamPlan, TileCount, TileOutcome};
 use crate::tile_file::write_tile_file;
-use crate::tile_merge::{MergeSummary, merge_ordered_tile_files};
+use crate::tile_merge::MergeSummary;
+use crate::tile_spool::TileSpool;
 
 /// Preps the whole of `stream` within `memory` and writes the store `output`. A tile whose
 /// halo would not fit is split in two (jobs of a fixed cut refuse instead).
@@ -31,15 +32,12 @@ pub fn prep_streamed(
     let plan = StreamPlan::new(stream, settings, (count, memory), scratch.path(), progress)?;
     progress.stage_started(Stage::PrepTiles, plan.points());
     let started = std::time::Instant::now();
-    let mut files: Vec<PathBuf> = Vec::new();
+    let mut spool = TileSpool::new(scratch.path(), plan.points(), (*settings, plan.frame.offset))?;
     let mut pending: VecDeque<Range<u64>> = plan.tile_ranges().iter().cloned().collect();
     while let Some(range) = pending.pop_front() {
         match plan.prep_range(settings, range.clone())? {
             TileOutcome::Prepped(tile) => {
-                let path = scratch.path().join(format!("tile-{}", files.len()));
-                // Numbered in order; a merge of one process's tiles takes them so.
-                write_tile_file(&path, tile, (files.len(), files.len() + 1), plan.points())?;
-                files.push(path);
+                spool.push(tile)?;
                 progress.advanced(range.end - range.start);
             }
             // A tile whose halo outgrew the budget is split in two along the curve.
@@ -54,7 +52,7 @@ pub fn prep_streamed(
         }
     }
     progress.stage_finished(Stage::PrepTiles, started.elapsed());
-    merge_ordered_tile_files(&files, output, memory, progress)
+    spool.write_store(output, progress)
 }
 
 /// Preps tile `index` of `count` of `stream` within `memory` and writes it alone to the

@@ -67,6 +67,7 @@ impl StreamPlan {
             return Err(prep_error(PrepError::TooLarge { problem }));
         }
         let tiles = tile_count(count, points, settings, &budget, &input)?;
+        let budget = budget.with_patch_map(points);
         let offset = (min + max) * 0.5;
         let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
         let frame =
@@ -128,15 +129,25 @@ impl StreamPlan {
         let core_points: Vec<Vec3> = core.positions.par_iter().map(|&p| (p - offset).as_vec3()).collect();
         let reaches = halo_reaches(&core_points, settings);
         let halo_test = HaloTest::new(&core_points, &reaches);
-        let mut positions = Vec::new();
-        self.sorted.near(halo_test.bounds, &range, self.budget.halo_batch_points(), |points, at| {
-            positions.extend(halo_test.reached(points).into_iter().map(|j| at[j as usize]));
+        let (mut halo_records, size) = (Vec::new(), self.sorted.record_bytes());
+        let mut halo_points = 0u64;
+        let capacity = self.budget.tile_capacity(settings);
+        self.sorted.near(halo_test.bounds, &range, self.budget.halo_batch_points(), |points, records| {
+            let reached = halo_test.reached(points);
+            halo_points += reached.len() as u64;
+            // Past the budget only the count matters.
+            if core.len() as u64 + halo_points <= capacity {
+                for j in reached {
+                    halo_records.extend_from_slice(&records[j as usize * size..(j as usize + 1) * size]);
+                }
+            }
         })?;
-        let points = core.len() as u64 + positions.len() as u64;
-        if points > self.budget.tile_capacity(settings) {
+        let points = core.len() as u64 + halo_points;
+        if points > capacity {
             return Ok(TileOutcome::OverBudget { points });
         }
-        let (halo, halo_inputs) = self.sorted.read_positions(&positions)?;
+        let (halo, halo_inputs) = self.sorted.decode_records(&halo_records);
+        drop(halo_records);
         // The halo in input order, as the in-memory tiles take it.
         let mut by_input: Vec<u32> = (0..halo_inputs.len() as u32).collect();
         by_input.sort_unstable_by_key(|&j| halo_inputs[j as usize]);
@@ -202,20 +213,21 @@ fn tile_count(
     input: &Path,
 ) -> Result<usize, StreamError> {
     let over = |problem: String| StreamError::OverBudget { path: input.to_path_buf(), problem };
+    if !budget.holds_patch_map(points) {
+        return Err(over(format!(
+            "{points} points: writing the store maps each to its patch (4 bytes a point), which \
+             the memory budget ({} MiB for the work) cannot hold",
+            budget.usable() >> 20
+        )));
+    }
+    let budget = budget.with_patch_map(points);
     let core = budget.core_capacity(settings);
     if core < MIN_TILE_POINTS {
         return Err(over(format!(
             "the memory budget ({} MiB for the work) cannot hold one tile of {MIN_TILE_POINTS} points \
              with its halo: give it at least {} MiB",
             budget.usable() >> 20,
-            ((MIN_TILE_POINTS * 3 * budget.tile_bytes_per_point(settings)) >> 20) + 25
-        )));
-    }
-    if !budget.holds_patch_map(points) {
-        return Err(over(format!(
-            "{points} points: writing the store maps each to its patch (4 bytes a point), which \
-             the memory budget ({} MiB for the work) cannot hold",
-            budget.usable() >> 20
+            ((MIN_TILE_POINTS * 3 * budget.tile_bytes_per_point(settings) + 4 * points) >> 20) + 25
         )));
     }
     let needed = points.div_ceil(core) as usize;

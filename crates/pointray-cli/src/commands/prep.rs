@@ -86,6 +86,9 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         peak_rss().map_or_else(String::new, |bytes| format!(" (peak resident memory {} KiB)", bytes >> 10));
     let (points, tiles, budget) = (merged.input_points, merged.tiles, memory.bytes >> 20);
     println!("prepped {points} points in {tiles} tiles within {budget} MiB{peak}");
+    for (stage, elapsed) in bar.stage_times() {
+        println!("  {:<22} {:>8.3} s", stage.name(), elapsed.as_secs_f64());
+    }
     report_store(&merged, &args.output);
     Ok(())
 }
