@@ -2,16 +2,19 @@
 //! bounded memory. Two passes: `survey` yields the positions alone and learns the whole
 //! file's attribute ranges (colour depth, intensity scale, whether classifications are
 //! filled), which scale the attributes of the chunks `read` yields afterwards exactly as a
-//! whole read of the file would. Binary PLY and LAS/LAZ are chunked; formats that cannot be
-//! (E57, text, raw sweeps, PCD, ascii PLY) are read whole when the budget holds them.
+//! whole read of the file would. Binary PLY, LAS/LAZ and raw sweeps (`.bin`, in the layout
+//! their name implies) are chunked; formats that cannot be (E57, text, PCD, ascii PLY, raw
+//! sweeps given other columns) are read whole when the budget holds them.
 
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
 use crate::formats::detect::PointFormat;
+use crate::formats::intensity::IntensityRange;
 use crate::formats::las_chunks::{LasChunks, LasRanges};
 use crate::formats::ply::chunks::PlyChunks;
+use crate::formats::raw_bin_chunks::RawBinChunks;
 use crate::formats::{ColumnSpec, FileFormat, detect_file_format, read_point_cloud_with};
 use crate::{IoError, MemoryBudget, PointCloud};
 
@@ -30,6 +33,7 @@ pub struct PointStream {
 enum Source {
     Ply(PlyChunks),
     Las(LasChunks),
+    RawBin(RawBinChunks),
     /// A cloud that could not be chunked, handed out in chunks from memory.
     Whole {
         cloud: PointCloud,
@@ -44,6 +48,7 @@ enum Ranges {
     None,
     Ply(f64),
     Las(LasRanges),
+    RawBin(IntensityRange),
 }
 
 impl PointStream {
@@ -56,6 +61,9 @@ impl PointStream {
             (FileFormat::Points(PointFormat::Las | PointFormat::Laz), None) => {
                 Some(Source::Las(LasChunks::open(path)?))
             }
+            (FileFormat::Points(PointFormat::RawBin), None) => {
+                Some(Source::RawBin(RawBinChunks::open(path)?))
+            }
             _ => None,
         };
         let source = match source {
@@ -65,6 +73,7 @@ impl PointStream {
         let points = match &source {
             Source::Ply(chunks) => chunks.declared_points(),
             Source::Las(chunks) => chunks.declared_points(),
+            Source::RawBin(chunks) => chunks.declared_points(),
             Source::Whole { cloud, .. } => cloud.len() as u64,
         };
         Ok(Self { path: path.to_path_buf(), source, points, ranges: None })
@@ -94,6 +103,8 @@ impl PointStream {
         match &self.source {
             Source::Ply(chunks) => chunks.attributes().per_point(),
             Source::Las(chunks) => chunks.attributes().per_point(),
+            // Intensities; a nuScenes sweep's rings too.
+            Source::RawBin(chunks) => chunks.attributes().per_point(),
             Source::Whole { cloud, .. } => cloud.attribute_bytes_per_point(),
         }
     }
@@ -102,6 +113,8 @@ impl PointStream {
     pub fn sensor_position(&self) -> Option<DVec3> {
         match &self.source {
             Source::Whole { cloud, .. } => cloud.sensor_position,
+            // A raw sweep's records are in the sensor's own frame.
+            Source::RawBin(_) => Some(DVec3::ZERO),
             Source::Ply(_) | Source::Las(_) => None,
         }
     }
@@ -143,6 +156,7 @@ impl PointStream {
         match self.source {
             Source::Ply(_) => Ranges::Ply(0.0),
             Source::Las(_) => Ranges::Las(LasRanges::default()),
+            Source::RawBin(_) => Ranges::RawBin(IntensityRange::default()),
             Source::Whole { .. } => Ranges::None,
         }
     }
@@ -151,6 +165,7 @@ impl PointStream {
         match &mut self.source {
             Source::Ply(chunks) => chunks.rewind(),
             Source::Las(chunks) => chunks.rewind(),
+            Source::RawBin(chunks) => chunks.rewind(),
             Source::Whole { next, .. } => {
                 *next = 0;
                 Ok(())
@@ -162,6 +177,7 @@ impl PointStream {
         match (&mut self.source, ranges) {
             (Source::Ply(chunks), Ranges::Ply(largest)) => chunks.next(max, largest, survey),
             (Source::Las(chunks), Ranges::Las(ranges)) => chunks.next(max, ranges, survey),
+            (Source::RawBin(chunks), Ranges::RawBin(range)) => chunks.next(max, range, survey),
             (Source::Whole { cloud, next }, _) => {
                 let start = *next;
                 let end = (start + max.max(1)).min(cloud.len());

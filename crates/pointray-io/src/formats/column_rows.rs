@@ -4,7 +4,7 @@
 use glam::{DVec3, Vec3};
 
 use super::columns::{Column, ColumnSpec};
-use super::intensity::normalise_intensities;
+use super::intensity::IntensityRange;
 use crate::PointCloud;
 
 /// Where each attribute sits in a record; looked up once, not per record.
@@ -85,10 +85,25 @@ impl ColumnRows {
     }
 
     pub fn into_point_cloud(self) -> Result<PointCloud, String> {
+        let mut range = IntensityRange::default();
+        self.include_intensities(&mut range);
+        self.into_point_cloud_scaled(&range)
+    }
+
+    /// Widens `range` by these records' intensities: a file read in chunks scales each
+    /// chunk by the whole file's range.
+    pub fn include_intensities(&self, range: &mut IntensityRange) {
+        self.intensities.iter().for_each(|&value| range.include(value));
+    }
+
+    /// The cloud, with intensities scaled as `range` (the whole file's) says.
+    pub fn into_point_cloud_scaled(self, range: &IntensityRange) -> Result<PointCloud, String> {
         let layout = &self.layout;
         let colors = if layout.color.is_some() { Some(colors_to_8_bit(&self.colors)?) } else { None };
+        let scale = layout.intensity.and(range.scale());
         Ok(PointCloud {
-            intensities: normalise_intensities(&self.intensities),
+            intensities: scale
+                .map(|scale| self.intensities.iter().map(|&value| scale.apply(value)).collect()),
             colors,
             normals: layout.normal.is_some().then_some(self.normals),
             rings: layout.ring.is_some().then_some(self.rings),

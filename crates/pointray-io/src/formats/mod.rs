@@ -5,13 +5,14 @@ pub mod columns;
 pub mod detect;
 mod dispatch;
 pub mod e57;
-mod intensity;
+pub(crate) mod intensity;
 pub mod las;
 pub(crate) mod las_chunks;
 pub mod obj;
 pub mod pcd;
 pub mod ply;
 pub mod raw_bin;
+pub(crate) mod raw_bin_chunks;
 pub mod xyz;
 
 pub use columns::ColumnSpec;

@@ -23,7 +23,7 @@ const MAX_PLAUSIBLE_RING: f32 = 1023.0;
 
 /// The two layouts a `.bin` sweep comes in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum SweepLayout {
+pub(crate) enum SweepLayout {
     Kitti,
     NuScenes,
 }
@@ -44,17 +44,22 @@ impl SweepLayout {
         }
     }
 
-    fn spec(self) -> ColumnSpec {
+    pub(crate) fn spec(self) -> ColumnSpec {
         ColumnSpec::known(self.columns())
     }
 
+    /// Bytes a record takes.
+    pub(crate) fn record_bytes(self) -> usize {
+        self.columns().len() * FLOAT_BYTES
+    }
+
     /// The layout a file's name implies.
-    fn named_by(path: &Path) -> Self {
+    pub(crate) fn named_by(path: &Path) -> Self {
         let name = path.file_name().map(|name| name.to_string_lossy().to_ascii_lowercase());
         if name.is_some_and(|name| name.ends_with(".pcd.bin")) { Self::NuScenes } else { Self::Kitti }
     }
 
-    fn other(self) -> Self {
+    pub(crate) fn other(self) -> Self {
         match self {
             Self::Kitti => Self::NuScenes,
             Self::NuScenes => Self::Kitti,
@@ -86,26 +91,42 @@ pub fn read_raw_bin_from(
         }
         None => inferred_layout(bytes, origin)?.spec(),
     };
-    let mut rows = ColumnRows::new(&spec, bytes.len() / (spec.width() * FLOAT_BYTES));
+    let rows = column_rows(bytes, &spec, 0).map_err(|problem| IoError::malformed(origin, problem))?;
+    let cloud = rows.into_point_cloud().map_err(|problem| IoError::malformed(origin, problem))?;
+    Ok(PointCloud { sensor_position: Some(glam::DVec3::ZERO), ..cloud })
+}
+
+/// The records of `bytes` (whole records of `spec`, the first numbered `first`) gathered.
+pub(crate) fn column_rows(bytes: &[u8], spec: &ColumnSpec, first: u64) -> Result<ColumnRows, String> {
+    let mut rows = ColumnRows::new(spec, bytes.len() / (spec.width() * FLOAT_BYTES));
     let mut values = vec![0.0; spec.width()];
     for (index, record) in bytes.chunks_exact(spec.width() * FLOAT_BYTES).enumerate() {
         for (value, float) in values.iter_mut().zip(floats(record)) {
             *value = f64::from(float);
         }
-        rows.push(&values)
-            .map_err(|problem| IoError::malformed(origin, format!("point {index}: {problem}")))?;
+        rows.push(&values).map_err(|problem| format!("point {}: {problem}", first + index as u64))?;
     }
-    let cloud = rows.into_point_cloud().map_err(|problem| IoError::malformed(origin, problem))?;
-    Ok(PointCloud { sensor_position: Some(glam::DVec3::ZERO), ..cloud })
+    Ok(rows)
 }
 
 /// The layout the name implies, if the data fits it; otherwise an error saying what each
 /// layout makes of the data.
 fn inferred_layout(bytes: &[u8], origin: &Path) -> Result<SweepLayout, IoError> {
     let named = SweepLayout::named_by(origin);
-    let Err(named_problem) = plausible(bytes, named) else { return Ok(named) };
+    let Err(named_problem) = plausible(bytes, named, 0) else { return Ok(named) };
+    Err(misread(origin, named, named_problem, plausible(bytes, named.other(), 0)))
+}
+
+/// The error for a sweep that does not read as the layout its name implies, saying what
+/// the other layout makes of it.
+pub(crate) fn misread(
+    origin: &Path,
+    named: SweepLayout,
+    named_problem: String,
+    as_other: Result<(), String>,
+) -> IoError {
     let other = named.other();
-    let suggestion = match plausible(bytes, other) {
+    let suggestion = match as_other {
         Ok(()) => format!("it does read as {}", other.describe()),
         Err(other_problem) => format!("nor as {}: {other_problem}", other.describe()),
     };
@@ -114,15 +135,17 @@ fn inferred_layout(bytes: &[u8], origin: &Path) -> Result<SweepLayout, IoError> 
          (--columns, or `columns` in a scene), e.g. x,y,z,intensity or x,y,z,intensity,ring",
         named.describe()
     );
-    Err(IoError::malformed(origin, problem))
+    IoError::malformed(origin, problem)
 }
 
-/// Whether every record makes sense in `layout`; the first that does not is the error.
-fn plausible(bytes: &[u8], layout: SweepLayout) -> Result<(), String> {
+/// Whether every record of `bytes` makes sense in `layout` (the first record numbered
+/// `first`); the first that does not is the error.
+pub(crate) fn plausible(bytes: &[u8], layout: SweepLayout, first: u64) -> Result<(), String> {
     let width = layout.columns().len();
     whole_records(bytes.len(), width)?;
     let mut values = [0.0f32; 5];
     for (index, record) in bytes.chunks_exact(width * FLOAT_BYTES).enumerate() {
+        let index = first + index as u64;
         values.iter_mut().zip(floats(record)).for_each(|(value, float)| *value = float);
         let problem = if !values[..3].iter().all(|c| c.is_finite()) {
             "a non-finite coordinate"
@@ -140,7 +163,7 @@ fn plausible(bytes: &[u8], layout: SweepLayout) -> Result<(), String> {
     Ok(())
 }
 
-fn whole_records(length: usize, width: usize) -> Result<(), String> {
+pub(crate) fn whole_records(length: usize, width: usize) -> Result<(), String> {
     let record_bytes = width * FLOAT_BYTES;
     if length.is_multiple_of(record_bytes) {
         Ok(())

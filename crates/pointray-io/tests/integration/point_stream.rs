@@ -155,3 +155,59 @@ fn text_is_read_whole_within_the_budget_and_refused_beyond_it() {
     let error = PointStream::open(&path, None, small).err().expect("over the budget").to_string();
     assert!(error.contains("cloud.xyz") && error.contains("cannot be read in chunks"), "{error}");
 }
+
+/// A raw sweep of `count` records of `width` float32: positions, an 8-bit intensity and,
+/// for width 5, a ring.
+fn write_sweep(path: &Path, count: usize, width: usize) -> Vec<f32> {
+    let values: Vec<f32> = (0..count)
+        .flat_map(|i| {
+            let record =
+                [i as f32 * 0.25, (i % 11) as f32, 2.0 + (i % 5) as f32, (i % 256) as f32, (i % 32) as f32];
+            record.into_iter().take(width)
+        })
+        .collect();
+    std::fs::write(path, le_bytes(&values)).unwrap();
+    values
+}
+
+#[test]
+fn raw_sweeps_in_chunks_read_as_a_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, width) in [("sweep.bin", 4), ("sweep.pcd.bin", 5)] {
+        let path = dir.path().join(name);
+        write_sweep(&path, 1000, width);
+        let whole = read_point_cloud(&path).unwrap();
+        let stream = PointStream::open(&path, None, PLENTY).unwrap();
+        assert_eq!(stream.sensor_position(), Some(DVec3::ZERO), "{name}: records are in the sensor's frame");
+        let chunks = chunked(&path, 64);
+        assert_eq!(chunks.positions, whole.positions, "{name}");
+        assert_eq!(chunks.intensities, whole.intensities, "{name}: scaled by the whole file's range");
+        assert_eq!(chunks.rings, whole.rings, "{name}");
+        assert_eq!(whole.rings.is_some(), width == 5);
+    }
+}
+
+#[test]
+fn a_raw_sweep_that_misreads_is_refused_as_a_whole_read_refuses_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let whole_error = |path: &Path| read_point_cloud(path).unwrap_err().to_string();
+    // Five floats a point under a KITTI name: not whole records of four.
+    let uneven = dir.path().join("uneven.bin");
+    write_sweep(&uneven, 999, 5);
+    let error = PointStream::open(&uneven, None, PLENTY).err().expect("refused").to_string();
+    assert_eq!(error, whole_error(&uneven));
+    assert!(error.contains("uneven.bin") && error.contains("not a multiple of 16"), "{error}");
+    // A negative intensity far into the file, past the first chunks.
+    let late = dir.path().join("late.bin");
+    let mut values = write_sweep(&late, 1000, 4);
+    values[900 * 4 + 3] = -1.0;
+    std::fs::write(&late, le_bytes(&values)).unwrap();
+    let mut stream = PointStream::open(&late, None, PLENTY).unwrap();
+    let error = stream.survey(64, |_| Ok::<(), IoError>(())).unwrap_err().to_string();
+    assert_eq!(error, whole_error(&late));
+    assert!(error.contains("point 900 has a negative or non-finite intensity"), "{error}");
+}
+
+fn le_bytes(values: &[f32]) -> Vec<u8> {
+    values.iter().flat_map(|value| value.to_le_bytes()).collect()
+}
