@@ -9,6 +9,8 @@ use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
 
+use crate::scan_noise::range_noise;
+
 /// More distinct sensor positions than this is a moving sensor, not a set of stations: the
 /// lines of one station would hold a handful of points, so the structure is not used.
 const MAX_STATIONS: usize = 1024;
@@ -48,7 +50,18 @@ pub struct ScanLines {
     pub azimuth: Vec<f32>,
     /// Per point: its station's position.
     pub sensor: Vec<Vec3>,
+    /// The standard deviation of the range noise, in scene units, measured along the lines
+    /// (`scan_noise`), and never below `MIN_RANGE_NOISE`.
+    pub range_noise: f32,
 }
+
+/// Near the poles of a station's sphere an angle spans ever more azimuth; beyond this cosine
+/// of the elevation (about 87°) it is taken to span no more.
+const MIN_AZIMUTH_COSINE: f32 = 0.05;
+
+/// The least range noise assumed: returns are quantised (a millimetre for most sensors) and
+/// a perfect simulated scan must still tolerate rounding.
+const MIN_RANGE_NOISE: f32 = 0.001;
 
 impl ScanLines {
     /// The structure of `points` seen from `sensors` (one per point, local coordinates), on
@@ -64,7 +77,8 @@ impl ScanLines {
         };
         let azimuth: Vec<f32> = offsets.iter().map(|d| d.y.atan2(d.x)).collect();
         let (lines, line_of) = group_lines(&offsets, &station_of, &rings, &azimuth);
-        Some(Self { lines, line_of, azimuth, sensor })
+        let range_noise = range_noise(&lines, &offsets, &azimuth).max(MIN_RANGE_NOISE);
+        Some(Self { lines, line_of, azimuth, sensor, range_noise })
     }
 
     /// The lines above and below point `i`'s, and theirs above and below: up to four.
@@ -77,6 +91,35 @@ impl ScanLines {
             .into_iter()
             .flatten()
             .map(|l| &self.lines[l as usize])
+    }
+
+    /// The returns of point `i`'s station seen within `angle` (radians) of it in elevation and
+    /// in azimuth: those whose rays may pass through a support of that angular size around it.
+    pub fn returns_near_ray(&self, i: usize, angle: f32) -> Vec<u32> {
+        let own = self.line_of[i];
+        let elevation = self.lines[own as usize].elevation;
+        let azimuth_reach = angle / elevation.cos().max(MIN_AZIMUTH_COSINE);
+        let within = |l: &u32| (self.lines[*l as usize].elevation - elevation).abs() <= angle;
+        let walk = |up: bool| {
+            std::iter::successors(Some(own), move |&l| {
+                let line = &self.lines[l as usize];
+                if up { line.above } else { line.below }
+            })
+            .skip(1)
+            .take_while(within)
+        };
+        let lines = std::iter::once(own).chain(walk(true)).chain(walk(false));
+        let azimuth = self.azimuth[i];
+        lines
+            .flat_map(|l| {
+                let members = &self.lines[l as usize].members;
+                let first = members.partition_point(|&m| self.azimuth[m as usize] < azimuth - azimuth_reach);
+                members[first..]
+                    .iter()
+                    .copied()
+                    .take_while(move |&m| self.azimuth[m as usize] <= azimuth + azimuth_reach)
+            })
+            .collect()
     }
 
     /// The azimuth step along point `i`'s line, radians, when the line has one.

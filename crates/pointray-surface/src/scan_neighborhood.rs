@@ -2,7 +2,7 @@
 //! the two lines above and below, so that no support comes from its own line alone; then only
 //! those that agree with one surface through the point.
 
-use glam::{DMat3, Vec3};
+use glam::{DMat3, DVec3, Vec3};
 
 use crate::normals::smallest_eigenvector;
 use crate::scan_lines::{ScanLine, ScanLines};
@@ -22,12 +22,12 @@ const MAX_WINDOW: usize = 16;
 /// steeply out of the point's tangent plane (about 6°): gently curved bodies stay in, the foot
 /// of a wall and the range jump from a car's edge to the wall behind it do not. Looser, a plane
 /// tilted halfway between the ground and a wall would take in the returns of both.
-const MAX_RISE: f32 = 0.1;
+pub(crate) const MAX_RISE: f32 = 0.1;
 
-/// Range noise, as a fraction of the range: a neighbour may lie this much further out of the
-/// plane than `MAX_RISE` allows. Automotive sensors measure to 2 to 3 cm, so on a wall 7 m away
-/// two returns 4 cm apart can differ by as much out of the plane as along it.
-const RANGE_NOISE_FRACTION: f32 = 0.005;
+/// A neighbour may lie this many standard deviations of the scan's range noise further out
+/// of the plane than `MAX_RISE` allows, the noise projected on the plane's normal: along the
+/// ray it moves a return fully out of a wall seen face-on, and hardly out of the road.
+const NOISE_SIGMAS: f32 = 3.5;
 
 /// Returns on other lines count only this many azimuth steps of the point's own line away
 /// from it when they seed a plane: where a line has no return near the point's azimuth (out of
@@ -120,9 +120,9 @@ fn bracketing<'a>(line: &'a ScanLine, scan: &ScanLines, azimuth: f32) -> impl It
 }
 
 /// The neighbourhood of point `i` among `candidates`: of the planes through the point, one
-/// seed along its line and one across, the one that most seeds lie near (a small RANSAC: a
-/// wall's returns must not tilt the ground at its foot); then the window's returns that agree
-/// with it, and the plane their directions from the point lie closest to.
+/// seed along its line and one across, the one that most of the window's returns lie near (a
+/// small RANSAC: a wall's returns must not tilt the ground at its foot); then the window's
+/// returns that agree with it, and the plane that fits them.
 pub fn agreeing_neighborhood(
     points: &[Vec3],
     scan: &ScanLines,
@@ -133,16 +133,17 @@ pub fn agreeing_neighborhood(
     let line = scan.line_of[i];
     let scale = candidates.across.iter().map(|&j| offset(j).length()).fold(f32::INFINITY, f32::min);
     let scale = if scale.is_finite() { scale } else { 0.0 };
-    let noise = RANGE_NOISE_FRACTION * points[i].distance(scan.sensor[i]);
-    let slope = |offset: Vec3, normal: Vec3| slope(offset, normal, scale, noise);
+    let ray = (points[i] - scan.sensor[i]).normalize_or_zero();
+    let noise = NOISE_SIGMAS * scan.range_noise;
+    let slope = |offset: Vec3, normal: Vec3| slope(offset, normal, scale, noise * ray.dot(normal).abs());
     let agreeing = |normal: Vec3| -> Vec<u32> {
         candidates.window.iter().copied().filter(|&j| slope(offset(j), normal) <= MAX_RISE).collect()
     };
-    let seeds: Vec<Vec3> = candidates.along.iter().chain(&candidates.across).map(|&j| offset(j)).collect();
-    // Most agreeing seeds first, then the flattest fit among them.
+    let window: Vec<Vec3> = candidates.window.iter().map(|&j| offset(j)).collect();
+    // The most returns near the plane, each counting less the further it rises out of it.
     let score = |normal: Vec3| {
-        let slopes = seeds.iter().map(|&d| slope(d, normal)).filter(|&s| s <= MAX_RISE);
-        slopes.fold(0.0f32, |score, s| score + 1.0 - s)
+        let slopes = window.iter().map(|&d| slope(d, normal)).filter(|&s| s <= MAX_RISE);
+        slopes.fold(0.0f32, |score, s| score + 1.0 - s / MAX_RISE)
     };
     let along: Vec<Vec3> = candidates.along.iter().map(|&j| offset(j)).collect();
     let across: Vec<Vec3> = candidates.across.iter().map(|&j| offset(j)).collect();
@@ -185,24 +186,32 @@ fn slope(offset: Vec3, normal: Vec3, scale: f32, noise: f32) -> f32 {
     rise / run.max(0.5 * scale).max(f32::MIN_POSITIVE)
 }
 
-/// The normal of the plane through point `i` that the directions to `members` lie closest
-/// to: the least eigenvector of their scatter. Directions rather than offsets, so that the
-/// next line, metres away, does not outweigh the returns along the line (with offsets, one
-/// return a little off the plane out there would tilt it); but a direction to a return
-/// nearer than `scale` (the nearest return on another line) weighs only its share of it,
-/// since the range noise turns the direction to a return a few centimetres away at random.
-/// +z when the members leave it undefined.
+/// The normal of the plane that fits point `i` and `members`: the least eigenvector of their
+/// weighted scatter about their weighted mean. Each return weighs as its direction from the
+/// point would, `1 / distance²`, so that the next line, metres away, does not outweigh the
+/// returns along the line; but a return nearer than `scale` (the nearest return on another
+/// line) weighs only its share of that, since the range noise moves a return a few centimetres
+/// away at random. About the mean, not the point: the point's own noise must not tilt the
+/// plane. +z when the members leave it undefined.
 fn plane_normal(points: &[Vec3], i: usize, members: &[u32], scale: f32) -> Vec3 {
     let scale = f64::from(scale);
-    let scatter = members
+    let weighted: Vec<(DVec3, f64)> = members
         .iter()
         .filter_map(|&j| {
             let offset = (points[j as usize] - points[i]).as_dvec3();
             let length = offset.length();
             let weight = if scale > 0.0 { (length / scale).min(1.0) } else { 1.0 };
-            (length > 0.0).then(|| offset / length * weight.sqrt())
+            (length > 0.0).then(|| (offset, weight / (length * length)))
         })
-        .fold(DMat3::ZERO, |scatter, u| scatter + DMat3::from_cols(u * u.x, u * u.y, u * u.z));
+        .collect();
+    let own_weight = weighted.iter().map(|&(_, w)| w).fold(0.0, f64::max);
+    let total: f64 = own_weight + weighted.iter().map(|&(_, w)| w).sum::<f64>();
+    let mean = weighted.iter().map(|&(d, w)| d * w).sum::<DVec3>() / total;
+    let spread = |d: DVec3, w: f64| {
+        let c = d - mean;
+        DMat3::from_cols(c * c.x, c * c.y, c * c.z) * w
+    };
+    let scatter = weighted.iter().fold(spread(DVec3::ZERO, own_weight), |s, &(d, w)| s + spread(d, w));
     let normal = smallest_eigenvector(scatter);
     if normal.is_finite() && normal.length_squared() > 0.5 { normal.as_vec3() } else { Vec3::Z }
 }

@@ -9,8 +9,9 @@ use rayon::prelude::*;
 
 use crate::quadratic_fit::{FitKind, PatchFit};
 use crate::scan_edges::{Silhouette, silhouettes};
+use crate::scan_free_space::Ellipse;
 use crate::scan_lines::ScanLines;
-use crate::scan_neighborhood::{ScanNeighborhood, agreeing_neighborhood, candidates};
+use crate::scan_neighborhood::{MAX_RISE, ScanNeighborhood, agreeing_neighborhood, candidates};
 
 /// Each radius is this multiple of the spacing to the next return on its axis: half the
 /// spacing meets the neighbour's patch, and the rest covers the corners of the cell between
@@ -58,6 +59,15 @@ pub struct ScanPatch {
     pub on_surface: bool,
 }
 
+impl ScanPatch {
+    /// A plane's patch over `ellipse`.
+    fn over_surface(ellipse: Ellipse) -> Self {
+        let frame = PackedTangentFrame::new(ellipse.normal, ellipse.major);
+        let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Plane };
+        Self { normal: ellipse.normal, frame, radii: ellipse.radii, fit, on_surface: true }
+    }
+}
+
 /// Every point's patch, in parallel.
 pub fn scan_patches(points: &[Vec3], scan: &ScanLines) -> Vec<ScanPatch> {
     (0..points.len()).into_par_iter().with_min_len(1024).map(|i| scan_patch(points, scan, i)).collect()
@@ -69,7 +79,9 @@ fn scan_patch(points: &[Vec3], scan: &ScanLines, i: usize) -> ScanPatch {
     let toward_sensor = (scan.sensor[i] - points[i]).normalize_or(Vec3::Z);
     let seen_face_on = neighborhood.normal.dot(toward_sensor).abs() >= EDGE_ON_COSINE;
     if neighborhood.crosses_lines && neighborhood.members.len() >= 3 && seen_face_on {
-        surface_patch(points, scan, i, &neighborhood, toward_sensor)
+        let ellipse = surface_patch(points, scan, i, &neighborhood, toward_sensor);
+        let cut = ellipse.cut_by_passing_rays(points, scan, i, &neighborhood.members, MAX_RISE);
+        ScanPatch::over_surface(cut)
     } else {
         footprint_patch(points, scan, i, toward_sensor)
     }
@@ -77,15 +89,15 @@ fn scan_patch(points: &[Vec3], scan: &ScanLines, i: usize) -> ScanPatch {
 
 /// A patch over the surface its neighbours agree on: the plane through the return that fits
 /// them, over an ellipse that reaches the next return along the line on one axis and the next
-/// line on the other. Through the return, not their centroid: its normal already averages their
-/// range noise, and the sensor's own ray then meets the patch where it met the surface.
+/// line on the other. Through the return, not their centroid, so that the sensor's own ray
+/// meets the patch where it met the surface.
 fn surface_patch(
     points: &[Vec3],
     scan: &ScanLines,
     i: usize,
     neighborhood: &ScanNeighborhood,
     toward_sensor: Vec3,
-) -> ScanPatch {
+) -> Ellipse {
     let normal = bridgeable(neighborhood.normal, toward_sensor);
     let along = along_line_direction(points, scan, i, &neighborhood.members, normal);
     let axes = TangentFrame { t1: along, t2: normal.cross(along), n: normal };
@@ -103,14 +115,12 @@ fn surface_patch(
     let across_spacing = reach(across_spacing, predicted_across, across_edge);
     let along_spacing = if along_spacing > 0.0 { along_spacing } else { across_spacing };
     let along_spacing = reach(along_spacing, predicted_along, along_edge);
-    let (major_axis, radii) = if along_spacing >= across_spacing {
+    let (major, radii) = if along_spacing >= across_spacing {
         (axes.t1, Vec2::new(along_spacing, across_spacing) * COVER)
     } else {
         (axes.t2, Vec2::new(across_spacing, along_spacing) * COVER)
     };
-    let frame = PackedTangentFrame::new(normal, major_axis);
-    let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Plane };
-    ScanPatch { normal, frame, radii, fit, on_surface: true }
+    Ellipse { centre: points[i], normal, major, radii }
 }
 
 /// `normal` facing the sensor, turned toward it where the sensor sees its plane more nearly
