@@ -140,14 +140,32 @@ pub fn agreeing_neighborhood(
         candidates.window.iter().copied().filter(|&j| slope(offset(j), normal) <= MAX_RISE).collect()
     };
     let window: Vec<Vec3> = candidates.window.iter().map(|&j| offset(j)).collect();
-    // The most returns near the plane, each counting less the further it rises out of it.
-    let score = |normal: Vec3| {
-        let slopes = window.iter().map(|&d| slope(d, normal)).filter(|&s| s <= MAX_RISE);
-        slopes.fold(0.0f32, |score, s| score + 1.0 - s / MAX_RISE)
+    // The most returns near the plane, each counting less the further it rises out of it;
+    // `None` as soon as the plane can no longer reach `to_beat`.
+    let score = |normal: Vec3, to_beat: f32| {
+        let mut score = 0.0f32;
+        for (k, &d) in window.iter().enumerate() {
+            let s = slope(d, normal);
+            if s <= MAX_RISE {
+                score += 1.0 - s / MAX_RISE;
+            }
+            let remaining = (window.len() - k - 1) as f32;
+            if score + remaining < to_beat {
+                return None;
+            }
+        }
+        Some(score)
     };
     let along: Vec<Vec3> = candidates.along.iter().map(|&j| offset(j)).collect();
     let across: Vec<Vec3> = candidates.across.iter().map(|&j| offset(j)).collect();
-    let best = plane_hypotheses(&along, &across).max_by(|&a, &b| score(a).total_cmp(&score(b)));
+    let mut best: Option<(Vec3, f32)> = None;
+    for normal in plane_hypotheses(&along, &across) {
+        let to_beat = best.map_or(f32::NEG_INFINITY, |(_, score)| score);
+        if let Some(score) = score(normal, to_beat).filter(|&score| score >= to_beat) {
+            best = Some((normal, score));
+        }
+    }
+    let best = best.map(|(normal, _)| normal);
     let mut members = best.map(agreeing).unwrap_or_default();
     let mut normal = plane_normal(points, i, &members, scale);
     let refined = agreeing(normal);
