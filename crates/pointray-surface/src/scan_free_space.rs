@@ -52,14 +52,16 @@ impl Ellipse {
         self.with_major_axis_longest()
     }
 
-    /// Whether the return at `end` lies on the ellipse's plane as a member would: rising out
-    /// of it at most `max_rise` over its distance along it, once the range noise is allowed.
+    /// Whether the return at `end` lies on the ellipse's plane as a member would: within the
+    /// ellipse's reach, rising out of the plane at most `max_rise` over its distance along it,
+    /// once the range noise is allowed. Farther out a gentle slope may still hide metres: a
+    /// wall far behind a pole's patch must cut it.
     fn holds(&self, origin: Vec3, end: Vec3, margin: f32, max_rise: f32) -> bool {
         let offset = end - self.centre;
         let noise = margin * (end - origin).normalize_or_zero().dot(self.normal).abs();
         let rise = (offset.dot(self.normal).abs() - noise).max(0.0);
         let run = (offset - offset.dot(self.normal) * self.normal).length();
-        rise <= max_rise * run
+        run <= self.radii.x && rise <= max_rise * run
     }
 
     /// Where the segment from `origin` to `end`, stopped `margin` short of `end`, passes
@@ -159,5 +161,7 @@ mod tests {
         let sensor = Vec3::new(0.0, 0.0, 10.0);
         assert!(ellipse.holds(sensor, Vec3::new(1.0, 0.0, 0.05), 0.0, 0.1));
         assert!(!ellipse.holds(sensor, Vec3::new(1.0, 0.0, -0.2), 0.0, 0.1));
+        // Beyond the ellipse's reach a gentle slope does not hold.
+        assert!(!ellipse.holds(sensor, Vec3::new(30.0, 0.0, -1.0), 0.0, 0.1));
     }
 }
