@@ -27,8 +27,10 @@ pub struct Ellipse {
 
 impl Ellipse {
     /// The ellipse of point `i`'s patch cut back by the rays of the returns around it that
-    /// pass through it in front of their return, skipping `members` (sorted) and any other
-    /// return that lies on its plane as members do (within `max_rise` of it).
+    /// pass through it in front of their return, skipping those of `members` (sorted) within
+    /// its reach and any other return that lies on its plane as members do (within `max_rise`
+    /// of it). Members beyond its reach count as any return: a narrow object's plane may take
+    /// in a wall far behind it, whose rays must still cut it.
     pub fn cut_by_passing_rays(
         mut self,
         points: &[Vec3],
@@ -42,7 +44,8 @@ impl Ellipse {
         let angle = (self.radii.x / range).min(1.0);
         for j in scan.returns_near_ray(i, angle) {
             let (origin, end) = (scan.sensor[j as usize], points[j as usize]);
-            if members.binary_search(&j).is_ok() || self.holds(origin, end, margin, max_rise) {
+            let member = members.binary_search(&j).is_ok() && self.reaches(end);
+            if member || self.holds(origin, end, margin, max_rise) {
                 continue;
             }
             if let Some(crossing) = self.crossing(origin, end, margin) {
@@ -60,8 +63,18 @@ impl Ellipse {
         let offset = end - self.centre;
         let noise = margin * (end - origin).normalize_or_zero().dot(self.normal).abs();
         let rise = (offset.dot(self.normal).abs() - noise).max(0.0);
-        let run = (offset - offset.dot(self.normal) * self.normal).length();
-        run <= self.radii.x && rise <= max_rise * run
+        self.reaches(end) && rise <= max_rise * self.run_to(end)
+    }
+
+    /// Whether `point` lies within the ellipse's larger radius of its centre along its plane.
+    fn reaches(&self, point: Vec3) -> bool {
+        self.run_to(point) <= self.radii.x
+    }
+
+    /// The distance from the centre to `point` along the plane.
+    fn run_to(&self, point: Vec3) -> f32 {
+        let offset = point - self.centre;
+        (offset - offset.dot(self.normal) * self.normal).length()
     }
 
     /// Where the segment from `origin` to `end`, stopped `margin` short of `end`, passes
