@@ -320,6 +320,7 @@ impl LightSpec {
                 )?,
                 color: checks::color("color", *color)?,
                 intensity: checks::non_negative("intensity", *intensity)?,
+                space_scale: space.scale as f32,
             },
             Self::Directional { direction, color, intensity } => Light::Directional {
                 direction: checks::nonzero_vec3("direction", *direction)?.normalize(),

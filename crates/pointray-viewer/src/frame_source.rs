@@ -238,7 +238,7 @@ mod tests {
     /// The demo seen from a quarter turn round, lit by two lights from the other side.
     fn moved(scene: &Scene) -> Scene {
         let lights = vec![
-            Light::Point { position: Vec3::new(-2.0, 3.0, -2.5), color: Vec3::ONE, intensity: 0.8 },
+            Light::point(Vec3::new(-2.0, 3.0, -2.5), Vec3::ONE, 0.8),
             Light::Directional { direction: Vec3::new(0.5, -1.0, 0.3), color: Vec3::ONE, intensity: 0.3 },
         ];
         Scene { camera: orbit_camera(&scene.camera, 1, 4, 360.0), lights, ..scene.clone() }

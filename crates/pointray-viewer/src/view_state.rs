@@ -78,8 +78,8 @@ fn turned(light: &Light, pivot: Vec3, turn: Quat) -> Light {
             color,
             intensity,
         },
-        Light::Point { position, color, intensity } => {
-            Light::Point { position: pivot + turn * (position - pivot), color, intensity }
+        Light::Point { position, color, intensity, space_scale } => {
+            Light::Point { position: pivot + turn * (position - pivot), color, intensity, space_scale }
         }
         Light::Directional { direction, color, intensity } => {
             Light::Directional { direction: turn * direction, color, intensity }
@@ -93,7 +93,7 @@ mod tests {
 
     #[test]
     fn turning_keeps_the_light_distance_and_changes_its_place() {
-        let light = Light::Point { position: Vec3::new(2.0, 3.0, 0.0), color: Vec3::ONE, intensity: 1.0 };
+        let light = Light::point(Vec3::new(2.0, 3.0, 0.0), Vec3::ONE, 1.0);
         let turn = Quat::from_axis_angle(Vec3::Y, 90f32.to_radians());
         let Light::Point { position, .. } = turned(&light, Vec3::ZERO, turn) else { panic!("kind changed") };
         assert!((position.length() - Vec3::new(2.0, 3.0, 0.0).length()).abs() < 1e-5);

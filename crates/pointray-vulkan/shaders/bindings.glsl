@@ -41,12 +41,13 @@ struct ObjectRecord {
 };
 
 // Whitted: position_or_direction.xyz = a point light's position (w = 0) or a directional
-// light's travel direction (w = 1); area lights come as points at their centres. The path
-// integrator reads the light as light_source.glsl's LightSource: kind in radiance.a,
-// position, edges and radius in the rest.
+// light's travel direction (w = 1), shining whitted_radiance; area lights come as points at
+// their centres. The path integrator reads the light as light_source.glsl's LightSource:
+// kind in radiance.a, position, edges and radius in the rest.
 struct LightRecord {
     vec4 position_or_direction;
-    vec4 radiance;      // rgb = colour * intensity, a = LIGHT_* of light_source.glsl
+    vec4 whitted_radiance; // rgb = colour * intensity, with no falloff
+    vec4 radiance;      // rgb = LightSource.radiance, a = LIGHT_* of light_source.glsl
     vec4 origin_radius; // xyz = LightSource.position, w = LightSource.radius
     vec4 edge_u;        // xyz = LightSource.edge_u
     vec4 edge_v;        // xyz = LightSource.edge_v

@@ -79,6 +79,7 @@ impl ObjectRecord {
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub(crate) struct LightRecord {
     position_or_direction: [f32; 4],
+    whitted_radiance: [f32; 4],
     radiance: [f32; 4],
     origin_radius: [f32; 4],
     edge_u: [f32; 4],
@@ -93,10 +94,10 @@ impl From<&Light> for LightRecord {
             WhittedLight::Directional { direction, color, intensity } => (direction, 1.0, color, intensity),
         };
         let source = light.source();
-        let radiance = color * intensity;
         Self {
             position_or_direction: [place.x, place.y, place.z, kind],
-            radiance: vec4(radiance, source.kind as f32),
+            whitted_radiance: vec4(color * intensity, 0.0),
+            radiance: vec4(source.radiance, source.kind as f32),
             origin_radius: vec4(source.position, source.radius),
             edge_u: vec4(source.edge_u, 0.0),
             edge_v: vec4(source.edge_v, 0.0),
@@ -280,6 +281,7 @@ mod tests {
             "LightRecord",
             &[
                 ("position_or_direction", offset_of!(LightRecord, position_or_direction)),
+                ("whitted_radiance", offset_of!(LightRecord, whitted_radiance)),
                 ("radiance", offset_of!(LightRecord, radiance)),
                 ("origin_radius", offset_of!(LightRecord, origin_radius)),
                 ("edge_u", offset_of!(LightRecord, edge_u)),

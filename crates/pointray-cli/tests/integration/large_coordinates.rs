@@ -1,12 +1,14 @@
 //! Geo-referenced scenes (UTM coordinates: 10^5 to 10^7 from the origin) render as the same
 //! scene at the origin does: the loader recentres camera, lights and objects in f64 before
-//! anything goes to f32, for every backend.
+//! anything goes to f32, for every backend. A scene scaled far from the usual sizes renders
+//! as at its own scale, with the path integrator's point lights falling off over the file's
+//! distances.
 
 use std::path::Path;
 
 use glam::DVec3;
 use pointray_io::PointCloud;
-use pointray_scene::{LoadOptions, RenderSettings, RenderedImage, load_scene};
+use pointray_scene::{Integrator, LoadOptions, LoadedScene, RenderSettings, RenderedImage, load_scene};
 
 /// A UTM-sized position (easting, northing, height).
 const UTM: DVec3 = DVec3::new(640_000.0, 5_000_000.0, 100.0);
@@ -45,7 +47,11 @@ fn write_scene(dir: &Path, name: &str, points: &str, translate: DVec3, space: DV
 fn render(scene: &Path) -> RenderedImage {
     let loaded = load_scene(scene, &LoadOptions::default()).expect("the scene loads");
     let settings = RenderSettings { width: 96, height: 72, ..loaded.settings };
-    let mut image = pointray_cpu::render(&loaded.scene, &settings);
+    render_with(&loaded, &settings)
+}
+
+fn render_with(loaded: &LoadedScene, settings: &RenderSettings) -> RenderedImage {
+    let mut image = pointray_cpu::render(&loaded.scene, settings);
     image.scale_depth(loaded.space.scale as f32);
     image
 }
@@ -100,4 +106,46 @@ fn a_cloud_scaled_by_1e10_renders_as_at_its_own_scale() {
     let hit = (0..unit.pixel_count()).find(|&i| unit.depth[i].is_finite()).expect("something is hit");
     let ratio = scaled.depth[hit] / unit.depth[hit];
     assert!((ratio / 1e10 - 1.0).abs() < 1e-3, "depths are in the file's units: ratio {ratio}");
+}
+
+#[test]
+fn a_path_traced_point_light_lights_a_rescaled_scene_as_at_its_own_scale() {
+    let dir = tempfile::tempdir().unwrap();
+    pointray_io::formats::ply::write_point_cloud(&dir.path().join("local.ply"), &wavy_grid(DVec3::ZERO))
+        .unwrap();
+    // 2^24 takes the scene far beyond the usual sizes, so it renders rescaled; a point light
+    // 2^24 times farther needs 2^48 times the intensity to light it as before.
+    let scene = |name: &str, factor: f64| {
+        let at = |p: DVec3| format!("[{}, {}, {}]", factor * p.x, factor * p.y, factor * p.z);
+        let text = format!(
+            "background = [0.0, 0.0, 0.0]\n[camera]\nposition = {}\nlook_at = {}\n\n\
+             [[lights]]\ntype = \"point\"\nposition = {}\nintensity = {}\n\n\
+             [[objects]]\ntype = \"points\"\npath = \"local.ply\"\n[objects.transform]\nscale = {factor}\n",
+            at(DVec3::new(1.45, 2.1, 5.2)),
+            at(DVec3::new(1.45, 0.0, 1.45)),
+            at(DVec3::new(0.5, 4.0, 2.5)),
+            16.0 * factor * factor,
+        );
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let loaded = load_scene(&path, &LoadOptions::default()).expect("the scene loads");
+        let settings = RenderSettings {
+            width: 48,
+            height: 36,
+            integrator: Integrator::Path,
+            samples_per_pixel: 4,
+            max_depth: 2,
+            ..loaded.settings
+        };
+        (render_with(&loaded, &settings), loaded.space.scale)
+    };
+    let ((unit, unit_scale), (scaled, scaled_scale)) =
+        (scene("unit.toml", 1.0), scene("scaled.toml", 2f64.powi(24)));
+    assert_eq!(unit_scale, 1.0);
+    assert!(scaled_scale > 1e6, "the scaled scene renders rescaled, by {scaled_scale}");
+    let lit = unit.color.iter().filter(|c| c.max_element() > 0.05).count();
+    assert!(lit > unit.pixel_count() / 10, "the light lights the model: {lit} pixels");
+    let (colour, hits) = difference(&unit, &scaled);
+    assert!(hits < 0.01, "{:.1}% of pixels hit another object", 100.0 * hits);
+    assert!(colour < 0.02, "colours differ by {colour} on average");
 }

@@ -33,13 +33,13 @@ fn side_camera() -> Camera {
 }
 
 fn overhead_light() -> Vec<Light> {
-    vec![Light::Point { position: Vec3::new(0.3, 4.0, 0.2), color: Vec3::ONE, intensity: 1.0 }]
+    vec![Light::point(Vec3::new(0.3, 4.0, 0.2), Vec3::ONE, 1.0)]
 }
 
 /// A different point light and a directional one: the list changes length as well as place.
 fn two_low_lights() -> Vec<Light> {
     vec![
-        Light::Point { position: Vec3::new(2.5, 1.5, -1.0), color: Vec3::new(1.0, 0.8, 0.6), intensity: 0.9 },
+        Light::point(Vec3::new(2.5, 1.5, -1.0), Vec3::new(1.0, 0.8, 0.6), 0.9),
         Light::Directional { direction: Vec3::new(1.0, -1.0, 0.5), color: Vec3::ONE, intensity: 0.4 },
     ]
 }

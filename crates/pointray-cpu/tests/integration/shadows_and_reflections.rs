@@ -27,7 +27,7 @@ fn floor_and_sphere(floor_material: Material, lights: Vec<Light>) -> Scene {
 }
 
 fn point_light() -> Vec<Light> {
-    vec![Light::Point { position: LIGHT, color: Vec3::ONE, intensity: 1.0 }]
+    vec![Light::point(LIGHT, Vec3::ONE, 1.0)]
 }
 
 fn settings() -> RenderSettings {

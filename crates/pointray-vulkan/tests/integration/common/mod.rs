@@ -73,7 +73,7 @@ pub fn mesh(mesh: TriangleMesh) -> Geometry {
 }
 
 pub fn point_light(position: Vec3, intensity: f32) -> Light {
-    Light::Point { position, color: Vec3::ONE, intensity }
+    Light::point(position, Vec3::ONE, intensity)
 }
 
 /// A unit sphere at (0, 1, 0) on a floor at y = 0, lit from above and to the side.
