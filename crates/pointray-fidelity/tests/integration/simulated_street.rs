@@ -72,12 +72,12 @@ fn fidelity(scanned: &Scanned, view: ViewSpec, name: &str) -> FidelityMetrics {
     report.overall
 }
 
-/// The LiDAR bars, where these sweeps meet them: holes from above ≤ 2 % (0.5–1.0 %
-/// measured), false surface ≤ 1 % (0.06–0.16 %), mean normal error from above ≤ 5° (2.7–4.1°),
-/// ≥ 98 % consistent (99.4–99.9 %). Where they do not yet, where they stand (see
+/// The LiDAR bars, where these sweeps meet them: holes from above ≤ 2 % (0.6–1.0 %
+/// measured), false surface ≤ 1 % (0.05–0.14 %), mean normal error from above ≤ 5° (2.6–4.0°),
+/// ≥ 98 % consistent (99.7–99.96 %). Where they do not yet, where they stand (see
 /// bench/FIDELITY.md, LiDAR) with a margin of about a fifth, as a guard against regression:
-/// holes from the sensor (bar 0.5 %: 0.20–0.84 % measured) and the mean normal error from the
-/// sensor (bar 5°: 5.2–6.8°).
+/// holes from the sensor (bar 0.5 %: 0.22–0.87 % measured) and the mean normal error from the
+/// sensor (bar 5°: 5.2–6.7°).
 struct Bars {
     sensor_seen_holes: f64,
     above_seen_holes: f64,
