@@ -7,6 +7,7 @@ pub mod density_radius;
 mod duplicate_clusters;
 pub mod duplicates;
 pub mod geometry_range;
+mod halo_reach;
 pub mod input_validation;
 pub mod morton;
 pub mod neighbors;

@@ -9,13 +9,15 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
-use pointray_io::{MemoryBudget, PointStream};
+use pointray_io::{MemoryBudget, PointCloud, PointStream};
 use rayon::prelude::*;
 
 use crate::cloud_subset::{concatenated, subset};
+use crate::halo_reach::{CURVE_CONTEXT, halo_reaches, second_hop_reaches};
 use crate::morton::MortonGrid;
 use crate::out_of_core_sort::{SortPlan, sort_points};
 use crate::patch_tiles::even_ranges;
+use crate::point_records::record_key;
 use crate::prep::{TileContext, prep_in_context};
 use crate::prep_error::PrepError;
 use crate::prep_progress::{NoProgress, PrepProgress, Stage};
@@ -23,7 +25,7 @@ use crate::prep_settings::PrepSettings;
 use crate::sorted_points::SortedPoints;
 use crate::stream_budget::{MIN_TILE_POINTS, StreamBudget};
 use crate::stream_error::StreamError;
-use crate::tiled_prep::{HaloTest, TilePatches, halo_reaches, own_patches};
+use crate::tiled_prep::{HaloTest, TilePatches, own_patches};
 
 /// How many tiles to cut the cloud into.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -126,28 +128,43 @@ impl StreamPlan {
     pub fn prep_range(&self, settings: &PrepSettings, range: Range<u64>) -> Result<TileOutcome, StreamError> {
         let (core, core_inputs) = self.sorted.read_range(range.clone())?;
         let offset = self.frame.offset;
-        let core_points: Vec<Vec3> = core.positions.par_iter().map(|&p| (p - offset).as_vec3()).collect();
-        let reaches = halo_reaches(&core_points, settings);
-        let halo_test = HaloTest::new(&core_points, &reaches);
-        let (mut halo_records, size) = (Vec::new(), self.sorted.record_bytes());
-        let mut halo_points = 0u64;
+        let local = |cloud: &PointCloud| -> Vec<Vec3> {
+            cloud.positions.par_iter().map(|&p| (p - offset).as_vec3()).collect()
+        };
+        let (before, _) =
+            self.sorted.read_range(range.start.saturating_sub(CURVE_CONTEXT as u64)..range.start)?;
+        let (after, _) =
+            self.sorted.read_range(range.end..(range.end + CURVE_CONTEXT as u64).min(self.sorted.len()))?;
+        let curve: Vec<Vec3> = [local(&before), local(&core), local(&after)].concat();
+        let core_in_curve = before.len()..before.len() + core.len();
+        let reaches = halo_reaches(&curve, core_in_curve.clone(), settings);
+        let core_points = &curve[core_in_curve];
         let capacity = self.budget.tile_capacity(settings);
-        self.sorted.near(halo_test.bounds, &range, self.budget.halo_batch_points(), |points, records| {
-            let reached = halo_test.reached(points);
-            halo_points += reached.len() as u64;
-            // Past the budget only the count matters.
-            if core.len() as u64 + halo_points <= capacity {
-                for j in reached {
-                    halo_records.extend_from_slice(&records[j as usize * size..(j as usize + 1) * size]);
-                }
-            }
-        })?;
-        let points = core.len() as u64 + halo_points;
-        if points > capacity {
-            return Ok(TileOutcome::OverBudget { points });
+        let core_count = core.len() as u64;
+        let first_test = HaloTest::new(core_points, &reaches);
+        let (first_records, first_count) =
+            self.gather(&first_test, &range, capacity.saturating_sub(core_count), |_| true)?;
+        if core_count + first_count > capacity {
+            return Ok(TileOutcome::OverBudget { points: core_count + first_count });
         }
-        let (halo, halo_inputs) = self.sorted.decode_records(&halo_records);
-        drop(halo_records);
+        let (first, first_inputs) = self.sorted.decode_records(&first_records);
+        drop(first_records);
+        let first_points = local(&first);
+        let second_reaches = second_hop_reaches(core_points, &first_points, settings);
+        let second_test = HaloTest::new(&first_points, &second_reaches);
+        let mut taken = first_inputs.clone();
+        taken.sort_unstable();
+        let room = capacity.saturating_sub(core_count + first_count);
+        let (second_records, second_count) = self.gather(&second_test, &range, room, |record| {
+            taken.binary_search(&record_key(record).1).is_err()
+        })?;
+        if second_count > room {
+            return Ok(TileOutcome::OverBudget { points: core_count + first_count + second_count });
+        }
+        let (second, second_inputs) = self.sorted.decode_records(&second_records);
+        drop(second_records);
+        let halo = concatenated(first, second);
+        let halo_inputs: Vec<u32> = first_inputs.into_iter().chain(second_inputs).collect();
         // The halo in input order, as the in-memory tiles take it.
         let mut by_input: Vec<u32> = (0..halo_inputs.len() as u32).collect();
         by_input.sort_unstable_by_key(|&j| halo_inputs[j as usize]);
@@ -159,6 +176,28 @@ impl StreamPlan {
         let (patches, report) = prep_in_context(&cloud, settings, &self.frame, &NoProgress)
             .map_err(|source| StreamError::Prep { path: self.input.clone(), source })?;
         Ok(TileOutcome::Prepped(own_patches(patches, &report.patch_sources, &members, core_len as usize)))
+    }
+
+    /// The records of the points outside `core` (sorted positions) that `test` reaches and
+    /// `keep` keeps, and how many there are; past `room` points only the count goes on.
+    fn gather(
+        &self,
+        test: &HaloTest,
+        core: &Range<u64>,
+        room: u64,
+        keep: impl Fn(&[u8]) -> bool,
+    ) -> Result<(Vec<u8>, u64), StreamError> {
+        let (mut kept, mut count, size) = (Vec::new(), 0u64, self.sorted.record_bytes());
+        self.sorted.near(test.bounds, core, self.budget.halo_batch_points(), |points, records| {
+            let record = |j: u32| &records[j as usize * size..(j as usize + 1) * size];
+            for j in test.reached(points).into_iter().filter(|&j| keep(record(j))) {
+                count += 1;
+                if count <= room {
+                    kept.extend_from_slice(record(j));
+                }
+            }
+        })?;
+        Ok((kept, count))
     }
 
     /// Why `tile`, holding `points` with its halo, cannot be prepped.

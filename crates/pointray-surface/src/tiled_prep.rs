@@ -17,19 +17,14 @@ use pointray_kernels::NO_NEIGHBOR;
 use rayon::prelude::*;
 
 use crate::cloud_subset::subset;
+use crate::halo_reach::{CURVE_CONTEXT, halo_reaches, second_hop_reaches};
 use crate::morton::morton_order;
-use crate::neighbors::k_nearest;
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
 use crate::prep::{TileContext, duplicate_distance, prep_in_context, recentre};
 use crate::prep_error::PrepError;
 use crate::prep_progress::PrepProgress;
 use crate::prep_settings::PrepSettings;
-
-/// The halo reaches this many times the farthest neighbourhood of the tile's points: one
-/// reach for their neighbours, one more for the neighbours' own neighbourhoods (their
-/// normals steer orientation).
-const HALO_REACHES: f32 = 2.0;
 
 /// How a cloud is cut into tiles; the same input and count always give the same plan, so
 /// separate jobs agree on it.
@@ -81,38 +76,43 @@ pub fn prep_tile(
     }
     let core = plan.core(index);
     let local = |i: u32| (cloud.positions[i as usize] - plan.frame.offset).as_vec3();
-    let core_points: Vec<Vec3> = core.par_iter().map(|&i| local(i)).collect();
-    let reaches = halo_reaches(&core_points, settings);
-    let halo = halo_of(cloud.len(), core, &core_points, &reaches, local);
+    let range = &plan.tiles[index];
+    let context =
+        range.start.saturating_sub(CURVE_CONTEXT)..(range.end + CURVE_CONTEXT).min(plan.order.len());
+    let curve: Vec<Vec3> = plan.order[context.clone()].par_iter().map(|&i| local(i)).collect();
+    let core_in_curve = range.start - context.start..range.end - context.start;
+    let reaches = halo_reaches(&curve, core_in_curve.clone(), settings);
+    let core_points = &curve[core_in_curve];
+    let first = halo_of(cloud.len(), core, core_points, &reaches, &local);
+    let first_points: Vec<Vec3> = first.par_iter().map(|&i| local(i)).collect();
+    let second_reaches = second_hop_reaches(core_points, &first_points, settings);
+    let outside: Vec<u32> = core.iter().chain(&first).copied().collect();
+    let second = halo_of(cloud.len(), &outside, &first_points, &second_reaches, &local);
+    let mut halo: Vec<u32> = first.into_iter().chain(second).collect();
+    halo.sort_unstable();
     let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
     let (patches, report) = prep_in_context(&subset(cloud, &members), settings, &plan.frame, progress)?;
     Ok(own_patches(patches, &report.patch_sources, &members, core.len()))
 }
 
-/// How far each core point's halo reaches.
-pub(crate) fn halo_reaches(core_points: &[Vec3], settings: &PrepSettings) -> Vec<f32> {
-    let k = settings.k.max(settings.normal_k) as usize;
-    neighbourhood_radii(core_points, k).into_iter().map(|radius| HALO_REACHES * radius).collect()
-}
-
-/// The points outside `core` within its point `i`'s `reaches[i]` of it, for any `i`, in
-/// input order.
+/// The points not in `taken` within `reaches[i]` of `centres[i]`, for any `i`, in input
+/// order.
 fn halo_of(
     count: usize,
-    core: &[u32],
-    core_points: &[Vec3],
+    taken: &[u32],
+    centres: &[Vec3],
     reaches: &[f32],
-    local: impl Fn(u32) -> Vec3 + Sync,
+    local: &(impl Fn(u32) -> Vec3 + Sync),
 ) -> Vec<u32> {
-    let halo = HaloTest::new(core_points, reaches);
+    let halo = HaloTest::new(centres, reaches);
     let (min, max) = halo.bounds;
-    let mut in_core = vec![false; count];
-    core.iter().for_each(|&i| in_core[i as usize] = true);
+    let mut is_taken = vec![false; count];
+    taken.iter().for_each(|&i| is_taken[i as usize] = true);
     let candidates: Vec<u32> = (0..count as u32)
         .into_par_iter()
-        .filter(|&i| !in_core[i as usize] && local(i).cmpge(min).all() && local(i).cmple(max).all())
+        .filter(|&i| !is_taken[i as usize] && local(i).cmpge(min).all() && local(i).cmple(max).all())
         .collect();
-    drop(in_core);
+    drop(is_taken);
     let points: Vec<Vec3> = candidates.iter().map(|&i| local(i)).collect();
     halo.reached(&points).into_iter().map(|j| candidates[j as usize]).collect()
 }
@@ -162,19 +162,6 @@ impl<'a> HaloTest<'a> {
         reached.dedup();
         reached
     }
-}
-
-/// Each point's distance to its `k`-th nearest neighbour among `points` (an upper bound on
-/// its neighbourhood in the whole cloud); unbounded for fewer than `k + 1` points.
-fn neighbourhood_radii(points: &[Vec3], k: usize) -> Vec<f32> {
-    if points.len() <= k {
-        return vec![f32::INFINITY; points.len()];
-    }
-    let neighbors = k_nearest(points, k);
-    (0..points.len())
-        .into_par_iter()
-        .map(|i| neighbors.distances_of(i).iter().copied().fold(0.0, f32::max))
-        .collect()
 }
 
 fn bounds(points: &[Vec3]) -> (Vec3, Vec3) {

@@ -12,11 +12,17 @@ use pointray_surface::{NoProgress, PatchSet, PrepError, PrepSettings, ScanMode, 
 
 use crate::common::{height_field, jitter};
 
-/// A wavy, coloured sheet seen from above: normals toward the sensor depend only on each
-/// point's neighbourhood, as the fits and supports do.
+/// A wavy, coloured sheet seen from above, with a few stray returns floating over it: normals
+/// toward the sensor depend only on each point's neighbourhood, as the fits and supports do. A
+/// stray point's neighbours lie far off on the sheet, so its tile's halo must hold their
+/// neighbourhoods too.
 pub fn coloured_sheet() -> (PointCloud, PrepSettings) {
-    let mut cloud =
-        height_field(110, DVec3::new(500.0, -200.0, 30.0), |x, y| 0.2 * (3.0 * x).sin() * (2.0 * y).cos());
+    let shift = DVec3::new(500.0, -200.0, 30.0);
+    let mut cloud = height_field(110, shift, |x, y| 0.2 * (3.0 * x).sin() * (2.0 * y).cos());
+    for i in 0..12 {
+        let (x, y) = (1.6 * jitter(3 * i + 7), 1.6 * jitter(3 * i + 8));
+        cloud.positions.push(shift + DVec3::new(x, y, 0.5 + 0.3 * jitter(3 * i + 9)));
+    }
     let colors = (0..cloud.len()).map(|i| [(i % 251) as u8, (jitter(i) * 200.0 + 100.0) as u8, 40]).collect();
     cloud.colors = Some(colors);
     let options = PrepSettings {
