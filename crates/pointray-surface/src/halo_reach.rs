@@ -1,14 +1,17 @@
-//! How far a tile's halo reaches. It holds each tile point's neighbourhood (the first hop,
-//! around the tile's points) and the neighbourhoods of those neighbours outside the tile, whose
-//! normals steer orientation (the second hop, around the first hop's points). Each hop
-//! reaches as far as an upper bound on its centres' neighbourhood radii: any upper bound keeps
-//! tiled prep equal to a single pass, and a loose one only adds halo points. Bounding the second
-//! hop by the first hop's own neighbourhoods, not by twice the tile point's, keeps an isolated
-//! point (whose neighbours lie far off on a dense surface) from pulling a wide ball of that
-//! surface into the halo. The bound comes from the points' order along the Morton
-//! curve, in linear time, and from a k-d tree only where the curve jumps. Both look past the
-//! tile's ends along the curve: a few points cut off at a tile's end by the curve have their
-//! neighbours there, where the tile's other points lie far away.
+//! How far a tile's halo reaches: it holds each tile point's neighbourhood, so that every
+//! patch of the tile that depends only on its neighbourhood (position, fit, support, colour,
+//! a normal from the input or toward a sensor) is the one a single pass makes. Each point
+//! reaches as far as an upper bound on its neighbourhood radius: any upper bound keeps that
+//! equality, and a loose one only adds halo points. The bound comes from the points' order
+//! along the Morton curve, in linear time, and from a k-d tree only where the curve jumps.
+//! Both look past the tile's ends along the curve, where a few points cut off by the curve
+//! have their neighbours.
+//!
+//! The halo does not hold its own points' neighbourhoods in turn. Those points' normals serve
+//! only to orient the tile's normals over the neighbour graph, where a tile's sign may differ
+//! from a single pass's anyway; reaching twice as far for them quadrupled the halo, and around
+//! an isolated point, whose neighbours lie far off on a dense surface, it pulled a wide ball
+//! of that surface into the halo.
 
 use std::num::NonZeroUsize;
 use std::ops::Range;
@@ -36,23 +39,11 @@ const MEDIAN_SPAN: usize = 16;
 /// The points past each end of a tile along the curve that its reaches look at.
 pub(crate) const CURVE_CONTEXT: usize = CURVE_WINDOW;
 
-/// How far the first hop reaches around each point of `curve[core]`. `curve` holds a stretch
-/// of the cloud in Morton order: the tile's points (`core`) and up to `CURVE_CONTEXT` points on
+/// How far the halo reaches around each point of `curve[core]`. `curve` holds a stretch of
+/// the cloud in Morton order: the tile's points (`core`) and up to `CURVE_CONTEXT` points on
 /// either side of them.
 pub(crate) fn halo_reaches(curve: &[Vec3], core: Range<usize>, settings: &PrepSettings) -> Vec<f32> {
     neighbourhood_bounds(curve, core, neighbourhood_size(settings))
-}
-
-/// How far the second hop reaches around each point of the first: its neighbourhood radius
-/// among the tile's points and the first hop's, which bounds it in the whole cloud.
-pub(crate) fn second_hop_reaches(core: &[Vec3], first: &[Vec3], settings: &PrepSettings) -> Vec<f32> {
-    let k = neighbourhood_size(settings);
-    let points: Vec<Vec3> = [core, first].concat();
-    if points.len() <= k {
-        return vec![f32::INFINITY; first.len()];
-    }
-    let queries: Vec<usize> = (core.len()..points.len()).collect();
-    exact_radii(&points, &queries, k)
 }
 
 /// The most neighbours any stage of prep takes.

@@ -13,11 +13,10 @@ use pointray_io::{MemoryBudget, PointCloud, PointStream};
 use rayon::prelude::*;
 
 use crate::cloud_subset::{concatenated, subset};
-use crate::halo_reach::{CURVE_CONTEXT, halo_reaches, second_hop_reaches};
+use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::morton::MortonGrid;
 use crate::out_of_core_sort::{SortPlan, sort_points};
 use crate::patch_tiles::even_ranges;
-use crate::point_records::record_key;
 use crate::prep::{TileContext, prep_in_context};
 use crate::prep_error::PrepError;
 use crate::prep_progress::{NoProgress, PrepProgress, Stage};
@@ -141,30 +140,14 @@ impl StreamPlan {
         let core_points = &curve[core_in_curve];
         let capacity = self.budget.tile_capacity(settings);
         let core_count = core.len() as u64;
-        let first_test = HaloTest::new(core_points, &reaches);
-        let (first_records, first_count) =
-            self.gather(&first_test, &range, capacity.saturating_sub(core_count), |_| true)?;
-        if core_count + first_count > capacity {
-            return Ok(TileOutcome::OverBudget { points: core_count + first_count });
+        let halo_test = HaloTest::new(core_points, &reaches);
+        let (halo_records, halo_count) =
+            self.gather(&halo_test, &range, capacity.saturating_sub(core_count))?;
+        if core_count + halo_count > capacity {
+            return Ok(TileOutcome::OverBudget { points: core_count + halo_count });
         }
-        let (first, first_inputs) = self.sorted.decode_records(&first_records);
-        drop(first_records);
-        let first_points = local(&first);
-        let second_reaches = second_hop_reaches(core_points, &first_points, settings);
-        let second_test = HaloTest::new(&first_points, &second_reaches);
-        let mut taken = first_inputs.clone();
-        taken.sort_unstable();
-        let room = capacity.saturating_sub(core_count + first_count);
-        let (second_records, second_count) = self.gather(&second_test, &range, room, |record| {
-            taken.binary_search(&record_key(record).1).is_err()
-        })?;
-        if second_count > room {
-            return Ok(TileOutcome::OverBudget { points: core_count + first_count + second_count });
-        }
-        let (second, second_inputs) = self.sorted.decode_records(&second_records);
-        drop(second_records);
-        let halo = concatenated(first, second);
-        let halo_inputs: Vec<u32> = first_inputs.into_iter().chain(second_inputs).collect();
+        let (halo, halo_inputs) = self.sorted.decode_records(&halo_records);
+        drop(halo_records);
         // The halo in input order, as the in-memory tiles take it.
         let mut by_input: Vec<u32> = (0..halo_inputs.len() as u32).collect();
         by_input.sort_unstable_by_key(|&j| halo_inputs[j as usize]);
@@ -178,19 +161,13 @@ impl StreamPlan {
         Ok(TileOutcome::Prepped(own_patches(patches, &report.patch_sources, &members, core_len as usize)))
     }
 
-    /// The records of the points outside `core` (sorted positions) that `test` reaches and
-    /// `keep` keeps, and how many there are; past `room` points only the count goes on.
-    fn gather(
-        &self,
-        test: &HaloTest,
-        core: &Range<u64>,
-        room: u64,
-        keep: impl Fn(&[u8]) -> bool,
-    ) -> Result<(Vec<u8>, u64), StreamError> {
+    /// The records of the points outside `core` (sorted positions) that `test` reaches, and
+    /// how many there are; past `room` points only the count goes on.
+    fn gather(&self, test: &HaloTest, core: &Range<u64>, room: u64) -> Result<(Vec<u8>, u64), StreamError> {
         let (mut kept, mut count, size) = (Vec::new(), 0u64, self.sorted.record_bytes());
         self.sorted.near(test.bounds, core, self.budget.halo_batch_points(), |points, records| {
             let record = |j: u32| &records[j as usize * size..(j as usize + 1) * size];
-            for j in test.reached(points).into_iter().filter(|&j| keep(record(j))) {
+            for j in test.reached(points) {
                 count += 1;
                 if count <= room {
                     kept.extend_from_slice(record(j));

@@ -17,7 +17,7 @@ use pointray_kernels::NO_NEIGHBOR;
 use rayon::prelude::*;
 
 use crate::cloud_subset::subset;
-use crate::halo_reach::{CURVE_CONTEXT, halo_reaches, second_hop_reaches};
+use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::morton::morton_order;
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
@@ -83,13 +83,7 @@ pub fn prep_tile(
     let core_in_curve = range.start - context.start..range.end - context.start;
     let reaches = halo_reaches(&curve, core_in_curve.clone(), settings);
     let core_points = &curve[core_in_curve];
-    let first = halo_of(cloud.len(), core, core_points, &reaches, &local);
-    let first_points: Vec<Vec3> = first.par_iter().map(|&i| local(i)).collect();
-    let second_reaches = second_hop_reaches(core_points, &first_points, settings);
-    let outside: Vec<u32> = core.iter().chain(&first).copied().collect();
-    let second = halo_of(cloud.len(), &outside, &first_points, &second_reaches, &local);
-    let mut halo: Vec<u32> = first.into_iter().chain(second).collect();
-    halo.sort_unstable();
+    let halo = halo_of(cloud.len(), core, core_points, &reaches, &local);
     let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
     let (patches, report) = prep_in_context(&subset(cloud, &members), settings, &plan.frame, progress)?;
     Ok(own_patches(patches, &report.patch_sources, &members, core.len()))
