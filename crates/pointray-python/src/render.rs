@@ -122,6 +122,15 @@ fn render_settings(file: &SceneFile, options: &Bound<'_, PyDict>) -> PyResult<Re
     if let Some(shadows) = flag_option(options, "shadows")? {
         settings.shadows = shadows;
     }
+    if let Some(integrator) = text_option(options, "integrator")? {
+        settings.integrator =
+            integrator.parse().map_err(|e| PyValueError::new_err(format!("integrator: {e}")))?;
+    }
+    if let Some(seed) = option(options, "seed")? {
+        settings.seed = seed
+            .extract::<u32>()
+            .map_err(|_| PyValueError::new_err("seed: a whole number from 0 to 2^32 - 1"))?;
+    }
     Ok(settings)
 }
 
@@ -143,7 +152,7 @@ fn flag_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<bool>> {
 }
 
 /// The image as (H, W, 4) float32, linear RGB with alpha 1 where a primary ray hit the scene,
-/// and the AOVs as (H, W, ...) arrays.
+/// and the AOVs as (H, W, ...) arrays (the albedo under the path integrator only).
 fn image_to_dict(py: Python<'_>, image: RenderedImage) -> PyResult<Bound<'_, PyDict>> {
     let (width, height) = (image.width as usize, image.height as usize);
     let hit = image.hit_mask();
@@ -165,5 +174,9 @@ fn image_to_dict(py: Python<'_>, image: RenderedImage) -> PyResult<Bound<'_, PyD
     };
     result.set_item("instance", ids(image.instance_id).into_pyarray(py).reshape([height, width])?)?;
     result.set_item("primitive", ids(image.primitive_id).into_pyarray(py).reshape([height, width])?)?;
+    if let Some(albedo) = image.albedo {
+        let albedo: Vec<f32> = albedo.iter().flat_map(|a| a.to_array()).collect();
+        result.set_item("albedo", albedo.into_pyarray(py).reshape([height, width, 3])?)?;
+    }
     Ok(result)
 }

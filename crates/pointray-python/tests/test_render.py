@@ -51,6 +51,23 @@ def test_alpha_and_aovs_say_where_the_scene_was_hit(bunny):
     assert pointray.render(bunny, backend="cpu", **SIZE).aovs is None
 
 
+def test_the_path_integrator_renders_as_the_command_line_renders_it(bunny, tmp_path):
+    flags = ["--integrator", "path", "--spp", "4", "--max-depth", "3", "--seed", "5"]
+    pointray_cli("render", bunny, "-o", "cli.exr", "--backend", "cpu", "--width", 96, "--height", 72, *flags,
+                 cwd=tmp_path)
+    path = dict(integrator="path", spp=4, max_depth=3, seed=5)
+    image = pointray.render(bunny, backend="cpu", aovs=True, **path, **SIZE)
+    image.save(tmp_path / "python.exr")
+    assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+    assert not np.array_equal(pointray.render(bunny, backend="cpu", **{**path, "seed": 6}, **SIZE), image)
+    assert not np.array_equal(pointray.render(bunny, backend="cpu", **SIZE), image)
+    albedo = image.aovs["albedo"]
+    assert albedo.shape == (72, 96, 3) and (albedo[image[..., 3] == 1.0] > 0).any()
+    assert "albedo" not in pointray.render(bunny, backend="cpu", aovs=True, **SIZE).aovs
+    with pytest.raises(ValueError, match="whitted"):
+        pointray.render(bunny, backend="cpu", integrator="photon")
+
+
 def test_a_notebook_shows_the_png_the_command_line_writes(bunny, tmp_path):
     pointray_cli("render", bunny, "-o", "cli.png", "--backend", "cpu", "--width", 96, "--height", 72, cwd=tmp_path)
     image = pointray.render(bunny, backend="cpu", **SIZE)

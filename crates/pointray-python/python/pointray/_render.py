@@ -20,7 +20,8 @@ class RenderedImage(np.ndarray):
 
     It is a numpy array. ``aovs`` holds the arbitrary output variables when they were asked
     for: ``depth`` (H, W; ``inf`` where nothing was hit), ``normal`` (H, W, 3), ``instance``
-    and ``primitive`` (H, W int64; -1 where nothing was hit). In a notebook it shows as the PNG
+    and ``primitive`` (H, W int64; -1 where nothing was hit), and under the path integrator
+    ``albedo`` (H, W, 3). In a notebook it shows as the PNG
     ``pointray render`` would write.
     """
 
@@ -45,7 +46,8 @@ def png_bytes(image: np.ndarray) -> bytes:
 
 def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray, *,
            width: Optional[int] = None, height: Optional[int] = None, spp: Optional[int] = None,
-           max_depth: Optional[int] = None, shadows: Optional[bool] = None, backend: str = "auto",
+           max_depth: Optional[int] = None, shadows: Optional[bool] = None,
+           integrator: Optional[str] = None, seed: Optional[int] = None, backend: str = "auto",
            device: str = "auto", camera: Optional[dict[str, Any]] = None, aovs: bool = False,
            up: Optional[str] = None, floor: bool = True, color: str = "auto") -> RenderedImage:
     """Renders a scene or points, as ``pointray render`` does, to a :class:`RenderedImage`.
@@ -58,14 +60,15 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
     ``"intensity"``, ``"height"``, ``"classification"``, ``"fixed"``), lit by one light and
     framed.
 
-    ``width``, ``height``, ``spp`` and ``max_depth`` override the scene's ``[render]``
-    settings; ``backend`` is ``"auto"`` (a hardware ray-tracing GPU, else the CPU),
+    ``width``, ``height``, ``spp``, ``max_depth``, ``integrator`` (``"whitted"`` or
+    ``"path"``) and ``seed`` (the path integrator's random sequence) override the scene's
+    ``[render]`` settings; ``backend`` is ``"auto"`` (a hardware ray-tracing GPU, else the CPU),
     ``"vulkan"`` or ``"cpu"``; ``camera`` is the scene file's camera table (``position``,
     ``look_at``, ``up``, ``vfov_degrees``) in the file's coordinates. The GIL is released
     while the scene loads and renders.
     """
     options = dict(width=width, height=height, spp=spp, max_depth=max_depth, shadows=shadows,
-                   backend=backend, device=device, camera=camera)
+                   integrator=integrator, seed=seed, backend=backend, device=device, camera=camera)
     result = _native.render(_source(source, up, floor, color), options)
     image = result.pop("image").view(RenderedImage)
     image.aovs = result if aovs else None
