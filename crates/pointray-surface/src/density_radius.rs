@@ -229,20 +229,24 @@ pub fn voronoi_cell(neighbors: impl Iterator<Item = Vec2>, limit: f32) -> Vec<Ve
         Vec2::new(limit, limit),
         Vec2::new(-limit, limit),
     ];
+    // Two buffers in turn: this runs for every point of the cloud, a clip per neighbour.
+    let mut clipped = Vec::with_capacity(cell.len() + 4);
     for q in neighbors {
         let half_distance_squared = 0.5 * q.length_squared();
-        // A coincident neighbour cuts nothing: the origin would lie on its bisector.
-        if half_distance_squared > 0.0 {
-            cell = clip_to_half_plane(&cell, q, half_distance_squared);
+        // A coincident neighbour cuts nothing: the origin would lie on its bisector. Nor
+        // does one whose bisector passes beyond every corner.
+        if half_distance_squared > 0.0 && cell.iter().any(|corner| corner.dot(q) > half_distance_squared) {
+            clip_to_half_plane(&cell, q, half_distance_squared, &mut clipped);
+            std::mem::swap(&mut cell, &mut clipped);
         }
     }
     cell
 }
 
-/// Sutherland-Hodgman: the part of convex polygon `polygon` where `x·q <= bound`, the
-/// side of the bisector between the origin and `q` that holds the origin.
-fn clip_to_half_plane(polygon: &[Vec2], q: Vec2, bound: f32) -> Vec<Vec2> {
-    let mut clipped = Vec::with_capacity(polygon.len() + 1);
+/// Sutherland-Hodgman: into `clipped`, the part of convex polygon `polygon` where
+/// `x·q <= bound`, the side of the bisector between the origin and `q` that holds the origin.
+fn clip_to_half_plane(polygon: &[Vec2], q: Vec2, bound: f32, clipped: &mut Vec<Vec2>) {
+    clipped.clear();
     for (index, &current) in polygon.iter().enumerate() {
         let next = polygon[(index + 1) % polygon.len()];
         let (current_side, next_side) = (current.dot(q) - bound, next.dot(q) - bound);
@@ -254,7 +258,6 @@ fn clip_to_half_plane(polygon: &[Vec2], q: Vec2, bound: f32) -> Vec<Vec2> {
             clipped.push(current + t * (next - current));
         }
     }
-    clipped
 }
 
 #[cfg(test)]
