@@ -5,7 +5,9 @@
 //! equality, and a loose one only adds halo points. The bound comes from the points' order
 //! along the Morton curve, in linear time, and from a k-d tree only where the curve jumps.
 //! Both look past the tile's ends along the curve, where a few points cut off by the curve
-//! have their neighbours.
+//! have their neighbours. Prep merges duplicates before it looks for neighbours, so only
+//! neighbours that stand for distinct points of the merged cloud are counted
+//! (`DistinctNeighbours`).
 //!
 //! The halo does not hold its own points' neighbourhoods in turn. Those points' normals serve
 //! only to orient the tile's normals over the neighbour graph, where a tile's sign may differ
@@ -39,11 +41,79 @@ const MEDIAN_SPAN: usize = 16;
 /// The points past each end of a tile along the curve that its reaches look at.
 pub(crate) const CURVE_CONTEXT: usize = CURVE_WINDOW;
 
+/// The exact bound asks the k-d tree for this many times `k` points, so that duplicates among
+/// them still leave `k` distinct ones.
+const EXACT_CANDIDATES_PER_NEIGHBOUR: usize = 4;
+
 /// How far the halo reaches around each point of `curve[core]`. `curve` holds a stretch of
 /// the cloud in Morton order: the tile's points (`core`) and up to `CURVE_CONTEXT` points on
-/// either side of them.
-pub(crate) fn halo_reaches(curve: &[Vec3], core: Range<usize>, settings: &PrepSettings) -> Vec<f32> {
-    neighbourhood_bounds(curve, core, neighbourhood_size(settings))
+/// either side of them. Prep merges points within `duplicate_distance` of each other.
+pub(crate) fn halo_reaches(
+    curve: &[Vec3],
+    core: Range<usize>,
+    settings: &PrepSettings,
+    duplicate_distance: f32,
+) -> Vec<f32> {
+    let distinct = DistinctNeighbours::new(neighbourhood_size(settings), duplicate_distance);
+    neighbourhood_bounds(curve, core, &distinct)
+}
+
+/// Counts neighbours as the merged cloud has them. Prep keeps a point only when no point kept
+/// before it lies within the duplicate distance, and each point it drops lies within that
+/// distance of a kept one. So neighbours at least twice the duplicate distance from the point
+/// and from each other stand for distinct kept points other than the point, each within the
+/// duplicate distance of its stand-in.
+struct DistinctNeighbours {
+    k: usize,
+    duplicate_distance: f32,
+    separation_squared: f32,
+}
+
+impl DistinctNeighbours {
+    fn new(k: usize, duplicate_distance: f32) -> Self {
+        let separation = 2.0 * duplicate_distance;
+        Self { k, duplicate_distance, separation_squared: separation * separation }
+    }
+
+    /// An upper bound on the distance from `point` to its `k`-th nearest neighbour in the
+    /// merged cloud, from the raw points `candidates` (squared distance and position, in any
+    /// order; reordered here): unbounded when they hold fewer than `k` distinct neighbours.
+    fn bound(&self, point: Vec3, candidates: &mut [(f32, Vec3)], picked: &mut Vec<(f32, Vec3)>) -> f32 {
+        picked.clear();
+        // Most rows hold no duplicate: their k nearest, sorted, are all it takes.
+        let nearest = self.k.min(candidates.len());
+        if nearest < candidates.len() {
+            candidates.select_nth_unstable_by(nearest, |a, b| a.0.total_cmp(&b.0));
+        }
+        let (first, rest) = candidates.split_at_mut(nearest);
+        for part in [first, rest] {
+            part.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+            for &(squared, candidate) in part.iter() {
+                if self.stands_apart(point, squared, candidate, picked) {
+                    picked.push((squared.sqrt(), candidate));
+                    if picked.len() == self.k {
+                        return squared.sqrt() + self.duplicate_distance;
+                    }
+                }
+            }
+        }
+        f32::INFINITY
+    }
+
+    /// Whether `candidate` (at squared distance `squared` from `point`) lies at least the
+    /// separation from `point` and from every point `picked` (nearer ones, with their
+    /// distances). Only picked points whose distance is within the separation of the
+    /// candidate's can lie that near it.
+    fn stands_apart(&self, point: Vec3, squared: f32, candidate: Vec3, picked: &[(f32, Vec3)]) -> bool {
+        let apart = |other: Vec3| (candidate - other).length_squared() > self.separation_squared;
+        let reach = squared.sqrt() - self.separation_squared.sqrt();
+        apart(point)
+            && picked
+                .iter()
+                .rev()
+                .take_while(|(distance, _)| *distance >= reach)
+                .all(|&(_, other)| apart(other))
+    }
 }
 
 /// The most neighbours any stage of prep takes.
@@ -51,65 +121,71 @@ fn neighbourhood_size(settings: &PrepSettings) -> usize {
     settings.k.max(settings.normal_k) as usize
 }
 
-/// The distance of each point of `points[core]` to its `k`-th nearest neighbour among
-/// `points`, or more: an upper bound on its neighbourhood in any cloud that holds them.
-/// Unbounded for fewer than `k + 1` points.
-pub(crate) fn neighbourhood_bounds(points: &[Vec3], core: Range<usize>, k: usize) -> Vec<f32> {
-    if points.len() <= k || k == 0 {
+/// For each point of `points[core]`, an upper bound on the distance to its `k`-th nearest
+/// neighbour in any merged cloud that holds `points`. Unbounded for too few points.
+fn neighbourhood_bounds(points: &[Vec3], core: Range<usize>, distinct: &DistinctNeighbours) -> Vec<f32> {
+    if points.len() <= distinct.k || distinct.k == 0 {
         return vec![f32::INFINITY; core.len()];
     }
-    let mut bounds = curve_window_radii(points, core.clone(), k);
+    let mut bounds = curve_window_radii(points, core.clone(), distinct);
     let loose: Vec<usize> = (0..bounds.len()).into_par_iter().filter(|&i| stands_out(&bounds, i)).collect();
     let queries: Vec<usize> = loose.iter().map(|&i| core.start + i).collect();
-    for (i, radius) in loose.iter().zip(exact_radii(points, &queries, k)) {
-        bounds[*i] = radius;
+    for (i, radius) in loose.iter().zip(exact_radii(points, &queries, distinct)) {
+        // Both bound the radius; the tree's may find too few distinct neighbours.
+        bounds[*i] = bounds[*i].min(radius);
     }
     bounds
 }
 
-/// The distance of each point of `points[core]` to its `k`-th nearest neighbour among the
-/// `CURVE_WINDOW` points on either side of it: the `k`-th nearest of a subset lies no nearer
-/// than the `k`-th nearest of all. Callers guarantee `points.len() > k`.
-fn curve_window_radii(points: &[Vec3], core: Range<usize>, k: usize) -> Vec<f32> {
+/// The bound for each point of `points[core]` from the `CURVE_WINDOW` points on either side
+/// of it: the `k`-th nearest of a subset lies no nearer than the `k`-th nearest of all.
+fn curve_window_radii(points: &[Vec3], core: Range<usize>, distinct: &DistinctNeighbours) -> Vec<f32> {
     core.into_par_iter()
-        .map_init(Vec::new, |squared: &mut Vec<f32>, i| {
-            let window = i.saturating_sub(CURVE_WINDOW)..(i + CURVE_WINDOW + 1).min(points.len());
-            squared.clear();
-            squared.extend(window.filter(|&j| j != i).map(|j| (points[j] - points[i]).length_squared()));
-            if squared.len() < k {
-                return f32::INFINITY;
-            }
-            let (_, kth, _) = squared.select_nth_unstable_by(k - 1, f32::total_cmp);
-            kth.sqrt()
-        })
+        .map_init(
+            || (Vec::new(), Vec::new()),
+            |(candidates, picked), i| {
+                let window = i.saturating_sub(CURVE_WINDOW)..(i + CURVE_WINDOW + 1).min(points.len());
+                candidates.clear();
+                candidates.extend(
+                    window.filter(|&j| j != i).map(|j| ((points[j] - points[i]).length_squared(), points[j])),
+                );
+                distinct.bound(points[i], candidates, picked)
+            },
+        )
         .collect()
 }
 
-/// Whether bound `i` is more than `LOOSE_BOUND` times the median of the bounds around it.
+/// Whether bound `i` is unbounded or more than `LOOSE_BOUND` times the median of the bounds
+/// around it.
 fn stands_out(bounds: &[f32], i: usize) -> bool {
     let span = &bounds[i.saturating_sub(MEDIAN_SPAN)..(i + MEDIAN_SPAN + 1).min(bounds.len())];
     let mut around = span.to_vec();
     let middle = around.len() / 2;
     let (_, median, _) = around.select_nth_unstable_by(middle, f32::total_cmp);
-    bounds[i] > LOOSE_BOUND * *median
+    !bounds[i].is_finite() || bounds[i] > LOOSE_BOUND * *median
 }
 
-/// The `k`-th nearest neighbour's distance of each point of `points` named in `queries`.
-fn exact_radii(points: &[Vec3], queries: &[usize], k: usize) -> Vec<f32> {
+/// The bound for each point of `points` named in `queries`, from its nearest points.
+fn exact_radii(points: &[Vec3], queries: &[usize], distinct: &DistinctNeighbours) -> Vec<f32> {
     if queries.is_empty() {
         return Vec::new();
     }
     let entries: Vec<[f32; 3]> = points.iter().map(|p| p.to_array()).collect();
     let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
         .unwrap_or_else(|e| unreachable!("a tile's points fit u32 indices: {e}"));
-    // The point itself comes back at distance 0, so the (k + 1)-th nearest is the k-th other.
-    let wanted = NonZeroUsize::new(k + 1).unwrap_or(NonZeroUsize::MIN);
+    let wanted =
+        NonZeroUsize::new(EXACT_CANDIDATES_PER_NEIGHBOUR * distinct.k + 1).unwrap_or(NonZeroUsize::MIN);
     queries
         .par_iter()
-        .map(|&i| {
-            let found = tree.query(&entries[i]).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
-            found.iter().map(|hit| hit.distance).fold(0.0, f32::max).sqrt()
-        })
+        .map_init(
+            || (Vec::new(), Vec::new()),
+            |(candidates, picked), &i| {
+                let found = tree.query(&entries[i]).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
+                candidates.clear();
+                candidates.extend(found.iter().map(|hit| (hit.distance, points[hit.item as usize])));
+                distinct.bound(points[i], candidates, picked)
+            },
+        )
         .collect()
 }
 
@@ -146,7 +222,7 @@ mod tests {
         let points = sheets();
         for k in [1, 9, 16] {
             let exact = exact(&points, k);
-            let bounds = neighbourhood_bounds(&points, 0..points.len(), k);
+            let bounds = neighbourhood_bounds(&points, 0..points.len(), &DistinctNeighbours::new(k, 0.0));
             for (i, (bound, radius)) in bounds.iter().zip(&exact).enumerate() {
                 assert!(bound >= radius, "k {k}, point {i}: bound {bound} below the radius {radius}");
             }
@@ -157,7 +233,7 @@ mod tests {
     fn the_bounds_stay_near_the_kth_neighbour() {
         let points = sheets();
         let exact = exact(&points, 16);
-        let bounds = neighbourhood_bounds(&points, 0..points.len(), 16);
+        let bounds = neighbourhood_bounds(&points, 0..points.len(), &DistinctNeighbours::new(16, 0.0));
         let mut ratios: Vec<f32> = bounds.iter().zip(&exact).map(|(b, r)| b / r).collect();
         ratios.sort_by(f32::total_cmp);
         let mean = ratios.iter().sum::<f32>() / ratios.len() as f32;
@@ -169,9 +245,29 @@ mod tests {
     }
 
     #[test]
+    fn duplicates_do_not_count_as_neighbours() {
+        // Every point three times, each copy a little off (within the duplicate distance):
+        // prep keeps one of each, so a point's k-th neighbour is the k-th distinct position.
+        let distinct_points = sheets();
+        let near = 1e-6;
+        let points: Vec<Vec3> = distinct_points
+            .iter()
+            .flat_map(|&p| [p, p + Vec3::splat(0.4 * near), p - Vec3::new(0.3 * near, 0.0, 0.0)])
+            .collect();
+        let exact = exact(&distinct_points, 16);
+        let bounds = neighbourhood_bounds(&points, 0..points.len(), &DistinctNeighbours::new(16, near));
+        for (i, radius) in exact.iter().enumerate() {
+            let bound = bounds[3 * i];
+            assert!(bound >= *radius, "point {i}: bound {bound} below the merged radius {radius}");
+        }
+        assert!(bounds.iter().all(|b| b.is_finite()), "the tree finds enough distinct neighbours");
+    }
+
+    #[test]
     fn too_few_points_are_unbounded() {
         let points = [Vec3::ZERO, Vec3::X, Vec3::Y];
-        assert_eq!(neighbourhood_bounds(&points, 0..3, 3), vec![f32::INFINITY; 3]);
-        assert!(neighbourhood_bounds(&points, 0..3, 2).iter().all(|b| b.is_finite()));
+        let bounds = |k| neighbourhood_bounds(&points, 0..3, &DistinctNeighbours::new(k, 0.0));
+        assert_eq!(bounds(3), vec![f32::INFINITY; 3]);
+        assert!(bounds(2).iter().all(|b| b.is_finite()));
     }
 }

@@ -136,7 +136,7 @@ impl StreamPlan {
             self.sorted.read_range(range.end..(range.end + CURVE_CONTEXT as u64).min(self.sorted.len()))?;
         let curve: Vec<Vec3> = [local(&before), local(&core), local(&after)].concat();
         let core_in_curve = before.len()..before.len() + core.len();
-        let reaches = halo_reaches(&curve, core_in_curve.clone(), settings);
+        let reaches = halo_reaches(&curve, core_in_curve.clone(), settings, self.frame.duplicate_distance);
         let core_points = &curve[core_in_curve];
         let capacity = self.budget.tile_capacity(settings);
         let core_count = core.len() as u64;

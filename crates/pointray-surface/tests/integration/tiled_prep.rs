@@ -87,3 +87,32 @@ fn a_tile_past_the_last_is_refused() {
     assert!(matches!(error, PrepError::NoSuchTile { index: 4, count: 4 }), "{error}");
     assert!(error.to_string().contains("cut into 4 tiles (0 to 3)"), "{error}");
 }
+
+#[test]
+fn tiles_of_a_cloud_with_duplicates_make_the_single_pass_patches() {
+    let (mut cloud, options) = coloured_sheet();
+    // Every third point comes twice: overlapping scans hold such duplicates, which prep
+    // merges, so a point's neighbours in the merged cloud lie farther than among the raw points
+    // and the halo must reach that far.
+    let doubled: Vec<usize> = (0..cloud.len()).step_by(3).collect();
+    let positions: Vec<DVec3> = doubled.iter().map(|&i| cloud.positions[i]).collect();
+    let colors: Vec<[u8; 3]> = doubled.iter().map(|&i| cloud.colors.as_ref().unwrap()[i]).collect();
+    cloud.positions.extend(positions);
+    cloud.colors.as_mut().unwrap().extend(colors);
+    let (whole, report) = prep(&cloud, &options, &NoProgress).expect("a single pass preps");
+    assert!(report.merged_duplicates > 1000, "{} merged", report.merged_duplicates);
+    let tiled = prep_tiled(&cloud, &options, 8, &NoProgress).expect("eight tiles prep");
+    let index: HashMap<[u32; 3], usize> = (0..whole.len()).map(|i| (position_key(&whole, i), i)).collect();
+    let mut twins = vec![0; whole.len()];
+    for t in 0..tiled.len() {
+        let w = *index.get(&position_key(&tiled, t)).unwrap_or_else(|| panic!("tiled patch {t} has no twin"));
+        twins[w] += 1;
+        assert_eq!(tiled.aabbs[t], whole.aabbs[w], "patch {t}: box");
+        assert_eq!(tiled.cold[t], whole.cold[w], "patch {t}: colour, intensity and reach");
+    }
+    assert!(twins.iter().all(|&n| n >= 1), "every single-pass patch has a tiled twin");
+    // A duplicate pair that a tile cut separates is kept by both tiles (each keeps its own
+    // copy first): at most one extra patch per cut.
+    let extra = tiled.len() - whole.len();
+    assert!(extra < 8, "{extra} patches more than a single pass");
+}
