@@ -11,9 +11,9 @@
 //!
 //! The halo does not hold its own points' neighbourhoods in turn. Those points' normals serve
 //! only to orient the tile's normals over the neighbour graph, where a tile's sign may differ
-//! from a single pass's anyway; reaching twice as far for them quadrupled the halo, and around
-//! an isolated point, whose neighbours lie far off on a dense surface, it pulled a wide ball
-//! of that surface into the halo.
+//! from a single pass's anyway; reaching twice as far for them made every halo twice as deep,
+//! and around an isolated point, whose neighbours lie far off on a dense surface, it pulled a
+//! wide ball of that surface into the halo.
 
 use std::num::NonZeroUsize;
 use std::ops::Range;
@@ -128,7 +128,11 @@ fn neighbourhood_bounds(points: &[Vec3], core: Range<usize>, distinct: &Distinct
         return vec![f32::INFINITY; core.len()];
     }
     let mut bounds = curve_window_radii(points, core.clone(), distinct);
-    let loose: Vec<usize> = (0..bounds.len()).into_par_iter().filter(|&i| stands_out(&bounds, i)).collect();
+    let loose: Vec<usize> = (0..bounds.len())
+        .into_par_iter()
+        .map_init(Vec::new, |around, i| stands_out(&bounds, i, around).then_some(i))
+        .flatten()
+        .collect();
     let queries: Vec<usize> = loose.iter().map(|&i| core.start + i).collect();
     for (i, radius) in loose.iter().zip(exact_radii(points, &queries, distinct)) {
         // Both bound the radius; the tree's may find too few distinct neighbours.
@@ -156,10 +160,10 @@ fn curve_window_radii(points: &[Vec3], core: Range<usize>, distinct: &DistinctNe
 }
 
 /// Whether bound `i` is unbounded or more than `LOOSE_BOUND` times the median of the bounds
-/// around it.
-fn stands_out(bounds: &[f32], i: usize) -> bool {
-    let span = &bounds[i.saturating_sub(MEDIAN_SPAN)..(i + MEDIAN_SPAN + 1).min(bounds.len())];
-    let mut around = span.to_vec();
+/// around it (gathered into `around`, a buffer kept between calls).
+fn stands_out(bounds: &[f32], i: usize, around: &mut Vec<f32>) -> bool {
+    around.clear();
+    around.extend_from_slice(&bounds[i.saturating_sub(MEDIAN_SPAN)..(i + MEDIAN_SPAN + 1).min(bounds.len())]);
     let middle = around.len() / 2;
     let (_, median, _) = around.select_nth_unstable_by(middle, f32::total_cmp);
     !bounds[i].is_finite() || bounds[i] > LOOSE_BOUND * *median

@@ -83,30 +83,30 @@ pub fn prep_tile(
     let core_in_curve = range.start - context.start..range.end - context.start;
     let reaches = halo_reaches(&curve, core_in_curve.clone(), settings, plan.frame.duplicate_distance);
     let core_points = &curve[core_in_curve];
-    let halo = halo_of(cloud.len(), core, core_points, &reaches, &local);
+    let halo = halo_of(cloud.len(), core, core_points, &reaches, local);
     let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
     let (patches, report) = prep_in_context(&subset(cloud, &members), settings, &plan.frame, progress)?;
     Ok(own_patches(patches, &report.patch_sources, &members, core.len()))
 }
 
-/// The points not in `taken` within `reaches[i]` of `centres[i]`, for any `i`, in input
-/// order.
+/// The points outside `core` within its point `i`'s `reaches[i]` of it, for any `i`, in
+/// input order.
 fn halo_of(
     count: usize,
-    taken: &[u32],
-    centres: &[Vec3],
+    core: &[u32],
+    core_points: &[Vec3],
     reaches: &[f32],
-    local: &(impl Fn(u32) -> Vec3 + Sync),
+    local: impl Fn(u32) -> Vec3 + Sync,
 ) -> Vec<u32> {
-    let halo = HaloTest::new(centres, reaches);
+    let halo = HaloTest::new(core_points, reaches);
     let (min, max) = halo.bounds;
-    let mut is_taken = vec![false; count];
-    taken.iter().for_each(|&i| is_taken[i as usize] = true);
+    let mut in_core = vec![false; count];
+    core.iter().for_each(|&i| in_core[i as usize] = true);
     let candidates: Vec<u32> = (0..count as u32)
         .into_par_iter()
-        .filter(|&i| !is_taken[i as usize] && local(i).cmpge(min).all() && local(i).cmple(max).all())
+        .filter(|&i| !in_core[i as usize] && local(i).cmpge(min).all() && local(i).cmple(max).all())
         .collect();
-    drop(is_taken);
+    drop(in_core);
     let points: Vec<Vec3> = candidates.iter().map(|&i| local(i)).collect();
     halo.reached(&points).into_iter().map(|j| candidates[j as usize]).collect()
 }

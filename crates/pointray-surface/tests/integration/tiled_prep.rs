@@ -14,8 +14,7 @@ use crate::common::{height_field, jitter};
 
 /// A wavy, coloured sheet seen from above, with a few stray returns floating over it: normals
 /// toward the sensor depend only on each point's neighbourhood, as the fits and supports do. A
-/// stray point's neighbours lie far off on the sheet, so its tile's halo must hold their
-/// neighbourhoods too.
+/// stray point's neighbours lie far off on the sheet, so its tile's halo must reach that far.
 pub fn coloured_sheet() -> (PointCloud, PrepSettings) {
     let shift = DVec3::new(500.0, -200.0, 30.0);
     let mut cloud = height_field(110, shift, |x, y| 0.2 * (3.0 * x).sin() * (2.0 * y).cos());
