@@ -17,7 +17,10 @@ Each scene is written once as PLY meshes; pointray (a generated scene file) and 
   outside where the face normals point) is Mitsuba's `dielectric`;
 - lights: a quad light (emitting on one side, black and opaque on the other) is Mitsuba's
   `rectangle` with an `area` emitter of the same radiance and a black BSDF; the uniform sky
-  is Mitsuba's `constant` emitter;
+  is Mitsuba's `constant` emitter, and an environment map (an EXR that Mitsuba writes) is
+  Mitsuba's `envmap` of the same file (pointray holds each texel constant, Mitsuba
+  interpolates between them: the map's sun is blurred over a few texels so that this barely
+  matters);
 - integrator: Mitsuba's `path` with the same `max_depth` (path segments, 2 = direct light).
 
 Distances are over linear RGB: the mean relative error |a - b| / (b + 0.05) over pixels and
@@ -219,6 +222,34 @@ def glass_sphere(folder):
             "max_depth": 10}
 
 
+def sun_and_sky_map(path, width=512, height=256):
+    """An equirectangular sky written as EXR by Mitsuba's own Bitmap: a blue gradient, a dark
+    ground, and a sun off every axis (so that a map read turned or mirrored shows), blurred
+    over a few texels because Mitsuba interpolates texels where pointray holds them constant."""
+    theta = np.pi * (np.arange(height) + 0.5) / height
+    phi = 2 * np.pi * (np.arange(width) + 0.5) / width
+    theta, phi = np.meshgrid(theta, phi, indexing="ij")
+    # Mitsuba's envmap: u = atan2(x, -z) / 2π, v = acos(y) / π.
+    d = np.stack([np.sin(phi) * np.sin(theta), np.cos(theta), -np.cos(phi) * np.sin(theta)], axis=-1)
+    up = np.clip(d[..., 1:2], 0, 1)
+    sky = np.where(d[..., 1:2] > 0, (1 - np.sqrt(up)) * [0.8, 0.87, 1.0] + np.sqrt(up) * [0.22, 0.4, 0.85],
+                   [0.12, 0.1, 0.09])
+    elevation, azimuth = np.radians(40.0), np.radians(62.0)
+    sun = np.array([np.cos(elevation) * np.sin(azimuth), np.sin(elevation), -np.cos(elevation) * np.cos(azimuth)])
+    angle = np.arccos(np.clip(d @ sun, -1, 1))
+    sky = sky + 400.0 * np.exp(-0.5 * (angle / np.radians(2.0)) ** 2)[..., None] * [1.0, 0.93, 0.82]
+    mi.Bitmap(np.ascontiguousarray(sky.astype(np.float32))).write(str(path))
+    return path
+
+
+def bunny_under_sun_and_sky(folder):
+    """The bunny mesh on a plane, lit by an environment map alone."""
+    scene = bunny_on_plane(folder)
+    scene.update({"name": "bunny under a sky map", "lights": [], "sky": {"map": sun_and_sky_map(folder / "sky.exr")},
+                  "max_depth": 5})
+    return scene
+
+
 def toml_list(values):
     return "[" + ", ".join(f"{float(v):.9g}" for v in values) + "]"
 
@@ -226,8 +257,10 @@ def toml_list(values):
 def pointray_scene(scene, folder, size, spp, objects_kind):
     """The scene file for pointray: meshes, or the points sampled from them."""
     c = scene["camera"]
+    sky = scene["sky"]
+    background = f'{{ map = "{sky["map"]}" }}' if isinstance(sky, dict) else toml_list([sky or 0.0] * 3)
     lines = [
-        f"background = {toml_list([scene['sky'] or 0.0] * 3)}",
+        f"background = {background}",
         "[render]",
         f"width = {size}\nheight = {size}\nspp = {spp}\nmax_depth = {scene['max_depth']}",
         'integrator = "path"\nseed = 1',
@@ -279,7 +312,9 @@ def mitsuba_scene(scene, size, spp, seed):
             "type": "rectangle", "to_world": mi.ScalarTransform4f(matrix.tolist()),
             "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0, 0, 0]}},
             "emitter": {"type": "area", "radiance": {"type": "rgb", "value": list(light["radiance"])}}}
-    if scene["sky"]:
+    if isinstance(scene["sky"], dict):
+        description["sky"] = {"type": "envmap", "filename": str(scene["sky"]["map"])}
+    elif scene["sky"]:
         description["sky"] = {"type": "constant", "radiance": {"type": "rgb", "value": [scene["sky"]] * 3}}
     return mi.load_dict(description)
 
@@ -331,7 +366,7 @@ def main():
     images = args.docs / "mitsuba"
     images.mkdir(parents=True, exist_ok=True)
     rows = []
-    for make in (cornell_box, bunny_on_plane, glass_sphere):
+    for make in (cornell_box, bunny_on_plane, glass_sphere, bunny_under_sun_and_sky):
         scene = make(args.work)
         slug = scene["name"].replace(" ", "_")
         print(f"{scene['name']}: rendering", file=sys.stderr)

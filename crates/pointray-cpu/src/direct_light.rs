@@ -3,16 +3,17 @@
 //! its ray finds an area light or the sky instead of a surface.
 //!
 //! The lights chosen from are the scene's lights and, when it is not black, the sky (the
-//! background), each with probability `1 / count`; the sky is drawn uniformly over the
-//! sphere. Area lights are not in the BVHs: a path's ray and a shadow ray test them apart.
+//! background), each with probability `1 / count`; the sky is drawn as `Background::sample`
+//! draws it (a map in proportion to its radiance). Area lights are not in the BVHs: a path's
+//! ray and a shadow ray test them apart.
 
 use glam::Vec3;
-use pointray_kernels::sampling::{UNIFORM_SPHERE_PDF, power_heuristic, to_local, uniform_sphere};
+use pointray_kernels::sampling::{power_heuristic, to_local};
 use pointray_kernels::{
     Bsdf, LightSample, LightSource, RandomSequence, Ray, bsdf_eval, bsdf_pdf, bsdf_samples_lights,
     light_emitted, light_hit, light_is_delta, light_pdf, light_sample, random_next, random_next2,
 };
-use pointray_scene::{Background, RenderSettings};
+use pointray_scene::RenderSettings;
 
 use crate::path_tracer::Arrival;
 use crate::ray_counts::RayCounts;
@@ -58,14 +59,7 @@ impl CpuRenderer {
 
     /// How many things light sampling chooses from: the lights, and the sky unless black.
     fn emitter_count(&self) -> usize {
-        self.scene.lights.len() + usize::from(self.sky_is_lit())
-    }
-
-    fn sky_is_lit(&self) -> bool {
-        match self.scene.background {
-            Background::Solid(color) => color != Vec3::ZERO,
-            Background::Gradient { top, bottom } => top != Vec3::ZERO || bottom != Vec3::ZERO,
-        }
+        self.scene.lights.len() + usize::from(self.scene.background.is_lit())
     }
 
     /// The nearest area light on `ray` before `surface_t`; else the sky if the ray hit
@@ -91,7 +85,7 @@ impl CpuRenderer {
         let choice = 1.0 / self.emitter_count().max(1) as f32;
         let (radiance, light_density) = match emitter {
             EmitterHit::Surface => return Vec3::ZERO,
-            EmitterHit::Sky => (self.background(ray.direction), UNIFORM_SPHERE_PDF),
+            EmitterHit::Sky => (self.background(ray.direction), self.scene.background.pdf(ray.direction)),
             EmitterHit::Light(index, t) => {
                 let light = self.scene.lights[index].source();
                 (light_emitted(&light, ray.direction), light_pdf(&light, arrival.origin, ray.direction, t))
@@ -125,19 +119,7 @@ impl CpuRenderer {
                 let source = light.source();
                 (light_sample(&source, surface.position, u), light_is_delta(&source))
             }
-            None => {
-                let direction = uniform_sphere(u);
-                let sky = self.background(direction);
-                (
-                    LightSample {
-                        direction,
-                        distance: f32::INFINITY,
-                        radiance: sky,
-                        pdf: UNIFORM_SPHERE_PDF,
-                    },
-                    false,
-                )
-            }
+            None => (self.scene.background.sample(u), false),
         };
         if arriving.radiance == Vec3::ZERO || (!delta && arriving.pdf <= 0.0) {
             return Vec3::ZERO;

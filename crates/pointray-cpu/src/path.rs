@@ -4,8 +4,8 @@
 
 use glam::Vec3;
 use pointray_kernels::interpolate_color::color_from_rgba8;
-use pointray_kernels::{Ray, background, face_forward, interpolate_color, patch_normal, self_clearance};
-use pointray_scene::{Background, Geometry, RenderSettings, RenderedImage};
+use pointray_kernels::{Ray, face_forward, interpolate_color, patch_normal, self_clearance};
+use pointray_scene::{Geometry, RenderSettings, RenderedImage};
 
 use crate::object_bvh::triangle_corners;
 use crate::ray_counts::RayCounts;
@@ -133,9 +133,6 @@ impl CpuRenderer {
     }
 
     pub(crate) fn background(&self, direction: Vec3) -> Vec3 {
-        match self.scene.background {
-            Background::Solid(color) => background(direction, color, color),
-            Background::Gradient { top, bottom } => background(direction, top, bottom),
-        }
+        self.scene.background.radiance(direction)
     }
 }

@@ -100,7 +100,7 @@ impl CpuRenderer {
             .collect()
     }
 
-    /// The average over the pixel's samples; AOVs from sample 0.
+    /// The average over the pixel's samples; AOVs from the first.
     fn render_pixel(
         &self,
         camera: &Camera,
@@ -119,8 +119,9 @@ impl CpuRenderer {
                 }
             }
         };
-        let (first_color, aov) = sample(0);
-        let rest: Vec3 = (1..samples).map(|s| sample(s).0).sum();
+        let first = settings.first_sample;
+        let (first_color, aov) = sample(first);
+        let rest: Vec3 = (first + 1..first.saturating_add(samples)).map(|s| sample(s).0).sum();
         Pixel { color: (first_color + rest) / samples as f32, aov }
     }
 

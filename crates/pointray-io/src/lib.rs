@@ -2,6 +2,7 @@
 //! meshes and images. Each file format lives in `formats/`, one module per format.
 
 pub mod atomic_write;
+pub mod environment_image;
 pub mod error;
 pub mod file_roles;
 pub mod formats;
@@ -13,6 +14,7 @@ pub mod temporaries;
 pub mod triangle_mesh;
 
 pub use atomic_write::write_atomically;
+pub use environment_image::{EnvironmentImage, read_environment_image};
 pub use error::IoError;
 pub use file_roles::{
     ensure_not_same_file, ensure_outputs_spare_inputs, ensure_readable_file, ensure_writable_output,

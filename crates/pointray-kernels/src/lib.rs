@@ -11,6 +11,7 @@ pub mod bsdf;
 pub mod bsdf_sample;
 pub mod camera_ray;
 pub mod dielectric;
+pub mod environment_map;
 pub mod face_forward;
 pub mod fresnel;
 pub mod interpolate_color;
@@ -36,6 +37,10 @@ pub use background::background;
 pub use bsdf::{Bsdf, bsdf_eval, bsdf_is_two_sided, bsdf_pdf, bsdf_sample, bsdf_samples_lights};
 pub use bsdf_sample::BsdfSample;
 pub use camera_ray::{Camera, camera_ray, sample_jitter};
+pub use environment_map::{
+    EnvironmentMap, environment_direction, environment_pdf, environment_radiance, environment_sample,
+    environment_uv,
+};
 pub use face_forward::face_forward;
 pub use interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
 pub use intersect_patch::{PatchAcceptance, PatchHit, intersect_patch};

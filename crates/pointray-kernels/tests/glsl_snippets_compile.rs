@@ -123,12 +123,30 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
              LightSample s = light_sample(light, vec3(0.0), vec2(0.5));
              result = s.radiance * s.pdf + light_emitted(light, s.direction) + vec3(light_hit(light, vec3(0.0), s.direction), light_pdf(light, vec3(0.0), s.direction, s.distance), float(light_is_delta(light)));",
     ),
+    (
+        "environment_map.glsl",
+        "EnvironmentMap map = EnvironmentMap(8u, 4u, 0.25);
+             LightSample s = environment_sample(map, vec2(0.3, 0.6));
+             result = s.radiance * s.pdf + environment_radiance(map, s.direction)
+                 + vec3(environment_pdf(map, s.direction), environment_uv(map, s.direction));",
+    ),
 ];
 
+/// What a snippet needs its includer to define first: where its data lies.
+const PRELUDES: &[(&str, &str)] = &[(
+    "environment_map.glsl",
+    "layout(std430, binding = 1) readonly buffer Texels { vec4 texels[]; };
+layout(std430, binding = 2) readonly buffer Distribution { float distribution[]; };
+#define ENVIRONMENT_TEXEL(i) texels[i]
+#define ENVIRONMENT_DISTRIBUTION(i) distribution[i]",
+)];
+
 fn wrapper(snippet: &str, calls: &str) -> String {
+    let prelude = PRELUDES.iter().find(|(name, _)| *name == snippet).map_or("", |(_, prelude)| prelude);
     format!(
         "#version 460
 #extension GL_GOOGLE_include_directive : require
+{prelude}
 #include \"{snippet}\"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) buffer Output {{ vec3 result; }};

@@ -96,3 +96,21 @@ def test_a_camera_in_a_scans_coordinates_is_placed_as_the_command_line_places_it
     image.save(tmp_path / "python.exr")
     assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
     assert (image[..., 3] == 1.0).mean() > 0.2, "the tile is in view"
+
+
+def test_a_sun_and_sky_lights_a_path_traced_scene_as_the_command_line_does(bunny, tmp_path):
+    scene = (pointray.Scene()
+             .background(sun_elevation_degrees=40.0, sun_azimuth_degrees=100.0)
+             .points(bunny, material={"diffuse": [0.8, 0.8, 0.8]})
+             .ground(auto=True)
+             .render_settings(width=48, height=32, spp=2, max_depth=3, integrator="path"))
+    (tmp_path / "scene.toml").write_text(scene.to_toml())
+    pointray_cli("render", "scene.toml", "-o", "cli.exr", "--backend", "cpu", cwd=tmp_path)
+    image = pointray.render(scene, backend="cpu")
+    image.save(tmp_path / "python.exr")
+    assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+    assert np.asarray(image).max() > 0.1
+    with pytest.raises(pointray.PointrayError, match="sun_elevation_degrees"):
+        pointray.Scene().background(sun_elevation_degrees=120.0).to_toml()
+    with pytest.raises(pointray.PointrayError, match="missing.exr"):
+        pointray.render(pointray.Scene().background(map=tmp_path / "missing.exr"), backend="cpu")

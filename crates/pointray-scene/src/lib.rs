@@ -1,6 +1,8 @@
 //! What gets rendered: camera, lights, background and objects (point sets and meshes),
 //! the settings of one render and the image that comes back.
 
+pub mod background;
+pub mod background_spec;
 pub mod bounds;
 mod checks;
 pub mod classification_palette;
@@ -25,8 +27,10 @@ pub mod render_space;
 pub mod rendered_image;
 pub mod scene;
 pub mod scene_file;
+pub mod sun_sky;
 pub mod transform_spec;
 
+pub use background::Background;
 pub use demo::{demo_scene, load_demo};
 pub use error::SceneError;
 pub use image_output::{AovSelection, write_image};
@@ -42,5 +46,6 @@ pub use points_scene::{PointsScene, UpAxis};
 pub use render_settings::{BufferLayout, RenderSetting, RenderSettings};
 pub use render_space::RenderSpace;
 pub use rendered_image::RenderedImage;
-pub use scene::{Background, Geometry, Scene, SceneObject};
+pub use scene::{Geometry, Scene, SceneObject};
 pub use scene_file::SceneFile;
+pub use sun_sky::SunSky;

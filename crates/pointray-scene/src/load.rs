@@ -65,7 +65,6 @@ pub fn load_scene(path: &Path, options: &LoadOptions) -> Result<LoadedScene, Sce
 pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
     let in_file = |invalid: InvalidValue| invalid.in_file(&file.path);
     let settings = file.render_settings()?;
-    let background = file.background().map_err(in_file)?;
 
     // Grounds are sized and placed from the other objects, so they are built last, but they
     // keep their place in the object list: renderers report object indices as instance ids.
@@ -108,6 +107,7 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
         Some(camera) => camera.to_camera(&space).map_err(|e| in_file(e.within("camera")))?,
         None => default_camera(others.as_ref(), &settings),
     };
+    let background = file.background()?;
     Ok(LoadedScene { scene: Scene { camera, lights, background, objects }, settings, point_sets, space })
 }
 

@@ -28,6 +28,10 @@ pub struct RenderSettings {
     pub integrator: Integrator,
     /// The path integrator's random sequence: one seed gives one image on every backend.
     pub seed: u32,
+    /// The index of the render's first sample (its AOVs come from it). Renders that take
+    /// samples `0..n`, `n..n + m`, ... continue one another: averaged by their sample counts,
+    /// they make the render of all the samples at once (a viewer refining a still view).
+    pub first_sample: u32,
 }
 
 impl Default for RenderSettings {
@@ -42,6 +46,7 @@ impl Default for RenderSettings {
             buffer_layout: BufferLayout::default(),
             integrator: Integrator::default(),
             seed: 0,
+            first_sample: 0,
         }
     }
 }

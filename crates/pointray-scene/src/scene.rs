@@ -2,22 +2,11 @@
 
 use std::sync::Arc;
 
-use glam::{Affine3A, Vec3};
+use glam::Affine3A;
 use pointray_io::TriangleMesh;
 use pointray_surface::PatchSet;
 
-use crate::{Camera, Light, Material};
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Background {
-    Solid(Vec3),
-    /// Blends from `bottom` (rays pointing down) to `top` (rays pointing up) by the ray
-    /// direction's y component.
-    Gradient {
-        top: Vec3,
-        bottom: Vec3,
-    },
-}
+use crate::{Background, Camera, Light, Material};
 
 #[derive(Clone, Debug)]
 pub enum Geometry {

@@ -14,8 +14,8 @@
 //! color = [1.0, 1.0, 1.0]   # `edge_u` and `edge_v` (emitting toward edge_u x edge_v);
 //! intensity = 1.0           # default white, 1 (see `light.rs` for their units)
 //!
-//! background = [0.1, 0.1, 0.1]                        # a colour, or
-//! # background = { top = [0.5, 0.7, 1.0], bottom = [1.0, 1.0, 1.0] }
+//! background = [0.1, 0.1, 0.1]  # a colour, a gradient, a map or a sun and sky
+//!                                 # (`background_spec`)
 //!
 //! [render]                  # defaults that command-line flags override
 //! width = 640
@@ -31,9 +31,9 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::de::Error as _;
-use serde::{Deserialize, Deserializer};
+use serde::Deserialize;
 
+pub use crate::background_spec::{BackgroundSpec, GradientSpec, MapSpec, SunSkySpec};
 use crate::checks;
 use crate::error::{InvalidValue, SceneError};
 use crate::object_spec::{ObjectSpec, ShapeSpec};
@@ -103,32 +103,6 @@ pub enum LightSpec {
         #[serde(default = "unit_intensity")]
         intensity: f32,
     },
-}
-
-/// A colour `[r, g, b]`, or a table `{ top = [r, g, b], bottom = [r, g, b] }`.
-#[derive(Clone, Debug, PartialEq)]
-pub enum BackgroundSpec {
-    Solid([f32; 3]),
-    Gradient(GradientSpec),
-}
-
-// Chosen by the value's shape rather than `untagged`, which would hide the table's own error
-// (such as an unknown key) behind "did not match any variant".
-impl<'de> Deserialize<'de> for BackgroundSpec {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        match toml::Value::deserialize(deserializer)? {
-            table @ toml::Value::Table(_) => GradientSpec::deserialize(table).map(Self::Gradient),
-            other => <[f32; 3]>::deserialize(other).map(Self::Solid),
-        }
-        .map_err(|e| D::Error::custom(e.message()))
-    }
-}
-
-#[derive(Clone, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct GradientSpec {
-    pub top: [f32; 3],
-    pub bottom: [f32; 3],
 }
 
 /// Render defaults; each is `None` when the file does not set it.
@@ -223,14 +197,18 @@ impl SceneFile {
         self.render.settings().map_err(|invalid| invalid.in_file(&self.path))
     }
 
-    /// Every file loading this scene reads: the scene file itself and each object's points,
-    /// store or mesh file. No output may be any of them.
+    /// Every file loading this scene reads: the scene file itself, each object's points,
+    /// store or mesh file, and the background's map. No output may be any of them.
     pub fn input_files(&self) -> Vec<PathBuf> {
         let objects = self.objects.iter().filter_map(|object| match &object.shape {
             ShapeSpec::Points { path, .. } | ShapeSpec::Mesh { path } => Some(self.resolve(path)),
             _ => None,
         });
-        std::iter::once(self.path.clone()).chain(objects).collect()
+        let map = match &self.background {
+            Some(BackgroundSpec::Map(spec)) => Some(self.resolve(&spec.map)),
+            _ => None,
+        };
+        std::iter::once(self.path.clone()).chain(objects).chain(map).collect()
     }
 
     /// A path from the file, relative to the file's folder unless absolute.
@@ -238,7 +216,26 @@ impl SceneFile {
         self.path.parent().unwrap_or(Path::new("")).join(relative)
     }
 
-    pub(crate) fn background(&self) -> Result<Background, InvalidValue> {
+    /// The background, with its map read if it has one.
+    pub(crate) fn background(&self) -> Result<Background, SceneError> {
+        let invalid = |e: InvalidValue| e.in_file(&self.path);
+        match &self.background {
+            Some(BackgroundSpec::Map(spec)) => {
+                let image =
+                    pointray_io::read_environment_image(&self.resolve(&spec.map)).map_err(|source| {
+                        SceneError::Input { scene: self.path.clone(), key: "background.map".into(), source }
+                    })?;
+                spec.to_background(&image).map_err(invalid)
+            }
+            Some(BackgroundSpec::SunSky(spec)) => {
+                Ok(Background::Map(std::sync::Arc::new(spec.to_sun_sky().map_err(invalid)?.map())))
+            }
+            _ => self.plain_background().map_err(invalid),
+        }
+    }
+
+    /// The background without a map, checked; for a map, only its settings are checked.
+    fn plain_background(&self) -> Result<Background, InvalidValue> {
         match &self.background {
             None => Ok(DEFAULT_BACKGROUND),
             Some(BackgroundSpec::Solid(c)) => Ok(Background::Solid(checks::color("background", *c)?)),
@@ -246,6 +243,8 @@ impl SceneFile {
                 top: checks::color("background.top", *top)?,
                 bottom: checks::color("background.bottom", *bottom)?,
             }),
+            Some(BackgroundSpec::Map(spec)) => spec.checked().map(|_| DEFAULT_BACKGROUND),
+            Some(BackgroundSpec::SunSky(spec)) => spec.to_sun_sky().map(|_| DEFAULT_BACKGROUND),
         }
     }
 
@@ -257,7 +256,7 @@ impl SceneFile {
         for (i, light) in self.lights.iter().enumerate() {
             light.to_light(&RenderSpace::FILE).map_err(|e| e.within(&format!("lights[{i}]")))?;
         }
-        self.background()?;
+        self.plain_background()?;
         self.render.settings()?;
         for (i, object) in self.objects.iter().enumerate() {
             let key = format!("objects[{i}]");

@@ -52,8 +52,6 @@ pub(crate) struct App {
     /// The frame on screen, when it is on the host (always on the host path; on the direct
     /// path only frames read back for a screenshot).
     shown: Option<RenderedImage>,
-    /// The settings of the last full pass, to draw it again for a screenshot.
-    last_pass: Option<RenderSettings>,
     mouse: Mouse,
     held: HashSet<KeyCode>,
     last_tick: Instant,
@@ -79,7 +77,6 @@ impl App {
             options,
             script,
             shown: None,
-            last_pass: None,
             mouse: Mouse::default(),
             held: HashSet::new(),
             last_tick: now,
@@ -149,7 +146,7 @@ impl App {
             let title = format!(
                 "pointray view: {fps:.1} fps, {:.1} ms/frame, {} spp, {}, {path}",
                 mean.as_secs_f64() * 1e3,
-                self.view.settings.samples_per_pixel,
+                self.refinement.taken().max(self.view.settings.samples_per_pixel),
                 self.source.describe()
             );
             if let Some(window) = &self.window {
@@ -189,9 +186,6 @@ impl App {
         self.view.sync_camera();
         let Some(pass) = self.refinement.next(now, self.source.is_cpu()) else { return Ok(None) };
         let settings = self.pass_settings(pass);
-        if pass.divisor == 1 {
-            self.last_pass = Some(settings);
-        }
         Ok(Some(self.source.draw(&self.view.scene, &settings, false)?))
     }
 
@@ -202,6 +196,7 @@ impl App {
             width: (size.width / pass.divisor).max(1),
             height: (size.height / pass.divisor).max(1),
             samples_per_pixel: pass.samples_per_pixel,
+            first_sample: pass.first_sample,
             ..self.view.settings
         }
     }
@@ -246,11 +241,12 @@ impl App {
         Ok(())
     }
 
-    /// Saves what is on screen; the direct path draws the last full pass again, read back.
+    /// Saves what is on screen; the direct path reads back one more pass, which adds its
+    /// samples to what is shown.
     fn save_screenshot(&mut self) -> Result<(), ViewerError> {
-        if self.source.presentation() == Presentation::Direct
-            && let Some(settings) = self.last_pass
-        {
+        if self.source.presentation() == Presentation::Direct && self.refinement.taken() > 0 {
+            let pass = self.refinement.one_more();
+            let settings = self.pass_settings(pass);
             let drawn = self.source.draw(&self.view.scene, &settings, true)?;
             self.frames_presented += u64::from(drawn.shown);
             self.shown = drawn.frame;

@@ -15,6 +15,7 @@ use std::sync::Arc;
 
 use crate::display_image::image_from_display;
 use crate::error::ViewerError;
+use crate::host_accumulation::continue_mean;
 use crate::pixels::image_bytes;
 use crate::present::Presenter;
 
@@ -48,6 +49,8 @@ pub(crate) enum FrameSource {
         // Before the window it draws into is closed (`close_window`).
         presenter: Option<Box<Presenter>>,
         renderer: Box<CpuRenderer>,
+        /// The mean of every sample since sample 0 (the GPU keeps its sums on the device).
+        accumulated: Option<RenderedImage>,
     },
 }
 
@@ -72,7 +75,11 @@ impl FrameSource {
                 lights: scene.lights.clone(),
                 renderer: Box::new(renderer),
             }),
-            None => Ok(Self::Cpu { presenter: None, renderer: Box::new(CpuRenderer::new(scene)) }),
+            None => Ok(Self::Cpu {
+                presenter: None,
+                renderer: Box::new(CpuRenderer::new(scene)),
+                accumulated: None,
+            }),
         }
     }
 
@@ -181,8 +188,9 @@ impl FrameSource {
                 Ok(Drawn { shown, frame })
             }
             Self::Vulkan { window: None, .. } => Ok(Drawn { shown: false, frame: None }),
-            Self::Cpu { presenter, renderer } => {
-                let frame = renderer.render(settings);
+            Self::Cpu { presenter, renderer, accumulated } => {
+                let frame = continue_mean(accumulated.take(), renderer.render(settings), settings);
+                *accumulated = Some(frame.clone());
                 let shown = match presenter {
                     Some(presenter) => show_on_host(presenter, &frame)?,
                     None => false,

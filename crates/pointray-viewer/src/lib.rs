@@ -8,8 +8,9 @@
 //! `Presentation::HostCopy`).
 //!
 //! While the view is still, the image is refined progressively (`refinement`): each pass
-//! renders the whole image again with twice the samples, on the GPU for the direct path (the
-//! shader averages the samples; nothing is accumulated on the host). With the CPU backend,
+//! takes the samples after those already taken, and the window shows the mean of them all,
+//! summed on the GPU for the direct path and on the host for the CPU renderer
+//! (`host_accumulation`); any change starts again from sample 0. With the CPU backend,
 //! moving views are previewed at reduced resolution. A scripted turntable
 //! (`Script`) renders a fixed number of frames along an orbit, for tests and videos.
 
@@ -20,6 +21,7 @@ mod display_image;
 mod error;
 mod frame_source;
 mod frame_stats;
+mod host_accumulation;
 mod pixels;
 mod present;
 mod refinement;

@@ -5,14 +5,12 @@
 
 #include "bindings.glsl"
 #include "payload.glsl"
-#include "background.glsl"
+#include "sky.glsl"
 
 layout(location = HIT_PAYLOAD_LOCATION) rayPayloadInEXT HitPayload payload;
 
 void main() {
-    // A solid background is uploaded as top == bottom.
-    payload.normal_or_background = background(gl_WorldRayDirectionEXT, frame.background_top.rgb,
-                                              frame.background_bottom.rgb);
+    payload.normal_or_background = sky(gl_WorldRayDirectionEXT);
     payload.t = -1.0;
     payload.instance = MISS_ID;
     payload.primitive = MISS_ID;

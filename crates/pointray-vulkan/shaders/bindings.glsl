@@ -53,6 +53,10 @@ struct LightRecord {
     vec4 edge_v;        // xyz = LightSource.edge_v
 };
 
+// The background's map, where it has one (environment_map.glsl reads it through these).
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer EnvironmentTexels { vec4 texels[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer EnvironmentDistribution { float values[]; };
+
 layout(set = 0, binding = 0) uniform accelerationStructureEXT scene_tlas;
 
 layout(set = 0, binding = 1, std140) uniform FrameUniforms {
@@ -63,9 +67,18 @@ layout(set = 0, binding = 1, std140) uniform FrameUniforms {
     vec4 background_bottom;
     uint light_count;
     float ray_epsilon;
+    uint sky_lit;             // the background lights the scene (the path integrator draws it)
+    uint sky_is_map;          // the background is the map below, not the gradient above
+    EnvironmentTexels sky_texels;
+    EnvironmentDistribution sky_distribution;
+    uint sky_width;
+    uint sky_height;
+    float sky_rotation;       // turns about +y
     uint pad0;
-    uint pad1;
 } frame;
+
+#define ENVIRONMENT_TEXEL(i) frame.sky_texels.texels[i]
+#define ENVIRONMENT_DISTRIBUTION(i) frame.sky_distribution.values[i]
 
 layout(set = 0, binding = 2, std430) readonly buffer Objects { ObjectRecord objects[]; };
 layout(set = 0, binding = 3, std430) readonly buffer Lights { LightRecord lights[]; };
@@ -78,6 +91,9 @@ struct PixelRecord {
 layout(set = 0, binding = 4, std430) writeonly buffer Pixels { PixelRecord pixels[]; };
 // The display output: one sRGB8 RGBA pixel each (srgb_encode_rgba8), what a window shows.
 layout(set = 0, binding = 5, std430) writeonly buffer DisplayPixels { uint display_pixels[]; };
+// The display outputs' running sums: rgb = the pixel's colour summed over every sample since
+// sample 0, so that a trace from settings.first_sample > 0 continues the ones before it.
+layout(set = 0, binding = 6, std430) buffer Accumulation { vec4 accumulated[]; };
 
 // Which output a trace writes; the other is left untouched. The display output is sRGB8
 // RGBA, or with blue in the low byte for B8G8R8A8 swapchains.
@@ -99,6 +115,7 @@ layout(push_constant) uniform TraceSettings {
     uint buffer_layout;
     uint output_kind; // OUTPUT_AOVS or OUTPUT_DISPLAY
     uint seed;        // the path integrator's random sequence (path.rgen)
+    uint first_sample; // the trace takes samples first_sample .. first_sample + samples_per_pixel
 } settings;
 
 PatchHot load_hot(ObjectRecord object, uint patch_index) {

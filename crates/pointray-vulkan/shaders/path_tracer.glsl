@@ -5,10 +5,10 @@
 #ifndef POINTRAY_PATH_TRACER_GLSL
 #define POINTRAY_PATH_TRACER_GLSL
 
-#include "background.glsl"
 #include "bsdf.glsl"
 #include "light_source.glsl"
 #include "random_sequence.glsl"
+#include "sky.glsl"
 
 // The numbers each bounce draws: light choice (1), light position (2), BSDF (3), roulette (1).
 const uint BOUNCE_DIMENSIONS = 7u;
@@ -21,14 +21,9 @@ LightSource light_source_of(uint index) {
                        record.origin_radius.w, record.radiance.rgb);
 }
 
-vec3 sky(vec3 direction) {
-    return background(direction, frame.background_top.rgb, frame.background_bottom.rgb);
-}
-
 // The lights, and the sky unless it is black.
 uint emitter_count() {
-    bool lit = any(notEqual(frame.background_top.rgb, vec3(0.0))) || any(notEqual(frame.background_bottom.rgb, vec3(0.0)));
-    return frame.light_count + (lit ? 1u : 0u);
+    return frame.light_count + frame.sky_lit;
 }
 
 bool is_black(vec3 v) {
@@ -75,8 +70,7 @@ vec3 direct_light(vec3 position, vec3 normal, float clearance, Bsdf bsdf, vec3 s
         arriving = light_sample(source, position, u);
         delta = light_is_delta(source);
     } else {
-        vec3 direction = uniform_sphere(u);
-        arriving = LightSample(direction, LIGHT_INFINITY, sky(direction), UNIFORM_SPHERE_PDF);
+        arriving = sky_sample(u);
     }
     if (is_black(arriving.radiance) || (!delta && arriving.pdf <= 0.0)) {
         return vec3(0.0);
@@ -120,7 +114,7 @@ vec3 emitted(int light, float light_t, Ray ray, vec3 arrival_origin, float arriv
         density = light_pdf(source, arrival_origin, ray.direction, light_t);
     } else {
         radiance = sky(ray.direction);
-        density = UNIFORM_SPHERE_PDF;
+        density = sky_pdf(ray.direction);
     }
     return arrival_unweighted ? radiance : radiance * power_heuristic(arrival_pdf, choice * density);
 }

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use ash::vk;
-use pointray_scene::{Integrator, RenderSettings};
+use pointray_scene::RenderSettings;
 
 use crate::barrier::record_memory_barrier;
 use crate::binding_table::ShaderBindingTable;
@@ -82,11 +82,7 @@ impl VulkanRenderer {
         output: PixelOutput,
     ) -> Result<FrameLoopTimes, VulkanError> {
         self.ensure_prepared_here(scene)?;
-        let path_pipeline = match settings.integrator {
-            Integrator::Whitted => None,
-            Integrator::Path => Some(self.path_pipeline()?),
-        };
-        let (pipeline, table) = path_pipeline.as_ref().map_or((&self.pipeline, &self.table), |(p, t)| (p, t));
+        let (pipeline, table) = self.pipeline_for(settings.integrator)?;
         validate(settings, &self.context, pipeline)?;
         let Some(period_ns) = self.context.timestamp_period_ns else {
             return Err(VulkanError::InvalidSettings(format!(

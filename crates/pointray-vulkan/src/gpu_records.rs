@@ -6,6 +6,7 @@ use pointray_kernels::{PatchCold, PatchHot};
 use pointray_scene::light::WhittedLight;
 use pointray_scene::{Background, BufferLayout, Camera, Light, Material, RenderSettings};
 
+use crate::environment_upload::EnvironmentBuffers;
 use crate::trace_target::PixelOutput;
 
 /// Hot and cold data of one patch interleaved (`BufferLayout::Combined`): 48 bytes.
@@ -116,7 +117,14 @@ pub(crate) struct FrameUniforms {
     background_bottom: [f32; 4],
     light_count: u32,
     ray_epsilon: f32,
-    pad: [u32; 2],
+    sky_lit: u32,
+    sky_is_map: u32,
+    sky_texels: u64,
+    sky_distribution: u64,
+    sky_width: u32,
+    sky_height: u32,
+    sky_rotation: f32,
+    pad: u32,
 }
 
 fn vec4(v: Vec3, w: f32) -> [f32; 4] {
@@ -124,11 +132,23 @@ fn vec4(v: Vec3, w: f32) -> [f32; 4] {
 }
 
 impl FrameUniforms {
-    pub(crate) fn new(camera: &Camera, background: &Background, light_count: u32, ray_epsilon: f32) -> Self {
+    /// `map` holds the addresses of the background's map buffers where it is a map.
+    pub(crate) fn new(
+        camera: &Camera,
+        background: &Background,
+        map: Option<&EnvironmentBuffers>,
+        light_count: u32,
+        ray_epsilon: f32,
+    ) -> Self {
         // A solid background is the gradient between two equal colours.
-        let (top, bottom) = match *background {
-            Background::Solid(color) => (color, color),
-            Background::Gradient { top, bottom } => (top, bottom),
+        let (top, bottom) = match background {
+            Background::Solid(color) => (*color, *color),
+            Background::Gradient { top, bottom } => (*top, *bottom),
+            Background::Map(_) => (Vec3::ZERO, Vec3::ZERO),
+        };
+        let (width, height, rotation) = match background {
+            Background::Map(map) => (map.width(), map.height(), map.rotation()),
+            _ => (0, 0, 0.0),
         };
         Self {
             camera_position_fov: vec4(camera.position, camera.vertical_fov_degrees),
@@ -138,7 +158,14 @@ impl FrameUniforms {
             background_bottom: vec4(bottom, 0.0),
             light_count,
             ray_epsilon,
-            pad: [0; 2],
+            sky_lit: background.is_lit().into(),
+            sky_is_map: map.is_some().into(),
+            sky_texels: map.map_or(0, |m| m.texels.device_address()),
+            sky_distribution: map.map_or(0, |m| m.distribution.device_address()),
+            sky_width: width,
+            sky_height: height,
+            sky_rotation: rotation,
+            pad: 0,
         }
     }
 }
@@ -156,6 +183,7 @@ pub(crate) struct TraceSettings {
     buffer_layout: u32,
     output_kind: u32,
     seed: u32,
+    first_sample: u32,
 }
 
 impl TraceSettings {
@@ -170,6 +198,7 @@ impl TraceSettings {
             buffer_layout: layout_code(settings.buffer_layout),
             output_kind: output_code(output),
             seed: settings.seed,
+            first_sample: settings.first_sample,
         }
     }
 }
@@ -327,13 +356,19 @@ mod tests {
                 ("background_bottom", offset_of!(FrameUniforms, background_bottom)),
                 ("light_count", offset_of!(FrameUniforms, light_count)),
                 ("ray_epsilon", offset_of!(FrameUniforms, ray_epsilon)),
+                ("sky_lit", offset_of!(FrameUniforms, sky_lit)),
+                ("sky_is_map", offset_of!(FrameUniforms, sky_is_map)),
+                ("sky_texels", offset_of!(FrameUniforms, sky_texels)),
+                ("sky_distribution", offset_of!(FrameUniforms, sky_distribution)),
+                ("sky_width", offset_of!(FrameUniforms, sky_width)),
+                ("sky_height", offset_of!(FrameUniforms, sky_height)),
+                ("sky_rotation", offset_of!(FrameUniforms, sky_rotation)),
                 ("pad0", offset_of!(FrameUniforms, pad)),
-                ("pad1", offset_of!(FrameUniforms, pad) + 4),
             ],
         );
         assert_eq!(
             size_of::<FrameUniforms>(),
-            offset_of!(FrameUniforms, pad) + 8,
+            offset_of!(FrameUniforms, pad) + 4,
             "FrameUniforms ends with its pad"
         );
         assert_members(
@@ -349,9 +384,10 @@ mod tests {
                 ("buffer_layout", offset_of!(TraceSettings, buffer_layout)),
                 ("output_kind", offset_of!(TraceSettings, output_kind)),
                 ("seed", offset_of!(TraceSettings, seed)),
+                ("first_sample", offset_of!(TraceSettings, first_sample)),
             ],
         );
-        assert_eq!(size_of::<TraceSettings>(), offset_of!(TraceSettings, seed) + 4);
+        assert_eq!(size_of::<TraceSettings>(), offset_of!(TraceSettings, first_sample) + 4);
     }
 
     #[test]

@@ -19,6 +19,7 @@ mod buffer;
 mod context;
 mod device;
 mod device_type;
+mod environment_upload;
 mod error;
 mod frame_loop;
 mod gpu_records;

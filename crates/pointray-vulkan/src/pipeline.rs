@@ -18,6 +18,7 @@ pub(crate) const BINDING_OBJECTS: u32 = 2;
 pub(crate) const BINDING_LIGHTS: u32 = 3;
 pub(crate) const BINDING_PIXELS: u32 = 4;
 pub(crate) const BINDING_DISPLAY_PIXELS: u32 = 5;
+pub(crate) const BINDING_ACCUMULATION: u32 = 6;
 
 /// Shader groups in pipeline order; the shader binding table follows it.
 pub(crate) const GROUP_RAYGEN: u32 = 0;
@@ -105,6 +106,7 @@ fn create_set_layout(device: &ash::Device) -> Result<vk::DescriptorSetLayout, Vu
         binding(BINDING_LIGHTS, vk::DescriptorType::STORAGE_BUFFER, raygen),
         binding(BINDING_PIXELS, vk::DescriptorType::STORAGE_BUFFER, raygen),
         binding(BINDING_DISPLAY_PIXELS, vk::DescriptorType::STORAGE_BUFFER, raygen),
+        binding(BINDING_ACCUMULATION, vk::DescriptorType::STORAGE_BUFFER, raygen),
     ];
     let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
     // SAFETY: the device is alive.
@@ -208,6 +210,7 @@ mod tests {
             ("Lights", BINDING_LIGHTS),
             ("Pixels", BINDING_PIXELS),
             ("DisplayPixels", BINDING_DISPLAY_PIXELS),
+            ("Accumulation", BINDING_ACCUMULATION),
         ] {
             assert_eq!(probe.binding_of(glsl_name), (0, binding), "{glsl_name}: (set, binding)");
         }

@@ -12,6 +12,7 @@ use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
 use crate::acceleration::{AccelerationStructure, BlasLayout, build, instance_input, triangle_input};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
+use crate::environment_upload::EnvironmentBuffers;
 use crate::error::VulkanError;
 use crate::gpu_records::{LightRecord, ObjectRecord};
 use crate::memory_plan;
@@ -27,6 +28,8 @@ pub struct PreparedScene {
     /// The camera `trace` renders from; change it to re-trace from elsewhere.
     pub camera: Camera,
     pub(crate) background: Background,
+    /// The background's map, where it is one.
+    pub(crate) environment: Option<EnvironmentBuffers>,
     pub(crate) light_count: u32,
     pub(crate) ray_epsilon: f32,
     pub(crate) objects: Buffer,
@@ -269,7 +272,11 @@ pub(crate) fn prepare(
     Ok(PreparedScene {
         context: context.clone(),
         camera: scene.camera,
-        background: scene.background,
+        background: scene.background.clone(),
+        environment: match &scene.background {
+            Background::Map(map) => Some(EnvironmentBuffers::upload(context, map)?),
+            _ => None,
+        },
         light_count: scene.lights.len() as u32,
         ray_epsilon: scene.ray_epsilon(),
         objects: Buffer::device_with_data(context, "object records", &record_bytes, storage_usage())?,

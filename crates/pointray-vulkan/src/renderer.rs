@@ -1,6 +1,6 @@
 //! The public face of the backend: pick a device, prepare scenes, trace frames.
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
 use pointray_scene::{Integrator, RenderSettings, RenderedImage, Scene};
@@ -28,7 +28,11 @@ pub struct TraceTiming {
 
 /// A ray-tracing renderer on one Vulkan device.
 pub struct VulkanRenderer {
-    // Field order is drop order: the table and pipeline go before the device context.
+    // Field order is drop order: the tables and pipelines go before the device context.
+    /// The path integrator's pipeline and table, built on the first trace that needs them
+    /// and kept (targets' descriptor sets are allocated with its layout): renderers that
+    /// never path trace (Table 1, Whitted windows) pay nothing for them.
+    path: OnceLock<(RayTracingPipeline, ShaderBindingTable)>,
     pub(crate) table: ShaderBindingTable,
     pub(crate) pipeline: RayTracingPipeline,
     pub(crate) context: Arc<GpuContext>,
@@ -79,7 +83,7 @@ impl VulkanRenderer {
     fn with_raygen(context: &Arc<GpuContext>, raygen: &[u8]) -> Result<Self, VulkanError> {
         let pipeline = RayTracingPipeline::with_raygen(context, raygen, Integrator::Whitted)?;
         let table = ShaderBindingTable::new(context, &pipeline)?;
-        Ok(Self { table, pipeline, context: context.clone() })
+        Ok(Self { path: OnceLock::new(), table, pipeline, context: context.clone() })
     }
 
     pub fn device_name(&self) -> &str {
@@ -147,25 +151,28 @@ impl VulkanRenderer {
     ) -> Result<TraceTiming, VulkanError> {
         self.ensure_prepared_here(scene)?;
         let start = Instant::now();
-        let gpu = match settings.integrator {
-            Integrator::Whitted => {
-                trace_into(&self.context, &self.pipeline, &self.table, scene, settings, target)?
-            }
-            Integrator::Path => {
-                let (pipeline, table) = self.path_pipeline()?;
-                trace_into(&self.context, &pipeline, &table, scene, settings, target)?
-            }
-        };
+        let (pipeline, table) = self.pipeline_for(settings.integrator)?;
+        let gpu = trace_into(&self.context, pipeline, table, scene, settings, target)?;
         Ok(TraceTiming { gpu, wall: start.elapsed() })
     }
 
     /// Scenes hold GPU resources of the renderer that prepared them; no other may trace them.
-    /// The path integrator's pipeline and binding table, built for the call that needs them,
-    /// as the ray-counting pipeline is: renderers that never path trace (windows, Table 1)
-    /// pay nothing for them.
-    pub(crate) fn path_pipeline(&self) -> Result<(RayTracingPipeline, ShaderBindingTable), VulkanError> {
-        let pipeline = RayTracingPipeline::with_raygen(&self.context, shaders::PATH_RGEN, Integrator::Path)?;
-        let table = ShaderBindingTable::new(&self.context, &pipeline)?;
+    /// The pipeline and binding table that trace with `integrator`.
+    pub(crate) fn pipeline_for(
+        &self,
+        integrator: Integrator,
+    ) -> Result<(&RayTracingPipeline, &ShaderBindingTable), VulkanError> {
+        if integrator == Integrator::Whitted {
+            return Ok((&self.pipeline, &self.table));
+        }
+        if self.path.get().is_none() {
+            let pipeline =
+                RayTracingPipeline::with_raygen(&self.context, shaders::PATH_RGEN, Integrator::Path)?;
+            let table = ShaderBindingTable::new(&self.context, &pipeline)?;
+            // Only `&self` builds it; a racing build's copy is dropped.
+            let _ = self.path.set((pipeline, table));
+        }
+        let (pipeline, table) = self.path.get().expect("built above");
         Ok((pipeline, table))
     }
 

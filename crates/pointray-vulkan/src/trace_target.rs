@@ -15,8 +15,8 @@ use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::gpu_records::{FrameUniforms, PixelRecord};
 use crate::pipeline::{
-    BINDING_DISPLAY_PIXELS, BINDING_FRAME, BINDING_LIGHTS, BINDING_OBJECTS, BINDING_PIXELS, BINDING_TLAS,
-    RayTracingPipeline,
+    BINDING_ACCUMULATION, BINDING_DISPLAY_PIXELS, BINDING_FRAME, BINDING_LIGHTS, BINDING_OBJECTS,
+    BINDING_PIXELS, BINDING_TLAS, RayTracingPipeline,
 };
 use crate::prepared_scene::PreparedScene;
 
@@ -59,6 +59,8 @@ pub(crate) struct TargetBuffers {
     /// The output the shaders write (`output`'s records); the other binding gets `unused`.
     pub(crate) written: Buffer,
     unused: Buffer,
+    /// The display outputs' running sums (`unused` for the AOV output, which has none).
+    accumulation: Option<Buffer>,
     pub(crate) readback: Buffer,
     descriptor_pool: vk::DescriptorPool,
     pub(crate) set: vk::DescriptorSet,
@@ -159,6 +161,14 @@ impl TargetBuffers {
         let written = Buffer::new(context, "pixel output", bytes, usage, MemoryLocation::GpuOnly)?;
         // Storage bindings may not be null; the output not written gets one small buffer.
         let unused = Buffer::new(context, "unused pixel output", 64, usage, MemoryLocation::GpuOnly)?;
+        let accumulation = match output {
+            PixelOutput::Aovs => None,
+            PixelOutput::Display | PixelOutput::DisplayBgra => {
+                let bytes = u64::from(width) * u64::from(height) * 16;
+                let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
+                Some(Buffer::new(context, "display sums", bytes, usage, MemoryLocation::GpuOnly)?)
+            }
+        };
         let readback = Buffer::new(
             context,
             "pixel read-back",
@@ -175,6 +185,7 @@ impl TargetBuffers {
             uniforms,
             written,
             unused,
+            accumulation,
             readback,
             descriptor_pool,
             set,
@@ -193,8 +204,13 @@ impl TargetBuffers {
 
     /// Points the descriptors at `scene` and writes its camera to the uniforms.
     fn bind(&mut self, scene: &PreparedScene) {
-        let uniforms =
-            FrameUniforms::new(&scene.camera, &scene.background, scene.light_count, scene.ray_epsilon);
+        let uniforms = FrameUniforms::new(
+            &scene.camera,
+            &scene.background,
+            scene.environment.as_ref(),
+            scene.light_count,
+            scene.ray_epsilon,
+        );
         self.uniforms.write(bytemuck::bytes_of(&uniforms));
         let (pixels, display) = match self.output {
             PixelOutput::Aovs => (&self.written, &self.unused),
@@ -212,6 +228,7 @@ impl TargetBuffers {
             whole(&scene.lights),
             whole(pixels),
             whole(display),
+            whole(self.accumulation.as_ref().unwrap_or(&self.unused)),
         ];
         let write = |binding, ty| {
             vk::WriteDescriptorSet::default().dst_set(self.set).dst_binding(binding).descriptor_type(ty)
@@ -226,6 +243,7 @@ impl TargetBuffers {
             write(BINDING_LIGHTS, storage).buffer_info(&infos[2]),
             write(BINDING_PIXELS, storage).buffer_info(&infos[3]),
             write(BINDING_DISPLAY_PIXELS, storage).buffer_info(&infos[4]),
+            write(BINDING_ACCUMULATION, storage).buffer_info(&infos[5]),
         ];
         // SAFETY: every written resource is alive; the caller's contract says the set is idle.
         unsafe { self.context.device.update_descriptor_sets(&writes, &[]) };
@@ -241,7 +259,7 @@ fn allocate_set(
             .ty(vk::DescriptorType::ACCELERATION_STRUCTURE_KHR)
             .descriptor_count(1),
         vk::DescriptorPoolSize::default().ty(vk::DescriptorType::UNIFORM_BUFFER).descriptor_count(1),
-        vk::DescriptorPoolSize::default().ty(vk::DescriptorType::STORAGE_BUFFER).descriptor_count(4),
+        vk::DescriptorPoolSize::default().ty(vk::DescriptorType::STORAGE_BUFFER).descriptor_count(5),
     ];
     let pool_info = vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes);
     let device = &context.device;

@@ -9,8 +9,10 @@ use ash::vk;
 use pointray_scene::RenderSettings;
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 
+use crate::binding_table::ShaderBindingTable;
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
+use crate::pipeline::RayTracingPipeline;
 use crate::prepared_scene::PreparedScene;
 use crate::present_loop::{PresentLoop, Presented};
 use crate::renderer::VulkanRenderer;
@@ -115,20 +117,19 @@ impl WindowTarget {
         let Some(swapchain) = self.frames.swapchain() else { return Ok(Presented::Skipped) };
         let (extent, output) = (swapchain.extent(), swapchain.output());
         let settings = RenderSettings { width: extent.width, height: extent.height, ..*settings };
-        validate(&settings, &self.context, &renderer.pipeline)?;
+        let (pipeline, table) = renderer.pipeline_for(settings.integrator)?;
+        validate(&settings, &self.context, pipeline)?;
         let Some(index) = self.frames.acquire()? else { return Ok(Presented::Skipped) };
         if self.target.output() != output {
             self.target = TraceTarget::new(output);
         }
-        let buffers = self.target.bind(&self.context, &renderer.pipeline, scene, &settings)?;
+        let buffers = self.target.bind(&self.context, pipeline, scene, &settings)?;
         let image = self.frames.swapchain().expect("checked above").image(index);
-        let frame = FrameCommands { image, extent, buffers, settings: &settings, read_back };
+        let frame = FrameCommands { pipeline, table, image, extent, buffers, settings: &settings, read_back };
         // SAFETY: the frame's buffers live in `target`, which is rebound only after the next
         // acquire has waited for this frame.
         unsafe {
-            self.frames.submit(index, |device, command| {
-                record_frame(&self.context, renderer, device, command, &frame)
-            })
+            self.frames.submit(index, |device, command| record_frame(&self.context, device, command, &frame))
         }?;
         self.kept = read_back == ReadBack::Keep;
         self.frames.present(index)
@@ -206,6 +207,8 @@ fn create_surface(
 
 /// What one frame records besides the trace's own buffers.
 struct FrameCommands<'a> {
+    pipeline: &'a RayTracingPipeline,
+    table: &'a ShaderBindingTable,
     image: vk::Image,
     extent: vk::Extent2D,
     buffers: &'a TargetBuffers,
@@ -220,15 +223,13 @@ struct FrameCommands<'a> {
 /// the submission.
 unsafe fn record_frame(
     context: &GpuContext,
-    renderer: &VulkanRenderer,
     device: &ash::Device,
     command: vk::CommandBuffer,
     frame: &FrameCommands<'_>,
 ) {
-    let pipeline = &renderer.pipeline;
     // SAFETY: the caller's contract.
     unsafe {
-        record_trace_rays(context, command, pipeline, &renderer.table, frame.buffers, frame.settings);
+        record_trace_rays(context, command, frame.pipeline, frame.table, frame.buffers, frame.settings);
         record_trace_done_barrier(device, command);
         let written = frame.buffers.written.handle;
         record_copy_to_present_image(device, command, written, frame.image, frame.extent);

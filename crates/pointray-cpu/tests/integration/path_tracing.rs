@@ -3,13 +3,18 @@
 //! plane under a uniform sky, a glass slab seen head on. Each tolerance is computed from the
 //! render's own noise (`pointray_test_support::estimate`).
 
+use std::sync::Arc;
+
 use crate::common;
 
 use common::*;
 use glam::{Affine3A, Quat, Vec3};
 use pointray_cpu::CpuRenderer;
+use pointray_kernels::EnvironmentMap;
 use pointray_scene::procedural::sphere_points;
-use pointray_scene::{Background, Integrator, Material, RenderSettings, RenderedImage, Scene, SurfaceKind};
+use pointray_scene::{
+    Background, Integrator, Material, RenderSettings, RenderedImage, Scene, SunSky, SurfaceKind,
+};
 use pointray_surface::{NoProgress, PatchSet, PrepSettings, prep};
 use pointray_test_support::estimate;
 
@@ -59,8 +64,8 @@ fn hit_values(image: &RenderedImage) -> Vec<f64> {
 
 /// A furnace: every pixel of a white closed surface under a white sky is 1 in expectation;
 /// paths that leak inside the surface never see the sky and are cut by `max_depth`.
-fn assert_furnace(object: pointray_scene::SceneObject, what: &str) {
-    let scene = under_sky(vec![object], Background::Solid(Vec3::ONE), Vec3::new(0.0, 0.5, 3.0), 45.0);
+fn assert_furnace(object: pointray_scene::SceneObject, sky: Background, what: &str) {
+    let scene = under_sky(vec![object], sky, Vec3::new(0.0, 0.5, 3.0), 45.0);
     let image = CpuRenderer::new(&scene).render(&path_settings(32, 16, 6));
     let values = hit_values(&image);
     let e = estimate(values.iter().copied());
@@ -76,7 +81,8 @@ fn assert_furnace(object: pointray_scene::SceneObject, what: &str) {
 
 #[test]
 fn a_white_mesh_sphere_in_a_white_furnace_is_white() {
-    assert_furnace(mesh_object("sphere", sphere_mesh(1.0, 24, 48), diffuse(1.0)), "mesh sphere");
+    let sphere = mesh_object("sphere", sphere_mesh(1.0, 24, 48), diffuse(1.0));
+    assert_furnace(sphere, Background::Solid(Vec3::ONE), "mesh sphere");
 }
 
 /// A scanned sphere: points with 1% radial noise, prepped with their normals recomputed, so
@@ -94,7 +100,55 @@ fn noisy_sphere_patches(count: u32) -> PatchSet {
 #[test]
 fn a_white_point_set_sphere_in_a_white_furnace_is_white() {
     let sphere = patches_object("sphere", noisy_sphere_patches(3000), Affine3A::IDENTITY, diffuse(1.0));
-    assert_furnace(sphere, "point-set sphere");
+    assert_furnace(sphere, Background::Solid(Vec3::ONE), "point-set sphere");
+}
+
+/// A white map, drawn from by its own distribution rather than uniformly: still a furnace.
+#[test]
+fn a_white_point_set_sphere_under_a_white_environment_map_is_white() {
+    let white = EnvironmentMap::new(64, 32, &[Vec3::ONE; 64 * 32], 0.3);
+    let sphere = patches_object("sphere", noisy_sphere_patches(3000), Affine3A::IDENTITY, diffuse(1.0));
+    assert_furnace(sphere, Background::Map(Arc::new(white)), "point-set sphere under a map");
+}
+
+/// The irradiance that a map gives a surface facing up, integrated texel by texel: each
+/// texel of the upper half covers `2π / width` in azimuth and contributes
+/// `∫ cos θ sin θ dθ = (sin² θ1 - sin² θ0) / 2` over its row.
+fn irradiance_from_above(map: &EnvironmentMap) -> f64 {
+    let (width, height) = (map.width() as usize, map.height() as usize);
+    let mut sum = 0.0;
+    for y in 0..height / 2 {
+        let angle = |row: usize| std::f64::consts::PI * row as f64 / height as f64;
+        let band = 0.5 * (angle(y + 1).sin().powi(2) - angle(y).sin().powi(2));
+        let row: f64 = map.texels()[y * width..(y + 1) * width].iter().map(|t| f64::from(t[1])).sum();
+        sum += row * band * std::f64::consts::TAU / width as f64;
+    }
+    sum
+}
+
+#[test]
+fn a_diffuse_plane_under_a_sun_and_sky_reflects_the_irradiance_the_map_holds() {
+    let albedo = 0.6;
+    let sun_and_sky = SunSky {
+        sun_elevation_degrees: 50.0,
+        sun_azimuth_degrees: 70.0,
+        sun_radius_degrees: 1.5,
+        sun_intensity: 6.0,
+        sky_intensity: 1.0,
+    };
+    let map = Arc::new(sun_and_sky.map());
+    let expected = f64::from(albedo) * irradiance_from_above(&map) / std::f64::consts::PI;
+    let plane = patches_object("plane", plane_patches(1.0, 41), Affine3A::IDENTITY, diffuse(albedo));
+    let scene = under_sky(vec![plane], Background::Map(map), Vec3::new(0.2, 2.0, 0.6), 30.0);
+    let image = CpuRenderer::new(&scene).render(&path_settings(24, 8, 3));
+    let values = hit_values(&image);
+    let e = estimate(values.iter().copied());
+    e.assert_near(expected, SIGMAS, 1e-4, "plane under the sun and sky");
+    // Drawn by its radiance, the sun is found by most light samples. The BSDF's draws alone
+    // would find its 0.002 sr once in about 2000 tries, leaving a pixel of 8 samples with a
+    // noise of several times its mean; the map's own draws keep it under a third.
+    let pixel_sigma = e.standard_error * (e.count as f64).sqrt();
+    assert!(pixel_sigma < 0.3 * expected, "pixel noise {pixel_sigma:.4} against {expected:.4}");
 }
 
 #[test]
@@ -109,7 +163,7 @@ fn a_diffuse_plane_under_a_uniform_sky_shows_its_albedo() {
         ),
         (mesh_object("plane", floor_mesh(1.0), diffuse(albedo)), "mesh plane"),
     ] {
-        let renderer = CpuRenderer::new(&under_sky(vec![object], sky, from, 30.0));
+        let renderer = CpuRenderer::new(&under_sky(vec![object], sky.clone(), from, 30.0));
         let image = renderer.render(&path_settings(24, 8, 4));
         estimate(hit_values(&image)).assert_near(f64::from(albedo), SIGMAS, 1e-4, what);
         // The albedo AOV is the plane's colour where it was hit, zero elsewhere.
@@ -147,7 +201,7 @@ fn a_glass_slab_head_on_transmits_as_fresnel_says() {
         vec![mesh_object("top", floor_mesh(1.0), glass()), mesh_object("bottom", bottom_mesh, glass())];
     let size = 24;
     for (objects, what) in [(point_slab, "point-set slab"), (mesh_slab, "mesh slab")] {
-        let scene = under_sky(objects, below, Vec3::new(0.0, 1.0, 1e-3), 6.0);
+        let scene = under_sky(objects, below.clone(), Vec3::new(0.0, 1.0, 1e-3), 6.0);
         let sky: f64 = (0..size * size)
             .map(|i| {
                 f64::from(
@@ -173,4 +227,21 @@ fn one_seed_gives_one_image_and_another_seed_another() {
         renderer.render(&settings).color,
         renderer.render(&RenderSettings { seed: 8, ..settings }).color
     );
+}
+
+#[test]
+fn renders_that_continue_one_another_average_to_one_render_of_all_their_samples() {
+    let sphere = patches_object("sphere", sphere_patches(1.0, 2000), Affine3A::IDENTITY, diffuse(0.7));
+    let scene = under_sky(vec![sphere], Background::Solid(Vec3::ONE), Vec3::new(0.0, 0.5, 3.0), 45.0);
+    let renderer = CpuRenderer::new(&scene);
+    let pass = |first_sample, samples_per_pixel| {
+        renderer.render(&RenderSettings { first_sample, samples_per_pixel, ..path_settings(16, 1, 4) })
+    };
+    let (early, late, all) = (pass(0, 4), pass(4, 8), pass(0, 12));
+    for ((a, b), whole) in early.color.iter().zip(&late.color).zip(&all.color) {
+        let mean = (*a * 4.0 + *b * 8.0) / 12.0;
+        assert!((mean - *whole).abs().max_element() <= 1e-5 * whole.max_element().max(1.0), "{mean} {whole}");
+    }
+    assert_ne!(late.color, pass(0, 8).color, "a later pass draws other samples");
+    assert_eq!(late.depth, pass(4, 1).depth, "a pass's AOVs come from its first sample");
 }

@@ -78,9 +78,16 @@ class Scene:
         self._document["lights"].append(_table(type=type, **fields))
         return self
 
-    def background(self, color=None, *, top=None, bottom=None) -> "Scene":
-        """A solid colour, or a gradient from ``bottom`` to ``top``."""
-        self._document["background"] = list(color) if color is not None else _table(top=top, bottom=bottom)
+    def background(self, color=None, *, top=None, bottom=None, map=None, **fields: Any) -> "Scene":
+        """A solid colour; a gradient from ``bottom`` to ``top``; an environment ``map`` (an
+        equirectangular ``.exr`` or ``.hdr``, with ``intensity`` and ``rotation_degrees``); or a
+        procedural sun and sky (``sun_elevation_degrees``, ``sun_azimuth_degrees``,
+        ``sun_radius_degrees``, ``sun_intensity``, ``sky_intensity``)."""
+        if color is not None:
+            self._document["background"] = list(color)
+        else:
+            path = os.fspath(map) if map is not None else None
+            self._document["background"] = _table(top=top, bottom=bottom, map=path, **fields)
         return self
 
     def render_settings(self, **settings: Any) -> "Scene":

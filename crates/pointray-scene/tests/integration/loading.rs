@@ -10,7 +10,7 @@ use common::{assert_close, tetrahedron};
 use glam::{DVec3, Vec3};
 use pointray_scene::bounds::{center, diagonal, extent};
 use pointray_scene::ground::AUTO_SIZE_FACTOR;
-use pointray_scene::{Geometry, LoadOptions, PointSetOrigin, Scene, SceneError, load_scene};
+use pointray_scene::{Background, Geometry, LoadOptions, PointSetOrigin, Scene, SceneError, load_scene};
 
 fn write_scene(dir: &Path, text: &str) -> std::path::PathBuf {
     let path = dir.join("scene.toml");
@@ -59,6 +59,53 @@ fn the_scene_lists_every_file_it_reads() {
     );
     let file = pointray_scene::SceneFile::read(&scene).unwrap();
     assert_eq!(file.input_files(), vec![scene.clone(), dir.path().join("a.ply"), dir.path().join("m/b.obj")]);
+}
+
+#[test]
+fn an_environment_map_is_read_scaled_and_listed_among_the_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let texels: Vec<Vec3> = (0..32).map(|i| Vec3::new(i as f32, 1.0, 0.5)).collect();
+    pointray_io::image_output::write_exr_linear(&dir.path().join("sky.exr"), 8, 4, &texels).unwrap();
+    let scene = write_scene(
+        dir.path(),
+        "background = { map = \"sky.exr\", intensity = 2.0, rotation_degrees = 90.0 }\n",
+    );
+    let file = pointray_scene::SceneFile::read(&scene).unwrap();
+    assert_eq!(file.input_files(), vec![scene.clone(), dir.path().join("sky.exr")]);
+    let loaded = load_scene(&scene, &LoadOptions::default()).unwrap();
+    let Background::Map(map) = &loaded.scene.background else {
+        panic!("a map, not {:?}", loaded.scene.background)
+    };
+    assert_eq!((map.width(), map.height(), map.rotation()), (8, 4, 0.25));
+    assert_eq!(map.texels()[5], [10.0, 2.0, 1.0, 0.0]);
+}
+
+#[test]
+fn an_environment_map_that_cannot_serve_is_an_error_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_scene(dir.path(), "background = { map = \"missing.hdr\" }\n");
+    let message = load_scene(&scene, &LoadOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("background.map") && message.contains("missing.hdr"), "{message}");
+    pointray_io::image_output::write_exr_linear(&dir.path().join("wide.exr"), 3, 1, &[Vec3::ONE; 3]).unwrap();
+    let scene = write_scene(dir.path(), "background = { map = \"wide.exr\" }\n");
+    let message = load_scene(&scene, &LoadOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("wide.exr") && message.contains("twice as wide"), "{message}");
+}
+
+#[test]
+fn a_sun_and_sky_needs_no_file_and_lights_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_scene(
+        dir.path(),
+        "background = { sun_elevation_degrees = 30.0, sun_azimuth_degrees = 90.0 }\n",
+    );
+    let loaded = load_scene(&scene, &LoadOptions::default()).unwrap();
+    let background = &loaded.scene.background;
+    assert!(matches!(background, Background::Map(_)) && background.is_lit());
+    // The sun lies toward +x, 30 degrees up, and outshines the sky beside it.
+    let sun = Vec3::new(30f32.to_radians().cos(), 30f32.to_radians().sin(), 0.0);
+    let beside = Vec3::new(0.0, 30f32.to_radians().sin(), 30f32.to_radians().cos());
+    assert!(background.radiance(sun).y > 100.0 * background.radiance(beside).y);
 }
 
 #[test]

@@ -182,6 +182,12 @@ fn bad_values_are_errors_naming_the_key() {
             "lights[0].color",
         ),
         ("background = [0.5, -0.1, 0]\n".to_string(), "background"),
+        ("background = { map = \"sky.exr\", intensity = -1.0 }\n".to_string(), "background.intensity"),
+        ("background = { sun_elevation_degrees = 95.0 }\n".to_string(), "background.sun_elevation_degrees"),
+        (
+            "background = { sun_elevation_degrees = 30.0, sun_radius_degrees = 0.0 }\n".to_string(),
+            "background.sun_radius_degrees",
+        ),
         ("[render]\nwidth = 0\n".to_string(), "render.width"),
         ("[render]\nmax_depth = 0\n".to_string(), "render.max_depth"),
         (object("[objects.material]\nreflectivity = 1.5\n"), "objects[0].material.reflectivity"),

@@ -3,12 +3,15 @@
 //! but where rounding decides otherwise; the bound on their difference is computed from two
 //! CPU renders with different seeds, which differ by the Monte Carlo noise alone.
 
+use std::sync::Arc;
+
 use crate::common;
 
 use common::{assert_no_validation_messages, floor, mesh, object, patches, renderer, sphere_patches};
 use glam::Vec3;
 use pointray_scene::{
-    Background, Camera, Integrator, Light, Material, RenderSettings, RenderedImage, Scene, SurfaceKind,
+    Background, Camera, Integrator, Light, Material, RenderSettings, RenderedImage, Scene, SunSky,
+    SurfaceKind,
 };
 use pointray_test_support::estimate;
 
@@ -90,15 +93,17 @@ fn mean_relative_error(a: &RenderedImage, b: &RenderedImage) -> f64 {
     sum / a.color.len() as f64
 }
 
-#[test]
-fn gpu_and_cpu_path_tracing_agree_within_the_noise() {
-    let Some(renderer) = renderer() else { return };
-    let scene = lit_scene();
-    let settings = path_settings(32, 32, 5, 7);
-    let gpu = renderer.render(&scene, &settings).expect("the Vulkan backend path traces");
-    assert_no_validation_messages(&renderer);
-    let cpu = pointray_cpu::render(&scene, &settings);
-    let other_seed = pointray_cpu::render(&scene, &RenderSettings { seed: 8, ..settings });
+/// Renders `scene` on both backends and requires that they differ by no more than two CPU
+/// renders of different seeds do; returns both images.
+fn assert_backends_agree(
+    renderer: &pointray_vulkan::VulkanRenderer,
+    scene: &Scene,
+    settings: &RenderSettings,
+) -> (RenderedImage, RenderedImage) {
+    let gpu = renderer.render(scene, settings).expect("the Vulkan backend path traces");
+    assert_no_validation_messages(renderer);
+    let cpu = pointray_cpu::render(scene, settings);
+    let other_seed = pointray_cpu::render(scene, &RenderSettings { seed: settings.seed + 1, ..*settings });
     let noise = mean_relative_error(&other_seed, &cpu);
     let error = mean_relative_error(&gpu, &cpu);
     eprintln!("mean relative error: GPU against CPU {error:.5}, CPU against CPU of another seed {noise:.5}");
@@ -111,6 +116,15 @@ fn gpu_and_cpu_path_tracing_agree_within_the_noise() {
     let spread = estimate(differences(&other_seed)).standard_error;
     let offset = estimate(differences(&gpu)).mean;
     assert!(offset.abs() <= 5.0 * spread, "mean GPU - CPU {offset:.5} beyond 5 x {spread:.5}");
+    (gpu, cpu)
+}
+
+#[test]
+fn gpu_and_cpu_path_tracing_agree_within_the_noise() {
+    let Some(renderer) = renderer() else { return };
+    let scene = lit_scene();
+    let settings = path_settings(32, 32, 5, 7);
+    let (gpu, cpu) = assert_backends_agree(&renderer, &scene, &settings);
     // The albedo AOV: the CPU's in f32, the GPU's in half floats (a relative 2^-11).
     let (cpu_albedo, gpu_albedo) =
         (cpu.albedo.as_ref().unwrap(), gpu.albedo.as_ref().expect("the GPU's albedo"));
@@ -149,4 +163,23 @@ fn a_white_point_set_sphere_in_a_white_furnace_is_white_on_the_gpu() {
         .collect();
     assert!(hits.len() > image.pixel_count() / 4);
     estimate(hits).assert_near(1.0, 5.0, 1e-4, "GPU furnace");
+}
+
+#[test]
+fn gpu_and_cpu_agree_under_an_environment_map_drawn_by_its_radiance() {
+    let Some(renderer) = renderer() else { return };
+    let sun_and_sky = SunSky {
+        sun_elevation_degrees: 40.0,
+        sun_azimuth_degrees: 200.0,
+        sun_radius_degrees: 3.0,
+        sun_intensity: 5.0,
+        sky_intensity: 1.0,
+    };
+    let map = sun_and_sky.map();
+    let scene = Scene { lights: vec![], background: Background::Map(Arc::new(map)), ..lit_scene() };
+    let (gpu, _) = assert_backends_agree(&renderer, &scene, &path_settings(32, 32, 5, 11));
+    // Rays that miss show the map: the sky above the floor's far edge is blue.
+    let sky = (0..gpu.pixel_count()).find(|&i| gpu.instance_id[i] == RenderedImage::MISS);
+    let sky = gpu.color[sky.expect("a pixel of sky")];
+    assert!(sky.z > sky.x && sky.z > 0.3, "{sky}");
 }

@@ -6,7 +6,7 @@ use crate::common;
 use common::{assert_no_validation_messages, point_light, renderer, sphere_on_floor};
 use glam::Vec3;
 use pointray_kernels::srgb_encode_rgba8;
-use pointray_scene::RenderSettings;
+use pointray_scene::{Integrator, RenderSettings};
 use pointray_test_support::largest_byte_difference;
 use pointray_vulkan::{PixelOutput, TraceTarget};
 
@@ -70,5 +70,33 @@ fn moving_the_camera_and_the_light_matches_a_fresh_preparation() {
     let fresh = renderer.trace(&renderer.prepare(&scene).expect("prepares"), &settings).expect("traces");
     assert_ne!(moved.color, before.color, "the move changed the picture");
     assert_eq!(moved, fresh, "updating in place equals preparing the moved scene");
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn display_traces_that_continue_one_another_show_the_mean_of_all_their_samples() {
+    let Some(renderer) = renderer() else { return };
+    let prepared = renderer.prepare(&sphere_on_floor(0.5, 1.0)).expect("prepares");
+    let path = |first_sample, samples_per_pixel| RenderSettings {
+        integrator: Integrator::Path,
+        max_depth: 3,
+        first_sample,
+        samples_per_pixel,
+        ..small(40, 30)
+    };
+    let all_at_once = renderer.trace(&prepared, &path(0, 8)).expect("traces");
+    let expected: Vec<u8> =
+        all_at_once.color.iter().flat_map(|&c| srgb_encode_rgba8(c).to_le_bytes()).collect();
+    let mut display = TraceTarget::new(PixelOutput::Display);
+    for (first, count) in [(0, 2), (2, 2), (4, 4)] {
+        renderer.trace_into(&prepared, &path(first, count), &mut display).expect("traces");
+    }
+    let got = display.display_rgba8().expect("a display image").to_vec();
+    // Sums in another order, and pow() on the GPU, may move the last bit.
+    assert!(largest_byte_difference(&got, &expected) <= 1, "the passes do not add up to one trace");
+    let last_pass_alone = renderer.trace(&prepared, &path(4, 4)).expect("traces");
+    let alone: Vec<u8> =
+        last_pass_alone.color.iter().flat_map(|&c| srgb_encode_rgba8(c).to_le_bytes()).collect();
+    assert!(largest_byte_difference(&got, &alone) > 8, "the display shows the last pass alone");
     assert_no_validation_messages(&renderer);
 }
