@@ -39,6 +39,7 @@ enum Command {
     View(commands::view::ViewArgs),
     Cache(commands::cache::CacheArgs),
     Scan(commands::scan::ScanArgs),
+    Compare(commands::compare::CompareArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -56,6 +57,7 @@ fn main() -> std::process::ExitCode {
         Command::View(args) => commands::view::run(args),
         Command::Cache(args) => commands::cache::run(args),
         Command::Scan(args) => commands::scan::run(args),
+        Command::Compare(args) => commands::compare::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -7,6 +7,7 @@ pub mod beam_spacing;
 pub mod comparison_scenes;
 pub mod consistency_report;
 pub mod error;
+pub mod image_difference;
 pub mod image_renderer;
 pub mod local_spacing;
 pub mod measure;

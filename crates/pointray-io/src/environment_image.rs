@@ -1,66 +1,24 @@
 //! Reading an equirectangular environment map: linear RGB radiance from an OpenEXR (`.exr`)
 //! or Radiance (`.hdr`) file, twice as wide as tall, every value finite and non-negative.
 
-use std::io::BufReader;
 use std::path::Path;
 
-use glam::Vec3;
-use image::{ImageFormat, ImageReader, Limits};
+use crate::IoError;
+use crate::linear_image::{LinearImage, read_linear_image};
 
-use crate::{IoError, ensure_readable_file};
-
-/// The widest map read: 16384 x 8192 texels, 2 GiB of f32 RGBA while it decodes.
-pub const MAX_ENVIRONMENT_WIDTH: u32 = 16384;
-
-/// A map's radiance, row-major from the top row (straight up).
-#[derive(Clone, Debug, PartialEq)]
-pub struct EnvironmentImage {
-    pub width: u32,
-    pub height: u32,
-    pub texels: Vec<Vec3>,
-}
-
-pub fn read_environment_image(path: &Path) -> Result<EnvironmentImage, IoError> {
-    ensure_readable_file(path)?;
-    let format = environment_format(path)?;
-    let open = || {
-        let file = std::fs::File::open(path).map_err(|e| IoError::os(path, e))?;
-        Ok::<_, IoError>(ImageReader::with_format(BufReader::new(file), format))
-    };
-    let unreadable =
-        |e: image::ImageError| IoError::malformed(path, format!("not a readable {format:?} image: {e}"));
-    let (width, height) = open()?.into_dimensions().map_err(unreadable)?;
-    check_shape(path, width, height)?;
-    let mut reader = open()?;
-    let mut limits = Limits::no_limits();
-    limits.max_image_width = Some(MAX_ENVIRONMENT_WIDTH);
-    reader.limits(limits);
-    let decoded = reader.decode().map_err(unreadable)?.into_rgb32f();
-    let texels: Vec<Vec3> = decoded.pixels().map(|p| Vec3::from(p.0)).collect();
-    if let Some(index) = texels.iter().position(|t| !t.is_finite() || t.min_element() < 0.0) {
-        let (x, y) = (index as u32 % width, index as u32 / width);
+pub fn read_environment_image(path: &Path) -> Result<LinearImage, IoError> {
+    let image = read_linear_image(path, |width, height| check_shape(path, width, height))?;
+    if let Some(index) = image.pixels.iter().position(|t| !t.is_finite() || t.min_element() < 0.0) {
+        let (x, y) = (index as u32 % image.width, index as u32 / image.width);
         return Err(IoError::malformed(
             path,
             format!(
                 "texel ({x}, {y}) is {:?}; an environment map's radiance must be finite and >= 0",
-                texels[index].to_array()
+                image.pixels[index].to_array()
             ),
         ));
     }
-    Ok(EnvironmentImage { width, height, texels })
-}
-
-fn environment_format(path: &Path) -> Result<ImageFormat, IoError> {
-    let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    match extension.as_deref() {
-        Some("exr") => Ok(ImageFormat::OpenExr),
-        Some("hdr") => Ok(ImageFormat::Hdr),
-        other => Err(IoError::Unsupported {
-            path: path.to_path_buf(),
-            what: format!("environment map format {:?}", other.unwrap_or("(no extension)")),
-            supported: "equirectangular .exr and .hdr (linear radiance)".into(),
-        }),
-    }
+    Ok(image)
 }
 
 fn check_shape(path: &Path, width: u32, height: u32) -> Result<(), IoError> {
@@ -70,14 +28,6 @@ fn check_shape(path: &Path, width: u32, height: u32) -> Result<(), IoError> {
             format!("is {width} x {height}; an equirectangular map is twice as wide as it is tall"),
         ));
     }
-    if width > MAX_ENVIRONMENT_WIDTH {
-        return Err(IoError::malformed(
-            path,
-            format!(
-                "is {width} x {height}; environment maps up to {MAX_ENVIRONMENT_WIDTH} texels wide are read"
-            ),
-        ));
-    }
     Ok(())
 }
 
@@ -85,6 +35,7 @@ fn check_shape(path: &Path, width: u32, height: u32) -> Result<(), IoError> {
 mod tests {
     use super::*;
     use crate::image_output::write_exr_linear;
+    use glam::Vec3;
 
     fn temporary(name: &str) -> tempfile::TempDir {
         tempfile::Builder::new().prefix(name).tempdir().expect("a temporary folder")
@@ -98,7 +49,7 @@ mod tests {
         write_exr_linear(&path, 8, 4, &texels).expect("written");
         let image = read_environment_image(&path).expect("read");
         assert_eq!((image.width, image.height), (8, 4));
-        assert_eq!(image.texels, texels);
+        assert_eq!(image.pixels, texels);
     }
 
     #[test]

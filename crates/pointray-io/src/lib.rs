@@ -7,6 +7,7 @@ pub mod error;
 pub mod file_roles;
 pub mod formats;
 pub mod image_output;
+pub mod linear_image;
 pub mod memory_budget;
 pub mod point_cloud;
 pub mod point_stream;
@@ -14,12 +15,13 @@ pub mod temporaries;
 pub mod triangle_mesh;
 
 pub use atomic_write::write_atomically;
-pub use environment_image::{EnvironmentImage, read_environment_image};
+pub use environment_image::read_environment_image;
 pub use error::IoError;
 pub use file_roles::{
     ensure_not_same_file, ensure_outputs_spare_inputs, ensure_readable_file, ensure_writable_output,
     folder_of,
 };
+pub use linear_image::{LinearImage, read_linear_image};
 pub use memory_budget::{MemoryBudget, MemoryShortfall};
 pub use point_cloud::{AttributeBytes, PointCloud};
 pub use point_stream::PointStream;

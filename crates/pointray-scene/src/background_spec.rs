@@ -107,12 +107,9 @@ impl MapSpec {
     }
 
     /// The map from the image read from `map`, scaled and rotated.
-    pub(crate) fn to_background(
-        &self,
-        image: &pointray_io::EnvironmentImage,
-    ) -> Result<Background, InvalidValue> {
+    pub(crate) fn to_background(&self, image: &pointray_io::LinearImage) -> Result<Background, InvalidValue> {
         let (intensity, rotation) = self.checked()?;
-        let radiance: Vec<_> = image.texels.iter().map(|&t| t * intensity).collect();
+        let radiance: Vec<_> = image.pixels.iter().map(|&t| t * intensity).collect();
         Ok(Background::Map(Arc::new(EnvironmentMap::new(image.width, image.height, &radiance, rotation))))
     }
 }

@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod cache;
+pub mod compare;
 pub mod consistency;
 pub mod devices;
 pub mod fidelity;

@@ -7,6 +7,7 @@ mod bad_input;
 mod bare_points_render;
 mod classification_render;
 mod columns_flag;
+mod compare_command;
 mod geo_offset;
 mod geometry_checks;
 mod intensity_material;
