@@ -27,7 +27,8 @@ pub(crate) struct SurfacePoint {
     pub normal: Vec3,
     pub bsdf: Bsdf,
     pub emission: Vec3,
-    /// Rays leaving this point ignore hits closer than this (`self_clearance`).
+    /// The hit patch's `self_clearance`, which sets how far rays leaving it start off it
+    /// (`path_ray_offset`); zero for triangles.
     pub clearance: f32,
     pub object: u32,
 }
@@ -156,6 +157,6 @@ impl CpuRenderer {
         let others = self.scene.lights.iter().enumerate().filter(|&(index, _)| index != light);
         let in_the_way = |source: LightSource| light_hit(&source, origin, arriving.direction) < distance;
         others.map(|(_, other)| other.source()).any(in_the_way)
-            || self.occluded(&Ray::new(origin, arriving.direction), surface.clearance, distance, settings)
+            || self.occluded(&Ray::new(origin, arriving.direction), 0.0, distance, settings)
     }
 }

@@ -10,9 +10,11 @@
 //!
 //! Patches are thin two-sided surfaces: an opaque BSDF is shaded on the side the ray
 //! arrives from; glass keeps its normal, which marks its outside. Every ray leaving a patch
-//! starts beyond `self_clearance`, so no bounce restarts inside a neighbouring patch.
+//! starts off it along its normal by `path_ray_offset`, clear of its neighbours' surfaces,
+//! and skips nothing beyond, so that no ray passes through a nearby wall into a closed shape.
 
 use glam::Vec3;
+use pointray_kernels::path_ray_offset;
 use pointray_kernels::sampling::{to_local, to_world};
 use pointray_kernels::{
     Bsdf, RandomSequence, Ray, bsdf_is_two_sided, bsdf_sample, face_forward, random_next, random_next2,
@@ -56,7 +58,6 @@ impl CpuRenderer {
         let mut throughput = Vec3::ONE;
         let mut aov = PrimaryAov::MISS;
         let mut arrival = Arrival { origin: ray.origin, pdf: 0.0, unweighted: true };
-        let mut t_min = 0.0;
         for depth in 0..settings.max_depth {
             random.dimension = depth * BOUNCE_DIMENSIONS;
             if depth == 0 {
@@ -64,7 +65,7 @@ impl CpuRenderer {
             } else {
                 counts.reflection += 1;
             }
-            let hit = self.closest_hit(&ray, t_min, settings);
+            let hit = self.closest_hit(&ray, 0.0, settings);
             let surface_t = hit.map_or(f32::INFINITY, |hit| hit.t);
             match self.emitter_on(&ray, surface_t) {
                 EmitterHit::Surface => {}
@@ -102,7 +103,6 @@ impl CpuRenderer {
             let direction = to_world(sample.direction, normal);
             arrival = Arrival { origin: surface.position, pdf: sample.pdf, unweighted: sample.delta };
             ray = Ray::new(surface.leaving(direction, self.ray_epsilon), direction);
-            t_min = surface.clearance;
             if depth + 1 >= ROULETTE_AFTER {
                 let survival = throughput.max_element().min(MAX_SURVIVAL);
                 if random_next(&mut random) >= survival {
@@ -122,11 +122,11 @@ fn shading_normal(bsdf: &Bsdf, normal: Vec3, ray_direction: Vec3) -> Vec3 {
 }
 
 impl SurfacePoint {
-    /// Where a ray leaving the surface along `direction` starts: off the surface by the
-    /// scene's epsilon on the side it leaves to, so that reflection and refraction alike
-    /// start clear of the surface they leave.
+    /// Where a ray leaving the surface along `direction` starts: off the surface by
+    /// `path_ray_offset` on the side it leaves to, so that reflection and refraction alike
+    /// start clear of the surface they leave and of its neighbours.
     pub(crate) fn leaving(&self, direction: Vec3, epsilon: f32) -> Vec3 {
         let side = if direction.dot(self.normal) >= 0.0 { 1.0 } else { -1.0 };
-        self.position + self.normal * (side * epsilon)
+        self.position + self.normal * (side * path_ray_offset(self.clearance, epsilon))
     }
 }

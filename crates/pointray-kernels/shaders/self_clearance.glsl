@@ -9,4 +9,12 @@ float self_clearance(float radius) {
     return SELF_CLEARANCE_FRACTION * radius;
 }
 
+// The path integrator's rays start off the surface along its normal by this share of the
+// clearance and skip nothing, so that none passes through a wall closer than the clearance.
+const float PATH_OFFSET_SHARE = 0.05;
+
+float path_ray_offset(float clearance, float epsilon) {
+    return max(PATH_OFFSET_SHARE * clearance, epsilon);
+}
+
 #endif

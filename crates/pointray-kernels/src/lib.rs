@@ -53,7 +53,7 @@ pub use phong::{PhongSurface, phong};
 pub use quadratic_roots::{QuadraticRoots, quadratic_roots};
 pub use random_sequence::{RandomSequence, random_next, random_next2, random_sequence};
 pub use ray::Ray;
-pub use self_clearance::self_clearance;
+pub use self_clearance::{path_ray_offset, self_clearance};
 pub use srgb_encode::{srgb_encode, srgb_encode_rgba8};
 pub use tangent_frame::TangentFrame;
 

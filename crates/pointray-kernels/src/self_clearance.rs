@@ -15,6 +15,20 @@ pub fn self_clearance(radius: f32) -> f32 {
     SELF_CLEARANCE_FRACTION * radius
 }
 
+/// The path integrator's rays leave a patch differently: skipping every hit within a support
+/// radius along the ray lets a ray through a wall that lies closer than that (an adjacent
+/// wall near an edge, the far side of a concave surface met at a grazing angle), and light
+/// leaks into closed shapes. They start off the surface along its normal by this share of
+/// the clearance instead, and skip nothing: that clears the neighbours' fitted surfaces, which
+/// lie much closer together than the points' own noise.
+pub const PATH_OFFSET_SHARE: f32 = 0.05;
+
+/// How far along the normal a path integrator's ray leaving a patch of clearance `clearance`
+/// starts (at least the scene's `epsilon`, the whole offset for a triangle).
+pub fn path_ray_offset(clearance: f32, epsilon: f32) -> f32 {
+    (PATH_OFFSET_SHARE * clearance).max(epsilon)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -24,6 +38,15 @@ mod tests {
         let glsl = include_str!("../shaders/self_clearance.glsl");
         let expected = format!("const float SELF_CLEARANCE_FRACTION = {SELF_CLEARANCE_FRACTION:?};");
         assert!(glsl.contains(&expected), "shaders/self_clearance.glsl must declare `{expected}`");
+    }
+
+    #[test]
+    fn the_glsl_twin_offsets_paths_by_the_same_share() {
+        let glsl = include_str!("../shaders/self_clearance.glsl");
+        let expected = format!("const float PATH_OFFSET_SHARE = {PATH_OFFSET_SHARE:?};");
+        assert!(glsl.contains(&expected), "shaders/self_clearance.glsl must declare `{expected}`");
+        assert_eq!(path_ray_offset(0.0, 1e-4), 1e-4, "a triangle's rays leave by the epsilon");
+        assert_eq!(path_ray_offset(1.0, 1e-4), PATH_OFFSET_SHARE);
     }
 
     #[test]

@@ -78,7 +78,7 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
     ),
     (
         "self_clearance.glsl",
-        "result = vec3(self_clearance(0.5));",
+        "result = vec3(self_clearance(0.5), path_ray_offset(0.5, 1e-4), 0.0);",
     ),
     (
         "srgb_encode.glsl",

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use numpy::{IntoPyArray, PyArrayMethods};
+use pointray_denoise::{DenoiseSettings, denoise};
 use pointray_io::MemoryBudget;
 use pointray_render::{Backend, BackendChoice, DeviceSelector, device_options_from_environment, error_line};
 use pointray_scene::load::{LoadOptions, load_scene_file};
@@ -45,6 +46,7 @@ pub fn render<'py>(
         .unwrap_or("auto")
         .parse()
         .map_err(|e| PyValueError::new_err(format!("device: {e}")))?;
+    let denoised = flag_option(options, "denoise")?.unwrap_or(false);
     let image = py
         .detach(|| -> Result<RenderedImage, String> {
             let load_options = LoadOptions { in_memory: &in_memory, ..LoadOptions::default() };
@@ -52,6 +54,9 @@ pub fn render<'py>(
             let backend = Backend::open(backend, &device, device_options_from_environment())
                 .map_err(|e| format!("opening the Vulkan backend: {e}"))?;
             let mut image = backend.render(&loaded.scene, &settings).map_err(|e| error_line(&e))?;
+            if denoised {
+                image = denoise(&image, &DenoiseSettings::default());
+            }
             image.scale_depth(loaded.space.scale as f32);
             Ok(image)
         })

@@ -114,3 +114,16 @@ def test_a_sun_and_sky_lights_a_path_traced_scene_as_the_command_line_does(bunny
         pointray.Scene().background(sun_elevation_degrees=120.0).to_toml()
     with pytest.raises(pointray.PointrayError, match="missing.exr"):
         pointray.render(pointray.Scene().background(map=tmp_path / "missing.exr"), backend="cpu")
+
+
+def test_denoise_filters_as_the_command_line_does(bunny, tmp_path):
+    scene = (pointray.Scene()
+             .points(bunny, material={"diffuse": [0.8, 0.8, 0.8]})
+             .ground(auto=True)
+             .render_settings(width=48, height=32, spp=2, max_depth=3, integrator="path"))
+    (tmp_path / "scene.toml").write_text(scene.to_toml())
+    pointray_cli("render", "scene.toml", "-o", "cli.exr", "--backend", "cpu", "--denoise", cwd=tmp_path)
+    image = pointray.render(scene, backend="cpu", denoise=True)
+    image.save(tmp_path / "python.exr")
+    assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+    assert not np.array_equal(image, pointray.render(scene, backend="cpu"))

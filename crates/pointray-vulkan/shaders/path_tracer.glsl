@@ -8,6 +8,7 @@
 #include "bsdf.glsl"
 #include "light_source.glsl"
 #include "random_sequence.glsl"
+#include "self_clearance.glsl"
 #include "sky.glsl"
 
 // The numbers each bounce draws: light choice (1), light position (2), BSDF (3), roulette (1).
@@ -30,15 +31,15 @@ bool is_black(vec3 v) {
     return all(equal(v, vec3(0.0)));
 }
 
-// Off the surface by the scene's epsilon on the side `direction` leaves to.
-vec3 leaving(vec3 position, vec3 normal, vec3 direction) {
+// Off the surface by path_ray_offset on the side `direction` leaves to.
+vec3 leaving(vec3 position, vec3 normal, float clearance, vec3 direction) {
     float side = dot(direction, normal) >= 0.0 ? 1.0 : -1.0;
-    return position + normal * (side * frame.ray_epsilon);
+    return position + normal * (side * path_ray_offset(clearance, frame.ray_epsilon));
 }
 
 // Whether a surface or another area light lies between the point and the light sample.
 bool blocked(vec3 position, vec3 normal, float clearance, LightSample arriving, uint light) {
-    vec3 origin = leaving(position, normal, arriving.direction);
+    vec3 origin = leaving(position, normal, clearance, arriving.direction);
     float distance = isinf(arriving.distance) ? INFINITE_T : arriving.distance * (1.0 - 1e-4);
     for (uint i = 0u; i < frame.light_count; ++i) {
         if (i != light && light_hit(light_source_of(i), origin, arriving.direction) < distance) {
@@ -48,7 +49,7 @@ bool blocked(vec3 position, vec3 normal, float clearance, LightSample arriving, 
     shadow.visible = 0u;
     uint flags = gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT;
     COUNT_RAY();
-    traceRayEXT(scene_tlas, flags, 0xffu, HIT_SHADER_OFFSET, HIT_SHADER_STRIDE, SHADOW_MISS, origin, clearance,
+    traceRayEXT(scene_tlas, flags, 0xffu, HIT_SHADER_OFFSET, HIT_SHADER_STRIDE, SHADOW_MISS, origin, 0.0,
                 arriving.direction, distance, SHADOW_PAYLOAD_LOCATION);
     return shadow.visible == 0u;
 }
@@ -125,11 +126,10 @@ vec3 path_trace(Ray ray, RandomSequence random, bool record, uint pixel_index) {
     vec3 arrival_origin = ray.origin;
     float arrival_pdf = 0.0;
     bool arrival_unweighted = true;
-    float t_min = 0.0;
     for (uint depth = 0u; depth < settings.max_depth; ++depth) {
         random.dimension = depth * BOUNCE_DIMENSIONS;
         COUNT_RAY();
-        trace_segment(ray, t_min);
+        trace_segment(ray, 0.0);
         bool first = record && depth == 0u;
         bool hit = payload.instance != MISS_ID;
         float light_t;
@@ -171,8 +171,7 @@ vec3 path_trace(Ray ray, RandomSequence random, bool record, uint pixel_index) {
         arrival_origin = position;
         arrival_pdf = drawn.pdf;
         arrival_unweighted = drawn.delta;
-        ray = Ray(leaving(position, normal, direction), direction);
-        t_min = clearance;
+        ray = Ray(leaving(position, normal, clearance, direction), direction);
         if (depth + 1u >= ROULETTE_AFTER) {
             float survival = min(max(throughput.x, max(throughput.y, throughput.z)), MAX_SURVIVAL);
             if (random_next(random) >= survival) {

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
+use pointray_denoise::{DenoiseSettings, denoise};
 use pointray_io::MemoryBudget;
 use pointray_scene::image_output::{AovSelection, check_image_outputs, write_image};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
@@ -62,6 +63,10 @@ pub struct RenderArgs {
     /// Also write depth, normal, instance id, primitive id and hit mask next to the image.
     #[arg(long)]
     aovs: bool,
+    /// Filter the noise out of a preview of few samples (an edge-aware à-trous filter guided
+    /// by the albedo, normal, depth and id AOVs); the AOVs are written unfiltered.
+    #[arg(long)]
+    denoise: bool,
     #[command(flatten)]
     input: SceneInputArgs,
 }
@@ -94,9 +99,14 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         let started = Instant::now();
         let mut image = backend.render(&scene, &settings)?;
         let elapsed = started.elapsed();
+        println!("rendered {}x{} in {:.2?}", settings.width, settings.height, elapsed);
+        if args.denoise {
+            let started = Instant::now();
+            image = denoise(&image, &DenoiseSettings::default());
+            println!("denoised in {:.2?}", started.elapsed());
+        }
         image.scale_depth(space.scale as f32);
         let written = write_image(&image, output, &aovs)?;
-        println!("rendered {}x{} in {:.2?}", settings.width, settings.height, elapsed);
         if args.turntable.is_some() {
             let at = space.point_to_file(scene.camera.position.as_dvec3());
             println!("frame {index}: camera at {:.6},{:.6},{:.6}", at.x, at.y, at.z);

@@ -1,64 +1,80 @@
 //! `compare`: a path-traced render against a reference of more samples converges as the
-//! samples grow, an image against itself has no error, and images that cannot be compared
-//! are refused with their files named.
+//! samples grow (and `render --denoise` brings a preview closer), an image against itself has
+//! no error, and images that cannot be compared are refused with their files named.
+
+use std::path::Path;
 
 use crate::common::{pointray_in, write_grid_ply, write_points_scene};
 
-/// The RMSE that `compare` prints.
-fn rmse(stdout: &str) -> f64 {
+/// A folder holding the grid scene.
+fn grid_scene() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    write_points_scene(dir.path(), "scene.toml", "grid.ply");
+    dir
+}
+
+/// Path traces the grid scene at `size` (width, height) to `output`; returns what it printed.
+fn path_render(dir: &Path, output: &str, size: [&str; 2], spp: &str, seed: &str, extra: &[&str]) -> String {
+    let mut args = vec!["render", "scene.toml", "-o", output, "--backend", "cpu", "--width", size[0]];
+    args.extend([
+        "--height",
+        size[1],
+        "--integrator",
+        "path",
+        "--max-depth",
+        "3",
+        "--spp",
+        spp,
+        "--seed",
+        seed,
+    ]);
+    args.extend_from_slice(extra);
+    let (ok, stdout, stderr) = pointray_in(dir, &args);
+    assert!(ok, "{output}: {stderr}");
+    stdout
+}
+
+/// What `compare IMAGE reference.exr` prints, and the RMSE in it.
+fn compare_with_reference(dir: &Path, image: &str) -> (String, f64) {
+    let (ok, stdout, stderr) = pointray_in(dir, &["compare", image, "reference.exr"]);
+    assert!(ok, "{stderr}");
     let after = stdout.split("RMSE ").nth(1).unwrap_or_else(|| panic!("no RMSE in {stdout}"));
-    after.split(',').next().unwrap().trim().parse().unwrap()
+    let rmse = after.split(',').next().unwrap().trim().parse().unwrap();
+    (stdout, rmse)
 }
 
 #[test]
 fn more_samples_come_closer_to_the_reference() {
-    let dir = tempfile::tempdir().unwrap();
-    write_grid_ply(&dir.path().join("grid.ply"));
-    write_points_scene(dir.path(), "scene.toml", "grid.ply");
-    let render = |output: &str, spp: &str, seed: &str| {
-        let args = [
-            "render",
-            "scene.toml",
-            "-o",
-            output,
-            "--backend",
-            "cpu",
-            "--width",
-            "24",
-            "--height",
-            "16",
-            "--integrator",
-            "path",
-            "--max-depth",
-            "3",
-            "--spp",
-            spp,
-            "--seed",
-            seed,
-        ];
-        let (ok, _, stderr) = pointray_in(dir.path(), &args);
-        assert!(ok, "{output}: {stderr}");
-    };
-    render("reference.exr", "256", "1");
-    render("few.exr", "2", "2");
-    render("more.exr", "32", "2");
-    let compare = |image: &str| {
-        let (ok, stdout, stderr) = pointray_in(dir.path(), &["compare", image, "reference.exr"]);
-        assert!(ok, "{stderr}");
-        stdout
-    };
-    let (few, more) = (rmse(&compare("few.exr")), rmse(&compare("more.exr")));
+    let dir = grid_scene();
+    let size = ["24", "16"];
+    path_render(dir.path(), "reference.exr", size, "256", "1", &[]);
+    path_render(dir.path(), "few.exr", size, "2", "2", &[]);
+    path_render(dir.path(), "more.exr", size, "32", "2", &[]);
+    let (few, more) =
+        (compare_with_reference(dir.path(), "few.exr").1, compare_with_reference(dir.path(), "more.exr").1);
     assert!(more < 0.5 * few, "32 samples {more} against 2 samples {few}");
-    let itself = compare("reference.exr");
-    assert_eq!(rmse(&itself), 0.0);
+    let (itself, rmse) = compare_with_reference(dir.path(), "reference.exr");
+    assert_eq!(rmse, 0.0);
     assert!(itself.contains("PSNR inf dB") && itself.contains("energy 1.0000"), "{itself}");
 }
 
 #[test]
+fn a_denoised_preview_comes_closer_to_the_reference_than_the_noisy_one() {
+    let dir = grid_scene();
+    let size = ["48", "32"];
+    path_render(dir.path(), "reference.exr", size, "512", "3", &[]);
+    path_render(dir.path(), "noisy.exr", size, "2", "3", &[]);
+    let printed = path_render(dir.path(), "denoised.exr", size, "2", "3", &["--denoise"]);
+    assert!(printed.contains("denoised in"), "{printed}");
+    let noisy = compare_with_reference(dir.path(), "noisy.exr").1;
+    let denoised = compare_with_reference(dir.path(), "denoised.exr").1;
+    assert!(denoised < 0.6 * noisy, "denoised {denoised} against noisy {noisy}");
+}
+
+#[test]
 fn images_that_cannot_be_compared_are_refused_with_their_names() {
-    let dir = tempfile::tempdir().unwrap();
-    write_grid_ply(&dir.path().join("grid.ply"));
-    write_points_scene(dir.path(), "scene.toml", "grid.ply");
+    let dir = grid_scene();
     for (output, width) in [("wide.exr", "24"), ("narrow.exr", "20"), ("shown.png", "20")] {
         let args =
             ["render", "scene.toml", "-o", output, "--backend", "cpu", "--width", width, "--height", "8"];

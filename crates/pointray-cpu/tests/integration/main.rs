@@ -5,6 +5,7 @@ mod camera_and_light_updates;
 mod common;
 mod first_hit;
 mod hostile_coordinates;
+mod light_leaks;
 mod path_tracing;
 mod plane_and_sphere;
 mod point_colors;

@@ -183,3 +183,29 @@ fn gpu_and_cpu_agree_under_an_environment_map_drawn_by_its_radiance() {
     let sky = gpu.color[sky.expect("a pixel of sky")];
     assert!(sky.z > sky.x && sky.z > 0.3, "{sky}");
 }
+
+/// Seen from inside, a closed point-set sphere under a white sky is black on the GPU too: no
+/// bounce or shadow ray slips out through a wall it meets at a grazing angle.
+#[test]
+fn no_light_leaks_into_a_closed_point_set_sphere_on_the_gpu() {
+    let Some(renderer) = renderer() else { return };
+    let white = material(SurfaceKind::Diffuse, Vec3::ONE, 0.0);
+    let sphere = object("sphere", patches(sphere_patches(Vec3::ZERO, 1.0, 6000)), white);
+    for look_at in [Vec3::X, Vec3::new(0.3, 1.0, 0.2)] {
+        let scene = Scene {
+            camera: Camera { position: Vec3::ZERO, look_at, up: Vec3::Y, vertical_fov_degrees: 100.0 },
+            lights: vec![],
+            background: Background::Solid(Vec3::ONE),
+            objects: vec![sphere.clone()],
+        };
+        let image =
+            renderer.render(&scene, &path_settings(32, 16, 5, 3)).expect("the Vulkan backend path traces");
+        assert_no_validation_messages(&renderer);
+        assert!(
+            image.instance_id.iter().all(|&id| id != RenderedImage::MISS),
+            "a ray left the sphere unseen"
+        );
+        let lit = image.color.iter().filter(|c| c.max_element() > 0.0).count();
+        assert_eq!(lit, 0, "light leaks into {lit} pixels looking at {look_at}");
+    }
+}
