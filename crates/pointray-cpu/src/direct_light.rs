@@ -2,16 +2,19 @@
 //! vertex and weighed against the BSDF by the power heuristic), and what a path meets when
 //! its ray finds an area light or the sky instead of a surface.
 //!
-//! The lights chosen from are the scene's lights and, when it is not black, the sky (the
-//! background), each with probability `1 / count`; the sky is drawn as `Background::sample`
-//! draws it (a map in proportion to its radiance). Area lights are not in the BVHs: a path's
-//! ray and a shadow ray test them apart.
+//! The lights chosen from are the scene's lights, the sky (the background) when it is not
+//! black, and the emissive mesh triangles when there are any, each with probability
+//! `1 / count`; the sky is drawn as `Background::sample` draws it (a map in proportion to its
+//! radiance), the triangles by area (`emissive_sample`). Area lights are not in the BVHs: a
+//! path's ray and a shadow ray test them apart; emissive triangles are, and a path that
+//! meets one weighs its emission against light sampling too.
 
 use glam::Vec3;
 use pointray_kernels::sampling::{power_heuristic, to_local};
 use pointray_kernels::{
     Bsdf, LightSample, LightSource, RandomSequence, Ray, bsdf_eval, bsdf_pdf, bsdf_samples_lights,
-    light_emitted, light_hit, light_is_delta, light_pdf, light_sample, random_next, random_next2,
+    emissive_pdf, emissive_sample, light_emitted, light_hit, light_is_delta, light_pdf, light_sample,
+    random_next, random_next2,
 };
 use pointray_scene::RenderSettings;
 
@@ -58,9 +61,30 @@ impl CpuRenderer {
         }
     }
 
-    /// How many things light sampling chooses from: the lights, and the sky unless black.
+    /// How many things light sampling chooses from: the lights, the sky unless black, and
+    /// the emissive triangles if any.
     fn emitter_count(&self) -> usize {
-        self.scene.lights.len() + usize::from(self.scene.background.is_lit())
+        self.scene.lights.len()
+            + usize::from(self.scene.background.is_lit())
+            + usize::from(!self.emissive.is_empty())
+    }
+
+    /// The emission a path's ray meets on `surface`, `t` along it, weighed against light
+    /// sampling where the surface is an emissive triangle that it could have drawn.
+    pub(crate) fn surface_emission(
+        &self,
+        surface: &SurfacePoint,
+        ray: &Ray,
+        t: f32,
+        arrival: &Arrival,
+    ) -> Vec3 {
+        let is_triangle = surface.clearance == 0.0;
+        if surface.emission == Vec3::ZERO || !is_triangle || arrival.unweighted || self.emissive.is_empty() {
+            return surface.emission;
+        }
+        let choice = 1.0 / self.emitter_count() as f32;
+        let light_density = emissive_pdf(&self.emissive, t, surface.normal.dot(ray.direction));
+        surface.emission * power_heuristic(arrival.pdf, choice * light_density)
     }
 
     /// The nearest area light on `ray` before `surface_t`; else the sky if the ray hit
@@ -115,12 +139,20 @@ impl CpuRenderer {
             return Vec3::ZERO;
         }
         let index = ((pick * count as f32) as usize).min(count - 1);
+        let lights = self.scene.lights.len();
         let (arriving, delta) = match self.scene.lights.get(index) {
             Some(light) => {
                 let source = light.source();
                 (light_sample(&source, surface.position, u), light_is_delta(&source))
             }
-            None => (self.scene.background.sample(u), false),
+            None if index == lights && self.scene.background.is_lit() => {
+                (self.scene.background.sample(u), false)
+            }
+            None => {
+                // What is left of `pick` within the triangles' share picks the triangle.
+                let within = (pick * count as f32 - index as f32).clamp(0.0, 1.0);
+                (emissive_sample(&self.emissive, within, u, surface.position), false)
+            }
         };
         if arriving.radiance == Vec3::ZERO || (!delta && arriving.pdf <= 0.0) {
             return Vec3::ZERO;
@@ -151,12 +183,18 @@ impl CpuRenderer {
         settings: &RenderSettings,
     ) -> bool {
         let origin = surface.leaving(arriving.direction, self.ray_epsilon);
-        // Stop short of an area light's own surface, which the BVHs do not hold anyway.
-        let distance =
-            if arriving.distance.is_finite() { arriving.distance * (1.0 - 1e-4) } else { f32::INFINITY };
+        // Aimed from the ray's origin, off the surface, at the point sampled on the light, and
+        // stopping short of it (an emissive triangle's own surface is in the BVHs).
+        let (direction, distance) = if arriving.distance.is_finite() {
+            let to_light = surface.position + arriving.direction * arriving.distance - origin;
+            let length = to_light.length();
+            (to_light / length, length * (1.0 - 1e-4))
+        } else {
+            (arriving.direction, f32::INFINITY)
+        };
         let others = self.scene.lights.iter().enumerate().filter(|&(index, _)| index != light);
-        let in_the_way = |source: LightSource| light_hit(&source, origin, arriving.direction) < distance;
+        let in_the_way = |source: LightSource| light_hit(&source, origin, direction) < distance;
         others.map(|(_, other)| other.source()).any(in_the_way)
-            || self.occluded(&Ray::new(origin, arriving.direction), 0.0, distance, settings)
+            || self.occluded(&Ray::new(origin, direction), 0.0, distance, settings)
     }
 }

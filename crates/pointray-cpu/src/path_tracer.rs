@@ -85,7 +85,7 @@ impl CpuRenderer {
                     albedo: surface.bsdf.color,
                 };
             }
-            radiance += throughput * surface.emission;
+            radiance += throughput * self.surface_emission(&surface, &ray, hit.t, &arrival);
             if depth + 1 >= settings.max_depth {
                 break;
             }

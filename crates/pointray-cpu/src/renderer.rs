@@ -2,7 +2,7 @@
 //! over pixel tiles.
 
 use glam::{UVec2, Vec3};
-use pointray_kernels::{Camera, Ray, camera_ray, random_sequence, sample_jitter};
+use pointray_kernels::{Camera, EmissiveTriangles, Ray, camera_ray, random_sequence, sample_jitter};
 use pointray_scene::{Integrator, RenderSettings, RenderedImage, Scene};
 use rayon::prelude::*;
 
@@ -20,6 +20,8 @@ pub struct CpuRenderer {
     pub(crate) scene: Scene,
     pub(crate) top: TopLevel,
     pub(crate) ray_epsilon: f32,
+    /// The emissive mesh triangles, one light for the path integrator's light sampling.
+    pub(crate) emissive: EmissiveTriangles,
 }
 
 /// One pixel's result.
@@ -44,6 +46,7 @@ impl CpuRenderer {
             scene: scene.clone(),
             top: TopLevel::build(scene, max_tile_patches),
             ray_epsilon: scene.ray_epsilon(),
+            emissive: scene.emissive_triangles(),
         }
     }
 

@@ -11,6 +11,7 @@ pub mod bsdf;
 pub mod bsdf_sample;
 pub mod camera_ray;
 pub mod dielectric;
+pub mod emissive_triangles;
 pub mod environment_map;
 pub mod face_forward;
 pub mod fresnel;
@@ -37,6 +38,7 @@ pub use background::background;
 pub use bsdf::{Bsdf, bsdf_eval, bsdf_is_two_sided, bsdf_pdf, bsdf_sample, bsdf_samples_lights};
 pub use bsdf_sample::BsdfSample;
 pub use camera_ray::{Camera, camera_ray, sample_jitter};
+pub use emissive_triangles::{EmissiveTriangles, emissive_pdf, emissive_sample};
 pub use environment_map::{
     EnvironmentMap, environment_direction, environment_pdf, environment_radiance, environment_sample,
     environment_uv,

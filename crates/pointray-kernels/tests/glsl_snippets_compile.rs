@@ -130,16 +130,31 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
              result = s.radiance * s.pdf + environment_radiance(map, s.direction)
                  + vec3(environment_pdf(map, s.direction), environment_uv(map, s.direction));",
     ),
+    (
+        "emissive_triangles.glsl",
+        "EmissiveTriangles triangles = EmissiveTriangles(2u, 3.0);
+             LightSample s = emissive_sample(triangles, 0.4, vec2(0.3, 0.6), vec3(0.0));
+             result = s.radiance * s.pdf + vec3(emissive_pdf(triangles, s.distance, 0.5));",
+    ),
 ];
 
 /// What a snippet needs its includer to define first: where its data lies.
-const PRELUDES: &[(&str, &str)] = &[(
-    "environment_map.glsl",
-    "layout(std430, binding = 1) readonly buffer Texels { vec4 texels[]; };
+const PRELUDES: &[(&str, &str)] = &[
+    (
+        "emissive_triangles.glsl",
+        "layout(std430, binding = 1) readonly buffer Records { vec4 records[]; };
+layout(std430, binding = 2) readonly buffer Areas { float areas[]; };
+#define EMISSIVE_RECORD(i) records[i]
+#define EMISSIVE_DISTRIBUTION(i) areas[i]",
+    ),
+    (
+        "environment_map.glsl",
+        "layout(std430, binding = 1) readonly buffer Texels { vec4 texels[]; };
 layout(std430, binding = 2) readonly buffer Distribution { float distribution[]; };
 #define ENVIRONMENT_TEXEL(i) texels[i]
 #define ENVIRONMENT_DISTRIBUTION(i) distribution[i]",
-)];
+    ),
+];
 
 fn wrapper(snippet: &str, calls: &str) -> String {
     let prelude = PRELUDES.iter().find(|(name, _)| *name == snippet).map_or("", |(_, prelude)| prelude);

@@ -8,6 +8,7 @@ mod checks;
 pub mod classification_palette;
 pub mod color_ramp;
 pub mod demo;
+mod emissive_meshes;
 pub mod error;
 mod framing;
 pub mod ground;

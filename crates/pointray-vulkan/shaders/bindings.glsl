@@ -56,6 +56,9 @@ struct LightRecord {
 // The background's map, where it has one (environment_map.glsl reads it through these).
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer EnvironmentTexels { vec4 texels[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer EnvironmentDistribution { float values[]; };
+// The emissive mesh triangles' table, where there are any (emissive_triangles.glsl reads it).
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer EmissiveRecords { vec4 records[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer EmissiveDistribution { float values[]; };
 
 layout(set = 0, binding = 0) uniform accelerationStructureEXT scene_tlas;
 
@@ -74,11 +77,19 @@ layout(set = 0, binding = 1, std140) uniform FrameUniforms {
     uint sky_width;
     uint sky_height;
     float sky_rotation;       // turns about +y
+    uint emissive_count;      // emissive mesh triangles; 0: none, and no table
+    EmissiveRecords emissive_records;
+    EmissiveDistribution emissive_distribution;
+    float emissive_total_area;
     uint pad0;
+    uint pad1;
+    uint pad2;
 } frame;
 
 #define ENVIRONMENT_TEXEL(i) frame.sky_texels.texels[i]
 #define ENVIRONMENT_DISTRIBUTION(i) frame.sky_distribution.values[i]
+#define EMISSIVE_RECORD(i) frame.emissive_records.records[i]
+#define EMISSIVE_DISTRIBUTION(i) frame.emissive_distribution.values[i]
 
 layout(set = 0, binding = 2, std430) readonly buffer Objects { ObjectRecord objects[]; };
 layout(set = 0, binding = 3, std430) readonly buffer Lights { LightRecord lights[]; };

@@ -6,6 +6,7 @@
 #define POINTRAY_PATH_TRACER_GLSL
 
 #include "bsdf.glsl"
+#include "emissive_triangles.glsl"
 #include "light_source.glsl"
 #include "random_sequence.glsl"
 #include "self_clearance.glsl"
@@ -22,13 +23,31 @@ LightSource light_source_of(uint index) {
                        record.origin_radius.w, record.radiance.rgb);
 }
 
-// The lights, and the sky unless it is black.
-uint emitter_count() {
-    return frame.light_count + frame.sky_lit;
-}
-
 bool is_black(vec3 v) {
     return all(equal(v, vec3(0.0)));
+}
+
+// The lights, the sky unless it is black, and the emissive triangles if any.
+uint emitter_count() {
+    return frame.light_count + frame.sky_lit + (frame.emissive_count > 0u ? 1u : 0u);
+}
+
+EmissiveTriangles emissive_triangles() {
+    return EmissiveTriangles(frame.emissive_count, frame.emissive_total_area);
+}
+
+// The emission a path's ray meets, `t` along it, on a surface of normal `normal`: weighed
+// against light sampling where it is an emissive triangle (clearance 0) that light sampling
+// could have drawn.
+vec3 surface_emission(vec3 emission, float clearance, vec3 normal, Ray ray, float t, float arrival_pdf,
+                      bool arrival_unweighted) {
+    bool is_triangle = clearance == 0.0;
+    if (is_black(emission) || !is_triangle || arrival_unweighted || frame.emissive_count == 0u) {
+        return emission;
+    }
+    float choice = 1.0 / float(emitter_count());
+    float light_density = emissive_pdf(emissive_triangles(), t, dot(normal, ray.direction));
+    return emission * power_heuristic(arrival_pdf, choice * light_density);
 }
 
 // Off the surface by path_ray_offset on the side `direction` leaves to.
@@ -40,9 +59,18 @@ vec3 leaving(vec3 position, vec3 normal, float clearance, vec3 direction) {
 // Whether a surface or another area light lies between the point and the light sample.
 bool blocked(vec3 position, vec3 normal, float clearance, LightSample arriving, uint light) {
     vec3 origin = leaving(position, normal, clearance, arriving.direction);
-    float distance = isinf(arriving.distance) ? INFINITE_T : arriving.distance * (1.0 - 1e-4);
+    // Aimed from the ray's origin, off the surface, at the point sampled on the light, and
+    // stopping short of it (an emissive triangle's own surface is in the TLAS).
+    vec3 direction = arriving.direction;
+    float distance = INFINITE_T;
+    if (!isinf(arriving.distance)) {
+        vec3 to_light = position + arriving.direction * arriving.distance - origin;
+        float length_to_light = length(to_light);
+        direction = to_light / length_to_light;
+        distance = length_to_light * (1.0 - 1e-4);
+    }
     for (uint i = 0u; i < frame.light_count; ++i) {
-        if (i != light && light_hit(light_source_of(i), origin, arriving.direction) < distance) {
+        if (i != light && light_hit(light_source_of(i), origin, direction) < distance) {
             return true;
         }
     }
@@ -50,11 +78,11 @@ bool blocked(vec3 position, vec3 normal, float clearance, LightSample arriving, 
     uint flags = gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT;
     COUNT_RAY();
     traceRayEXT(scene_tlas, flags, 0xffu, HIT_SHADER_OFFSET, HIT_SHADER_STRIDE, SHADOW_MISS, origin, 0.0,
-                arriving.direction, distance, SHADOW_PAYLOAD_LOCATION);
+                direction, distance, SHADOW_PAYLOAD_LOCATION);
     return shadow.visible == 0u;
 }
 
-// Next-event estimation: one light (or the sky) drawn, weighed against the BSDF.
+// Next-event estimation: one light (the sky, the emissive triangles) drawn, weighed against the BSDF.
 vec3 direct_light(vec3 position, vec3 normal, float clearance, Bsdf bsdf, vec3 shading, vec3 wo,
                   inout RandomSequence random) {
     float pick = random_next(random);
@@ -70,8 +98,12 @@ vec3 direct_light(vec3 position, vec3 normal, float clearance, Bsdf bsdf, vec3 s
         LightSource source = light_source_of(index);
         arriving = light_sample(source, position, u);
         delta = light_is_delta(source);
-    } else {
+    } else if (index == frame.light_count && frame.sky_lit != 0u) {
         arriving = sky_sample(u);
+    } else {
+        // What is left of `pick` within the triangles' share picks the triangle.
+        float within = clamp(pick * float(count) - float(index), 0.0, 1.0);
+        arriving = emissive_sample(emissive_triangles(), within, u, position);
     }
     if (is_black(arriving.radiance) || (!delta && arriving.pdf <= 0.0)) {
         return vec3(0.0);
@@ -154,7 +186,8 @@ vec3 path_trace(Ray ray, RandomSequence random, bool record, uint pixel_index) {
             // The albedo AOV in half floats, where the Whitted path leaves zeros.
             pixels[pixel_index].ids.zw = uvec2(packHalf2x16(base_color.rg), packHalf2x16(vec2(base_color.b, 0.0)));
         }
-        radiance += throughput * object.emission_ior.rgb;
+        radiance += throughput * surface_emission(object.emission_ior.rgb, clearance, normal, ray, payload.t,
+                                                  arrival_pdf, arrival_unweighted);
         if (depth + 1u >= settings.max_depth) {
             break;
         }

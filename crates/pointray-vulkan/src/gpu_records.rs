@@ -4,9 +4,10 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use pointray_kernels::{PatchCold, PatchHot};
 use pointray_scene::light::WhittedLight;
-use pointray_scene::{Background, BufferLayout, Camera, Light, Material, RenderSettings};
+use pointray_scene::{Background, BufferLayout, Light, Material, RenderSettings};
 
-use crate::environment_upload::EnvironmentBuffers;
+use crate::light_table::LightTable;
+use crate::prepared_scene::PreparedScene;
 use crate::trace_target::PixelOutput;
 
 /// Hot and cold data of one patch interleaved (`BufferLayout::Combined`): 48 bytes.
@@ -124,7 +125,11 @@ pub(crate) struct FrameUniforms {
     sky_width: u32,
     sky_height: u32,
     sky_rotation: f32,
-    pad: u32,
+    emissive_count: u32,
+    emissive_records: u64,
+    emissive_distribution: u64,
+    emissive_total_area: f32,
+    pad: [u32; 3],
 }
 
 fn vec4(v: Vec3, w: f32) -> [f32; 4] {
@@ -132,14 +137,10 @@ fn vec4(v: Vec3, w: f32) -> [f32; 4] {
 }
 
 impl FrameUniforms {
-    /// `map` holds the addresses of the background's map buffers where it is a map.
-    pub(crate) fn new(
-        camera: &Camera,
-        background: &Background,
-        map: Option<&EnvironmentBuffers>,
-        light_count: u32,
-        ray_epsilon: f32,
-    ) -> Self {
+    /// The uniforms a trace of `scene` reads: its camera, its background (with the addresses
+    /// of its map's table, where it is a map) and its emissive triangles' table.
+    pub(crate) fn new(scene: &PreparedScene) -> Self {
+        let (camera, background) = (&scene.camera, &scene.background);
         // A solid background is the gradient between two equal colours.
         let (top, bottom) = match background {
             Background::Solid(color) => (*color, *color),
@@ -150,22 +151,29 @@ impl FrameUniforms {
             Background::Map(map) => (map.width(), map.height(), map.rotation()),
             _ => (0, 0, 0.0),
         };
+        let records = |table: &Option<LightTable>| table.as_ref().map_or(0, |t| t.records.device_address());
+        let distribution =
+            |table: &Option<LightTable>| table.as_ref().map_or(0, |t| t.distribution.device_address());
         Self {
             camera_position_fov: vec4(camera.position, camera.vertical_fov_degrees),
             camera_look_at: vec4(camera.look_at, 0.0),
             camera_up: vec4(camera.up, 0.0),
             background_top: vec4(top, 0.0),
             background_bottom: vec4(bottom, 0.0),
-            light_count,
-            ray_epsilon,
+            light_count: scene.light_count,
+            ray_epsilon: scene.ray_epsilon,
             sky_lit: background.is_lit().into(),
-            sky_is_map: map.is_some().into(),
-            sky_texels: map.map_or(0, |m| m.texels.device_address()),
-            sky_distribution: map.map_or(0, |m| m.distribution.device_address()),
+            sky_is_map: scene.environment.is_some().into(),
+            sky_texels: records(&scene.environment),
+            sky_distribution: distribution(&scene.environment),
             sky_width: width,
             sky_height: height,
             sky_rotation: rotation,
-            pad: 0,
+            emissive_count: scene.emissive_count,
+            emissive_records: records(&scene.emissive),
+            emissive_distribution: distribution(&scene.emissive),
+            emissive_total_area: scene.emissive_area,
+            pad: [0; 3],
         }
     }
 }
@@ -363,12 +371,16 @@ mod tests {
                 ("sky_width", offset_of!(FrameUniforms, sky_width)),
                 ("sky_height", offset_of!(FrameUniforms, sky_height)),
                 ("sky_rotation", offset_of!(FrameUniforms, sky_rotation)),
+                ("emissive_count", offset_of!(FrameUniforms, emissive_count)),
+                ("emissive_records", offset_of!(FrameUniforms, emissive_records)),
+                ("emissive_distribution", offset_of!(FrameUniforms, emissive_distribution)),
+                ("emissive_total_area", offset_of!(FrameUniforms, emissive_total_area)),
                 ("pad0", offset_of!(FrameUniforms, pad)),
             ],
         );
         assert_eq!(
             size_of::<FrameUniforms>(),
-            offset_of!(FrameUniforms, pad) + 4,
+            offset_of!(FrameUniforms, pad) + 12,
             "FrameUniforms ends with its pad"
         );
         assert_members(

@@ -17,7 +17,8 @@ pub struct BuildReport {
     pub tlas_bytes: u64,
     /// GPU bytes of the buffers the traces read: the hot (or the combined) patch records,
     /// the cold ones and colour neighbour lists where a material colours hits by the
-    /// points, mesh vertices and indices, the background's environment map. The build inputs (patch
+    /// points, mesh vertices and indices, the background's environment map and the emissive
+    /// triangles' table. The build inputs (patch
     /// boxes, TLAS instances) are freed once built.
     pub geometry_bytes: u64,
 }
@@ -39,7 +40,11 @@ impl PreparedScene {
             blas_bytes: self._bottom_levels.iter().map(|b| b.size()).sum(),
             tlas_bytes: self.tlas.size(),
             geometry_bytes: self._geometry.iter().map(|b| b.size).sum::<u64>()
-                + self.environment.as_ref().map_or(0, |map| map.bytes()),
+                + [&self.environment, &self.emissive]
+                    .iter()
+                    .filter_map(|table| table.as_ref())
+                    .map(|table| table.bytes())
+                    .sum::<u64>(),
         }
     }
 }

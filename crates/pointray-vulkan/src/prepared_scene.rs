@@ -12,9 +12,9 @@ use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
 use crate::acceleration::{AccelerationStructure, BlasLayout, build, instance_input, triangle_input};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
-use crate::environment_upload::EnvironmentBuffers;
 use crate::error::VulkanError;
 use crate::gpu_records::{LightRecord, ObjectRecord};
+use crate::light_table::LightTable;
 use crate::memory_plan;
 use crate::patch_upload::prepare_patches;
 use crate::pipeline::{HIT_GROUP_PATCHES, HIT_GROUP_TRIANGLES};
@@ -29,7 +29,11 @@ pub struct PreparedScene {
     pub camera: Camera,
     pub(crate) background: Background,
     /// The background's map, where it is one.
-    pub(crate) environment: Option<EnvironmentBuffers>,
+    pub(crate) environment: Option<LightTable>,
+    /// The emissive mesh triangles, where there are any, and their count and total area.
+    pub(crate) emissive: Option<LightTable>,
+    pub(crate) emissive_count: u32,
+    pub(crate) emissive_area: f32,
     pub(crate) light_count: u32,
     pub(crate) ray_epsilon: f32,
     pub(crate) objects: Buffer,
@@ -269,14 +273,18 @@ pub(crate) fn prepare(
     } else {
         bytemuck::cast_slice(&records).to_vec()
     };
+    let emissive = scene.emissive_triangles();
     Ok(PreparedScene {
         context: context.clone(),
         camera: scene.camera,
         background: scene.background.clone(),
         environment: match &scene.background {
-            Background::Map(map) => Some(EnvironmentBuffers::upload(context, map)?),
+            Background::Map(map) => Some(LightTable::environment(context, map)?),
             _ => None,
         },
+        emissive: LightTable::emissive(context, &emissive)?,
+        emissive_count: emissive.count(),
+        emissive_area: emissive.total_area(),
         light_count: scene.lights.len() as u32,
         ray_epsilon: scene.ray_epsilon(),
         objects: Buffer::device_with_data(context, "object records", &record_bytes, storage_usage())?,

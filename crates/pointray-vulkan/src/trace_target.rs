@@ -204,13 +204,7 @@ impl TargetBuffers {
 
     /// Points the descriptors at `scene` and writes its camera to the uniforms.
     fn bind(&mut self, scene: &PreparedScene) {
-        let uniforms = FrameUniforms::new(
-            &scene.camera,
-            &scene.background,
-            scene.environment.as_ref(),
-            scene.light_count,
-            scene.ray_epsilon,
-        );
+        let uniforms = FrameUniforms::new(scene);
         self.uniforms.write(bytemuck::bytes_of(&uniforms));
         let (pixels, display) = match self.output {
             PixelOutput::Aovs => (&self.written, &self.unused),

@@ -245,3 +245,45 @@ fn renders_that_continue_one_another_average_to_one_render_of_all_their_samples(
     assert_ne!(late.color, pass(0, 8).color, "a later pass draws other samples");
     assert_eq!(late.depth, pass(4, 1).depth, "a pass's AOVs come from its first sample");
 }
+
+/// An emissive mesh panel lights a floor as a quad light of the same radiance does, and light
+/// sampling finds it: both converge to one image, with noise of the same order.
+#[test]
+fn an_emissive_mesh_lights_the_floor_as_a_quad_light_of_its_radiance() {
+    let (corner, edge_u, edge_v) =
+        (Vec3::new(-0.3, 1.0, -0.3), Vec3::new(0.6, 0.0, 0.0), Vec3::new(0.0, 0.0, 0.6));
+    let quad = pointray_scene::Light::Quad { corner, edge_u, edge_v, color: Vec3::ONE, intensity: 5.0 };
+    let panel = pointray_io::TriangleMesh {
+        positions: vec![corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v],
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+    };
+    let glowing = Material { emission: Vec3::splat(5.0), diffuse: Vec3::ZERO, ..diffuse(0.0) };
+    let floor = || mesh_object("floor", floor_mesh(1.0), diffuse(0.5));
+    let view = |objects, lights| {
+        let camera = pointray_scene::Camera {
+            vertical_fov_degrees: 40.0,
+            ..camera(Vec3::new(0.0, 0.6, 2.5), Vec3::ZERO)
+        };
+        Scene { background: Background::Solid(Vec3::ZERO), ..scene(camera, lights, objects) }
+    };
+    let settings = path_settings(24, 64, 3);
+    let by_light = CpuRenderer::new(&view(vec![floor()], vec![quad])).render(&settings);
+    let by_mesh = CpuRenderer::new(&view(vec![floor(), mesh_object("panel", panel, glowing)], vec![]))
+        .render(&settings);
+    let floor_pixels = |image: &RenderedImage| -> Vec<f64> {
+        (0..image.pixel_count())
+            .filter(|&i| image.instance_id[i] == 0)
+            .map(|i| f64::from(image.color[i].y))
+            .collect()
+    };
+    let (light, mesh) = (estimate(floor_pixels(&by_light)), estimate(floor_pixels(&by_mesh)));
+    let spread = (light.standard_error.powi(2) + mesh.standard_error.powi(2)).sqrt();
+    assert!(
+        (light.mean - mesh.mean).abs() < SIGMAS * spread + 1e-3,
+        "quad light {light:?}, emissive mesh {mesh:?}"
+    );
+    assert!(
+        mesh.standard_error < 2.0 * light.standard_error,
+        "light sampling misses the mesh: {mesh:?} against {light:?}"
+    );
+}

@@ -209,3 +209,22 @@ fn no_light_leaks_into_a_closed_point_set_sphere_on_the_gpu() {
         assert_eq!(lit, 0, "light leaks into {lit} pixels looking at {look_at}");
     }
 }
+
+/// An emissive mesh panel as the only light: light sampling draws its triangles on both
+/// backends alike.
+#[test]
+fn gpu_and_cpu_agree_under_an_emissive_mesh() {
+    let Some(renderer) = renderer() else { return };
+    let (corner, edge_u, edge_v) =
+        (Vec3::new(-1.0, 3.0, -1.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 2.0));
+    let panel = pointray_io::TriangleMesh {
+        positions: vec![corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v],
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+    };
+    let glowing = Material { emission: Vec3::splat(4.0), ..material(SurfaceKind::Diffuse, Vec3::ZERO, 0.0) };
+    let mut scene = Scene { lights: vec![], background: Background::Solid(Vec3::ZERO), ..lit_scene() };
+    scene.objects.push(object("panel", mesh(panel), glowing));
+    let (gpu, _) = assert_backends_agree(&renderer, &scene, &path_settings(32, 32, 4, 13));
+    let lit = gpu.color.iter().filter(|c| c.max_element() > 0.05).count();
+    assert!(lit > gpu.pixel_count() / 4, "the panel lights the scene ({lit} pixels lit)");
+}
