@@ -1,9 +1,12 @@
 //! What the crates' tests share (a dev-dependency only): the checkout's data files, a Vulkan
-//! renderer or a clear failure under CI, image comparison, and Monte Carlo error bounds.
+//! renderer or a clear failure under CI, image comparison, meshes, and Monte Carlo error
+//! bounds.
 
 mod data;
 mod device;
 mod images;
+#[cfg(feature = "meshes")]
+mod meshes;
 mod monte_carlo;
 
 pub use data::{data_dir, data_file};
@@ -13,4 +16,6 @@ pub use device::{in_ci, skip_without_device};
 pub use images::{largest_byte_difference, psnr_bytes};
 #[cfg(feature = "images")]
 pub use images::{largest_color_difference, psnr};
+#[cfg(feature = "meshes")]
+pub use meshes::sphere_mesh;
 pub use monte_carlo::{Estimate, estimate};

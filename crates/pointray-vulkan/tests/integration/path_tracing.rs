@@ -10,7 +10,7 @@ use crate::common;
 use common::{assert_no_validation_messages, floor, mesh, object, patches, renderer, sphere_patches};
 use glam::Vec3;
 use pointray_scene::{
-    Background, Camera, Integrator, Light, Material, RenderSettings, RenderedImage, Scene, SunSky,
+    Background, Camera, Geometry, Integrator, Light, Material, RenderSettings, RenderedImage, Scene, SunSky,
     SurfaceKind,
 };
 use pointray_test_support::estimate;
@@ -144,15 +144,15 @@ fn gpu_and_cpu_path_tracing_agree_within_the_noise() {
     );
 }
 
-#[test]
-fn a_white_point_set_sphere_in_a_white_furnace_is_white_on_the_gpu() {
+/// A white closed surface in a white furnace is white on the GPU.
+fn assert_gpu_furnace(sphere: Geometry, what: &str) {
     let Some(renderer) = renderer() else { return };
     let white = material(SurfaceKind::Diffuse, Vec3::ONE, 0.0);
     let scene = Scene {
         camera: Camera { position: Vec3::new(0.0, 0.5, 3.0), look_at: Vec3::ZERO, ..camera() },
         lights: vec![],
         background: Background::Solid(Vec3::ONE),
-        objects: vec![object("sphere", patches(sphere_patches(Vec3::ZERO, 1.0, 4000)), white)],
+        objects: vec![object("sphere", sphere, white)],
     };
     let image =
         renderer.render(&scene, &path_settings(32, 16, 6, 3)).expect("the Vulkan backend path traces");
@@ -162,7 +162,17 @@ fn a_white_point_set_sphere_in_a_white_furnace_is_white_on_the_gpu() {
         .map(|i| f64::from(image.color[i].y))
         .collect();
     assert!(hits.len() > image.pixel_count() / 4);
-    estimate(hits).assert_near(1.0, 5.0, 1e-4, "GPU furnace");
+    estimate(hits).assert_near(1.0, 5.0, 1e-4, what);
+}
+
+#[test]
+fn a_white_point_set_sphere_in_a_white_furnace_is_white_on_the_gpu() {
+    assert_gpu_furnace(patches(sphere_patches(Vec3::ZERO, 1.0, 4000)), "GPU furnace, point-set sphere");
+}
+
+#[test]
+fn a_white_mesh_sphere_in_a_white_furnace_is_white_on_the_gpu() {
+    assert_gpu_furnace(mesh(pointray_test_support::sphere_mesh(1.0, 24, 48)), "GPU furnace, mesh sphere");
 }
 
 #[test]

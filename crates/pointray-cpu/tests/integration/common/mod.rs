@@ -8,6 +8,7 @@ use pointray_io::TriangleMesh;
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use pointray_scene::{Background, Camera, Geometry, Light, Material, Scene, SceneObject};
 use pointray_surface::PatchSet;
+pub use pointray_test_support::sphere_mesh;
 
 pub const BACKGROUND: Vec3 = Vec3::new(0.1, 0.2, 0.3);
 
@@ -106,28 +107,4 @@ pub fn pixel_ray(camera: &Camera, width: u32, height: u32, x: u32, y: u32) -> po
         glam::UVec2::new(x, y),
         pointray_kernels::sample_jitter(0),
     )
-}
-
-/// A closed UV sphere of `rings` × `segments` quads (two triangles each) at the origin,
-/// wound so that its face normals point outward.
-pub fn sphere_mesh(radius: f32, rings: u32, segments: u32) -> TriangleMesh {
-    let mut mesh = TriangleMesh::default();
-    for ring in 0..=rings {
-        let polar = std::f32::consts::PI * ring as f32 / rings as f32;
-        for segment in 0..segments {
-            let azimuth = std::f32::consts::TAU * segment as f32 / segments as f32;
-            let direction = Vec3::new(polar.sin() * azimuth.cos(), polar.cos(), polar.sin() * azimuth.sin());
-            mesh.positions.push(radius * direction);
-        }
-    }
-    let index = |ring: u32, segment: u32| ring * segments + segment % segments;
-    for ring in 0..rings {
-        for segment in 0..segments {
-            let (a, b) = (index(ring, segment), index(ring, segment + 1));
-            let (c, d) = (index(ring + 1, segment), index(ring + 1, segment + 1));
-            mesh.triangles.push([a, b, d]);
-            mesh.triangles.push([a, d, c]);
-        }
-    }
-    mesh
 }
