@@ -376,6 +376,8 @@ mod tests {
                 ("emissive_distribution", offset_of!(FrameUniforms, emissive_distribution)),
                 ("emissive_total_area", offset_of!(FrameUniforms, emissive_total_area)),
                 ("pad0", offset_of!(FrameUniforms, pad)),
+                ("pad1", offset_of!(FrameUniforms, pad) + 4),
+                ("pad2", offset_of!(FrameUniforms, pad) + 8),
             ],
         );
         assert_eq!(
