@@ -6,6 +6,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::LightSample;
+use crate::distribution::{cumulative, sample_cumulative};
 
 /// Vec4 records a triangle takes: its three corners in world space, then its radiance.
 pub const EMISSIVE_RECORD_WIDTH: usize = 4;
@@ -32,17 +33,8 @@ impl EmissiveTriangles {
                 areas.push(area);
             }
         }
-        let total: f64 = areas.iter().sum();
-        let mut sum = 0.0;
-        let mut distribution = vec![0.0];
-        distribution.extend(areas.iter().map(|area| {
-            sum += area;
-            (sum / total) as f32
-        }));
-        if let Some(last) = distribution.last_mut().filter(|_| !areas.is_empty()) {
-            *last = 1.0;
-        }
-        Self { records, distribution, total_area: total as f32 }
+        let total_area = areas.iter().sum::<f64>() as f32;
+        Self { records, distribution: cumulative(&areas), total_area }
     }
 
     pub fn count(&self) -> u32 {
@@ -71,20 +63,6 @@ impl EmissiveTriangles {
     }
 }
 
-/// The last triangle whose cumulative area starts at or below `u`.
-fn pick_triangle(triangles: &EmissiveTriangles, u: f32) -> u32 {
-    let (mut low, mut high) = (0, triangles.count());
-    while high - low > 1 {
-        let middle = (low + high) / 2;
-        if triangles.distribution[middle as usize] <= u {
-            low = middle;
-        } else {
-            high = middle;
-        }
-    }
-    low
-}
-
 /// The density per steradian, seen from a point `distance` away, of a point drawn on the
 /// triangles where a ray arrives at `cos_theta` to the triangle's normal.
 pub fn emissive_pdf(triangles: &EmissiveTriangles, distance: f32, cos_theta: f32) -> f32 {
@@ -98,7 +76,7 @@ pub fn emissive_pdf(triangles: &EmissiveTriangles, distance: f32, cos_theta: f32
 /// A point on the triangles seen from `position`: `pick` chooses the triangle, `u` the point.
 pub fn emissive_sample(triangles: &EmissiveTriangles, pick: f32, u: Vec2, position: Vec3) -> LightSample {
     let none = LightSample { direction: Vec3::Z, distance: 0.0, radiance: Vec3::ZERO, pdf: 0.0 };
-    let triangle = pick_triangle(triangles, pick);
+    let (triangle, _) = sample_cumulative(&triangles.distribution, pick);
     let (a, b, c) =
         (triangles.corner(triangle, 0), triangles.corner(triangle, 1), triangles.corner(triangle, 2));
     let root = u.x.sqrt();

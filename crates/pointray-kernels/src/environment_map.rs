@@ -12,6 +12,7 @@ use core::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use crate::LightSample;
+use crate::distribution::{cumulative, sample_cumulative};
 
 /// A map ready to be drawn from. Its data is laid out as the GPU reads it.
 #[derive(Clone, Debug, PartialEq)]
@@ -85,21 +86,6 @@ impl EnvironmentMap {
     }
 }
 
-/// The normalised running sums of `weights`, from 0 to exactly 1; even steps where every
-/// weight is zero, which sampling never picks (the rows' distribution gives them no mass).
-fn cumulative(weights: &[f64]) -> Vec<f32> {
-    let total: f64 = weights.iter().sum();
-    let count = weights.len() as f64;
-    let mut sum = 0.0;
-    let mut values = vec![0.0];
-    for (i, weight) in weights.iter().enumerate() {
-        sum += weight;
-        values.push(if total > 0.0 { (sum / total) as f32 } else { (i + 1) as f32 / count as f32 });
-    }
-    *values.last_mut().expect("one value at least") = 1.0;
-    values
-}
-
 /// The map coordinates (u, v) in [0, 1)² of a unit direction.
 pub fn environment_uv(map: &EnvironmentMap, direction: Vec3) -> Vec2 {
     let u = direction.x.atan2(-direction.z) * (0.5 / PI) + map.rotation;
@@ -145,29 +131,16 @@ pub fn environment_pdf(map: &EnvironmentMap, direction: Vec3) -> f32 {
     texel_density(map, x, y) / (2.0 * PI * PI * sin_theta)
 }
 
-/// The last interval `i` of the `count` that start at `distribution[offset..]` whose start
-/// lies at or below `u`, and where in it `u` falls, in [0, 1].
-fn sample_cumulative(map: &EnvironmentMap, offset: u32, count: u32, u: f32) -> (u32, f32) {
-    let value = |i: u32| map.distribution[(offset + i) as usize];
-    let (mut low, mut high) = (0, count);
-    while high - low > 1 {
-        let middle = (low + high) / 2;
-        if value(middle) <= u {
-            low = middle;
-        } else {
-            high = middle;
-        }
-    }
-    let width = value(low + 1) - value(low);
-    let fraction = if width > 0.0 { ((u - value(low)) / width).clamp(0.0, 1.0) } else { 0.0 };
-    (low, fraction)
+/// The `count` intervals of the distribution that starts at `offset`, searched for `u`.
+fn sample_part(map: &EnvironmentMap, offset: u32, count: u32, u: f32) -> (u32, f32) {
+    sample_cumulative(&map.distribution[offset as usize..=(offset + count) as usize], u)
 }
 
 /// A direction drawn from the map by two uniform numbers, with the radiance from it and its
 /// density (0 at the poles, where the density has no finite value).
 pub fn environment_sample(map: &EnvironmentMap, u: Vec2) -> LightSample {
-    let (y, fraction_y) = sample_cumulative(map, 0, map.height, u.y);
-    let (x, fraction_x) = sample_cumulative(map, map.height + 1 + y * (map.width + 1), map.width, u.x);
+    let (y, fraction_y) = sample_part(map, 0, map.height, u.y);
+    let (x, fraction_x) = sample_part(map, map.height + 1 + y * (map.width + 1), map.width, u.x);
     let uv =
         Vec2::new((x as f32 + fraction_x) / map.width as f32, (y as f32 + fraction_y) / map.height as f32);
     let direction = environment_direction(map, uv);

@@ -11,6 +11,7 @@ pub mod bsdf;
 pub mod bsdf_sample;
 pub mod camera_ray;
 pub mod dielectric;
+mod distribution;
 pub mod emissive_triangles;
 pub mod environment_map;
 pub mod face_forward;
