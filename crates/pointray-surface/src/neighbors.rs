@@ -72,27 +72,44 @@ pub fn k_nearest(points: &[Vec3], k: usize) -> Neighbors {
         |(chunk, (index_rows, distance_rows))| {
             let first = chunk * CHUNK;
             let rows = index_rows.chunks_mut(k).zip(distance_rows.chunks_mut(k));
+            let mut previous: Option<(Vec3, f32)> = None;
             for (offset, (row, row_distances)) in rows.enumerate() {
                 let i = first + offset;
-                fill_row(&tree, &entries[i], i as u32, row, row_distances);
+                let bound = previous.map(|(point, reach)| reach + point.distance(points[i]));
+                let reach = fill_row(&tree, &entries[i], i as u32, bound, row, row_distances);
+                previous = Some((points[i], reach));
             }
         },
     );
     Neighbors { k, indices, distances }
 }
 
-/// Queries `k + 1` points and drops `self_index`. Dropping by index, not by position,
-/// matters when duplicates tie with the query point at distance 0.
+/// Queries `k + 1` points and drops `self_index`; returns the distance to the farthest of
+/// them. Dropping by index, not by position, matters when duplicates tie with the query
+/// point at distance 0.
+///
+/// `bound`, when given, is a distance within which `k + 1` points are known to lie (the
+/// previous query's reach plus the step to this one, by the triangle inequality): it prunes
+/// the search without changing its answer.
 fn fill_row(
     tree: &ImmutableKdTree<f32, 3>,
     query: &[f32; 3],
     self_index: u32,
+    bound: Option<f32>,
     row: &mut [u32],
     row_distances: &mut [f32],
-) {
+) -> f32 {
     let k = row.len();
     let wanted = NonZeroUsize::new(k + 1).unwrap_or(NonZeroUsize::MIN);
-    let found = tree.query(query).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
+    let unbounded = || tree.query(query).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
+    let found = match bound {
+        Some(reach) => {
+            let radius = (reach * BOUND_SLACK).powi(2);
+            let found = tree.query(query).nearest_n::<SquaredEuclidean<f32>>(wanted).within(radius).execute();
+            if found.len() == wanted.get() { found } else { unbounded() }
+        }
+        None => unbounded(),
+    };
     let mut others = found.iter().filter(|hit| hit.item != self_index).take(k);
     let mut last = (self_index, 0.0);
     for (slot, slot_distance) in row.iter_mut().zip(row_distances.iter_mut()) {
@@ -101,4 +118,8 @@ fn fill_row(
         }
         (*slot, *slot_distance) = last;
     }
+    found.last().map_or(0.0, |hit| hit.distance.sqrt())
 }
+
+/// Widens a bound against rounding, so that a point exactly at it is never lost.
+const BOUND_SLACK: f32 = 1.0 + 1e-4;

@@ -6,7 +6,7 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::fs::File;
-use std::io::{BufReader, BufWriter, Read, Write};
+use std::io::{BufReader, Read, Write};
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
@@ -20,6 +20,12 @@ use crate::sorted_points::{SortedPoints, SortedWriter};
 use crate::stream_error::StreamError;
 
 /// Buffered bytes per run while merging.
+/// Points each thread encodes at a time.
+const ENCODE_BATCH: usize = 1 << 14;
+
+/// Records a sorted run gathers in order, in parallel, before writing them.
+const WRITE_BATCH: usize = 1 << 18;
+
 const MERGE_BUFFER_BYTES: usize = 256 << 10;
 
 /// How a cloud is sorted: the curve, the recentring and the memory each part may take.
@@ -72,11 +78,19 @@ impl Runs<'_> {
         assert_eq!(layout, RecordLayout::of(chunk), "every chunk of a stream carries the same attributes");
         let first = self.read;
         let (grid, offset) = (self.plan.grid, self.plan.offset);
-        let codes: Vec<u64> =
-            chunk.positions.par_iter().map(|&p| grid.code((p - offset).as_vec3())).collect();
-        for (i, &code) in codes.iter().enumerate() {
-            layout.encode(chunk, i, (code, (first + i as u64) as u32), &mut self.records);
-        }
+        let encoded: Vec<Vec<u8>> = (0..chunk.len())
+            .into_par_iter()
+            .chunks(ENCODE_BATCH)
+            .map(|batch| {
+                let mut records = Vec::with_capacity(batch.len() * layout.bytes());
+                for i in batch {
+                    let code = grid.code((chunk.positions[i] - offset).as_vec3());
+                    layout.encode(chunk, i, (code, (first + i as u64) as u32), &mut records);
+                }
+                records
+            })
+            .collect();
+        encoded.iter().for_each(|records| self.records.extend_from_slice(records));
         self.read += chunk.len() as u64;
         if self.records.len() >= self.plan.run_bytes {
             self.flush()?;
@@ -96,12 +110,16 @@ impl Runs<'_> {
         keyed.par_sort_unstable();
         let path = self.plan.folder.join(format!("run-{}", self.files.len()));
         let scratch = |e| StreamError::scratch(&path, e);
-        let mut out = BufWriter::new(File::create(&path).map_err(scratch)?);
-        for (_, i) in keyed {
-            let start = i as usize * size;
-            out.write_all(&self.records[start..start + size]).map_err(scratch)?;
+        let mut out = File::create(&path).map_err(scratch)?;
+        let mut ordered = Vec::new();
+        for part in keyed.chunks(WRITE_BATCH) {
+            ordered.resize(part.len() * size, 0);
+            ordered.par_chunks_exact_mut(size).zip(part).for_each(|(slot, &(_, i))| {
+                let start = i as usize * size;
+                slot.copy_from_slice(&self.records[start..start + size]);
+            });
+            out.write_all(&ordered).map_err(scratch)?;
         }
-        out.flush().map_err(scratch)?;
         self.files.push(path);
         self.records.clear();
         Ok(())

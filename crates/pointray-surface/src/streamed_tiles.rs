@@ -7,6 +7,7 @@
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use glam::{DVec3, Vec3};
 use pointray_io::{MemoryBudget, PointCloud, PointStream};
@@ -125,6 +126,7 @@ impl StreamPlan {
     /// Preps the points at sorted positions `range` as a tile, with their halo, unless
     /// they and their halo would not fit the budget.
     pub fn prep_range(&self, settings: &PrepSettings, range: Range<u64>) -> Result<TileOutcome, StreamError> {
+        let started = Instant::now();
         let (core, core_inputs) = self.sorted.read_range(range.clone())?;
         let offset = self.frame.offset;
         let local = |cloud: &PointCloud| -> Vec<Vec3> {
@@ -136,7 +138,9 @@ impl StreamPlan {
             self.sorted.read_range(range.end..(range.end + CURVE_CONTEXT as u64).min(self.sorted.len()))?;
         let curve: Vec<Vec3> = [local(&before), local(&core), local(&after)].concat();
         let core_in_curve = before.len()..before.len() + core.len();
+        let read = started.elapsed();
         let reaches = halo_reaches(&curve, core_in_curve.clone(), settings, self.frame.duplicate_distance);
+        let reached = started.elapsed();
         let core_points = &curve[core_in_curve];
         let capacity = self.budget.tile_capacity(settings);
         let core_count = core.len() as u64;
@@ -146,6 +150,7 @@ impl StreamPlan {
         if core_count + halo_count > capacity {
             return Ok(TileOutcome::OverBudget { points: core_count + halo_count });
         }
+        let gathered = started.elapsed();
         let (halo, halo_inputs) = self.sorted.decode_records(&halo_records);
         drop(halo_records);
         // The halo in input order, as the in-memory tiles take it.
@@ -156,8 +161,17 @@ impl StreamPlan {
         let members: Vec<u32> =
             core_inputs.iter().copied().chain(by_input.iter().map(|&j| halo_inputs[j as usize])).collect();
         let cloud = subset(&concatenated(core, halo), &order);
+        let assembled = started.elapsed();
         let (patches, report) = prep_in_context(&cloud, settings, &self.frame, &NoProgress)
             .map_err(|source| StreamError::Prep { path: self.input.clone(), source })?;
+        tracing::debug!(
+            "tile {range:?}: {halo_count} halo points; read {read:.2?}, reach {:.2?}, halo {:.2?}, \
+             assemble {:.2?}, prep {:.2?}",
+            reached - read,
+            gathered - reached,
+            assembled - gathered,
+            started.elapsed() - assembled
+        );
         Ok(TileOutcome::Prepped(own_patches(patches, &report.patch_sources, &members, core_len as usize)))
     }
 

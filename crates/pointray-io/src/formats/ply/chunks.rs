@@ -3,6 +3,7 @@
 //! read. Files whose vertices cannot be reached without parsing (ascii, a list property, an
 //! element before the vertices) are not chunked.
 
+use rayon::prelude::*;
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
@@ -112,7 +113,7 @@ impl PlyChunks {
         let mut bytes = vec![0u8; count * self.record_bytes];
         self.reader.read_exact(&mut bytes).map_err(|e| IoError::os(&self.path, e))?;
         let records: Vec<VertexRecord> =
-            bytes.chunks_exact(self.record_bytes).map(|r| self.decode(r)).collect();
+            bytes.par_chunks_exact(self.record_bytes).map(|r| self.decode(r)).collect();
         drop(bytes);
         let first = self.read;
         self.read += count as u64;
