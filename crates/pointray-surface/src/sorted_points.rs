@@ -12,6 +12,7 @@ use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
 use rayon::prelude::*;
 
+use crate::halo_test::HaloTest;
 use crate::point_records::{RecordLayout, record_key, record_position};
 use crate::stream_error::StreamError;
 
@@ -62,29 +63,26 @@ impl SortedPoints {
         (cloud, indices)
     }
 
-    /// The points within the box from `min` to `max` (local coordinates), outside the
-    /// sorted positions `skip`, handed to `batch` with their records (in sorted order), at
-    /// most about `batch_points` at a time: whoever keeps some needs not read them again.
-    /// Blocks are read and filtered in parallel, a few per thread at a time, so the memory
-    /// held stays bounded.
+    /// The points of `region` (local coordinates), outside the sorted positions `skip`,
+    /// handed to `batch` with their records (in sorted order), at most about `batch_points`
+    /// at a time: whoever keeps some needs not read them again. Blocks are read and
+    /// filtered in parallel, a few per thread at a time, so the memory held stays bounded.
     pub(crate) fn near(
         &self,
-        (min, max): (Vec3, Vec3),
+        region: &HaloTest,
         skip: &Range<u64>,
         batch_points: usize,
         mut batch: impl FnMut(&[Vec3], &[u8]),
     ) -> Result<(), StreamError> {
         let meeting: Vec<usize> = (0..self.blocks.len())
-            .filter(|&block| {
-                let (lo, hi) = self.blocks[block];
-                !(lo.cmpgt(max).any() || hi.cmplt(min).any())
-            })
+            .into_par_iter()
+            .filter(|&block| region.may_reach_box(self.blocks[block]))
             .collect();
         let (mut points, mut records) = (Vec::new(), Vec::new());
         for group in meeting.chunks(BLOCKS_AT_A_TIME * rayon::current_num_threads()) {
             let found: Vec<(Vec<Vec3>, Vec<u8>)> = group
                 .par_iter()
-                .map(|&block| self.block_points_within(block, (min, max), skip))
+                .map(|&block| self.block_points_within(block, region, skip))
                 .collect::<Result<_, _>>()?;
             for (block_points, block_records) in found {
                 points.extend(block_points);
@@ -102,11 +100,11 @@ impl SortedPoints {
         Ok(())
     }
 
-    /// The points of `block` within the box, outside `skip`, with their records.
+    /// The points of `block` in `region`, outside `skip`, with their records.
     fn block_points_within(
         &self,
         block: usize,
-        (min, max): (Vec3, Vec3),
+        region: &HaloTest,
         skip: &Range<u64>,
     ) -> Result<(Vec<Vec3>, Vec<u8>), StreamError> {
         let size = self.layout.bytes();
@@ -117,7 +115,7 @@ impl SortedPoints {
         let mut found = (Vec::new(), Vec::new());
         for (i, record) in bytes.chunks_exact(size).enumerate() {
             let (position, local) = (first + i as u64, (record_position(record) - self.offset).as_vec3());
-            if !skip.contains(&position) && local.cmpge(min).all() && local.cmple(max).all() {
+            if !skip.contains(&position) && region.may_reach(local) {
                 found.0.push(local);
                 found.1.extend_from_slice(record);
             }

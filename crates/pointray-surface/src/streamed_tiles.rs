@@ -15,6 +15,7 @@ use rayon::prelude::*;
 
 use crate::cloud_subset::{concatenated, subset};
 use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
+use crate::halo_test::HaloTest;
 use crate::morton::MortonGrid;
 use crate::out_of_core_sort::{SortPlan, sort_points};
 use crate::patch_tiles::even_ranges;
@@ -25,7 +26,7 @@ use crate::prep_settings::PrepSettings;
 use crate::sorted_points::SortedPoints;
 use crate::stream_budget::{MIN_TILE_POINTS, StreamBudget};
 use crate::stream_error::StreamError;
-use crate::tiled_prep::{HaloTest, TilePatches, own_patches};
+use crate::tiled_prep::{TilePatches, own_patches};
 
 /// How many tiles to cut the cloud into.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -179,7 +180,7 @@ impl StreamPlan {
     /// how many there are; past `room` points only the count goes on.
     fn gather(&self, test: &HaloTest, core: &Range<u64>, room: u64) -> Result<(Vec<u8>, u64), StreamError> {
         let (mut kept, mut count, size) = (Vec::new(), 0u64, self.sorted.record_bytes());
-        self.sorted.near(test.bounds, core, self.budget.halo_batch_points(), |points, records| {
+        self.sorted.near(test, core, self.budget.halo_batch_points(), |points, records| {
             let record = |j: u32| &records[j as usize * size..(j as usize + 1) * size];
             for j in test.reached(points) {
                 count += 1;

@@ -11,13 +11,13 @@
 use std::ops::Range;
 
 use glam::Vec3;
-use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use pointray_io::PointCloud;
 use pointray_kernels::NO_NEIGHBOR;
 use rayon::prelude::*;
 
 use crate::cloud_subset::subset;
 use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
+use crate::halo_test::HaloTest;
 use crate::morton::morton_order;
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
@@ -99,70 +99,15 @@ fn halo_of(
     local: impl Fn(u32) -> Vec3 + Sync,
 ) -> Vec<u32> {
     let halo = HaloTest::new(core_points, reaches);
-    let (min, max) = halo.bounds;
     let mut in_core = vec![false; count];
     core.iter().for_each(|&i| in_core[i as usize] = true);
     let candidates: Vec<u32> = (0..count as u32)
         .into_par_iter()
-        .filter(|&i| !in_core[i as usize] && local(i).cmpge(min).all() && local(i).cmple(max).all())
+        .filter(|&i| !in_core[i as usize] && halo.may_reach(local(i)))
         .collect();
     drop(in_core);
     let points: Vec<Vec3> = candidates.iter().map(|&i| local(i)).collect();
     halo.reached(&points).into_iter().map(|j| candidates[j as usize]).collect()
-}
-
-/// Which points lie in a tile's halo: within core point `i`'s `reaches[i]` of it, for some
-/// `i`. The test is the same for every point, however the candidates are gathered (all at
-/// once from a cloud in memory, or batch by batch from the blocks of a sorted file).
-pub(crate) struct HaloTest<'a> {
-    core_points: &'a [Vec3],
-    reaches: &'a [f32],
-    /// The box around the core points that holds every point they reach.
-    pub bounds: (Vec3, Vec3),
-}
-
-impl<'a> HaloTest<'a> {
-    pub(crate) fn new(core_points: &'a [Vec3], reaches: &'a [f32]) -> Self {
-        let widest = reaches.iter().copied().fold(0.0, f32::max);
-        let (min, max) = bounds(core_points);
-        Self { core_points, reaches, bounds: (min - Vec3::splat(widest), max + Vec3::splat(widest)) }
-    }
-
-    /// The indices of the `candidates` within reach of a core point, ascending. The tree
-    /// only narrows the search (with a margin); the distances are compared here, so that
-    /// the answer for a point does not depend on the other candidates.
-    pub(crate) fn reached(&self, candidates: &[Vec3]) -> Vec<u32> {
-        if candidates.is_empty() {
-            return Vec::new();
-        }
-        let entries: Vec<[f32; 3]> = candidates.iter().map(|p| p.to_array()).collect();
-        let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
-            .unwrap_or_else(|e| unreachable!("a batch of candidates fits u32 indices: {e}"));
-        drop(entries);
-        let mut reached: Vec<u32> = self
-            .core_points
-            .par_iter()
-            .zip(self.reaches)
-            .flat_map_iter(|(&p, &r)| {
-                let search = r * r * (1.0 + 1e-4);
-                let hits =
-                    tree.query(&p.to_array()).within::<SquaredEuclidean<f32>>(search).unsorted().execute();
-                hits.into_iter()
-                    .map(|hit| hit.item)
-                    .filter(move |&j| (candidates[j as usize] - p).length_squared() <= r * r)
-            })
-            .collect();
-        reached.par_sort_unstable();
-        reached.dedup();
-        reached
-    }
-}
-
-fn bounds(points: &[Vec3]) -> (Vec3, Vec3) {
-    points
-        .par_iter()
-        .fold(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
-        .reduce(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)))
 }
 
 /// The patches of the tile's own points (the first `core` members), their colour neighbours
