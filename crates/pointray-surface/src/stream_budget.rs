@@ -24,6 +24,11 @@ const READ_BYTES_PER_POINT: u64 = 256;
 /// member's input index (4) beside what the prep holds.
 const TILE_CLOUD_BYTES: u64 = 24 + 4;
 
+/// While a tile is prepped, the next one is gathered: its cloud (as above, with its
+/// attributes), and while its halo is found, its points in f32 (12 bytes) with their reach
+/// (4).
+const NEXT_TILE_BYTES: u64 = TILE_CLOUD_BYTES + 12 + 4;
+
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StreamBudget {
     /// What the work may use beyond the program itself.
@@ -37,9 +42,13 @@ impl StreamBudget {
         Self { usable: memory.bytes.saturating_sub(RESERVED_BYTES), attribute_bytes }
     }
 
-    /// Bytes a point of a tile (owned or halo) takes while the tile is prepped.
+    /// Bytes a point of a tile (owned or halo) takes while the tile is prepped and the next
+    /// one gathered.
     pub(crate) fn tile_bytes_per_point(&self, settings: &PrepSettings) -> u64 {
-        prep_bytes_per_point(settings, self.attribute_bytes) + TILE_CLOUD_BYTES
+        prep_bytes_per_point(settings, self.attribute_bytes)
+            + TILE_CLOUD_BYTES
+            + NEXT_TILE_BYTES
+            + self.attribute_bytes
     }
 
     /// Points read from the input at a time.

@@ -14,7 +14,7 @@ use crate::prep_progress::{PrepProgress, Stage};
 use crate::prep_settings::PrepSettings;
 use crate::stream_budget::MIN_TILE_POINTS;
 use crate::stream_error::StreamError;
-use crate::streamed_tiles::{StreamPlan, TileCount, TileOutcome};
+use crate::streamed_tiles::{Gathered, StreamPlan, TileCount};
 use crate::tile_file::write_tile_file;
 use crate::tile_merge::MergeSummary;
 use crate::tile_spool::TileSpool;
@@ -34,19 +34,28 @@ pub fn prep_streamed(
     let started = std::time::Instant::now();
     let mut spool = TileSpool::new(scratch.path(), plan.points(), (*settings, plan.frame.offset))?;
     let mut pending: VecDeque<Range<u64>> = plan.tile_ranges().iter().cloned().collect();
-    while let Some(range) = pending.pop_front() {
-        match plan.prep_range(settings, range.clone())? {
-            TileOutcome::Prepped(tile) => {
-                spool.push(tile)?;
+    let gather = |range: Range<u64>| plan.gather_range(settings, range.clone()).map(|g| (range, g));
+    let mut next = pending.pop_front().map(gather).transpose()?;
+    while let Some((range, gathered)) = next.take() {
+        match gathered {
+            // The next tile is gathered while this one is prepped: gathering waits on the
+            // scratch file and leaves cores idle that prep can use, and the reverse.
+            Gathered::Tile(tile) => {
+                let (prepped, following) = rayon::join(
+                    || plan.prep_gathered(settings, *tile).and_then(|tile| spool.push(tile)),
+                    || pending.pop_front().map(gather).transpose(),
+                );
+                prepped?;
                 progress.advanced(range.end - range.start);
+                next = following?;
             }
             // A tile whose halo outgrew the budget is split in two along the curve.
-            TileOutcome::OverBudget { .. } if range.end - range.start >= 2 * MIN_TILE_POINTS => {
+            Gathered::OverBudget { .. } if range.end - range.start >= 2 * MIN_TILE_POINTS => {
                 let middle = range.start + (range.end - range.start) / 2;
                 pending.push_front(middle..range.end);
-                pending.push_front(range.start..middle);
+                next = Some(gather(range.start..middle)?);
             }
-            TileOutcome::OverBudget { points } => {
+            Gathered::OverBudget { points } => {
                 return Err(plan.over_budget(&format!("the tile of points {range:?}"), points, settings));
             }
         }

@@ -127,6 +127,19 @@ impl StreamPlan {
     /// Preps the points at sorted positions `range` as a tile, with their halo, unless
     /// they and their halo would not fit the budget.
     pub fn prep_range(&self, settings: &PrepSettings, range: Range<u64>) -> Result<TileOutcome, StreamError> {
+        match self.gather_range(settings, range)? {
+            Gathered::Tile(tile) => self.prep_gathered(settings, *tile).map(TileOutcome::Prepped),
+            Gathered::OverBudget { points } => Ok(TileOutcome::OverBudget { points }),
+        }
+    }
+
+    /// The points at sorted positions `range` with their halo, in the order a tile takes
+    /// them, unless they would not fit the budget.
+    pub(crate) fn gather_range(
+        &self,
+        settings: &PrepSettings,
+        range: Range<u64>,
+    ) -> Result<Gathered, StreamError> {
         let started = Instant::now();
         let (core, core_inputs) = self.sorted.read_range(range.clone())?;
         let offset = self.frame.offset;
@@ -149,7 +162,7 @@ impl StreamPlan {
         let (halo_records, halo_count) =
             self.gather(&halo_test, &range, capacity.saturating_sub(core_count))?;
         if core_count + halo_count > capacity {
-            return Ok(TileOutcome::OverBudget { points: core_count + halo_count });
+            return Ok(Gathered::OverBudget { points: core_count + halo_count });
         }
         let gathered = started.elapsed();
         let (halo, halo_inputs) = self.sorted.decode_records(&halo_records);
@@ -162,18 +175,28 @@ impl StreamPlan {
         let members: Vec<u32> =
             core_inputs.iter().copied().chain(by_input.iter().map(|&j| halo_inputs[j as usize])).collect();
         let cloud = subset(&concatenated(core, halo), &order);
-        let assembled = started.elapsed();
-        let (patches, report) = prep_in_context(&cloud, settings, &self.frame, &NoProgress)
-            .map_err(|source| StreamError::Prep { path: self.input.clone(), source })?;
         tracing::debug!(
-            "tile {range:?}: {halo_count} halo points; read {read:.2?}, reach {:.2?}, halo {:.2?}, \
-             assemble {:.2?}, prep {:.2?}",
+            "tile {range:?} gathered: {halo_count} halo points; read {read:.2?}, reach {:.2?}, \
+             halo {:.2?}, assemble {:.2?}",
             reached - read,
             gathered - reached,
-            assembled - gathered,
-            started.elapsed() - assembled
+            started.elapsed() - gathered
         );
-        Ok(TileOutcome::Prepped(own_patches(patches, &report.patch_sources, &members, core_len as usize)))
+        Ok(Gathered::Tile(Box::new(GatheredTile { range, cloud, members, core: core_len as usize })))
+    }
+
+    /// Preps a gathered tile.
+    pub(crate) fn prep_gathered(
+        &self,
+        settings: &PrepSettings,
+        tile: GatheredTile,
+    ) -> Result<TilePatches, StreamError> {
+        let started = Instant::now();
+        let GatheredTile { range, cloud, members, core } = tile;
+        let (patches, report) = prep_in_context(&cloud, settings, &self.frame, &NoProgress)
+            .map_err(|source| StreamError::Prep { path: self.input.clone(), source })?;
+        tracing::debug!("tile {range:?} prepped in {:.2?}", started.elapsed());
+        Ok(own_patches(patches, &report.patch_sources, &members, core))
     }
 
     /// The records of the points outside `core` (sorted positions) that `test` reaches, and
@@ -207,6 +230,24 @@ impl StreamPlan {
 pub enum TileOutcome {
     Prepped(TilePatches),
     OverBudget { points: u64 },
+}
+
+/// A tile's points with their halo, ready for prep, or how many there are when they do not
+/// fit.
+pub(crate) enum Gathered {
+    Tile(Box<GatheredTile>),
+    OverBudget { points: u64 },
+}
+
+pub(crate) struct GatheredTile {
+    /// The tile's points, as sorted positions.
+    pub range: Range<u64>,
+    /// Its own points, then its halo's.
+    cloud: PointCloud,
+    /// Each point's input index.
+    members: Vec<u32>,
+    /// How many of the points are its own.
+    core: usize,
 }
 
 /// The bounds of the cloud, from a first read; non-finite coordinates are refused.
