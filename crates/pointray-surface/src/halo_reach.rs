@@ -100,6 +100,31 @@ impl DistinctNeighbours {
         f32::INFINITY
     }
 
+    /// `bound` for the common case, where the `k` nearest candidates all stand apart, from
+    /// the candidates' squared distances and indices into `points` (in any order; reordered
+    /// here), which are lighter to order than the positions `bound` takes. `None` sends the
+    /// other cases to `bound`.
+    fn bound_when_apart(&self, point: Vec3, points: &[Vec3], distances: &mut [(f32, u32)]) -> Option<f32> {
+        if distances.len() < self.k || self.k == 0 {
+            return None;
+        }
+        distances.select_nth_unstable_by(self.k - 1, |a, b| a.0.total_cmp(&b.0));
+        let nearest = &mut distances[..self.k];
+        nearest.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        let separation = self.separation_squared.sqrt();
+        let apart = |a: Vec3, b: Vec3| (a - b).length_squared() > self.separation_squared;
+        for (n, &(squared, j)) in nearest.iter().enumerate() {
+            let candidate = points[j as usize];
+            let reach = squared.sqrt() - separation;
+            let mut nearer = nearest[..n].iter().rev().take_while(|(other, _)| other.sqrt() >= reach);
+            if !apart(point, candidate) || !nearer.all(|&(_, other)| apart(points[other as usize], candidate))
+            {
+                return None;
+            }
+        }
+        Some(nearest[self.k - 1].0.sqrt() + self.duplicate_distance)
+    }
+
     /// Whether `candidate` (at squared distance `squared` from `point`) lies at least the
     /// separation from `point` and from every point `picked` (nearer ones, with their
     /// distances). Only picked points whose distance is within the separation of the
@@ -146,9 +171,20 @@ fn neighbourhood_bounds(points: &[Vec3], core: Range<usize>, distinct: &Distinct
 fn curve_window_radii(points: &[Vec3], core: Range<usize>, distinct: &DistinctNeighbours) -> Vec<f32> {
     core.into_par_iter()
         .map_init(
-            || (Vec::new(), Vec::new()),
-            |(candidates, picked), i| {
+            || (Vec::new(), Vec::new(), Vec::new()),
+            |(distances, candidates, picked), i| {
                 let window = i.saturating_sub(CURVE_WINDOW)..(i + CURVE_WINDOW + 1).min(points.len());
+                distances.clear();
+                let point = points[i];
+                distances.extend(
+                    window
+                        .clone()
+                        .filter(|&j| j != i)
+                        .map(|j| ((points[j] - point).length_squared(), j as u32)),
+                );
+                if let Some(bound) = distinct.bound_when_apart(point, points, distances) {
+                    return bound;
+                }
                 candidates.clear();
                 candidates.extend(
                     window.filter(|&j| j != i).map(|j| ((points[j] - points[i]).length_squared(), points[j])),
