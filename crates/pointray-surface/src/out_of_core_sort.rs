@@ -23,8 +23,9 @@ use crate::stream_error::StreamError;
 /// Points each thread encodes at a time.
 const ENCODE_BATCH: usize = 1 << 14;
 
-/// Records a sorted run gathers in order, in parallel, before writing them.
-const WRITE_BATCH: usize = 1 << 18;
+/// Bytes of records a sorted run gathers in order, in parallel, before writing them: small
+/// beside any budget, large enough to share among threads.
+const WRITE_BATCH_BYTES: usize = 1 << 20;
 
 const MERGE_BUFFER_BYTES: usize = 256 << 10;
 
@@ -112,7 +113,7 @@ impl Runs<'_> {
         let scratch = |e| StreamError::scratch(&path, e);
         let mut out = File::create(&path).map_err(scratch)?;
         let mut ordered = Vec::new();
-        for part in keyed.chunks(WRITE_BATCH) {
+        for part in keyed.chunks((WRITE_BATCH_BYTES / size).max(1)) {
             ordered.resize(part.len() * size, 0);
             ordered.par_chunks_exact_mut(size).zip(part).for_each(|(slot, &(_, i))| {
                 let start = i as usize * size;

@@ -5,10 +5,16 @@
 
 use glam::{UVec3, Vec3};
 
-/// Cells along each axis of the grid.
-const CELLS_PER_AXIS: u32 = 64;
+/// The most cells along each axis of the grid.
+const MAX_CELLS_PER_AXIS: u32 = 64;
+
+/// Cells along each axis per cube root of the boxes: eight cells a box, so that a
+/// small tile's grid stays small beside its memory budget.
+const CELLS_PER_CUBE_ROOT: f32 = 2.0;
 
 pub(crate) struct ReachCells {
+    /// Cells along each axis.
+    side: u32,
     min: Vec3,
     /// The inverse of a cell's size along each axis.
     scale: Vec3,
@@ -23,31 +29,35 @@ pub(crate) struct ReachCells {
 impl ReachCells {
     /// The grid over `bounds` with the cells that any of `boxes` meets marked.
     pub(crate) fn new((min, max): (Vec3, Vec3), boxes: &[(Vec3, Vec3)]) -> Self {
+        let side = ((boxes.len() as f32).cbrt() * CELLS_PER_CUBE_ROOT)
+            .ceil()
+            .clamp(1.0, MAX_CELLS_PER_AXIS as f32) as u32;
         let extent = (max - min).max(Vec3::splat(f32::MIN_POSITIVE));
-        let scale = Vec3::splat(CELLS_PER_AXIS as f32) / extent;
-        let mut cells = Self { min, scale, marked: vec![false; cell_count()], counts: Vec::new() };
+        let scale = Vec3::splat(side as f32) / extent;
+        let marked = vec![false; (side as usize).pow(3)];
+        let mut cells = Self { side, min, scale, marked, counts: Vec::new() };
         for &(lo, hi) in boxes {
             let (first, last) = (cells.cell_of(lo), cells.cell_of(hi));
             for z in first.z..=last.z {
                 for y in first.y..=last.y {
-                    let row = index(UVec3::new(0, y, z));
+                    let row = cells.index(UVec3::new(0, y, z));
                     cells.marked[row + first.x as usize..=row + last.x as usize].fill(true);
                 }
             }
         }
-        cells.counts = summed_volume(&cells.marked);
+        cells.counts = cells.summed_volume();
         cells
     }
 
     /// Whether `point` lies in a marked cell (points beyond the grid lie in its edge cells).
     pub(crate) fn contains(&self, point: Vec3) -> bool {
-        self.marked[index(self.cell_of(point))]
+        self.marked[self.index(self.cell_of(point))]
     }
 
     /// Whether the box from `lo` to `hi` meets a marked cell.
     pub(crate) fn meets(&self, (lo, hi): (Vec3, Vec3)) -> bool {
         let (first, last) = (self.cell_of(lo), self.cell_of(hi) + UVec3::ONE);
-        let at = |x: u32, y: u32, z: u32| i64::from(self.counts[summed_index(UVec3::new(x, y, z))]);
+        let at = |x: u32, y: u32, z: u32| i64::from(self.counts[self.summed_index(UVec3::new(x, y, z))]);
         let (a, b) = (first, last);
         let inside = at(b.x, b.y, b.z) - at(a.x, b.y, b.z) - at(b.x, a.y, b.z) - at(b.x, b.y, a.z)
             + at(a.x, a.y, b.z)
@@ -61,41 +71,42 @@ impl ReachCells {
     /// point of a box lies in the cells from its corners' cells.
     fn cell_of(&self, point: Vec3) -> UVec3 {
         let cell = ((point - self.min) * self.scale).floor().max(Vec3::ZERO);
-        cell.as_uvec3().min(UVec3::splat(CELLS_PER_AXIS - 1))
+        cell.as_uvec3().min(UVec3::splat(self.side - 1))
     }
-}
 
-fn cell_count() -> usize {
-    (CELLS_PER_AXIS as usize).pow(3)
-}
+    fn index(&self, cell: UVec3) -> usize {
+        let n = self.side as usize;
+        (cell.z as usize * n + cell.y as usize) * n + cell.x as usize
+    }
 
-fn index(cell: UVec3) -> usize {
-    let n = CELLS_PER_AXIS as usize;
-    (cell.z as usize * n + cell.y as usize) * n + cell.x as usize
-}
+    /// Index into the summed-volume table, one wider than the grid along each axis.
+    fn summed_index(&self, corner: UVec3) -> usize {
+        let n = self.side as usize + 1;
+        (corner.z as usize * n + corner.y as usize) * n + corner.x as usize
+    }
 
-/// Index into the summed-volume table, one wider than the grid along each axis.
-fn summed_index(corner: UVec3) -> usize {
-    let n = CELLS_PER_AXIS as usize + 1;
-    (corner.z as usize * n + corner.y as usize) * n + corner.x as usize
-}
-
-/// `table[summed_index(c)]` counts the marked cells below `c` along every axis.
-fn summed_volume(marked: &[bool]) -> Vec<u32> {
-    let n = CELLS_PER_AXIS;
-    let mut table = vec![0u32; (n as usize + 1).pow(3)];
-    for z in 1..=n {
-        for y in 1..=n {
-            for x in 1..=n {
-                let here = u32::from(marked[index(UVec3::new(x - 1, y - 1, z - 1))]);
-                let at = |dx: u32, dy: u32, dz: u32| table[summed_index(UVec3::new(x - dx, y - dy, z - dz))];
-                table[summed_index(UVec3::new(x, y, z))] =
-                    here + at(1, 0, 0) + at(0, 1, 0) + at(0, 0, 1) - at(1, 1, 0) - at(1, 0, 1) - at(0, 1, 1)
-                        + at(1, 1, 1);
+    /// `table[summed_index(c)]` counts the marked cells below `c` along every axis.
+    fn summed_volume(&self) -> Vec<u32> {
+        let n = self.side;
+        let mut table = vec![0u32; (n as usize + 1).pow(3)];
+        for z in 1..=n {
+            for y in 1..=n {
+                for x in 1..=n {
+                    let here = u32::from(self.marked[self.index(UVec3::new(x - 1, y - 1, z - 1))]);
+                    let at = |dx: u32, dy: u32, dz: u32| {
+                        table[self.summed_index(UVec3::new(x - dx, y - dy, z - dz))]
+                    };
+                    table[self.summed_index(UVec3::new(x, y, z))] =
+                        here + at(1, 0, 0) + at(0, 1, 0) + at(0, 0, 1)
+                            - at(1, 1, 0)
+                            - at(1, 0, 1)
+                            - at(0, 1, 1)
+                            + at(1, 1, 1);
+                }
             }
         }
+        table
     }
-    table
 }
 
 #[cfg(test)]
@@ -133,7 +144,7 @@ mod tests {
                 let (first, last) = (cells.cell_of(lo), cells.cell_of(hi));
                 let brute = (first.z..=last.z).any(|z| {
                     (first.y..=last.y)
-                        .any(|y| (first.x..=last.x).any(|x| cells.marked[index(UVec3::new(x, y, z))]))
+                        .any(|y| (first.x..=last.x).any(|x| cells.marked[cells.index(UVec3::new(x, y, z))]))
                 });
                 assert_eq!(cells.meets((lo, hi)), brute, "box {lo} to {hi}");
             }
