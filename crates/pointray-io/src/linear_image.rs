@@ -20,18 +20,15 @@ pub struct LinearImage {
     pub pixels: Vec<Vec3>,
 }
 
-/// The image's size, read from its header alone.
-pub fn linear_image_size(path: &Path) -> Result<(u32, u32), IoError> {
-    let format = linear_format(path)?;
-    open(path, format)?.into_dimensions().map_err(|e| unreadable(path, format, e))
-}
-
 /// The whole image; `check_size` sees its size before any pixel is decoded.
 pub fn read_linear_image(
     path: &Path,
     check_size: impl FnOnce(u32, u32) -> Result<(), IoError>,
 ) -> Result<LinearImage, IoError> {
-    let (width, height) = linear_image_size(path)?;
+    ensure_readable_file(path)?;
+    let format = linear_format(path)?;
+    // The size comes from the header alone, before anything is decoded.
+    let (width, height) = open(path, format)?.into_dimensions().map_err(|e| unreadable(path, format, e))?;
     if width > MAX_LINEAR_IMAGE_WIDTH {
         return Err(IoError::malformed(
             path,
@@ -39,7 +36,6 @@ pub fn read_linear_image(
         ));
     }
     check_size(width, height)?;
-    let format = linear_format(path)?;
     let mut reader = open(path, format)?;
     let mut limits = Limits::no_limits();
     limits.max_image_width = Some(MAX_LINEAR_IMAGE_WIDTH);
@@ -50,7 +46,6 @@ pub fn read_linear_image(
 }
 
 fn open(path: &Path, format: ImageFormat) -> Result<ImageReader<BufReader<std::fs::File>>, IoError> {
-    ensure_readable_file(path)?;
     let file = std::fs::File::open(path).map_err(|e| IoError::os(path, e))?;
     Ok(ImageReader::with_format(BufReader::new(file), format))
 }
