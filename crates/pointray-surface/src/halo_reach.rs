@@ -76,9 +76,16 @@ impl DistinctNeighbours {
     }
 
     /// An upper bound on the distance from `point` to its `k`-th nearest neighbour in the
-    /// merged cloud, from the raw points `candidates` (squared distance and position, in any
-    /// order; reordered here): unbounded when they hold fewer than `k` distinct neighbours.
-    fn bound(&self, point: Vec3, candidates: &mut [(f32, Vec3)], picked: &mut Vec<(f32, Vec3)>) -> f32 {
+    /// merged cloud, from the raw points `candidates` (squared distance and index into
+    /// `points`, in any order; reordered here, where indices are lighter to move than
+    /// positions): unbounded when they hold fewer than `k` distinct neighbours.
+    fn bound(
+        &self,
+        point: Vec3,
+        points: &[Vec3],
+        candidates: &mut [(f32, u32)],
+        picked: &mut Vec<(f32, Vec3)>,
+    ) -> f32 {
         picked.clear();
         // Most rows hold no duplicate: their k nearest, sorted, are all it takes.
         let nearest = self.k.min(candidates.len());
@@ -88,7 +95,8 @@ impl DistinctNeighbours {
         let (first, rest) = candidates.split_at_mut(nearest);
         for part in [first, rest] {
             part.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-            for &(squared, candidate) in part.iter() {
+            for &(squared, index) in part.iter() {
+                let candidate = points[index as usize];
                 if self.stands_apart(point, squared, candidate, picked) {
                     picked.push((squared.sqrt(), candidate));
                     if picked.len() == self.k {
@@ -98,31 +106,6 @@ impl DistinctNeighbours {
             }
         }
         f32::INFINITY
-    }
-
-    /// `bound` for the common case, where the `k` nearest candidates all stand apart, from
-    /// the candidates' squared distances and indices into `points` (in any order; reordered
-    /// here), which are lighter to order than the positions `bound` takes. `None` sends the
-    /// other cases to `bound`.
-    fn bound_when_apart(&self, point: Vec3, points: &[Vec3], distances: &mut [(f32, u32)]) -> Option<f32> {
-        if distances.len() < self.k || self.k == 0 {
-            return None;
-        }
-        distances.select_nth_unstable_by(self.k - 1, |a, b| a.0.total_cmp(&b.0));
-        let nearest = &mut distances[..self.k];
-        nearest.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-        let separation = self.separation_squared.sqrt();
-        let apart = |a: Vec3, b: Vec3| (a - b).length_squared() > self.separation_squared;
-        for (n, &(squared, j)) in nearest.iter().enumerate() {
-            let candidate = points[j as usize];
-            let reach = squared.sqrt() - separation;
-            let mut nearer = nearest[..n].iter().rev().take_while(|(other, _)| other.sqrt() >= reach);
-            if !apart(point, candidate) || !nearer.all(|&(_, other)| apart(points[other as usize], candidate))
-            {
-                return None;
-            }
-        }
-        Some(nearest[self.k - 1].0.sqrt() + self.duplicate_distance)
     }
 
     /// Whether `candidate` (at squared distance `squared` from `point`) lies at least the
@@ -171,25 +154,15 @@ fn neighbourhood_bounds(points: &[Vec3], core: Range<usize>, distinct: &Distinct
 fn curve_window_radii(points: &[Vec3], core: Range<usize>, distinct: &DistinctNeighbours) -> Vec<f32> {
     core.into_par_iter()
         .map_init(
-            || (Vec::new(), Vec::new(), Vec::new()),
-            |(distances, candidates, picked), i| {
+            || (Vec::new(), Vec::new()),
+            |(candidates, picked), i| {
                 let window = i.saturating_sub(CURVE_WINDOW)..(i + CURVE_WINDOW + 1).min(points.len());
-                distances.clear();
                 let point = points[i];
-                distances.extend(
-                    window
-                        .clone()
-                        .filter(|&j| j != i)
-                        .map(|j| ((points[j] - point).length_squared(), j as u32)),
-                );
-                if let Some(bound) = distinct.bound_when_apart(point, points, distances) {
-                    return bound;
-                }
                 candidates.clear();
                 candidates.extend(
-                    window.filter(|&j| j != i).map(|j| ((points[j] - points[i]).length_squared(), points[j])),
+                    window.filter(|&j| j != i).map(|j| ((points[j] - point).length_squared(), j as u32)),
                 );
-                distinct.bound(points[i], candidates, picked)
+                distinct.bound(point, points, candidates, picked)
             },
         )
         .collect()
@@ -222,8 +195,8 @@ fn exact_radii(points: &[Vec3], queries: &[usize], distinct: &DistinctNeighbours
             |(candidates, picked), &i| {
                 let found = tree.query(&entries[i]).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
                 candidates.clear();
-                candidates.extend(found.iter().map(|hit| (hit.distance, points[hit.item as usize])));
-                distinct.bound(points[i], candidates, picked)
+                candidates.extend(found.iter().map(|hit| (hit.distance, hit.item)));
+                distinct.bound(points[i], points, candidates, picked)
             },
         )
         .collect()

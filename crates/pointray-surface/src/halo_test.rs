@@ -26,7 +26,7 @@ pub(crate) struct HaloTest<'a> {
     core_points: &'a [Vec3],
     reaches: &'a [f32],
     /// The box that holds every point the core points reach.
-    pub bounds: (Vec3, Vec3),
+    bounds: (Vec3, Vec3),
     /// Runs of core points, with the box that holds every point they reach.
     runs: Vec<(Range<usize>, (Vec3, Vec3))>,
     /// The cells the runs' boxes meet; none when some reach is unbounded.

@@ -19,7 +19,6 @@ use crate::prep_progress::{PrepProgress, Stage};
 use crate::sorted_points::{SortedPoints, SortedWriter};
 use crate::stream_error::StreamError;
 
-/// Buffered bytes per run while merging.
 /// Points each thread encodes at a time.
 const ENCODE_BATCH: usize = 1 << 14;
 
@@ -27,6 +26,7 @@ const ENCODE_BATCH: usize = 1 << 14;
 /// beside any budget, large enough to share among threads.
 const WRITE_BATCH_BYTES: usize = 1 << 20;
 
+/// Buffered bytes per run while merging.
 const MERGE_BUFFER_BYTES: usize = 256 << 10;
 
 /// How a cloud is sorted: the curve, the recentring and the memory each part may take.

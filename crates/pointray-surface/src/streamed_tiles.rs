@@ -116,20 +116,11 @@ impl StreamPlan {
             path: self.input.clone(),
             source: PrepError::NoSuchTile { index, count: self.tile_count() },
         })?;
-        match self.prep_range(settings, range)? {
-            TileOutcome::Prepped(tile) => Ok(tile),
-            TileOutcome::OverBudget { points } => {
+        match self.gather_range(settings, range)? {
+            Gathered::Tile(tile) => self.prep_gathered(settings, *tile),
+            Gathered::OverBudget { points } => {
                 Err(self.over_budget(&format!("tile {index}"), points, settings))
             }
-        }
-    }
-
-    /// Preps the points at sorted positions `range` as a tile, with their halo, unless
-    /// they and their halo would not fit the budget.
-    pub fn prep_range(&self, settings: &PrepSettings, range: Range<u64>) -> Result<TileOutcome, StreamError> {
-        match self.gather_range(settings, range)? {
-            Gathered::Tile(tile) => self.prep_gathered(settings, *tile).map(TileOutcome::Prepped),
-            Gathered::OverBudget { points } => Ok(TileOutcome::OverBudget { points }),
         }
     }
 
@@ -224,12 +215,6 @@ impl StreamPlan {
         );
         StreamError::OverBudget { path: self.input.clone(), problem }
     }
-}
-
-/// A tile prepped, or how many points it and its halo hold when they do not fit.
-pub enum TileOutcome {
-    Prepped(TilePatches),
-    OverBudget { points: u64 },
 }
 
 /// A tile's points with their halo, ready for prep, or how many there are when they do not
