@@ -124,7 +124,7 @@ fn mesh_covers_around(mesh: &RenderedImage, pixel: usize) -> bool {
 
 /// The angle between two lines (a normal and its flip count as the same); a zero normal is
 /// treated as perpendicular to everything, so a broken normal shows as a large error.
-fn unsigned_angle_degrees(a: Vec3, b: Vec3) -> f32 {
+pub(crate) fn unsigned_angle_degrees(a: Vec3, b: Vec3) -> f32 {
     let cosine = a.normalize_or_zero().dot(b.normalize_or_zero()).abs().min(1.0);
     cosine.acos().to_degrees()
 }

@@ -37,8 +37,9 @@ pub struct FidelityArgs {
     /// Also write the report as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
-    /// Write each view's mesh, points and difference images into this folder (made if
-    /// missing): holes red (dark red where the sensor never looked), false surface blue.
+    /// Write each view's mesh, points, difference and normal-error images into this folder
+    /// (made if missing): holes red (dark red where the sensor never looked), false surface
+    /// blue, normal error from black (0°) through red (15°) to yellow (30° or more).
     #[arg(long, value_name = "DIR")]
     images: Option<PathBuf>,
     #[arg(long, default_value = "cpu", value_parser = backend_choice())]
