@@ -37,6 +37,10 @@ pub struct FidelityOptions {
     pub sensor: Option<SensorPose>,
     /// Each view's images (`view_images`) go into this folder when given.
     pub image_folder: Option<PathBuf>,
+    /// The centre of the points' bounds, which `above` views look down on. Without it, the
+    /// centre of the bounds of the patches' centres, which a scan's patches cut back on one
+    /// side move off their returns.
+    pub points_centre: Option<Vec3>,
 }
 
 impl FidelityOptions {
@@ -57,6 +61,7 @@ impl FidelityOptions {
             fov_degrees: DEFAULT_FOV_DEGREES,
             sensor: None,
             image_folder: None,
+            points_centre: None,
         }
     }
 
@@ -90,7 +95,7 @@ pub fn measure_fidelity(
     let scenes = ComparisonScenes::new(patches, mesh.clone())?;
     let setting = ViewSetting {
         mesh_bounds: &scenes.bounds(),
-        points_centre: scenes.points_centre(),
+        points_centre: options.points_centre.unwrap_or_else(|| scenes.points_centre()),
         up: options.up.normalize(),
         fov_degrees: options.fov_degrees,
         size: options.size,

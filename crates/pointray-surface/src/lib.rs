@@ -36,6 +36,7 @@ mod reach_cells;
 pub mod sampling;
 pub mod scan_edges;
 mod scan_free_space;
+mod scan_levels;
 pub mod scan_lines;
 pub mod scan_neighborhood;
 mod scan_noise;

@@ -40,9 +40,10 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// Changes whenever `prep` makes different patches from the same input and settings (the
 /// cell margin went from 1.15 to 1.5 in revision 2; revision 3 brought scan-aware patches
 /// and the packed record; in revision 4 orientation joins blocks, which can turn a different
-/// set of normals), so that caches keyed on the settings also key on this and never serve
-/// patches of an older rule.
-pub const PREP_REVISION: u32 = 4;
+/// set of normals; in revision 5 a scan's patches follow the levels of steps, stand on their
+/// faces and are cut back on one side), so that caches keyed on the settings also key on this
+/// and never serve patches of an older rule.
+pub const PREP_REVISION: u32 = 5;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(

@@ -1,16 +1,24 @@
 //! The space a sensor's rays crossed is empty, and no patch may reach into it. A return off a
 //! patch's surface, whose ray passes through the patch on its way, shows where that surface
-//! ends: the patch is cut back on the axis the ray crosses, so that its ellipse ends where the
-//! ray passed. This keeps a sidewalk's patches from reaching over the kerb into the road's
-//! rays, and a car's from floating over the ground beside it.
+//! ends: the patch is cut back on the side of its return that the ray crosses, so that its
+//! ellipse ends where the ray passed and still reaches as far as before on the other side.
+//! This keeps a sidewalk's patches from reaching over the kerb into the road's rays, and a
+//! car's from floating over the ground beside it.
+//!
+//! Where the next line's return lies behind the patch's plane (the face of a kerb below a
+//! sidewalk's edge), the patch is also cut back over that return, where the edge lies.
 
 use glam::{Vec2, Vec3};
 
+use crate::scan_edges::across_neighbours;
 use crate::scan_lines::ScanLines;
 
 /// A ray passes the patch in front of its return when it meets the patch's plane this many
 /// standard deviations of the range noise before the return.
 const NOISE_SIGMAS: f32 = 3.5;
+
+/// A cut leaves at least this share of the support's radius on each side of its return.
+const MIN_SIDE_SHARE: f32 = 0.1;
 
 /// A cut leaves the crossing this fraction outside the ellipse's edge, so that the rounding of
 /// the stored support cannot bring it back in.
@@ -25,6 +33,59 @@ pub struct Ellipse {
     pub radii: Vec2,
 }
 
+/// How far an ellipse reaches from a point inside it, on each side along each of its axes:
+/// `plus.x` along `major`, `minus.x` against it, and likewise on the minor axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Reach {
+    plus: Vec2,
+    minus: Vec2,
+    /// No side is cut back nearer the point than this: its own ray must meet its patch
+    /// inside the stored (rounded) support, not on its edge.
+    floor: Vec2,
+}
+
+impl Reach {
+    /// The ellipse's centre, relative to the point, in `(major, minor)` coordinates.
+    fn centre(&self) -> Vec2 {
+        (self.plus - self.minus) * 0.5
+    }
+
+    fn radii(&self) -> Vec2 {
+        (self.plus + self.minus) * 0.5
+    }
+
+    /// The smallest cut of one side's reach, on the axis along which `crossing` (relative to
+    /// the point) lies furthest out toward that side's edge, that leaves it just outside the
+    /// ellipse (`CUT_CLEARANCE`). The point itself stays inside.
+    fn exclude(&mut self, crossing: Vec2) {
+        let toward = Vec2::select(crossing.cmpge(Vec2::ZERO), self.plus, self.minus);
+        let out = (crossing / toward).abs();
+        let (along, across) = if out.x >= out.y { (0, 1) } else { (1, 0) };
+        let across_share = ((crossing - self.centre()) / self.radii())[across].clamp(-1.0, 1.0);
+        // The ellipse's half-width on the cut axis at the crossing's height across it.
+        let width = (1.0 - across_share * across_share).sqrt();
+        let floor = self.floor[along];
+        let target = CUT_CLEARANCE * crossing[along].abs();
+        let (side, other) = if crossing[along] >= 0.0 {
+            (&mut self.plus[along], self.minus[along])
+        } else {
+            (&mut self.minus[along], self.plus[along])
+        };
+        // centre + radius × width = target, with centre and radius both depending on the side.
+        let cut = (2.0 * target + other * (1.0 - width)) / (1.0 + width);
+        *side = cut.clamp(floor.min(*side), *side);
+    }
+
+    /// Limits the reach on the side of `direction` (relative to the point) along the axis it
+    /// mostly follows to `limit` (`CUT_CLEARANCE` of it), keeping the point inside.
+    fn limit_toward(&mut self, direction: Vec2, limit: f32) {
+        let along = if direction.x.abs() >= direction.y.abs() { 0 } else { 1 };
+        let floor = self.floor[along];
+        let side = if direction[along] >= 0.0 { &mut self.plus[along] } else { &mut self.minus[along] };
+        *side = (CUT_CLEARANCE * limit).clamp(floor.min(*side), *side);
+    }
+}
+
 impl Ellipse {
     /// The ellipse of point `i`'s patch cut back by the rays of the returns around it that
     /// pass through it in front of their return, skipping those of `members` (sorted) within
@@ -32,7 +93,7 @@ impl Ellipse {
     /// of it). Members beyond its reach count as any return: a narrow object's plane may take
     /// in a wall far behind it, whose rays must still cut it.
     pub fn cut_by_passing_rays(
-        mut self,
+        self,
         points: &[Vec3],
         scan: &ScanLines,
         i: usize,
@@ -42,17 +103,68 @@ impl Ellipse {
         let margin = NOISE_SIGMAS * scan.range_noise;
         let range = self.centre.distance(scan.sensor[i]).max(f32::MIN_POSITIVE);
         let angle = (self.radii.x / range).min(1.0);
+        let point = points[i];
+        let mut reach = self.reach_from(point);
         for j in scan.returns_near_ray(i, angle) {
             let (origin, end) = (scan.sensor[j as usize], points[j as usize]);
             let member = members.binary_search(&j).is_ok() && self.reaches(end);
             if member || self.holds(origin, end, margin, max_rise) {
                 continue;
             }
-            if let Some(crossing) = self.crossing(origin, end, margin) {
-                self.shrink_to_exclude(crossing);
+            let current = self.with_reach(point, reach);
+            if let Some(crossing) = current.crossing(origin, end, margin) {
+                reach.exclude(crossing + current.local(current.centre - point));
             }
         }
-        self.with_major_axis_longest()
+        self.with_reach(point, reach).with_major_axis_longest()
+    }
+
+    /// The ellipse of point `i`'s patch cut back where it steps down: where the next line's
+    /// return lies behind its plane, beyond the noise (the face of a kerb below a sidewalk's
+    /// edge), the sensor saw that return's surface between the two rays, and the edge lies
+    /// about over that return.
+    pub fn cut_at_steps(self, points: &[Vec3], scan: &ScanLines, i: usize) -> Self {
+        let margin = NOISE_SIGMAS * scan.range_noise;
+        let point = points[i];
+        let mut reach = self.reach_from(point);
+        for j in across_neighbours(scan, i) {
+            let (origin, end) = (scan.sensor[j as usize], points[j as usize]);
+            if let Some(hit) = self.hit_before(origin, end, margin) {
+                // The ray's hit on the plane tells the side; the return's foot on the plane
+                // where the step lies. Noise may put the foot on the other side.
+                let toward = self.local(hit - point);
+                let foot = self.local(end - point);
+                reach.limit_toward(toward, foot.dot(toward.normalize_or_zero()).max(0.0));
+            }
+        }
+        self.with_reach(point, reach).with_major_axis_longest()
+    }
+
+    /// Its reach on each side from `point` (inside it), along its axes.
+    fn reach_from(&self, point: Vec3) -> Reach {
+        let offset = self.local(point - self.centre);
+        Reach { plus: self.radii - offset, minus: self.radii + offset, floor: self.radii * MIN_SIDE_SHARE }
+    }
+
+    /// The ellipse of the same plane and axes that reaches `reach` from `point`.
+    fn with_reach(&self, point: Vec3, reach: Reach) -> Self {
+        let centre = reach.centre();
+        let minor = self.normal.cross(self.major);
+        Self { centre: point + self.major * centre.x + minor * centre.y, radii: reach.radii(), ..*self }
+    }
+
+    /// `offset` (along the plane) in `(major, minor)` coordinates.
+    fn local(&self, offset: Vec3) -> Vec2 {
+        Vec2::new(offset.dot(self.major), offset.dot(self.normal.cross(self.major)))
+    }
+
+    /// Where the segment from `origin` to `end` meets the plane, when it does so more than
+    /// `margin` before `end`: the return at `end` lies behind the plane, beyond its noise.
+    fn hit_before(&self, origin: Vec3, end: Vec3, margin: f32) -> Option<Vec3> {
+        let (before, after) = ((origin - self.centre).dot(self.normal), (end - self.centre).dot(self.normal));
+        let fraction = before / (before - after);
+        let behind = before * after < 0.0 && (1.0 - fraction) * origin.distance(end) > margin;
+        behind.then(|| origin + (end - origin) * fraction)
     }
 
     /// Whether the return at `end` lies on the ellipse's plane as a member would: within the
@@ -91,23 +203,8 @@ impl Ellipse {
         if t <= 0.0 || t >= range - margin {
             return None;
         }
-        let offset = origin + direction * t - self.centre;
-        let local = Vec2::new(offset.dot(self.major), offset.dot(self.normal.cross(self.major)));
+        let local = self.local(origin + direction * t - self.centre);
         ((local / self.radii).length_squared() < 1.0).then_some(local)
-    }
-
-    /// The smallest change of one radius, the one `crossing` lies furthest along relative to
-    /// it, that leaves `crossing` just outside the ellipse's edge (`CUT_CLEARANCE`).
-    fn shrink_to_exclude(&mut self, crossing: Vec2) {
-        let [u, v] = (crossing / self.radii).to_array().map(|c| c * c);
-        let edge = |along: f32, other: f32| {
-            (CUT_CLEARANCE * along.abs() / (1.0 - other).sqrt()).max(f32::MIN_POSITIVE)
-        };
-        if u >= v {
-            self.radii.x = edge(crossing.x, v);
-        } else {
-            self.radii.y = edge(crossing.y, u);
-        }
     }
 
     fn with_major_axis_longest(self) -> Self {
@@ -131,9 +228,13 @@ mod tests {
         let ellipse = ellipse_two_by_one();
         let crossing = ellipse.crossing(Vec3::new(1.5, 0.0, 5.0), Vec3::new(1.5, 0.0, -1.0), 0.05).unwrap();
         assert!((crossing - Vec2::new(1.5, 0.0)).length() < 1e-6);
-        let mut cut = ellipse;
-        cut.shrink_to_exclude(crossing);
-        assert!((cut.radii - Vec2::new(1.5 * CUT_CLEARANCE, 1.0)).length() < 1e-6, "{cut:?}");
+        let mut reach = ellipse.reach_from(Vec3::ZERO);
+        reach.exclude(crossing);
+        // Cut on the crossing's side only: the other side reaches as far as before.
+        assert_eq!(reach.minus, Vec2::new(2.0, 1.0));
+        assert!((reach.plus - Vec2::new(1.5 * CUT_CLEARANCE, 1.0)).length() < 1e-6, "{reach:?}");
+        let cut = ellipse.with_reach(Vec3::ZERO, reach);
+        assert!((cut.centre - Vec3::new((1.5 * CUT_CLEARANCE - 2.0) * 0.5, 0.0, 0.0)).length() < 1e-6);
     }
 
     #[test]
@@ -151,19 +252,41 @@ mod tests {
 
     #[test]
     fn a_crossing_off_the_axes_moves_the_edge_just_past_it() {
-        let mut ellipse = ellipse_two_by_one();
+        let ellipse = ellipse_two_by_one();
+        let mut reach = ellipse.reach_from(Vec3::ZERO);
         let crossing = Vec2::new(0.3, 0.8);
-        ellipse.shrink_to_exclude(crossing);
-        let outside = (crossing / ellipse.radii).length_squared();
-        assert!(outside > 1.0 && outside < 1.1, "{ellipse:?}");
-        assert_eq!(ellipse.radii.x, 2.0);
+        reach.exclude(crossing);
+        let outside = ((crossing - reach.centre()) / reach.radii()).length_squared();
+        assert!(outside > 1.0 && outside < 1.1, "{reach:?}");
+        assert_eq!(reach.radii().x, 2.0);
+    }
+
+    #[test]
+    fn a_cut_beside_the_point_leaves_the_point_inside() {
+        let ellipse = ellipse_two_by_one();
+        let point = Vec3::new(0.5, 0.2, 0.0);
+        let mut reach = ellipse.reach_from(point);
+        let crossings = [Vec2::new(-0.01, 0.0), Vec2::new(0.0, 0.01)];
+        for crossing in crossings {
+            reach.exclude(crossing);
+        }
+        let cut = ellipse.with_reach(point, reach);
+        let within = |offset: Vec2| ((offset - cut.local(cut.centre - point)) / cut.radii).length_squared();
+        assert!(within(Vec2::ZERO) < 1.0, "{cut:?}");
+        for crossing in crossings {
+            assert!(within(crossing) >= 1.0, "{crossing} in {cut:?}");
+        }
+        // The far side keeps its reach: the ellipse still ends 1.5 beyond the point.
+        assert!((cut.centre.x + cut.radii.x - 2.0).abs() < 1e-5, "{cut:?}");
     }
 
     #[test]
     fn the_longer_radius_stays_the_major_one() {
-        let mut ellipse = ellipse_two_by_one();
-        ellipse.shrink_to_exclude(Vec2::new(0.5, 0.0));
-        let ellipse = ellipse.with_major_axis_longest();
+        let ellipse = ellipse_two_by_one();
+        let mut reach = ellipse.reach_from(Vec3::ZERO);
+        reach.exclude(Vec2::new(0.5, 0.0));
+        reach.exclude(Vec2::new(-0.5, 0.0));
+        let ellipse = ellipse.with_reach(Vec3::ZERO, reach).with_major_axis_longest();
         assert_eq!(ellipse.radii, Vec2::new(1.0, 0.5 * CUT_CLEARANCE));
         assert!((ellipse.major - Vec3::Y).length() < 1e-6);
     }

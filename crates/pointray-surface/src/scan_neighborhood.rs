@@ -27,7 +27,12 @@ pub(crate) const MAX_RISE: f32 = 0.1;
 /// A neighbour may lie this many standard deviations of the scan's range noise further out
 /// of the plane than `MAX_RISE` allows, the noise projected on the plane's normal: along the
 /// ray it moves a return fully out of a wall seen face-on, and hardly out of the road.
-const NOISE_SIGMAS: f32 = 3.5;
+pub(crate) const NOISE_SIGMAS: f32 = 3.5;
+
+/// The sensor sees a road nearly edge-on, so its range noise moves returns along the road
+/// rather than out of it; but no real surface is flatter than a fraction of the noise, so a
+/// plane is allowed at least this share of it.
+pub(crate) const MIN_NOISE_SHARE: f32 = 0.25;
 
 /// Returns on other lines count only this many azimuth steps of the point's own line away
 /// from it when they seed a plane: where a line has no return near the point's azimuth (out of
@@ -53,6 +58,39 @@ pub struct Candidates {
     pub window: Vec<u32>,
     pub along: Vec<u32>,
     pub across: Vec<u32>,
+}
+
+impl ScanNeighborhood {
+    /// How far the point and its members spread out of their plane (the root mean square of
+    /// their distances to it, about their mean) in units of the range noise projected on its
+    /// normal (at least `MIN_NOISE_SHARE` of it): about 1 where the plane is their surface,
+    /// more where it ramps over a step or chords a curve.
+    pub fn spread_over_noise(&self, points: &[Vec3], scan: &ScanLines, i: usize) -> f32 {
+        let positions = || self.members.iter().map(|&j| points[j as usize]).chain([points[i]]);
+        let count = self.members.len() as f32 + 1.0;
+        let mean = positions().sum::<Vec3>() / count;
+        let squares: f32 = positions().map(|p| (p - mean).dot(self.normal).powi(2)).sum();
+        let ray = (points[i] - scan.sensor[i]).normalize_or_zero();
+        let noise = scan.range_noise * ray.dot(self.normal).abs().max(MIN_NOISE_SHARE);
+        (squares / count).sqrt() / noise
+    }
+}
+
+/// The unit normal (not oriented) of the plane that fits point `i` and `members` among its
+/// `candidates`, weighted as `agreeing_neighborhood` weighs them.
+pub fn fitted_normal(points: &[Vec3], i: usize, candidates: &Candidates, members: &[u32]) -> Vec3 {
+    plane_normal(points, i, members, nearest_across(points, i, candidates))
+}
+
+/// The distance from point `i` to the nearest of the seeds on other lines, 0 when there is
+/// none: the scale below which returns lie closer than the lines do.
+fn nearest_across(points: &[Vec3], i: usize, candidates: &Candidates) -> f32 {
+    let scale = candidates
+        .across
+        .iter()
+        .map(|&j| points[j as usize].distance(points[i]))
+        .fold(f32::INFINITY, f32::min);
+    if scale.is_finite() { scale } else { 0.0 }
 }
 
 /// The candidates of point `i`.
@@ -131,8 +169,7 @@ pub fn agreeing_neighborhood(
 ) -> ScanNeighborhood {
     let offset = |j: u32| points[j as usize] - points[i];
     let line = scan.line_of[i];
-    let scale = candidates.across.iter().map(|&j| offset(j).length()).fold(f32::INFINITY, f32::min);
-    let scale = if scale.is_finite() { scale } else { 0.0 };
+    let scale = nearest_across(points, i, candidates);
     let ray = (points[i] - scan.sensor[i]).normalize_or_zero();
     let noise = NOISE_SIGMAS * scan.range_noise;
     let slope = |offset: Vec3, normal: Vec3| slope(offset, normal, scale, noise * ray.dot(normal).abs());

@@ -1,6 +1,8 @@
 //! Patches of a LiDAR scan (`ScanLines`): elliptical supports that reach halfway to the next
 //! return along the scan line and halfway to the next line, fitted to neighbourhoods that span
-//! lines; small disks facing the sensor where the neighbours agree on no surface.
+//! lines (where a step lies among them, to the level the point lies on: `scan_levels`); on a
+//! step's face, which one line alone sees, a patch over the face; small disks facing the
+//! sensor where the neighbours agree on no surface.
 
 use glam::{Vec2, Vec3};
 use pointray_kernels::tangent_frame::normal_basis;
@@ -10,6 +12,7 @@ use rayon::prelude::*;
 use crate::quadratic_fit::{FitKind, PatchFit};
 use crate::scan_edges::{Silhouette, silhouettes};
 use crate::scan_free_space::Ellipse;
+use crate::scan_levels::{LevelFit, StepFace, level_fit};
 use crate::scan_lines::ScanLines;
 use crate::scan_neighborhood::{MAX_RISE, ScanNeighborhood, agreeing_neighborhood, candidates};
 
@@ -33,6 +36,11 @@ pub const MIN_INCIDENCE_COSINE: f32 = 0.05;
 /// stays above it out to 85 m.
 const EDGE_ON_COSINE: f32 = 0.02;
 
+/// A neighbourhood that spreads out of its plane by more than this multiple of the range noise
+/// (`ScanNeighborhood::spread_over_noise`) is not one surface: a step or a crease lies in it,
+/// and only the returns within the noise of a plane through the point count.
+const MAX_SPREAD: f32 = 2.0;
+
 /// A footprint patch reaches this many angular steps from its return: 1/√2 would just meet
 /// the cell's corners on a regular grid; more covers the jitter of real azimuths.
 const FOOTPRINT_COVER: f32 = 0.75;
@@ -51,6 +59,9 @@ const BEHIND_REACH: f32 = 1.5;
 /// `d_u >= d_v`, and fit.
 #[derive(Clone, Copy, Debug)]
 pub struct ScanPatch {
+    /// The centre of its support: the return itself, or beside it in its plane where the
+    /// support was cut back on one side.
+    pub centre: Vec3,
     pub normal: Vec3,
     pub frame: PackedTangentFrame,
     pub radii: Vec2,
@@ -64,7 +75,14 @@ impl ScanPatch {
     fn over_surface(ellipse: Ellipse) -> Self {
         let frame = PackedTangentFrame::new(ellipse.normal, ellipse.major);
         let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Plane };
-        Self { normal: ellipse.normal, frame, radii: ellipse.radii, fit, on_surface: true }
+        Self {
+            centre: ellipse.centre,
+            normal: ellipse.normal,
+            frame,
+            radii: ellipse.radii,
+            fit,
+            on_surface: true,
+        }
     }
 }
 
@@ -75,12 +93,26 @@ pub fn scan_patches(points: &[Vec3], scan: &ScanLines) -> Vec<ScanPatch> {
 
 fn scan_patch(points: &[Vec3], scan: &ScanLines, i: usize) -> ScanPatch {
     let candidates = candidates(scan, i);
-    let neighborhood = agreeing_neighborhood(points, scan, i, &candidates);
     let toward_sensor = (scan.sensor[i] - points[i]).normalize_or(Vec3::Z);
-    let seen_face_on = neighborhood.normal.dot(toward_sensor).abs() >= EDGE_ON_COSINE;
-    if neighborhood.crosses_lines && neighborhood.members.len() >= 3 && seen_face_on {
+    let spans_surface = |neighborhood: &ScanNeighborhood| {
+        let seen_face_on = neighborhood.normal.dot(toward_sensor).abs() >= EDGE_ON_COSINE;
+        neighborhood.crosses_lines && neighborhood.members.len() >= 3 && seen_face_on
+    };
+    let mut neighborhood = agreeing_neighborhood(points, scan, i, &candidates);
+    if spans_surface(&neighborhood) && neighborhood.spread_over_noise(points, scan, i) > MAX_SPREAD {
+        match level_fit(points, scan, i, &candidates) {
+            LevelFit::On(normal) => neighborhood.normal = normal,
+            LevelFit::Between(face) => {
+                return line_patch(points, scan, i, &candidates.along, toward_sensor, face);
+            }
+            LevelFit::Unknown => {}
+        }
+    }
+    if spans_surface(&neighborhood) {
         let ellipse = surface_patch(points, scan, i, &neighborhood, toward_sensor);
-        let cut = ellipse.cut_by_passing_rays(points, scan, i, &neighborhood.members, MAX_RISE);
+        let cut = ellipse
+            .cut_by_passing_rays(points, scan, i, &neighborhood.members, MAX_RISE)
+            .cut_at_steps(points, scan, i);
         ScanPatch::over_surface(cut)
     } else {
         footprint_patch(points, scan, i, toward_sensor)
@@ -141,8 +173,15 @@ fn bridgeable(normal: Vec3, toward_sensor: Vec3) -> Vec3 {
 /// The direction from the previous to the next return on the point's line, in the tangent
 /// plane; any tangent when the line offers none.
 fn along_line_direction(points: &[Vec3], scan: &ScanLines, i: usize, members: &[u32], normal: Vec3) -> Vec3 {
+    let along = line_sum(points, scan, i, members);
+    (along - along.dot(normal) * normal).try_normalize().unwrap_or_else(|| normal_basis(normal).0)
+}
+
+/// The offsets from point `i` to the `members` on its own line, summed with the signs that
+/// point them all one way along it.
+fn line_sum(points: &[Vec3], scan: &ScanLines, i: usize, members: &[u32]) -> Vec3 {
     let line = scan.line_of[i];
-    let along: Vec3 = members
+    members
         .iter()
         .filter(|&&j| scan.line_of[j as usize] == line)
         .map(|&j| {
@@ -150,8 +189,7 @@ fn along_line_direction(points: &[Vec3], scan: &ScanLines, i: usize, members: &[
             // Both sides point the same way once signed by azimuth order.
             if scan.azimuth[j as usize] >= scan.azimuth[i] { d } else { -d }
         })
-        .sum();
-    (along - along.dot(normal) * normal).try_normalize().unwrap_or_else(|| normal_basis(normal).0)
+        .sum()
 }
 
 /// The larger of the nearest positive and the nearest negative coordinate: each side's gap
@@ -193,6 +231,63 @@ fn reach(spacing: f32, predicted: Option<f32>, silhouette: Silhouette) -> f32 {
     }
 }
 
+/// A step's face reaches its levels along its across axis no further than if it were tilted
+/// this far from their normal (60°): a face seen that obliquely is as likely a ramp.
+const MAX_FACE_TILT_COSINE: f32 = 0.5;
+
+/// A face patch reaches this multiple of the spacing along its line, and this multiple of the
+/// step's height across it: the ellipses of neighbouring returns narrow toward the levels, and
+/// must still meet there, where the levels' patches hide what they overreach.
+const FACE_COVER: f32 = 1.5;
+const FACE_OVERREACH: f32 = 1.15;
+
+/// Returns on the point's own line this many azimuth steps away or nearer give a line patch
+/// its direction.
+const LINE_STEPS: f32 = 2.5;
+
+/// A patch over a return on the face of a step, which its line alone sees: of the planes that
+/// contain the line, the one the sensor sees most nearly face-on (returns are likeliest where
+/// it is), over the return's angular cell along the line and from the level below to the
+/// level above across it. A footprint where the line gives no direction.
+fn line_patch(
+    points: &[Vec3],
+    scan: &ScanLines,
+    i: usize,
+    along: &[u32],
+    toward_sensor: Vec3,
+    face: StepFace,
+) -> ScanPatch {
+    let reach = LINE_STEPS * scan.azimuth_step(i).unwrap_or(0.0);
+    let near: Vec<u32> = along
+        .iter()
+        .copied()
+        .filter(|&j| (scan.azimuth[j as usize] - scan.azimuth[i]).abs() <= reach)
+        .collect();
+    let direction = face.along.or_else(|| line_sum(points, scan, i, &near).try_normalize());
+    let normal = direction.and_then(|d| (toward_sensor - toward_sensor.dot(d) * d).try_normalize());
+    let (Some(direction), Some(normal)) = (direction, normal) else {
+        return footprint_patch(points, scan, i, toward_sensor);
+    };
+    let range = scan.sensor[i].distance(points[i]);
+    let incidence = normal.dot(toward_sensor).max(MIN_INCIDENCE_COSINE);
+    let step_along = spacing(near.iter().map(|&j| (points[j as usize] - points[i]).dot(direction)));
+    // Across the line the face runs up to the level above and down to the level below, but
+    // not past the next lines' rays.
+    let up_axis = normal.cross(direction);
+    let up_axis = if up_axis.dot(face.up) < 0.0 { -up_axis } else { up_axis };
+    let tilt = up_axis.dot(face.up).max(MAX_FACE_TILT_COSINE);
+    let cell = scan.beam_spacing(i).unwrap_or(0.0) * range / incidence;
+    let (down, up) = ((face.below / tilt).min(cell), (face.above / tilt).min(cell));
+    let centre = points[i] + up_axis * ((up - down) * 0.5);
+    let radii = Vec2::new((up + down) * 0.5 * FACE_OVERREACH, step_along * FACE_COVER);
+    let (major_axis, radii) =
+        if radii.x >= radii.y { (up_axis, radii) } else { (direction, Vec2::new(radii.y, radii.x)) };
+    let radii = radii.max(Vec2::splat(f32::MIN_POSITIVE));
+    let frame = PackedTangentFrame::new(normal, major_axis);
+    let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Flat };
+    ScanPatch { centre, normal, frame, radii, fit, on_surface: false }
+}
+
 /// A small flat ellipse facing the sensor over the return's own angular cell (the beam
 /// spacing across lines, the azimuth step along them): where neighbours agree on no surface
 /// (vegetation, edges, isolated returns), nothing wider is justified, and from the sensor
@@ -215,5 +310,5 @@ fn footprint_patch(points: &[Vec3], scan: &ScanLines, i: usize, toward_sensor: V
     let radii = radii.max(Vec2::splat(f32::MIN_POSITIVE));
     let frame = PackedTangentFrame::new(toward_sensor, major_axis);
     let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Flat };
-    ScanPatch { normal: toward_sensor, frame, radii, fit, on_surface: false }
+    ScanPatch { centre: points[i], normal: toward_sensor, frame, radii, fit, on_surface: false }
 }

@@ -49,8 +49,9 @@ pub(crate) fn scan_shaped(
     };
     let hot = scanned
         .par_iter()
-        .zip(points)
-        .map(|(patch, &p)| PatchHot::new(p, patch.frame, patch.radii * disk_scale, patch.fit.coefficients))
+        .map(|patch| {
+            PatchHot::new(patch.centre, patch.frame, patch.radii * disk_scale, patch.fit.coefficients)
+        })
         .collect();
     ShapedPatches {
         hot,

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use anyhow::Context;
 use clap::Args;
+use glam::{DVec3, Vec3};
 use pointray_fidelity::view_images::is_view_image;
 use pointray_fidelity::view_placement::validate_setting;
 use pointray_fidelity::{FidelityOptions, ImageRenderer, RenderError, SensorPose, measure_fidelity};
@@ -62,6 +63,13 @@ impl ImageRenderer for ChosenBackend {
     }
 }
 
+/// The centre of the bounds of `positions`; `None` when there are none.
+fn bounds_centre(positions: &[DVec3]) -> Option<Vec3> {
+    let first = *positions.first()?;
+    let (low, high) = positions.iter().fold((first, first), |(low, high), &p| (low.min(p), high.max(p)));
+    Some(((low + high) * 0.5).as_vec3())
+}
+
 pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     let inputs = [args.points.clone(), args.mesh.clone()];
     pointray_io::ensure_outputs_spare_inputs(&inputs, args.json.as_slice())?;
@@ -84,6 +92,7 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
             .with_context(|| format!("{}: placing the sensor views", args.points.display()))?;
         options.sensor = Some(pose);
     }
+    options.points_centre = bounds_centre(&cloud.positions);
     let (patches, _) = args.patches.prep(&args.points, &cloud, &prep_settings)?;
     drop(cloud);
     let backend = ChosenBackend(open_backend(args.backend, &args.device)?);

@@ -1,16 +1,29 @@
-//! Scan-aware patches on a simulated spinning-LiDAR sweep of a street-like scene: a ground
-//! plane and a wall, seen from a sensor 1.8 m up.
+//! Scan-aware patches on simulated spinning-LiDAR sweeps of street-like scenes, seen from a
+//! sensor 1.8 m up: a ground plane and a wall, and a road, a kerb and a sidewalk.
 
 use glam::{DVec3, Vec2};
 use pointray_io::PointCloud;
+use pointray_kernels::Patch;
 use pointray_surface::{NoProgress, PatchSet, PrepSettings, ScanMode, prep};
 
 const SENSOR: DVec3 = DVec3::new(0.0, 0.0, 1.8);
 const WALL_X: f64 = 12.0;
 
 /// A 32-beam sweep (elevations -25° to +5°, 0.2° azimuth steps) of the ground `z = 0` and a
-/// wall `x = 12`, with range noise of `noise` metres (deterministic).
+/// wall `x = 12`, out to 40 m, with range noise of `noise` metres (deterministic).
 fn sweep(noise: f64) -> (PointCloud, Vec<u16>) {
+    let (positions, rings) = sweep_scene(noise, |direction| {
+        let ground = if direction.z < 0.0 { -SENSOR.z / direction.z } else { f64::INFINITY };
+        let wall = if direction.x > 0.0 { WALL_X / direction.x } else { f64::INFINITY };
+        Some(ground.min(wall)).filter(|&range| range <= 40.0)
+    });
+    let cloud = PointCloud { positions, sensor_position: Some(SENSOR), ..PointCloud::default() };
+    (cloud, rings)
+}
+
+/// The returns and their beams of a 32-beam sweep (as `sweep`) of the scene whose first hit
+/// along a direction from the sensor lies at `range` (none when the ray is not kept).
+fn sweep_scene(noise: f64, range: impl Fn(DVec3) -> Option<f64>) -> (Vec<DVec3>, Vec<u16>) {
     let mut positions = Vec::new();
     let mut rings = Vec::new();
     for beam in 0..32u16 {
@@ -19,19 +32,25 @@ fn sweep(noise: f64) -> (PointCloud, Vec<u16>) {
             let azimuth = (step as f64 * 0.2).to_radians();
             let direction =
                 DVec3::new(azimuth.cos() * elevation.cos(), azimuth.sin() * elevation.cos(), elevation.sin());
-            let ground = if direction.z < 0.0 { -SENSOR.z / direction.z } else { f64::INFINITY };
-            let wall = if direction.x > 0.0 { WALL_X / direction.x } else { f64::INFINITY };
-            let range = ground.min(wall);
-            if range > 40.0 {
-                continue;
-            }
+            let Some(range) = range(direction) else { continue };
             let jitter = noise * (((step * 31 + usize::from(beam) * 17) % 101) as f64 / 50.0 - 1.0);
             positions.push(SENSOR + direction * (range + jitter));
             rings.push(beam);
         }
     }
-    let cloud = PointCloud { positions, sensor_position: Some(SENSOR), ..PointCloud::default() };
-    (cloud, rings)
+    (positions, rings)
+}
+
+/// The origin of a patch whose support holds `probe` within `thickness` of its plane.
+fn patch_at(patches: &PatchSet, decoded: &[Patch], probe: DVec3, thickness: f32) -> Option<DVec3> {
+    let local = (probe - patches.offset).as_vec3();
+    decoded
+        .iter()
+        .find(|patch| {
+            let offset = patch.to_local(local);
+            patch.supports(Vec2::new(offset.x, offset.y)) && offset.z.abs() < thickness
+        })
+        .map(|patch| patch.origin.as_dvec3() + patches.offset)
 }
 
 fn prepped(cloud: &PointCloud, scan: ScanMode) -> PatchSet {
@@ -124,15 +143,61 @@ fn the_wall_and_the_ground_are_not_bridged() {
     let air: Vec<DVec3> = (0..100).map(|i| DVec3::new(WALL_X - 0.5, -3.0 + 0.06 * i as f64, 0.6)).collect();
     let decoded: Vec<_> = patches.hot.iter().map(|h| h.decode()).collect();
     for probe in air {
-        let local = (probe - patches.offset).as_vec3();
-        let hit = decoded.iter().find(|patch| {
-            let offset = patch.to_local(local);
-            patch.supports(Vec2::new(offset.x, offset.y)) && offset.z.abs() < 0.05
-        });
-        assert!(
-            hit.is_none(),
-            "{probe} lies on a patch at {}",
-            hit.unwrap().origin.as_dvec3() + patches.offset
-        );
+        let hit = patch_at(&patches, &decoded, probe, 0.05);
+        assert!(hit.is_none(), "{probe} lies on a patch at {hit:?}");
     }
+}
+
+/// The road `z = 0` meets a kerb's face at `y = KERB_Y`, 15 cm high, and the sidewalk beyond.
+const KERB_Y: f64 = 5.0;
+const KERB_HEIGHT: f64 = 0.15;
+
+/// A 32-beam sweep (as `sweep`) of the road, the kerb and the sidewalk, with range noise of
+/// `noise` metres: within 8 m of the sensor each line lies metres from the next, and about one
+/// line crosses the kerb's face.
+fn kerb_sweep(noise: f64) -> PointCloud {
+    let (positions, rings) =
+        sweep_scene(noise, |direction| kerb_range(direction).filter(|&range| range < 12.0));
+    PointCloud { positions, rings: Some(rings), sensor_position: Some(SENSOR), ..PointCloud::default() }
+}
+
+/// The range at which a ray from the sensor meets the road, the kerb's face or the sidewalk.
+fn kerb_range(direction: DVec3) -> Option<f64> {
+    if direction.z >= 0.0 {
+        return None;
+    }
+    let road = -SENSOR.z / direction.z;
+    if SENSOR.y + road * direction.y < KERB_Y {
+        return Some(road);
+    }
+    let face = (KERB_Y - SENSOR.y) / direction.y;
+    if SENSOR.z + face * direction.z <= KERB_HEIGHT {
+        return Some(face);
+    }
+    Some((KERB_HEIGHT - SENSOR.z) / direction.z)
+}
+
+#[test]
+fn a_kerbs_face_is_a_face_and_the_sidewalk_stops_at_its_edge() {
+    let patches = prepped(&kerb_sweep(0.01), ScanMode::Auto);
+    let decoded: Vec<_> = patches.hot.iter().map(|h| h.decode()).collect();
+    let world = |origin: glam::Vec3| origin.as_dvec3() + patches.offset;
+    // Nothing hangs over the road in front of the kerb's top edge.
+    let overhang: Vec<DVec3> =
+        (0..60).map(|i| DVec3::new(0.5 + 0.05 * i as f64, KERB_Y - 0.08, KERB_HEIGHT - 0.01)).collect();
+    for probe in overhang {
+        let hit = patch_at(&patches, &decoded, probe, 0.02);
+        assert!(hit.is_none(), "{probe} lies on a patch at {hit:?}");
+    }
+    // The face's patches stand upright, not ramping from the road to the sidewalk.
+    let on_face: Vec<_> = decoded
+        .iter()
+        .filter(|patch| {
+            let at = world(patch.origin);
+            (at.y - KERB_Y).abs() < 0.03 && at.z > 0.03 && at.z < 0.12 && at.x > 0.0
+        })
+        .collect();
+    let upright = on_face.iter().filter(|patch| patch.frame.n.z.abs() < 0.5).count();
+    assert!(on_face.len() > 20, "only {} patches on the kerb's face", on_face.len());
+    assert!(upright * 4 >= on_face.len() * 3, "{upright} of {} face patches upright", on_face.len());
 }
