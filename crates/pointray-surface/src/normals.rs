@@ -24,7 +24,7 @@ pub fn pca_normals(points: &[Vec3], neighbors: &Neighbors, normal_k: usize) -> V
 /// Covariance of `p_i` and its neighbours in one pass, `E[d dᵀ] - E[d] E[d]ᵀ` over the
 /// offsets `d = p_j - p_i`: in f64 and relative to `p_i`, so that the subtraction loses
 /// nothing even for recentred-but-large coordinates.
-fn neighbourhood_covariance(points: &[Vec3], i: usize, neighbours: &[u32]) -> DMat3 {
+pub(crate) fn neighbourhood_covariance(points: &[Vec3], i: usize, neighbours: &[u32]) -> DMat3 {
     let origin = points[i];
     let mut sum = DVec3::ZERO;
     let mut products = [0.0f64; 6]; // xx, xy, xz, yy, yz, zz

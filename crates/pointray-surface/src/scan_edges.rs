@@ -51,20 +51,19 @@ pub fn silhouettes(points: &[Vec3], scan: &ScanLines, i: usize, members: &[u32])
     let side = |j: u32| silhouette(points, scan, i, j, members);
     (
         along.map(side).fold(Silhouette::None, Silhouette::and),
-        across.into_iter().map(side).fold(Silhouette::None, Silhouette::and),
+        across.map(side).fold(Silhouette::None, Silhouette::and),
     )
 }
 
 /// The returns of the lines next below and above point `i`'s nearest its azimuth, when
 /// within a step of it.
-pub fn across_neighbours(scan: &ScanLines, i: usize) -> Vec<u32> {
+pub fn across_neighbours(scan: &ScanLines, i: usize) -> impl Iterator<Item = u32> + '_ {
     let line = &scan.lines[scan.line_of[i] as usize];
     let step = scan.azimuth_step(i).unwrap_or(0.0);
     [line.below, line.above]
         .into_iter()
         .flatten()
-        .filter_map(|l| nearest_in_azimuth(&scan.lines[l as usize], scan, scan.azimuth[i], step))
-        .collect()
+        .filter_map(move |l| nearest_in_azimuth(&scan.lines[l as usize], scan, scan.azimuth[i], step))
 }
 
 /// The return of `line` nearest `azimuth`, when one lies within a step of it.

@@ -8,7 +8,7 @@
 
 use glam::{DMat3, DVec3, Vec3};
 
-use crate::normals::smallest_eigenvector;
+use crate::normals::{neighbourhood_covariance, smallest_eigenvector};
 use crate::scan_lines::ScanLines;
 use crate::scan_neighborhood::{Candidates, MIN_NOISE_SHARE, NOISE_SIGMAS, fitted_normal};
 
@@ -56,6 +56,14 @@ struct Level {
     members: Vec<u32>,
 }
 
+impl Level {
+    /// How far `p` lies from the plane, in units of the `tolerance` there: within the noise
+    /// of it up to 1.
+    fn misfit(&self, p: Vec3, tolerance: &impl Fn(Vec3, Vec3) -> f32) -> f32 {
+        (p - self.centre).dot(self.normal).abs() / tolerance(p, self.normal)
+    }
+}
+
 /// The levels of the two lines below point `i`'s and of the two above, among its
 /// `candidates`' window, and where the point lies against them.
 pub fn level_fit(points: &[Vec3], scan: &ScanLines, i: usize, candidates: &Candidates) -> LevelFit {
@@ -63,10 +71,7 @@ pub fn level_fit(points: &[Vec3], scan: &ScanLines, i: usize, candidates: &Candi
         let ray = (p - scan.sensor[i]).normalize_or_zero();
         NOISE_SIGMAS * scan.range_noise * ray.dot(normal).abs().max(MIN_NOISE_SHARE)
     };
-    let distance = |level: &Level, p: Vec3| (p - level.centre).dot(level.normal);
-    let on = |level: &Level, j: u32| {
-        distance(level, points[j as usize]).abs() <= tolerance(points[j as usize], level.normal)
-    };
+    let on = |level: &Level, j: u32| level.misfit(points[j as usize], &tolerance) <= 1.0;
     let line = &scan.lines[scan.line_of[i] as usize];
     let side = |first: Option<u32>, up: bool| {
         let second =
@@ -74,7 +79,7 @@ pub fn level_fit(points: &[Vec3], scan: &ScanLines, i: usize, candidates: &Candi
         level_of(points, scan, candidates, [first?, second?], &tolerance)
     };
     let levels = [side(line.below, false), side(line.above, true)];
-    let misfit = |level: &Level| distance(level, points[i]).abs() / tolerance(points[i], level.normal);
+    let misfit = |level: &Level| level.misfit(points[i], &tolerance);
     let mut on_levels: Vec<&Level> = levels.iter().flatten().filter(|level| misfit(level) <= 1.0).collect();
     if let [a, b] = on_levels[..]
         && a.normal.dot(b.normal).abs() < MIN_STEP_ALIGNMENT
@@ -134,33 +139,24 @@ fn level_of(
     if lines.iter().any(|&l| on_line(l) < MIN_LINE_RETURNS) {
         return None;
     }
-    let (centre, scatter) = scatter_about_centre(points, &members);
-    let normal = smallest_eigenvector(scatter).as_vec3().try_normalize()?;
+    let centre = members.iter().map(|&j| points[j as usize].as_dvec3()).sum::<DVec3>() / members.len() as f64;
+    let normal = smallest_eigenvector(covariance(points, &members)).as_vec3().try_normalize()?;
     let level = Level { centre: centre.as_vec3(), normal, members };
-    let off = level.members.iter().filter(|&&j| {
-        let p = points[j as usize];
-        (p - level.centre).dot(normal).abs() > tolerance(p, normal)
-    });
+    let off = level.members.iter().filter(|&&j| level.misfit(points[j as usize], tolerance) > 1.0);
     (off.count() as f32 <= MAX_OFF_LEVEL * level.members.len() as f32).then_some(level)
 }
 
-/// The direction along which `members` spread the most.
+/// The direction along which `members` (one or more) spread the most.
 fn principal_direction(points: &[Vec3], members: &[u32]) -> Option<Vec3> {
-    let scatter = scatter_about_centre(points, members).1;
-    // The largest eigenvector of the scatter is the smallest of its complement to its trace.
-    let trace = scatter.x_axis.x + scatter.y_axis.y + scatter.z_axis.z;
-    smallest_eigenvector(DMat3::from_diagonal(DVec3::splat(trace)) - scatter).as_vec3().try_normalize()
+    let spread = covariance(points, members);
+    // The largest eigenvector of the spread is the smallest of its complement to its trace.
+    let trace = spread.x_axis.x + spread.y_axis.y + spread.z_axis.z;
+    smallest_eigenvector(DMat3::from_diagonal(DVec3::splat(trace)) - spread).as_vec3().try_normalize()
 }
 
-/// The centroid of `members` and their scatter about it.
-fn scatter_about_centre(points: &[Vec3], members: &[u32]) -> (DVec3, DMat3) {
-    let positions = || members.iter().map(|&j| points[j as usize].as_dvec3());
-    let centre = positions().sum::<DVec3>() / members.len().max(1) as f64;
-    let scatter = positions().fold(DMat3::ZERO, |s, p| {
-        let d = p - centre;
-        s + DMat3::from_cols(d * d.x, d * d.y, d * d.z)
-    });
-    (centre, scatter)
+/// The covariance of `members` (one or more).
+fn covariance(points: &[Vec3], members: &[u32]) -> DMat3 {
+    neighbourhood_covariance(points, members[0] as usize, &members[1..])
 }
 
 /// Whether `p` lies between two levels that face the same way: on a step's face, not beside
