@@ -1,7 +1,12 @@
 //! The renderer a scene is drawn by.
 
+use pointray_cpu::CpuRenderer;
 use pointray_scene::{RenderSettings, RenderedImage, Scene};
-use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector, VulkanError, VulkanRenderer};
+use pointray_vulkan::{
+    BackendChoice, DeviceOptions, DeviceSelector, SceneLayout, VulkanError, VulkanRenderer,
+};
+
+use crate::ready_scene::ReadyScene;
 
 pub enum Backend {
     Vulkan(Box<VulkanRenderer>),
@@ -26,10 +31,29 @@ impl Backend {
         }
     }
 
+    /// Prepares and traces one frame.
     pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<RenderedImage, VulkanError> {
-        match self {
-            Backend::Vulkan(renderer) => renderer.render(scene, settings),
-            Backend::Cpu => Ok(pointray_cpu::render(scene, settings)),
+        self.trace(&self.prepare(scene, settings)?, settings)
+    }
+
+    /// `scene` made ready for frames with `settings`' buffer layout.
+    pub fn prepare(&self, scene: &Scene, settings: &RenderSettings) -> Result<ReadyScene, VulkanError> {
+        Ok(match self {
+            Backend::Vulkan(renderer) => ReadyScene::Vulkan(Box::new(
+                renderer.prepare_with_layout(scene, SceneLayout::for_settings(settings))?,
+            )),
+            Backend::Cpu => ReadyScene::Cpu(Box::new(CpuRenderer::new(scene))),
+        })
+    }
+
+    /// A frame of a scene this backend made ready.
+    pub fn trace(&self, ready: &ReadyScene, settings: &RenderSettings) -> Result<RenderedImage, VulkanError> {
+        match (self, ready) {
+            (Backend::Vulkan(renderer), ReadyScene::Vulkan(prepared)) => renderer.trace(prepared, settings),
+            (_, ReadyScene::Cpu(renderer)) => Ok(renderer.render(settings)),
+            (Backend::Cpu, ReadyScene::Vulkan(_)) => Err(VulkanError::InvalidScene(
+                "the scene was prepared by the Vulkan backend, not the CPU one".into(),
+            )),
         }
     }
 }

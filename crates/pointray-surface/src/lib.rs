@@ -17,6 +17,7 @@ pub mod orientation;
 mod orientation_tree;
 mod out_of_core_sort;
 pub mod outlier_removal;
+mod parallel_read;
 pub mod patch_bounds;
 mod patch_checks;
 pub mod patch_set;

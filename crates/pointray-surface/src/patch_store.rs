@@ -29,7 +29,9 @@
 //! those of `pointray_kernels::layout`, so the sections can be uploaded to the GPU as
 //! they are. `docs/PATCH_STORE.md` describes the same format.
 
+use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
@@ -37,6 +39,7 @@ use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 
 use crate::density_radius::RadiusMode;
 use crate::outlier_removal::OutlierFilter;
+use crate::parallel_read;
 use crate::patch_bounds::BoxKind;
 use crate::patch_set::PatchSet;
 use crate::prep_settings::{PrepSettings, ScanMode};
@@ -175,58 +178,98 @@ impl StoredSettings {
     }
 }
 
-/// Reads a patch store with a single read of the whole file, checking, in order, the
-/// magic, the version, the length and the checksum.
+/// Reads a patch store, checking, in order, the magic, the version, the length and the
+/// checksum. Each section is read straight into its records, on every core, so that a large
+/// store is held once and read at the pace of the disk (or of the page cache).
 pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
-    let bytes = std::fs::read(path).map_err(|source| StoreError::Io { path: path.to_path_buf(), source })?;
-    read_from(&bytes, path)
+    let started = Instant::now();
+    let io = |source| StoreError::Io { path: path.to_path_buf(), source };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let length = file.metadata().map_err(io)?.len();
+    let head = bytes_at(&file, 0, length.min(HEADER_BYTES as u64)).map_err(io)?;
+    let (header, layout) = checked_header(path, &head, length)?;
+    let [aabbs, hot, cold, neighbors] = layout.sections;
+    let mut reader = SectionReader { file: &file, cursor: 0, hasher: crc32fast::Hasher::new() };
+    let records = PatchSet {
+        settings: PrepSettings::default(),
+        offset: DVec3::from_array(header.offset),
+        aabbs: reader.records(aabbs).map_err(io)?,
+        hot: reader.records(hot).map_err(io)?,
+        cold: reader.records(cold).map_err(io)?,
+        color_neighbors: reader.records(neighbors).map_err(io)?,
+    };
+    let stored = bytes_at(&file, reader.cursor, CHECKSUM_BYTES as u64).map_err(io)?;
+    let patches = checked_patches(path, &header, &layout, (reader.hasher.finalize(), &stored), records)?;
+    let (gigabytes, seconds) = (length as f64 / 1e9, started.elapsed().as_secs_f64());
+    tracing::info!(
+        "read {}: {} patches, {gigabytes:.2} GB in {seconds:.2} s ({:.2} GB/s)",
+        path.display(),
+        patches.len(),
+        gigabytes / seconds.max(1e-9)
+    );
+    Ok(patches)
 }
 
 /// Reads a patch store held in memory; `path` names it in errors.
 pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
-    let header = checked_header(path, bytes)?;
-    let malformed =
-        |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
-    let layout = Layout::new(header.point_count, header.neighbor_slots)
-        .ok_or_else(|| malformed("point count overflows"))?;
-    if header.sections != layout.sections || header.header_bytes as usize != HEADER_BYTES {
-        return Err(malformed("the section table does not match the point count"));
-    }
-    let settings = header.settings.decode(header.sensor).map_err(malformed)?;
-    let section = |i: usize| {
-        let Section { offset, length } = layout.sections[i];
-        &bytes[offset as usize..(offset + length) as usize]
-    };
-    let patches = PatchSet {
-        settings,
+    let (header, layout) = checked_header(path, bytes, bytes.len() as u64)?;
+    let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
+    let section = |Section { offset, length }: Section| &bytes[offset as usize..(offset + length) as usize];
+    let [aabbs, hot, cold, neighbors] = layout.sections;
+    let records = PatchSet {
+        settings: PrepSettings::default(),
         offset: DVec3::from_array(header.offset),
-        aabbs: bytemuck::pod_collect_to_vec(section(0)),
-        hot: bytemuck::pod_collect_to_vec(section(1)),
-        cold: bytemuck::pod_collect_to_vec(section(2)),
-        color_neighbors: bytemuck::pod_collect_to_vec(section(3)),
+        aabbs: bytemuck::pod_collect_to_vec(section(aabbs)),
+        hot: bytemuck::pod_collect_to_vec(section(hot)),
+        cold: bytemuck::pod_collect_to_vec(section(cold)),
+        color_neighbors: bytemuck::pod_collect_to_vec(section(neighbors)),
     };
-    // A store can pass its checksum and still hold numbers no renderer can build on.
-    patches.check().map_err(|problem| malformed(&problem))?;
-    Ok(patches)
+    checked_patches(path, &header, &layout, (parallel_read::checksum(body), stored), records)
 }
 
-/// The header, once magic, version, length and checksum have been verified.
-fn checked_header(path: &Path, bytes: &[u8]) -> Result<Header, StoreError> {
+/// Reads a store's sections in file order, hashing every byte it passes over.
+struct SectionReader<'a> {
+    file: &'a std::fs::File,
+    cursor: u64,
+    hasher: crc32fast::Hasher,
+}
+
+impl SectionReader<'_> {
+    /// The records of `section`, after the (zero) gap before it.
+    fn records<T: Pod + Send + Sync>(&mut self, section: Section) -> std::io::Result<Vec<T>> {
+        let gap = bytes_at(self.file, self.cursor, section.offset - self.cursor)?;
+        self.hasher.update(&gap);
+        let (records, hasher) = parallel_read::read_records(self.file, section.offset, section.length)?;
+        self.hasher.combine(&hasher);
+        self.cursor = section.offset + section.length;
+        Ok(records)
+    }
+}
+
+fn bytes_at(file: &std::fs::File, offset: u64, length: u64) -> std::io::Result<Vec<u8>> {
+    let mut bytes = vec![0; usize::try_from(length).map_err(std::io::Error::other)?];
+    file.read_exact_at(&mut bytes, offset)?;
+    Ok(bytes)
+}
+
+/// The header and the layout it implies, once magic, version, colour neighbours and the
+/// file's `length` have been verified; `head` is the file's start, its header or less.
+fn checked_header(path: &Path, head: &[u8], length: u64) -> Result<(Header, Layout), StoreError> {
     let path_buf = || path.to_path_buf();
-    if bytes.len() < MAGIC.len() || bytes[..MAGIC.len()] != MAGIC {
+    if head.len() < MAGIC.len() || head[..MAGIC.len()] != MAGIC {
         return Err(StoreError::NotAPatchStore { path: path_buf() });
     }
     let too_short = || StoreError::WrongLength {
         path: path_buf(),
         expected: (HEADER_BYTES + CHECKSUM_BYTES) as u64,
-        actual: bytes.len() as u64,
+        actual: length,
     };
-    let version_bytes = bytes.get(8..12).ok_or_else(too_short)?;
+    let version_bytes = head.get(8..12).ok_or_else(too_short)?;
     let found = u32::from_le_bytes(version_bytes.try_into().expect("four bytes"));
     if found != FORMAT_VERSION {
         return Err(StoreError::WrongVersion { path: path_buf(), found });
     }
-    let header: Header = bytemuck::pod_read_unaligned(bytes.get(..HEADER_BYTES).ok_or_else(too_short)?);
+    let header: Header = bytemuck::pod_read_unaligned(head.get(..HEADER_BYTES).ok_or_else(too_short)?);
     if header.neighbor_slots != 0 && header.neighbor_slots as usize != COLOR_NEIGHBORS {
         return Err(StoreError::Malformed {
             path: path_buf(),
@@ -236,16 +279,36 @@ fn checked_header(path: &Path, bytes: &[u8]) -> Result<Header, StoreError> {
             ),
         });
     }
-    let expected =
-        Layout::new(header.point_count, header.neighbor_slots).map_or(u64::MAX, |layout| layout.total_bytes);
-    if expected != bytes.len() as u64 {
-        return Err(StoreError::WrongLength { path: path_buf(), expected, actual: bytes.len() as u64 });
+    let layout = Layout::new(header.point_count, header.neighbor_slots);
+    let expected = layout.as_ref().map_or(u64::MAX, |layout| layout.total_bytes);
+    match layout {
+        Some(layout) if expected == length => Ok((header, layout)),
+        _ => Err(StoreError::WrongLength { path: path_buf(), expected, actual: length }),
     }
-    let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
-    if crc32fast::hash(body) != u32::from_le_bytes(stored.try_into().expect("four bytes")) {
-        return Err(StoreError::ChecksumMismatch { path: path_buf() });
+}
+
+/// `records` with the header's settings, once the checksum (`computed` against `stored`),
+/// the section table, the settings' codes and every record have been verified.
+fn checked_patches(
+    path: &Path,
+    header: &Header,
+    layout: &Layout,
+    (computed, stored): (u32, &[u8]),
+    records: PatchSet,
+) -> Result<PatchSet, StoreError> {
+    if stored != computed.to_le_bytes() {
+        return Err(StoreError::ChecksumMismatch { path: path.to_path_buf() });
     }
-    Ok(header)
+    let malformed =
+        |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
+    if header.sections != layout.sections || header.header_bytes as usize != HEADER_BYTES {
+        return Err(malformed("the section table does not match the point count"));
+    }
+    let settings = header.settings.decode(header.sensor).map_err(malformed)?;
+    let patches = PatchSet { settings, ..records };
+    // A store can pass its checksum and still hold numbers no renderer can build on.
+    patches.check().map_err(|problem| malformed(&problem))?;
+    Ok(patches)
 }
 
 #[cfg(test)]

@@ -1,13 +1,21 @@
-//! Buffers with gpu-allocator memory, and uploads through a staging buffer.
+//! Buffers with gpu-allocator memory, and uploads through a bounded staging buffer.
 
 use std::sync::Arc;
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use rayon::prelude::*;
 
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
+
+/// The most bytes an upload stages at once. A large point set's records (gigabytes) go up
+/// in pieces through this much host memory, rather than through a staging copy of them all.
+const STAGING_BYTES: u64 = 64 << 20;
+
+/// The piece of a host write each core copies.
+const WRITE_PIECE_BYTES: usize = 1 << 20;
 
 /// A buffer and its memory, freed on drop.
 pub(crate) struct Buffer {
@@ -67,7 +75,8 @@ impl Buffer {
         Ok(buffer)
     }
 
-    /// A device-local buffer holding `bytes`, copied through a staging buffer.
+    /// A device-local buffer holding `bytes`, copied through a staging buffer of at most
+    /// `STAGING_BYTES`.
     pub(crate) fn device_with_data(
         context: &Arc<GpuContext>,
         name: &'static str,
@@ -82,23 +91,45 @@ impl Buffer {
             usage | vk::BufferUsageFlags::TRANSFER_DST,
             MemoryLocation::GpuOnly,
         )?;
-        if bytes.is_empty() {
-            return Ok(buffer);
-        }
-        let staging =
-            Self::host_with_data(context, "staging upload", bytes, vk::BufferUsageFlags::TRANSFER_SRC)?;
-        context.submit_and_wait(name, |command| {
-            let region = vk::BufferCopy::default().size(size);
-            // SAFETY: both buffers are alive and at least `size` bytes.
-            unsafe { context.device.cmd_copy_buffer(command, staging.handle, buffer.handle, &[region]) };
-        })?;
+        buffer.fill(name, bytes, STAGING_BYTES)?;
         Ok(buffer)
     }
 
-    /// Copies `bytes` into a host-visible buffer's start.
+    /// Copies `bytes` into this device-local buffer's start through a staging buffer of at
+    /// most `staging_bytes`, one piece at a time.
+    fn fill(&self, name: &'static str, bytes: &[u8], staging_bytes: u64) -> Result<(), VulkanError> {
+        if bytes.is_empty() {
+            return Ok(());
+        }
+        let context = &self.context;
+        let piece_bytes = (bytes.len() as u64).min(staging_bytes.max(1));
+        let mut staging = Self::new(
+            context,
+            "staging upload",
+            piece_bytes,
+            vk::BufferUsageFlags::TRANSFER_SRC,
+            MemoryLocation::CpuToGpu,
+        )?;
+        for (index, piece) in bytes.chunks(piece_bytes as usize).enumerate() {
+            staging.write(piece);
+            let region =
+                vk::BufferCopy::default().dst_offset(index as u64 * piece_bytes).size(piece.len() as u64);
+            context.submit_and_wait(name, |command| {
+                // SAFETY: both buffers are alive; the staging buffer holds the piece and this
+                // buffer reaches past its offset, as `bytes` fits it.
+                unsafe { context.device.cmd_copy_buffer(command, staging.handle, self.handle, &[region]) };
+            })?;
+        }
+        Ok(())
+    }
+
+    /// Copies `bytes` into a host-visible buffer's start, on every core.
     pub(crate) fn write(&mut self, bytes: &[u8]) {
         if let Some(mapped) = self.allocation.as_mut().and_then(|a| a.mapped_slice_mut()) {
-            mapped[..bytes.len()].copy_from_slice(bytes);
+            mapped[..bytes.len()]
+                .par_chunks_mut(WRITE_PIECE_BYTES)
+                .zip(bytes.par_chunks(WRITE_PIECE_BYTES))
+                .for_each(|(to, from)| to.copy_from_slice(from));
         }
     }
 
@@ -143,4 +174,32 @@ pub(crate) fn build_input_usage() -> vk::BufferUsageFlags {
         vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
             | vk::BufferUsageFlags::STORAGE_BUFFER,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::twin_probe::probe_context;
+
+    /// An upload larger than its staging buffer arrives whole and in order, without a
+    /// validation message.
+    #[test]
+    fn an_upload_goes_up_in_pieces_and_arrives_whole() {
+        let Some(context) = probe_context() else { return };
+        let bytes: Vec<u8> = (0..10_007u32).map(|i| (i * 31 + i / 256) as u8).collect();
+        let size = bytes.len() as u64;
+        let usage = vk::BufferUsageFlags::TRANSFER_SRC | vk::BufferUsageFlags::TRANSFER_DST;
+        let device = Buffer::new(&context, "upload", size, usage, MemoryLocation::GpuOnly).unwrap();
+        device.fill("upload", &bytes, 1000).unwrap();
+        let back = Buffer::new(&context, "read back", size, usage, MemoryLocation::GpuToCpu).unwrap();
+        context
+            .submit_and_wait("read back", |command| {
+                let region = vk::BufferCopy::default().size(size);
+                // SAFETY: both buffers are alive and `size` bytes long.
+                unsafe { context.device.cmd_copy_buffer(command, device.handle, back.handle, &[region]) };
+            })
+            .unwrap();
+        assert!(back.read()[..bytes.len()] == bytes[..], "the bytes read back differ");
+        assert_eq!(context.message_counter().count(), 0, "validation messages (printed above)");
+    }
 }

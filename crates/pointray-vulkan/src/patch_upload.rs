@@ -3,6 +3,7 @@
 
 use std::ops::Range;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR};
 use pointray_scene::{BufferLayout, Material};
@@ -48,6 +49,7 @@ pub(crate) fn prepare_patches(
     }
     check_color_neighbors(patches)?;
     let colors = reads_point_colors(material);
+    let started = Instant::now();
     let (mut record, mut buffers) = patch_records(context, patches, layout.buffers, colors)?;
     // Only coloured clouds carry neighbour lists; the others keep address 0, which the
     // closest-hit shader never dereferences.
@@ -61,8 +63,20 @@ pub(crate) fn prepare_patches(
         record.color_neighbors = lists.device_address();
         buffers.push(lists);
     }
+    let uploaded: u64 = buffers.iter().map(|buffer| buffer.size).sum();
+    log_phase(&format!("uploaded {count} patches' records"), uploaded, started.elapsed());
+    let started = Instant::now();
     let bottom_levels = tile_bottom_levels(context, patches, layout, max_tile_patches)?;
+    let what = format!("built {} bottom levels over {count} patches (boxes uploaded)", bottom_levels.len());
+    log_phase(&what, box_bytes(patches), started.elapsed());
     Ok(PreparedObject { record, bottom_levels, buffers })
+}
+
+/// One line per phase of a point set's way onto the GPU, which for a large set takes
+/// seconds: what was done, the bytes moved and the rate.
+fn log_phase(what: &str, bytes: u64, elapsed: Duration) {
+    let (gigabytes, seconds) = (bytes as f64 / 1e9, elapsed.as_secs_f64());
+    tracing::info!("{what}: {gigabytes:.2} GB in {seconds:.2} s ({:.2} GB/s)", gigabytes / seconds.max(1e-9));
 }
 
 /// One BLAS per tile, each with its first patch. The boxes are only the builds' input: each

@@ -8,6 +8,7 @@ use glam::{Affine3A, Vec4};
 use pointray_io::TriangleMesh;
 use pointray_scene::{Background, BufferLayout, Camera, Geometry, Light, RenderSettings, Scene};
 use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
+use rayon::prelude::*;
 
 use crate::acceleration::{AccelerationStructure, BlasLayout, build, instance_input, triangle_input};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
@@ -216,7 +217,7 @@ fn out_of_range(object: &pointray_scene::SceneObject) -> Option<String> {
     let problem = match &object.geometry {
         _ if !object.transform.is_finite() => "its transform is not finite".to_string(),
         Geometry::Patches(patches) => {
-            let bad = patches.aabbs.iter().position(|aabb| !box_in_range(aabb))?;
+            let bad = patches.aabbs.par_iter().position_first(|aabb| !box_in_range(aabb))?;
             format!("patch box {bad} is not finite or out of range")
         }
         Geometry::Mesh(mesh) => {

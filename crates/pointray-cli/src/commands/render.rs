@@ -89,15 +89,22 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let cache_dir = cache_dir_for(&args.output);
     let bar = PrepBar::default();
     let options = LoadOptions { cache_dir: Some(&cache_dir), progress: &bar, ..LoadOptions::default() };
-    let LoadedScene { mut scene, space, .. } = load_scene_file(&file, &options)?;
+    let started = Instant::now();
+    let LoadedScene { scene, space, .. } = load_scene_file(&file, &options)?;
+    println!("loaded {} in {:.2?}", args.scene.display(), started.elapsed());
+    let started = Instant::now();
     let backend = open_backend(args.backend.backend, &args.backend.device)?;
-    println!("backend: {}", backend.describe());
+    println!("backend: {} (opened in {:.2?})", backend.describe(), started.elapsed());
     let start = scene.camera;
+    let started = Instant::now();
+    let mut ready = backend.prepare(&scene, &settings)?;
+    println!("prepared the scene in {:.2?}", started.elapsed());
     let frames = outputs.len() as u32;
     for (index, output) in (0..).zip(&outputs) {
-        scene.camera = orbit_camera(&start, index, frames, 360.0);
+        let camera = orbit_camera(&start, index, frames, 360.0);
+        ready.set_camera(camera);
         let started = Instant::now();
-        let mut image = backend.render(&scene, &settings)?;
+        let mut image = backend.trace(&ready, &settings)?;
         let elapsed = started.elapsed();
         println!("rendered {}x{} in {:.2?}", settings.width, settings.height, elapsed);
         if args.denoise {
@@ -108,7 +115,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         image.scale_depth(space.scale as f32);
         let written = write_image(&image, output, &aovs)?;
         if args.turntable.is_some() {
-            let at = space.point_to_file(scene.camera.position.as_dvec3());
+            let at = space.point_to_file(camera.position.as_dvec3());
             println!("frame {index}: camera at {:.6},{:.6},{:.6}", at.x, at.y, at.z);
         }
         for path in written {
