@@ -45,6 +45,7 @@ enum Command {
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     init_logging(cli.verbose);
+    end_quietly_on_a_closed_pipe();
     remove_temporaries_on_interrupt();
     let result = match cli.command {
         Command::Sample(args) => commands::sample::run(args),
@@ -79,6 +80,14 @@ fn remove_temporaries_on_interrupt() {
     if let Err(error) = installed {
         tracing::warn!("cannot clean up on interrupt: {error}");
     }
+}
+
+/// Output piped into a program that stops reading (`pointray ... | head -1`) ends this one
+/// as it ends other Unix tools, by SIGPIPE, instead of a panic in `println!`. Nothing is lost:
+/// lines are printed only between writes, never while a temporary file is live.
+fn end_quietly_on_a_closed_pipe() {
+    // SAFETY: restores a signal's default action; no handler of ours is involved.
+    unsafe { libc::signal(libc::SIGPIPE, libc::SIG_DFL) };
 }
 
 /// The exit status of a process ended by SIGINT, as shells report it.

@@ -45,6 +45,31 @@ fn sigterm_ends_prep_through_the_cleanup_handler() {
     assert_eq!(left, vec![std::ffi::OsString::from("big.ply")], "nothing but the input is left");
 }
 
+/// A reader that stops reading (`| head`) ends the command by SIGPIPE, as it ends other Unix
+/// tools: no panic message, and the image written before the line is whole.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_closed_output_pipe_ends_render_without_a_panic() {
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::{Command, Stdio};
+
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_pointray"))
+        .current_dir(dir.path())
+        .args(["render", "grid.ply", "-o", "out.png", "--backend", "cpu", "--width", "8", "--height", "8"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The reader goes before the command's first line: reading and prepping the grid take longer.
+    drop(child.stdout.take());
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(output.status.signal(), Some(libc::SIGPIPE), "{}: {stderr}", output.status);
+}
+
 #[test]
 fn warnings_carry_no_colour_codes_when_piped() {
     let dir = tempfile::tempdir().unwrap();
