@@ -123,14 +123,19 @@ fn measure_rung(
     })?;
     let scene_path = options.cache.join(format!("scale-{label}.toml"));
     let loaded = load_with_model(label, &table, "points", &store, &scene_path, &options.cache)?;
-    let (ready, costs) = backend.prepare(&loaded.scene, label)?;
+    let (ready, costs) = backend.prepare(&loaded.scene, &loaded.settings, label)?;
     let load = started.elapsed();
     let fps = options
         .sizes
         .iter()
         .map(|&(width, height)| {
             let settings = RenderSettings { width, height, ..loaded.settings };
-            let frame = ready.frame_time(&settings, options.frames, &format!("{label} {width}x{height}"))?;
+            let frame = backend.frame_time(
+                &ready,
+                &settings,
+                options.frames,
+                &format!("{label} {width}x{height}"),
+            )?;
             Ok(SizeFps { width, height, fps: 1.0 / frame.as_secs_f64(), frame_ms: frame.as_secs_f64() * 1e3 })
         })
         .collect::<Result<_, BenchError>>()?;

@@ -4,8 +4,9 @@
 use std::time::{Duration, Instant};
 
 use pointray_cpu::CpuRenderer;
+use pointray_render::{Backend, ReadyScene};
 use pointray_scene::{RenderSettings, Scene};
-use pointray_vulkan::{PixelOutput, PreparedScene, VulkanRenderer};
+use pointray_vulkan::{PixelOutput, VulkanError};
 
 use crate::error::BenchError;
 use crate::measure::{FrameCounts, measure_prepared};
@@ -16,17 +17,9 @@ use crate::stats::median;
 /// most the timed count): a frame of a large scene takes seconds there.
 const CPU_TIMING_BUDGET: Duration = Duration::from_secs(3);
 
+/// The backend the suite renders with, and what it says of it.
 #[derive(Clone, Copy)]
-pub enum ScaleBackend<'a> {
-    Vulkan(&'a VulkanRenderer),
-    Cpu,
-}
-
-/// A scene ready to trace, with the backend that prepared it.
-pub enum ReadyScene<'a> {
-    Vulkan { renderer: &'a VulkanRenderer, prepared: Box<PreparedScene> },
-    Cpu(Box<CpuRenderer>),
-}
+pub struct ScaleBackend<'a>(pub &'a Backend);
 
 /// What making a scene ready cost.
 pub struct BuildCosts {
@@ -38,74 +31,85 @@ pub struct BuildCosts {
     pub tiles: usize,
 }
 
-impl<'a> ScaleBackend<'a> {
+impl ScaleBackend<'_> {
     pub fn describe(&self) -> String {
-        match self {
-            Self::Vulkan(renderer) => format!("vulkan, {}", renderer.device_info()),
-            Self::Cpu => format!("cpu, {} threads", rayon::current_num_threads()),
+        match self.0 {
+            Backend::Vulkan(renderer) => format!("vulkan, {}", renderer.device_info()),
+            Backend::Cpu => format!("cpu, {} threads", rayon::current_num_threads()),
         }
     }
 
     /// How frames are timed, for the report.
     pub fn timing(&self) -> &'static str {
-        match self {
-            Self::Vulkan(_) => {
+        match self.0 {
+            Backend::Vulkan(_) => {
                 "FPS = 1 / median GPU time of a whole frame (trace and copy-out of the display colour)."
             }
-            Self::Cpu => "FPS = 1 / median wall time of a whole frame (at least one, for up to 3 s).",
+            Backend::Cpu => "FPS = 1 / median wall time of a whole frame (at least one, for up to 3 s).",
         }
     }
 
     pub fn device_limits(&self) -> Option<DeviceLimits> {
-        match self {
-            Self::Vulkan(renderer) => Some(DeviceLimits::from(renderer.device_info())),
-            Self::Cpu => None,
+        match self.0 {
+            Backend::Vulkan(renderer) => Some(DeviceLimits::from(renderer.device_info())),
+            Backend::Cpu => None,
         }
     }
 
-    /// Uploads and builds `scene` (Vulkan) or builds its BVHs (CPU). `case` names it in errors.
-    pub fn prepare(&self, scene: &Scene, case: &str) -> Result<(ReadyScene<'a>, BuildCosts), BenchError> {
-        match *self {
-            Self::Vulkan(renderer) => {
-                let prepared = renderer
-                    .prepare(scene)
-                    .map_err(|source| BenchError::Vulkan { case: case.to_string(), source })?;
+    /// Uploads and builds `scene` for frames with `settings` (Vulkan) or builds its BVHs
+    /// (CPU). `case` names it in errors.
+    pub fn prepare(
+        &self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        case: &str,
+    ) -> Result<(ReadyScene, BuildCosts), BenchError> {
+        let started = Instant::now();
+        let ready = self.0.prepare(scene, settings).map_err(|source| vulkan_error(case, source))?;
+        let costs = match &ready {
+            ReadyScene::Vulkan(prepared) => {
                 let report = prepared.build_report();
-                let costs = BuildCosts {
+                BuildCosts {
                     blas: report.blas_build,
                     gpu_bytes: Some(report.gpu_bytes()),
                     tiles: report.blas_count,
-                };
-                Ok((ReadyScene::Vulkan { renderer, prepared: Box::new(prepared) }, costs))
+                }
             }
-            Self::Cpu => {
-                let started = Instant::now();
-                let renderer = CpuRenderer::new(scene);
-                let costs =
-                    BuildCosts { blas: started.elapsed(), gpu_bytes: None, tiles: renderer.tile_count() };
-                Ok((ReadyScene::Cpu(Box::new(renderer)), costs))
+            ReadyScene::Cpu(renderer) => {
+                BuildCosts { blas: started.elapsed(), gpu_bytes: None, tiles: renderer.tile_count() }
             }
-        }
+        };
+        Ok((ready, costs))
     }
-}
 
-impl ReadyScene<'_> {
-    /// The median time of one whole frame with `settings`; `case` names it in errors.
+    /// The median time of one whole frame of `ready` with `settings`; `case` names it in
+    /// errors.
     pub fn frame_time(
         &self,
+        ready: &ReadyScene,
         settings: &RenderSettings,
         frames: FrameCounts,
         case: &str,
     ) -> Result<Duration, BenchError> {
-        match self {
-            Self::Vulkan { renderer, prepared } => {
+        match (self.0, ready) {
+            (Backend::Vulkan(renderer), ReadyScene::Vulkan(prepared)) => {
                 measure_prepared(renderer, prepared, settings, PixelOutput::Display, frames)
                     .map(|measured| measured.frame_median)
-                    .map_err(|source| BenchError::Vulkan { case: case.to_string(), source })
+                    .map_err(|source| vulkan_error(case, source))
             }
-            Self::Cpu(renderer) => Ok(cpu_frame_time(renderer, settings, frames)),
+            (_, ReadyScene::Cpu(renderer)) => Ok(cpu_frame_time(renderer, settings, frames)),
+            (Backend::Cpu, ReadyScene::Vulkan(_)) => Err(vulkan_error(
+                case,
+                VulkanError::InvalidScene(
+                    "the scene was prepared by the Vulkan backend, not the CPU one".into(),
+                ),
+            )),
         }
     }
+}
+
+fn vulkan_error(case: &str, source: VulkanError) -> BenchError {
+    BenchError::Vulkan { case: case.to_string(), source }
 }
 
 fn cpu_frame_time(renderer: &CpuRenderer, settings: &RenderSettings, frames: FrameCounts) -> Duration {

@@ -17,7 +17,6 @@ use crate::backend::{backend_choice, open_backend};
 use crate::environment::data_dir;
 use crate::progress::PrepBar;
 use crate::setting_flag::setting_flag;
-use pointray_render::Backend;
 use pointray_render::device_options_from_environment as device_options;
 
 /// Time frames with GPU timestamps: FPS, frame and trace times, rays/s, build costs.
@@ -195,10 +194,7 @@ fn print_row(row: &ScaleRow) {
 
 fn run_scale_suite(args: &BenchArgs) -> anyhow::Result<()> {
     let backend = open_backend(args.backend, &args.device)?;
-    let scale_backend = match &backend {
-        Backend::Vulkan(renderer) => ScaleBackend::Vulkan(renderer),
-        Backend::Cpu => ScaleBackend::Cpu,
-    };
+    let scale_backend = ScaleBackend(&backend);
     println!("backend: {}", scale_backend.describe());
     let progress = PrepBar::default();
     let options = ScaleOptions {
