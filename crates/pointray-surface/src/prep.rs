@@ -41,9 +41,10 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// cell margin went from 1.15 to 1.5 in revision 2; revision 3 brought scan-aware patches
 /// and the packed record; in revision 4 orientation joins blocks, which can turn a different
 /// set of normals; in revision 5 a scan's patches follow the levels of steps, stand on their
-/// faces and are cut back on one side), so that caches keyed on the settings also key on this
+/// faces and are cut back on one side; in revision 6 a scan's planes favour the returns near
+/// the point), so that caches keyed on the settings also key on this
 /// and never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 5;
+pub const PREP_REVISION: u32 = 6;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(

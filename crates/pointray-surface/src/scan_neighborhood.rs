@@ -177,14 +177,15 @@ pub fn agreeing_neighborhood(
         candidates.window.iter().copied().filter(|&j| slope(offset(j), normal) <= MAX_RISE).collect()
     };
     let window: Vec<Vec3> = candidates.window.iter().map(|&j| offset(j)).collect();
-    // The most returns near the plane, each counting less the further it rises out of it;
-    // `None` as soon as the plane can no longer reach `to_beat`.
+    // The most returns near the plane, each counting less the further it rises out of it and
+    // the further from the point it lies (`nearness`); `None` as soon as the plane can no
+    // longer reach `to_beat`.
     let score = |normal: Vec3, to_beat: f32| {
         let mut score = 0.0f32;
         for (k, &d) in window.iter().enumerate() {
             let s = slope(d, normal);
             if s <= MAX_RISE {
-                score += 1.0 - s / MAX_RISE;
+                score += (1.0 - s / MAX_RISE) * nearness(d, normal, scale);
             }
             let remaining = (window.len() - k - 1) as f32;
             if score + remaining < to_beat {
@@ -237,8 +238,22 @@ fn plane_hypotheses<'a>(along: &'a [Vec3], across: &'a [Vec3]) -> impl Iterator<
 /// closer together than the range noise.
 fn slope(offset: Vec3, normal: Vec3, scale: f32, noise: f32) -> f32 {
     let rise = (offset.dot(normal).abs() - noise).max(0.0);
-    let run = (offset - offset.dot(normal) * normal).length();
-    rise / run.max(0.5 * scale).max(f32::MIN_POSITIVE)
+    rise / run(offset, normal).max(0.5 * scale).max(f32::MIN_POSITIVE)
+}
+
+/// How much a return at `offset` counts toward the plane of `normal`: all of it near the
+/// point, half at the neighbourhood's `scale` (the nearest return on another line), less
+/// beyond. A level plane through a return on a car's side rises within `MAX_RISE` of the road
+/// metres away, which holds many more returns than the car's next line a spacing above: counted
+/// alike, the road would win and the car's side would get a level patch. 1 when there is no
+/// scale.
+fn nearness(offset: Vec3, normal: Vec3, scale: f32) -> f32 {
+    if scale > 0.0 { scale / (scale + run(offset, normal)) } else { 1.0 }
+}
+
+/// The length of `offset` within the plane of `normal`.
+fn run(offset: Vec3, normal: Vec3) -> f32 {
+    (offset - offset.dot(normal) * normal).length()
 }
 
 /// The normal of the plane that fits point `i` and `members`: the least eigenvector of their

@@ -72,12 +72,12 @@ fn fidelity(scanned: &Scanned, view: ViewSpec, name: &str) -> FidelityMetrics {
     report.overall
 }
 
-/// The LiDAR bars, where these sweeps meet them: holes from above ≤ 2 % (0.6–1.0 %
-/// measured), false surface ≤ 1 % (0.05–0.14 %), mean normal error from above ≤ 5° (2.6–4.0°),
-/// ≥ 98 % consistent (99.7–99.96 %). Where they do not yet, where they stand (see
-/// bench/FIDELITY.md, LiDAR) with a margin of about a fifth, as a guard against regression:
-/// holes from the sensor (bar 0.5 %: 0.22–0.87 % measured) and the mean normal error from the
-/// sensor (bar 5°: 5.2–6.7°).
+/// The LiDAR bars, where these sweeps meet them: holes from above ≤ 2 % (0.6–1.7 %
+/// measured), false surface ≤ 1 % (0.05–0.18 %), mean normal error from above ≤ 5° (2.5–3.0°),
+/// ≥ 98 % consistent. Where not every sweep does yet, where they stand (see bench/FIDELITY.md,
+/// LiDAR) with a margin of about a fifth, as a guard against regression: holes from the sensor
+/// (bar 0.5 %: 0.25–0.84 % measured, the most with 10 % dropout) and the mean normal error from
+/// the sensor (bar 5°: 4.2–5.3°).
 struct Bars {
     sensor_seen_holes: f64,
     above_seen_holes: f64,
@@ -91,7 +91,7 @@ const BARS: Bars = Bars {
     sensor_seen_holes: 0.0105,
     above_seen_holes: 0.02,
     false_surface: 0.01,
-    sensor_normal_degrees: 8.0,
+    sensor_normal_degrees: 6.5,
     above_normal_degrees: 5.0,
     consistent: 0.98,
 };
@@ -128,4 +128,15 @@ fn street_sweeps_hold_their_fidelity_and_consistency() {
         assert!(consistency.consistent_fraction.expect("rays") >= BARS.consistent, "{summary}");
         assert_eq!(support.over_limit_fraction, 0.0, "a patch reaches past 3 beam spacings: {summary}");
     }
+}
+
+/// A 16-beam sweep, whose cars three or four lines cross: holes from the sensor within the
+/// bar. They were 1.1–1.3 % while a level plane through a return on a car's side, taking in
+/// the road metres beyond, outvoted the car's next line.
+#[test]
+fn a_sixteen_beam_sweep_leaves_the_cars_whole() {
+    let sweep = Sweep { preset: SensorPreset::Vlp16, range_noise: 0.03, dropout: 0.0, seed: 5 };
+    let from_sensor = fidelity(&scanned(&sweep), ViewSpec::Sensor { yaws: 4 }, "vlp16");
+    let holes = from_sensor.seen_hole_rate.expect("a sensor");
+    assert!(holes <= 0.005, "holes from the sensor {holes}: {from_sensor:?}");
 }
