@@ -130,13 +130,15 @@ fn street_sweeps_hold_their_fidelity_and_consistency() {
     }
 }
 
-/// A 16-beam sweep, whose cars three or four lines cross: holes from the sensor within the
-/// bar. They were 1.1–1.3 % while a level plane through a return on a car's side, taking in
-/// the road metres beyond, outvoted the car's next line.
+/// A 16-beam sweep, whose cars three or four lines cross: holes from the sensor and false
+/// surface within the bars. The holes were 1.1–1.3 % while a level plane through a return on a
+/// car's side, taking in the road metres beyond, outvoted the car's next line.
 #[test]
 fn a_sixteen_beam_sweep_leaves_the_cars_whole() {
     let sweep = Sweep { preset: SensorPreset::Vlp16, range_noise: 0.03, dropout: 0.0, seed: 5 };
     let from_sensor = fidelity(&scanned(&sweep), ViewSpec::Sensor { yaws: 4 }, "vlp16");
     let holes = from_sensor.seen_hole_rate.expect("a sensor");
     assert!(holes <= 0.005, "holes from the sensor {holes}: {from_sensor:?}");
+    let false_surface = from_sensor.false_surface_rate.expect("mesh pixels");
+    assert!(false_surface <= BARS.false_surface, "false surface {false_surface}: {from_sensor:?}");
 }
