@@ -4,7 +4,7 @@
 use std::time::{Duration, Instant};
 
 use pointray_cpu::CpuRenderer;
-use pointray_render::{Backend, ReadyScene};
+use pointray_render::{Backend, ReadyScene, Tracer};
 use pointray_scene::{RenderSettings, Scene};
 use pointray_vulkan::{PixelOutput, VulkanError};
 
@@ -91,19 +91,13 @@ impl ScaleBackend<'_> {
         frames: FrameCounts,
         case: &str,
     ) -> Result<Duration, BenchError> {
-        match (self.0, ready) {
-            (Backend::Vulkan(renderer), ReadyScene::Vulkan(prepared)) => {
+        match self.0.tracer(ready).map_err(|source| vulkan_error(case, source))? {
+            Tracer::Vulkan(renderer, prepared) => {
                 measure_prepared(renderer, prepared, settings, PixelOutput::Display, frames)
                     .map(|measured| measured.frame_median)
                     .map_err(|source| vulkan_error(case, source))
             }
-            (_, ReadyScene::Cpu(renderer)) => Ok(cpu_frame_time(renderer, settings, frames)),
-            (Backend::Cpu, ReadyScene::Vulkan(_)) => Err(vulkan_error(
-                case,
-                VulkanError::InvalidScene(
-                    "the scene was prepared by the Vulkan backend, not the CPU one".into(),
-                ),
-            )),
+            Tracer::Cpu(renderer) => Ok(cpu_frame_time(renderer, settings, frames)),
         }
     }
 }

@@ -6,7 +6,7 @@ use pointray_vulkan::{
     BackendChoice, DeviceOptions, DeviceSelector, SceneLayout, VulkanError, VulkanRenderer,
 };
 
-use crate::ready_scene::ReadyScene;
+use crate::ready_scene::{ReadyScene, Tracer};
 
 pub enum Backend {
     Vulkan(Box<VulkanRenderer>),
@@ -48,9 +48,20 @@ impl Backend {
 
     /// A frame of a scene this backend made ready.
     pub fn trace(&self, ready: &ReadyScene, settings: &RenderSettings) -> Result<RenderedImage, VulkanError> {
+        match self.tracer(ready)? {
+            Tracer::Vulkan(renderer, prepared) => renderer.trace(prepared, settings),
+            Tracer::Cpu(renderer) => Ok(renderer.render(settings)),
+        }
+    }
+
+    /// What traces `ready`'s frames; an error when the Vulkan backend made it ready and this
+    /// is the CPU one.
+    pub fn tracer<'a>(&'a self, ready: &'a ReadyScene) -> Result<Tracer<'a>, VulkanError> {
         match (self, ready) {
-            (Backend::Vulkan(renderer), ReadyScene::Vulkan(prepared)) => renderer.trace(prepared, settings),
-            (_, ReadyScene::Cpu(renderer)) => Ok(renderer.render(settings)),
+            (Backend::Vulkan(renderer), ReadyScene::Vulkan(prepared)) => {
+                Ok(Tracer::Vulkan(renderer, prepared))
+            }
+            (_, ReadyScene::Cpu(renderer)) => Ok(Tracer::Cpu(renderer)),
             (Backend::Cpu, ReadyScene::Vulkan(_)) => Err(VulkanError::InvalidScene(
                 "the scene was prepared by the Vulkan backend, not the CPU one".into(),
             )),

@@ -11,4 +11,4 @@ pub use backend::Backend;
 pub use environment::device_options_from_environment;
 pub use error_line::error_line;
 pub use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector};
-pub use ready_scene::ReadyScene;
+pub use ready_scene::{ReadyScene, Tracer};

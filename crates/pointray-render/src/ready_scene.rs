@@ -4,7 +4,7 @@
 
 use pointray_cpu::CpuRenderer;
 use pointray_scene::Camera;
-use pointray_vulkan::PreparedScene;
+use pointray_vulkan::{PreparedScene, VulkanRenderer};
 
 pub enum ReadyScene {
     Vulkan(Box<PreparedScene>),
@@ -19,4 +19,10 @@ impl ReadyScene {
             ReadyScene::Cpu(renderer) => renderer.set_camera(camera),
         }
     }
+}
+
+/// The renderer and the ready scene a frame is traced from (`Backend::tracer`).
+pub enum Tracer<'a> {
+    Vulkan(&'a VulkanRenderer, &'a PreparedScene),
+    Cpu(&'a CpuRenderer),
 }

@@ -39,13 +39,11 @@ impl Geometry {
             Geometry::Mesh(mesh) => Box::new(mesh.positions.iter().copied()),
         }
     }
-}
 
-impl Geometry {
     /// The smallest box holding the surface samples mapped by `place`, or `None` for no
     /// samples. Taken on every core: a large point set has 10^8 samples or more, and a scene
     /// takes its bounds several times on its way to a renderer.
-    pub fn placed_bounds(&self, place: impl Fn(Vec3) -> Vec3 + Sync + Send) -> Option<Aabb> {
+    pub fn sample_bounds(&self, place: impl Fn(Vec3) -> Vec3 + Sync + Send) -> Option<Aabb> {
         let point_box = |p: Vec3| {
             let p = place(p);
             Aabb::new(p, p)
@@ -68,5 +66,5 @@ impl SceneObject {
 }
 
 pub(crate) fn transformed_bounds(geometry: &Geometry, transform: &Affine3A) -> Option<Aabb> {
-    geometry.placed_bounds(|p| transform.transform_point3(p))
+    geometry.sample_bounds(|p| transform.transform_point3(p))
 }

@@ -36,7 +36,7 @@ impl WorldBounds {
 
 /// The bounds of `geometry` placed by `local_to_world`, from the corners of its local box.
 pub(crate) fn placed_bounds(geometry: &Geometry, local_to_world: &DAffine3) -> Option<WorldBounds> {
-    let local = geometry.placed_bounds(|p| p)?;
+    let local = geometry.sample_bounds(|p| p)?;
     let (min, max) = (Vec3::from(local.min).as_dvec3(), Vec3::from(local.max).as_dvec3());
     let corner = |i: usize| {
         let pick = |axis: usize| if i & (1 << axis) == 0 { min[axis] } else { max[axis] };

@@ -190,9 +190,7 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let (header, layout) = checked_header(path, &head, length)?;
     let [aabbs, hot, cold, neighbors] = layout.sections;
     let mut reader = SectionReader { file: &file, cursor: 0, hasher: crc32fast::Hasher::new() };
-    let records = PatchSet {
-        settings: PrepSettings::default(),
-        offset: DVec3::from_array(header.offset),
+    let records = Records {
         aabbs: reader.records(aabbs).map_err(io)?,
         hot: reader.records(hot).map_err(io)?,
         cold: reader.records(cold).map_err(io)?,
@@ -216,15 +214,21 @@ pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
     let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
     let section = |Section { offset, length }: Section| &bytes[offset as usize..(offset + length) as usize];
     let [aabbs, hot, cold, neighbors] = layout.sections;
-    let records = PatchSet {
-        settings: PrepSettings::default(),
-        offset: DVec3::from_array(header.offset),
+    let records = Records {
         aabbs: bytemuck::pod_collect_to_vec(section(aabbs)),
         hot: bytemuck::pod_collect_to_vec(section(hot)),
         cold: bytemuck::pod_collect_to_vec(section(cold)),
         color_neighbors: bytemuck::pod_collect_to_vec(section(neighbors)),
     };
     checked_patches(path, &header, &layout, (parallel_read::checksum(body), stored), records)
+}
+
+/// A store's four sections, read but not yet checked.
+struct Records {
+    aabbs: Vec<Aabb>,
+    hot: Vec<PatchHot>,
+    cold: Vec<PatchCold>,
+    color_neighbors: Vec<u32>,
 }
 
 /// Reads a store's sections in file order, hashing every byte it passes over.
@@ -287,14 +291,15 @@ fn checked_header(path: &Path, head: &[u8], length: u64) -> Result<(Header, Layo
     }
 }
 
-/// `records` with the header's settings, once the checksum (`computed` against `stored`),
-/// the section table, the settings' codes and every record have been verified.
+/// The patch set of `records` with the header's settings and offset, once the checksum
+/// (`computed` against `stored`), the section table, the settings' codes and every record
+/// have been verified.
 fn checked_patches(
     path: &Path,
     header: &Header,
     layout: &Layout,
     (computed, stored): (u32, &[u8]),
-    records: PatchSet,
+    records: Records,
 ) -> Result<PatchSet, StoreError> {
     if stored != computed.to_le_bytes() {
         return Err(StoreError::ChecksumMismatch { path: path.to_path_buf() });
@@ -305,7 +310,9 @@ fn checked_patches(
         return Err(malformed("the section table does not match the point count"));
     }
     let settings = header.settings.decode(header.sensor).map_err(malformed)?;
-    let patches = PatchSet { settings, ..records };
+    let Records { aabbs, hot, cold, color_neighbors } = records;
+    let offset = DVec3::from_array(header.offset);
+    let patches = PatchSet { settings, offset, aabbs, hot, cold, color_neighbors };
     // A store can pass its checksum and still hold numbers no renderer can build on.
     patches.check().map_err(|problem| malformed(&problem))?;
     Ok(patches)

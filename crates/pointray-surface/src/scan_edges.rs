@@ -1,6 +1,7 @@
 //! Silhouettes in a LiDAR scan: where the next return along a line, or on the next line, lies
-//! on another surface well in front of or behind a point, or the next line saw nothing there. A patch in front (an occluder's edge)
-//! must stop short of the next ray, or it floats in front of what that ray saw; a patch behind
+//! on another surface well in front of or behind a point, or the next line saw nothing there.
+//! A patch in front (an occluder's edge) must stop short of the next ray, or it floats in front
+//! of what that ray saw; a patch behind
 //! (the surface an occluder hides) may reach under the occluder, where no one sees it, and so
 //! close the corners between its lines at the silhouette.
 
