@@ -152,6 +152,7 @@ fn measure_rung(
         blas_build_seconds: costs.blas.as_secs_f64(),
         bottom_levels: costs.tiles,
         gpu_bytes_per_point: costs.gpu_bytes.map(|bytes| bytes as f64 / points),
+        gpu_build_peak_bytes_per_point: costs.gpu_peak_bytes.map(|bytes| bytes as f64 / points),
         fps,
     })
 }

@@ -27,6 +27,8 @@ pub struct BuildCosts {
     pub blas: Duration,
     /// Everything the scene holds on the GPU; `None` on the CPU backend.
     pub gpu_bytes: Option<u64>,
+    /// The most it held at once while it was built; `None` on the CPU backend.
+    pub gpu_peak_bytes: Option<u64>,
     /// Bottom levels: one per mesh and per tile of a point set.
     pub tiles: usize,
 }
@@ -72,12 +74,16 @@ impl ScaleBackend<'_> {
                 BuildCosts {
                     blas: report.blas_build,
                     gpu_bytes: Some(report.gpu_bytes()),
+                    gpu_peak_bytes: Some(report.peak_build_bytes),
                     tiles: report.blas_count,
                 }
             }
-            ReadyScene::Cpu(renderer) => {
-                BuildCosts { blas: started.elapsed(), gpu_bytes: None, tiles: renderer.tile_count() }
-            }
+            ReadyScene::Cpu(renderer) => BuildCosts {
+                blas: started.elapsed(),
+                gpu_bytes: None,
+                gpu_peak_bytes: None,
+                tiles: renderer.tile_count(),
+            },
         };
         Ok((ready, costs))
     }

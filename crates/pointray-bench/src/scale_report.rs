@@ -47,6 +47,8 @@ pub struct RungMeasurement {
     pub bottom_levels: usize,
     /// Everything the scene keeps on the GPU, per patch; `None` on the CPU backend.
     pub gpu_bytes_per_point: Option<f64>,
+    /// The most the scene held on the GPU at once while it was built, per patch.
+    pub gpu_build_peak_bytes_per_point: Option<f64>,
     /// Frames per second by size, with shadows and one reflection bounce.
     pub fps: Vec<SizeFps>,
 }
@@ -109,9 +111,10 @@ pub fn scale_markdown(report: &ScaleReport) -> String {
     let size_columns: String = sizes.iter().map(|(w, h)| format!(" FPS {w}x{h} |")).collect();
     let _ = writeln!(
         text,
-        "| points | prep s | M points/s | prep peak RSS GB (B/point) | store GB | GPU B/point | load s | BLAS build s | bottom levels |{size_columns}"
+        "| points | prep s | M points/s | prep peak RSS GB (B/point) | store GB | GPU B/point | GPU peak B/point while building | load s | BLAS build s | bottom levels |{size_columns}"
     );
-    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(sizes.len()));
+    let _ =
+        writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(sizes.len()));
     for row in &report.rows {
         let _ = writeln!(text, "{}", table_row(row, sizes.len()));
     }
@@ -124,7 +127,7 @@ pub fn scale_markdown(report: &ScaleReport) -> String {
 fn table_row(row: &ScaleRow, size_count: usize) -> String {
     let m = match &row.outcome {
         RungOutcome::Skipped { reason } => {
-            return format!("| {} | skipped: {reason} |{}", row.label, " |".repeat(7 + size_count));
+            return format!("| {} | skipped: {reason} |{}", row.label, " |".repeat(8 + size_count));
         }
         RungOutcome::Measured(m) => m,
     };
@@ -133,12 +136,13 @@ fn table_row(row: &ScaleRow, size_count: usize) -> String {
     });
     let fps: String = m.fps.iter().map(|s| format!(" {:.1} |", s.fps)).collect();
     format!(
-        "| {} | {:.2} | {:.2} | {peak} | {:.2} | {} | {:.2} | {:.2} | {} |{fps}",
+        "| {} | {:.2} | {:.2} | {peak} | {:.2} | {} | {} | {:.2} | {:.2} | {} |{fps}",
         row.label,
         m.prep_seconds,
         m.prep_points_per_second / 1e6,
         m.store_bytes as f64 / 1e9,
         m.gpu_bytes_per_point.map_or("–".into(), |b| format!("{b:.0}")),
+        m.gpu_build_peak_bytes_per_point.map_or("–".into(), |b| format!("{b:.0}")),
         m.load_seconds,
         m.blas_build_seconds,
         m.bottom_levels,

@@ -167,6 +167,7 @@ fn scale_suite_runs_a_rung_on_the_cpu_backend() {
     let m = measured(&report);
     assert_sane(m, 20_000);
     assert_eq!(m.gpu_bytes_per_point, None, "no GPU on the CPU backend");
+    assert_eq!(m.gpu_build_peak_bytes_per_point, None, "no GPU on the CPU backend");
     assert!(report.rows[0].stand_in.contains("20000 points sampled on meshes/dragon_res2.ply"));
     assert!(cache.path().join("dragon_res2-standin-20000-seed1.ply").is_file(), "the points are cached");
     let table = scale_markdown(&report);
@@ -190,6 +191,9 @@ fn scale_suite_reports_gpu_bytes_on_vulkan() {
     let bytes = m.gpu_bytes_per_point.expect("GPU bytes on Vulkan");
     eprintln!("{bytes:.1} GPU bytes a point");
     assert!(bytes > 36.0 && bytes < 180.0, "{bytes} B/point");
+    // Building held the scene and, for a while, the boxes and scratch besides.
+    let peak = m.gpu_build_peak_bytes_per_point.expect("the build's peak on Vulkan");
+    assert!(peak >= bytes && peak < 3.0 * bytes, "{peak} B/point at the peak, {bytes} kept");
     drop(backend);
     assert_eq!(counter.count(), 0, "the validation layer reported messages");
 }

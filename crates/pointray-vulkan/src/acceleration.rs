@@ -153,6 +153,8 @@ pub(crate) fn build(
             }
         }
     })?;
+    // The compacted copy needs room; the scratch is done with.
+    drop(scratch);
     let mut structure = match queries {
         Some(queries) => compact_if_it_pays(context, structure, queries.compacted_size(context)?)?,
         None => structure,

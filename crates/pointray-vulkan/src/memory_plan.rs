@@ -1,6 +1,13 @@
 //! What a scene will take on the GPU, worked out from the device's build-size queries before
-//! anything is uploaded, so that a scene over its memory budget is refused with the numbers
-//! instead of failing halfway through the upload.
+//! anything is uploaded, and the ledger that holds the upload to its budget as it goes.
+//!
+//! A point set's bottom levels are built before its records are uploaded, one tile at a
+//! time, each from its own boxes, so a build's boxes and scratch come and go beside the
+//! compacted structures alone. Where the scene would not fit its budget otherwise, its
+//! tiles are split until one tile's build takes no more than the records uploaded after
+//! it: the peak is then about the size of the finished scene. The structures' compacted
+//! sizes are known only once built, so a scene whose bound is over the budget but whose
+//! floor is not is built with the ledger checking each step against the sizes it has seen.
 
 use pointray_io::TriangleMesh;
 use pointray_scene::{Geometry, Scene};
@@ -9,65 +16,106 @@ use crate::acceleration::{aabb_input, build_sizes, instance_input, triangle_inpu
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::ObjectRecord;
-use crate::patch_upload::{box_bytes, patch_tiles, record_bytes};
+use crate::patch_upload::{patch_tiles, record_bytes, tile_box_bytes};
 use crate::prepared_scene::SceneLayout;
 
 /// Bytes of one TLAS instance record (`VkAccelerationStructureInstanceKHR`).
 const INSTANCE_BYTES: u64 = 64;
 
+/// The smallest tile a budget splits a point set into: below it, the structures' fixed
+/// costs outweigh what a smaller build saves.
+const MIN_FITTED_TILE: u32 = 1024;
+
 /// A scene's GPU memory, planned.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct MemoryNeed {
-    /// What stays while the scene is traced: records, meshes, bottom levels before
-    /// compaction (an upper bound), the top level and the object records.
-    pub(crate) kept: u64,
-    /// What the largest build needs besides: an object's boxes or mesh and the scratch.
-    pub(crate) building: u64,
+    /// What stays while the scene is traced, besides its acceleration structures: records,
+    /// meshes, the object records.
+    pub(crate) buffers: u64,
+    /// The acceleration structures before compaction: a bound on what they keep.
+    pub(crate) structures: u64,
+    /// The largest single build: its input (a tile's boxes, a mesh), its structure before
+    /// compaction and its scratch.
+    pub(crate) largest_build: u64,
     /// Bottom levels: one per mesh and per tile of a point set.
     pub(crate) bottom_levels: usize,
 }
 
 impl MemoryNeed {
-    fn add(&mut self, kept: u64, building: u64, bottom_levels: usize) {
-        self.kept += kept;
-        self.building = self.building.max(building);
+    fn add(&mut self, buffers: u64, structure: u64, build: u64, bottom_levels: usize) {
+        self.buffers += buffers;
+        self.structures += structure;
+        self.largest_build = self.largest_build.max(build);
         self.bottom_levels += bottom_levels;
     }
 
-    pub(crate) fn total(&self) -> u64 {
-        self.kept + self.building
+    /// At most what the scene takes at any moment: everything it keeps, uncompacted, and the
+    /// largest build besides.
+    pub(crate) fn bound(&self) -> u64 {
+        self.buffers + self.structures + self.largest_build
+    }
+
+    /// At least what the scene takes: its buffers once uploaded, or its largest build.
+    fn floor(&self) -> u64 {
+        self.buffers.max(self.largest_build)
     }
 }
 
+/// The scene's memory with point sets in tiles of at most `max_tile` patches.
 pub(crate) fn plan(context: &GpuContext, scene: &Scene, layout: SceneLayout, max_tile: u32) -> MemoryNeed {
     let mut need = MemoryNeed::default();
     for object in &scene.objects {
         match &object.geometry {
             Geometry::Patches(patches) => {
-                let (mut structures, mut scratch) = (0, 0);
-                let tiles = patch_tiles(patches, max_tile);
-                for tile in &tiles {
-                    let (size, tile_scratch) =
-                        build_sizes(context, &aabb_input(0, tile.len() as u32, layout.blas));
-                    structures += size;
-                    scratch = scratch.max(tile_scratch);
-                }
                 let records = record_bytes(patches, &object.material, layout.buffers);
-                need.add(records + structures, box_bytes(patches) + scratch, tiles.len());
+                let tiles = patch_tiles(patches, max_tile);
+                need.add(records, 0, 0, tiles.len());
+                for tile in &tiles {
+                    let (size, scratch) =
+                        build_sizes(context, &aabb_input(0, tile.len() as u32, layout.blas));
+                    need.add(0, size, build_peak(tile_box_bytes(tile), size, scratch), 0);
+                }
             }
-            Geometry::Mesh(mesh) if mesh.triangles.is_empty() => need.add(mesh_bytes(mesh), 0, 0),
+            Geometry::Mesh(mesh) if mesh.triangles.is_empty() => need.add(mesh_bytes(mesh), 0, 0, 0),
             Geometry::Mesh(mesh) => {
                 let input = triangle_input(0, mesh.positions.len() as u32, 0, mesh.triangles.len() as u32);
                 let (size, scratch) = build_sizes(context, &input);
-                need.add(mesh_bytes(mesh) + size, scratch, 1);
+                need.add(mesh_bytes(mesh), size, build_peak(mesh_bytes(mesh), size, scratch), 1);
             }
         }
     }
     let instances = need.bottom_levels as u64;
     let (tlas, scratch) = build_sizes(context, &instance_input(0, instances as u32));
     let records = instances.max(1) * size_of::<ObjectRecord>() as u64;
-    need.add(tlas + records, instances * INSTANCE_BYTES + scratch, 0);
+    need.add(records, tlas, build_peak(instances * INSTANCE_BYTES, tlas, scratch), 0);
     need
+}
+
+/// The most one build holds: its input and structure, with the scratch while building or a
+/// compacted copy (smaller than the structure) while compacting.
+pub(crate) fn build_peak(input: u64, structure: u64, scratch: u64) -> u64 {
+    input + structure + scratch.max(structure)
+}
+
+/// The largest tile, at most `max_tile` patches, that fits the scene to `budget`: `max_tile`
+/// when the scene's bound fits, else halved until it does or until one tile's build is no
+/// larger than the buffers (splitting further would not lower the peak below them).
+pub(crate) fn fitted_tile(
+    context: &GpuContext,
+    scene: &Scene,
+    layout: SceneLayout,
+    max_tile: u32,
+    budget: &GpuBudget,
+) -> (u32, MemoryNeed) {
+    let mut tile = max_tile;
+    loop {
+        let need = plan(context, scene, layout, tile);
+        let settled = need.bound() <= budget.bytes || need.largest_build <= need.buffers;
+        if settled || tile <= MIN_FITTED_TILE {
+            return (tile, need);
+        }
+        tile = (tile / 2).max(MIN_FITTED_TILE);
+    }
 }
 
 /// Vertices as vec4 and u32 indices, as the trace reads them.
@@ -75,30 +123,85 @@ fn mesh_bytes(mesh: &TriangleMesh) -> u64 {
     mesh.positions.len() as u64 * 16 + mesh.triangles.len() as u64 * 12
 }
 
-/// The budget a scene must fit: the caller's, else the device's largest device-local heap.
-pub(crate) fn check_budget(
-    context: &GpuContext,
-    need: &MemoryNeed,
-    budget: Option<u64>,
-) -> Result<(), VulkanError> {
-    let (budget, source) = match budget {
-        Some(bytes) => (bytes, "the GPU memory budget".to_string()),
-        None => {
-            (context.info.device_local_bytes, format!("the device-local memory of {}", context.info.name))
+/// The GPU memory a scene may take: the caller's budget, else the device's largest
+/// device-local heap.
+pub(crate) struct GpuBudget {
+    pub(crate) bytes: u64,
+    source: String,
+}
+
+impl GpuBudget {
+    pub(crate) fn new(context: &GpuContext, budget: Option<u64>) -> Self {
+        match budget.filter(|&bytes| bytes > 0) {
+            Some(bytes) => Self { bytes, source: "the GPU memory budget".to_string() },
+            None => Self {
+                bytes: context.info.device_local_bytes,
+                source: format!("the device-local memory of {}", context.info.name),
+            },
         }
-    };
-    if need.total() <= budget || budget == 0 {
-        return Ok(());
     }
-    let mib = |bytes: u64| bytes as f64 / (1 << 20) as f64;
-    Err(VulkanError::OverBudget(format!(
-        "the scene needs {:.1} MiB of GPU memory ({:.1} MiB kept: patch records, meshes and {} acceleration \
-         structures; {:.1} MiB more while building), over {source} of {:.1} MiB; render fewer points or \
-         use the CPU backend",
-        mib(need.total()),
-        mib(need.kept),
-        need.bottom_levels + 1,
-        mib(need.building),
-        mib(budget)
-    )))
+
+    /// Refuses a scene that cannot fit even with its structures compacted to nothing.
+    pub(crate) fn check_plan(&self, need: &MemoryNeed) -> Result<(), VulkanError> {
+        if need.floor() <= self.bytes || self.bytes == 0 {
+            return Ok(());
+        }
+        Err(VulkanError::OverBudget(format!(
+            "the scene needs at least {:.1} MiB of GPU memory ({:.1} MiB of patch records, meshes and \
+             object records; {:.1} MiB for its largest build; at most {:.1} MiB with its {} acceleration \
+             structures), over {} of {:.1} MiB; render fewer points or use the CPU backend",
+            mib(need.floor()),
+            mib(need.buffers),
+            mib(need.largest_build),
+            mib(need.bound()),
+            need.bottom_levels + 1,
+            self.source,
+            mib(self.bytes)
+        )))
+    }
+}
+
+/// What a scene holds on the GPU so far, against its budget.
+pub(crate) struct GpuLedger {
+    budget: GpuBudget,
+    held: u64,
+    peak: u64,
+}
+
+impl GpuLedger {
+    pub(crate) fn new(budget: GpuBudget) -> Self {
+        Self { budget, held: 0, peak: 0 }
+    }
+
+    /// Ok when `extra` bytes more fit beside what is held; `what` names the step.
+    pub(crate) fn check(&self, extra: u64, what: &str) -> Result<(), VulkanError> {
+        let need = self.held + extra;
+        if need <= self.budget.bytes || self.budget.bytes == 0 {
+            return Ok(());
+        }
+        Err(VulkanError::OverBudget(format!(
+            "{what} needs {:.1} MiB of GPU memory beside the {:.1} MiB the scene holds so far, over {} of \
+             {:.1} MiB; render fewer points or use the CPU backend",
+            mib(extra),
+            mib(self.held),
+            self.budget.source,
+            mib(self.budget.bytes)
+        )))
+    }
+
+    /// Counts `bytes` as held, and `transient` bytes more as having been held beside them for a
+    /// while (a build's input and scratch).
+    pub(crate) fn hold(&mut self, bytes: u64, transient: u64) {
+        self.peak = self.peak.max(self.held + bytes + transient);
+        self.held += bytes;
+    }
+
+    /// The most the scene held at once, as far as the ledger saw.
+    pub(crate) fn peak(&self) -> u64 {
+        self.peak
+    }
+}
+
+fn mib(bytes: u64) -> f64 {
+    bytes as f64 / (1 << 20) as f64
 }

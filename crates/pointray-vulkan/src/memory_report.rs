@@ -21,6 +21,9 @@ pub struct BuildReport {
     /// triangles' table. The build inputs (patch
     /// boxes, TLAS instances) are freed once built.
     pub geometry_bytes: u64,
+    /// The most GPU memory the buffers and structures took at once while the scene was
+    /// built (build inputs and scratch included; the frame's images are not).
+    pub peak_build_bytes: u64,
 }
 
 impl BuildReport {
@@ -39,6 +42,7 @@ impl PreparedScene {
             tlas_build: self.tlas.build_time,
             blas_bytes: self._bottom_levels.iter().map(|b| b.size()).sum(),
             tlas_bytes: self.tlas.size(),
+            peak_build_bytes: self.build_peak,
             geometry_bytes: self._geometry.iter().map(|b| b.size).sum::<u64>()
                 + [&self.environment, &self.emissive]
                     .iter()

@@ -1,5 +1,5 @@
-//! A point set onto the GPU: the per-patch records its traces read, and one BLAS per tile
-//! (`pointray_surface::patch_tiles`), all tiles sharing the set's buffers.
+//! A point set onto the GPU: one BLAS per tile (`pointray_surface::patch_tiles`), then the
+//! per-patch records its traces read, all tiles sharing the set's buffers.
 
 use std::ops::Range;
 use std::sync::Arc;
@@ -10,11 +10,12 @@ use pointray_scene::{BufferLayout, Material};
 use pointray_surface::PatchSet;
 use pointray_surface::patch_tiles::tile_ranges;
 
-use crate::acceleration::{AccelerationStructure, aabb_input, build};
+use crate::acceleration::{AccelerationStructure, aabb_input, build, build_sizes};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::{ObjectRecord, PatchCombined};
+use crate::memory_plan::{GpuLedger, build_peak};
 use crate::prepared_scene::{PreparedObject, SceneLayout};
 
 /// Bytes of one patch box (`VkAabbPositionsKHR`).
@@ -37,6 +38,7 @@ pub(crate) fn prepare_patches(
     material: &Material,
     layout: SceneLayout,
     max_tile_patches: u32,
+    ledger: &mut GpuLedger,
 ) -> Result<PreparedObject, VulkanError> {
     let count = patches.len();
     if patches.aabbs.len() != count || patches.cold.len() != count {
@@ -49,6 +51,12 @@ pub(crate) fn prepare_patches(
     }
     check_color_neighbors(patches)?;
     let colors = reads_point_colors(material);
+    let records = record_bytes(patches, material, layout.buffers);
+    let started = Instant::now();
+    let bottom_levels = tile_bottom_levels(context, patches, layout, max_tile_patches, records, ledger)?;
+    let what = format!("built {} bottom levels over {count} patches (boxes uploaded)", bottom_levels.len());
+    log_phase(&what, count as u64 * BOX_BYTES, started.elapsed());
+    ledger.check(records, "uploading the patch records")?;
     let started = Instant::now();
     let (mut record, mut buffers) = patch_records(context, patches, layout.buffers, colors)?;
     // Only coloured clouds carry neighbour lists; the others keep address 0, which the
@@ -64,11 +72,8 @@ pub(crate) fn prepare_patches(
         buffers.push(lists);
     }
     let uploaded: u64 = buffers.iter().map(|buffer| buffer.size).sum();
+    ledger.hold(uploaded, 0);
     log_phase(&format!("uploaded {count} patches' records"), uploaded, started.elapsed());
-    let started = Instant::now();
-    let bottom_levels = tile_bottom_levels(context, patches, layout, max_tile_patches)?;
-    let what = format!("built {} bottom levels over {count} patches (boxes uploaded)", bottom_levels.len());
-    log_phase(&what, box_bytes(patches), started.elapsed());
     Ok(PreparedObject { record, bottom_levels, buffers })
 }
 
@@ -79,32 +84,37 @@ fn log_phase(what: &str, bytes: u64, elapsed: Duration) {
     tracing::info!("{what}: {gigabytes:.2} GB in {seconds:.2} s ({:.2} GB/s)", gigabytes / seconds.max(1e-9));
 }
 
-/// One BLAS per tile, each with its first patch. The boxes are only the builds' input: each
-/// structure keeps its own copy, and no shader reads them, so their buffer goes as soon as
-/// the last tile is built.
+/// One BLAS per tile, each with its first patch, built before the set's `records` bytes are
+/// uploaded. Each tile's boxes are uploaded for its build alone: the structure keeps its own
+/// copy and no shader reads them.
 fn tile_bottom_levels(
     context: &Arc<GpuContext>,
     patches: &PatchSet,
     layout: SceneLayout,
     max_tile_patches: u32,
+    records: u64,
+    ledger: &mut GpuLedger,
 ) -> Result<Vec<(AccelerationStructure, u32)>, VulkanError> {
-    if patches.is_empty() {
-        return Ok(Vec::new());
+    let tiles = patch_tiles(patches, max_tile_patches);
+    let count = tiles.len();
+    let mut bottom_levels = Vec::with_capacity(count);
+    for (index, tile) in tiles.into_iter().enumerate() {
+        let primitives = tile.len() as u32;
+        let (size, scratch) = build_sizes(context, &aabb_input(0, primitives, layout.blas));
+        let transient = build_peak(tile_box_bytes(&tile), size, scratch);
+        // The records come after the last build, so a build that leaves no room for them fails now.
+        ledger.check(transient.max(records), &format!("building bottom level {} of {count}", index + 1))?;
+        let boxes = Buffer::device_with_data(
+            context,
+            "patch boxes",
+            bytemuck::cast_slice(&patches.aabbs[tile.clone()]),
+            build_input_usage(),
+        )?;
+        let blas = build(context, &aabb_input(boxes.device_address(), primitives, layout.blas))?;
+        ledger.hold(blas.size(), transient - blas.size().min(transient));
+        bottom_levels.push((blas, tile.start as u32));
     }
-    let aabbs = Buffer::device_with_data(
-        context,
-        "patch boxes",
-        bytemuck::cast_slice(&patches.aabbs),
-        build_input_usage(),
-    )?;
-    patch_tiles(patches, max_tile_patches)
-        .into_iter()
-        .map(|tile| {
-            let address = aabbs.device_address() + tile.start as u64 * BOX_BYTES;
-            let blas = build(context, &aabb_input(address, tile.len() as u32, layout.blas))?;
-            Ok((blas, tile.start as u32))
-        })
-        .collect()
+    Ok(bottom_levels)
 }
 
 /// The per-patch records the trace reads, in `buffers`' layout only: the hot buffer (and
@@ -161,9 +171,9 @@ pub(crate) fn record_bytes(patches: &PatchSet, material: &Material, buffers: Buf
     neighbors + split + combined
 }
 
-/// The build's input for every patch box.
-pub(crate) fn box_bytes(patches: &PatchSet) -> u64 {
-    patches.len() as u64 * BOX_BYTES
+/// The build input of one tile: its patches' boxes.
+pub(crate) fn tile_box_bytes(tile: &Range<usize>) -> u64 {
+    tile.len() as u64 * BOX_BYTES
 }
 
 /// The shader follows neighbour indices without bounds checks: each list must have its

@@ -16,7 +16,7 @@ use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::{LightRecord, ObjectRecord};
 use crate::light_table::LightTable;
-use crate::memory_plan;
+use crate::memory_plan::{self, GpuBudget, GpuLedger};
 use crate::patch_upload::prepare_patches;
 use crate::pipeline::{HIT_GROUP_PATCHES, HIT_GROUP_TRIANGLES};
 
@@ -42,6 +42,8 @@ pub struct PreparedScene {
     pub(crate) tlas: AccelerationStructure,
     /// Which per-patch buffers were uploaded; a trace must read those.
     pub(crate) buffer_layout: BufferLayout,
+    /// The most GPU memory the scene's buffers and structures took at once while it was built.
+    pub(crate) build_peak: u64,
     // Kept alive for the TLAS and the shaders' buffer addresses (and measured by
     // `memory_report.rs`).
     pub(crate) _bottom_levels: Vec<AccelerationStructure>,
@@ -85,7 +87,11 @@ pub(crate) struct PreparedObject {
     pub(crate) buffers: Vec<Buffer>,
 }
 
-fn prepare_mesh(context: &Arc<GpuContext>, mesh: &TriangleMesh) -> Result<PreparedObject, VulkanError> {
+fn prepare_mesh(
+    context: &Arc<GpuContext>,
+    mesh: &TriangleMesh,
+    ledger: &mut GpuLedger,
+) -> Result<PreparedObject, VulkanError> {
     let vertex_count = mesh.positions.len();
     if let Some(bad) = mesh.triangles.iter().flatten().find(|&&i| i as usize >= vertex_count) {
         return Err(VulkanError::InvalidScene(format!(
@@ -105,6 +111,7 @@ fn prepare_mesh(context: &Arc<GpuContext>, mesh: &TriangleMesh) -> Result<Prepar
         bytemuck::cast_slice(&mesh.triangles),
         build_input_usage(),
     )?;
+    ledger.hold(vertices.size + indices.size, 0);
     let triangle_count = mesh.triangles.len() as u32;
     let blas = (triangle_count > 0)
         .then(|| {
@@ -119,6 +126,9 @@ fn prepare_mesh(context: &Arc<GpuContext>, mesh: &TriangleMesh) -> Result<Prepar
             )
         })
         .transpose()?;
+    if let Some(blas) = &blas {
+        ledger.hold(blas.size(), 0);
+    }
     let record = ObjectRecord {
         vertices: vertices.device_address(),
         indices: indices.device_address(),
@@ -236,25 +246,28 @@ pub(crate) fn prepare(
     if let Some(problem) = scene.objects.iter().find_map(out_of_range) {
         return Err(VulkanError::InvalidScene(problem));
     }
-    let max_tile = layout.tile_limit(context);
-    let need = memory_plan::plan(context, scene, layout, max_tile);
+    let budget = GpuBudget::new(context, layout.memory_budget);
+    let (max_tile, need) =
+        memory_plan::fitted_tile(context, scene, layout, layout.tile_limit(context), &budget);
     if need.bottom_levels > MAX_INSTANCES {
         return Err(VulkanError::InvalidScene(format!(
             "{} meshes and point-set tiles of at most {max_tile} patches; at most {MAX_INSTANCES} fit",
             need.bottom_levels
         )));
     }
-    memory_plan::check_budget(context, &need, layout.memory_budget)?;
+    budget.check_plan(&need)?;
+    let mut ledger = GpuLedger::new(budget);
     let mut records = Vec::with_capacity(need.bottom_levels);
     let mut instances = Vec::with_capacity(need.bottom_levels);
     let mut bottom_levels = Vec::with_capacity(need.bottom_levels);
     let mut geometry = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
         let (prepared, hit_group) = match &object.geometry {
-            Geometry::Patches(patches) => {
-                (prepare_patches(context, patches, &object.material, layout, max_tile)?, HIT_GROUP_PATCHES)
-            }
-            Geometry::Mesh(mesh) => (prepare_mesh(context, mesh)?, HIT_GROUP_TRIANGLES),
+            Geometry::Patches(patches) => (
+                prepare_patches(context, patches, &object.material, layout, max_tile, &mut ledger)?,
+                HIT_GROUP_PATCHES,
+            ),
+            Geometry::Mesh(mesh) => (prepare_mesh(context, mesh, &mut ledger)?, HIT_GROUP_TRIANGLES),
         };
         let record = prepared.record.with_material(&object.material);
         for (blas, first) in prepared.bottom_levels {
@@ -268,6 +281,7 @@ pub(crate) fn prepare(
     let instance_buffer =
         Buffer::device_with_data(context, "TLAS instances", instance_bytes(&instances), build_input_usage())?;
     let tlas = build(context, &instance_input(instance_buffer.device_address(), instances.len() as u32))?;
+    ledger.hold(tlas.size(), instance_buffer.size);
     drop(instance_buffer);
     let record_bytes = if records.is_empty() {
         vec![0u8; size_of::<ObjectRecord>()]
@@ -292,6 +306,7 @@ pub(crate) fn prepare(
         lights: light_buffer(context, &scene.lights)?,
         tlas,
         buffer_layout: layout.buffers,
+        build_peak: ledger.peak(),
         _bottom_levels: bottom_levels,
         _geometry: geometry,
     })

@@ -132,3 +132,27 @@ fn a_scene_over_its_gpu_budget_is_refused_with_the_numbers() {
     assert!(renderer.prepare_with_layout(&scene, roomy).is_ok(), "a budget with room prepares");
     assert_no_validation_messages(&renderer);
 }
+
+#[test]
+fn a_budget_below_one_build_splits_the_cloud_into_tiles_that_fit() {
+    let Some(renderer) = renderer() else { return };
+    let bunny = pointray_test_support::data_file("points/bunny.ply");
+    let scene = bunny_on_floor(&bunny);
+    let settings = settings(128);
+    let whole = renderer.prepare(&scene).expect("prepares whole");
+    let report = whole.build_report();
+    assert_eq!(report.blas_count, 2, "the bunny and the floor");
+    // Room for the finished scene and a little more, but not for the bunny's build in one piece.
+    let budget = report.gpu_bytes() + report.gpu_bytes() / 4;
+    assert!(report.peak_build_bytes > budget, "{report:?}: the whole build must not fit {budget}");
+    let layout = SceneLayout { memory_budget: Some(budget), ..SceneLayout::default() };
+    let fitted = renderer.prepare_with_layout(&scene, layout).expect("prepares within the budget");
+    let fitted_report = fitted.build_report();
+    eprintln!("whole: {report:?}\nfitted to {budget}: {fitted_report:?}");
+    assert!(fitted_report.blas_count > 2, "{fitted_report:?}");
+    assert!(fitted_report.peak_build_bytes <= budget, "{fitted_report:?} over {budget}");
+    let whole_image = renderer.trace(&whole, &settings).expect("traces whole");
+    let fitted_image = renderer.trace(&fitted, &settings).expect("traces in tiles");
+    assert_same_hits("bunny fitted to a budget", &fitted_image, &whole_image);
+    assert_no_validation_messages(&renderer);
+}
