@@ -3,7 +3,12 @@
 use anyhow::Context;
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
-use pointray_render::{Backend, BackendChoice, DeviceSelector, device_options_from_environment};
+use pointray_io::MemoryBudget;
+use pointray_render::{
+    Backend, BackendChoice, DeviceOptions, DeviceSelector, device_options_from_environment,
+};
+
+use crate::memory_arg::parse_memory;
 
 /// The `--backend` and `--device` flags of the commands that render on either backend and
 /// default to `auto`.
@@ -15,6 +20,10 @@ pub struct BackendArgs {
     /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
     #[arg(long, default_value = "auto")]
     pub device: DeviceSelector,
+    /// GPU memory a scene may take, building included, e.g. `40G` (default: the device's).
+    /// A large point set is split into more tiles to fit; a scene that cannot fit is refused.
+    #[arg(long, value_parser = parse_memory)]
+    pub gpu_memory: Option<MemoryBudget>,
 }
 
 /// `--backend auto|vulkan|cpu`.
@@ -23,6 +32,15 @@ pub fn backend_choice() -> impl TypedValueParser<Value = BackendChoice> {
 }
 
 /// The renderer the flags ask for.
-pub fn open_backend(choice: BackendChoice, device: &DeviceSelector) -> anyhow::Result<Backend> {
-    Backend::open(choice, device, device_options_from_environment()).context("opening the Vulkan backend")
+pub fn open_backend(
+    choice: BackendChoice,
+    device: &DeviceSelector,
+    gpu_memory: Option<MemoryBudget>,
+) -> anyhow::Result<Backend> {
+    Backend::open(choice, device, device_options(gpu_memory)).context("opening the Vulkan backend")
+}
+
+/// The environment's device options, with `--gpu-memory`.
+pub fn device_options(gpu_memory: Option<MemoryBudget>) -> DeviceOptions {
+    DeviceOptions { gpu_memory: gpu_memory.map(|budget| budget.bytes), ..device_options_from_environment() }
 }

@@ -9,5 +9,6 @@ pub fn device_options_from_environment() -> DeviceOptions {
     DeviceOptions {
         validation: std::env::var("POINTRAY_VALIDATION").is_ok_and(|value| value == "1"),
         hit_reordering: std::env::var("POINTRAY_HIT_REORDERING").as_deref() != Ok("off"),
+        gpu_memory: None,
     }
 }

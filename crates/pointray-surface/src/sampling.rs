@@ -7,6 +7,7 @@ use glam::{DVec3, IVec3};
 use pointray_io::{PointCloud, TriangleMesh};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 
 /// Blue noise draws this many uniform candidates per wanted point, then thins them.
 const BLUE_NOISE_OVERSAMPLING: usize = 5;
@@ -29,11 +30,11 @@ pub fn sample_mesh(mesh: &TriangleMesh, count: usize, seed: u64, blue_noise: boo
     let Some(areas) = CumulativeAreas::of(mesh) else {
         return PointCloud::default();
     };
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
     if !blue_noise {
-        return PointCloud::from_positions(uniform_samples(mesh, &areas, count, &mut rng));
+        return PointCloud::from_positions(uniform_samples(mesh, &areas, count, seed, SAMPLES_PER_CHUNK));
     }
-    let candidates = uniform_samples(mesh, &areas, count.saturating_mul(BLUE_NOISE_OVERSAMPLING), &mut rng);
+    let candidates =
+        uniform_samples(mesh, &areas, count.saturating_mul(BLUE_NOISE_OVERSAMPLING), seed, SAMPLES_PER_CHUNK);
     PointCloud::from_positions(thin_to_blue_noise(candidates, count, areas.total))
 }
 
@@ -71,24 +72,41 @@ fn triangle_corners(mesh: &TriangleMesh, triangle: usize) -> Option<[DVec3; 3]> 
     }
 }
 
+/// Samples drawn on one core between jumps of the random stream.
+const SAMPLES_PER_CHUNK: usize = 1 << 16;
+
+/// The random words one sample draws: three f64, two words each. Sample `i` starts at word
+/// `6 i` of the seed's stream, so chunks drawn in parallel give the points one stream gives.
+const WORDS_PER_SAMPLE: u128 = 6;
+
+/// `count` samples of the seed's stream, drawn in chunks of `chunk` on every core.
 fn uniform_samples(
     mesh: &TriangleMesh,
     areas: &CumulativeAreas,
     count: usize,
-    rng: &mut ChaCha8Rng,
+    seed: u64,
+    chunk: usize,
 ) -> Vec<DVec3> {
-    (0..count)
-        .map(|_| {
-            let triangle = areas.pick(rng);
-            // A zero-area pick has probability zero, but a triangle with bad indices sits
-            // at the same running sum as its predecessor; fall back to its first corner.
-            let [a, b, c] = triangle_corners(mesh, triangle).unwrap_or([DVec3::ZERO; 3]);
-            // sqrt warps the first coordinate so that the density is uniform over the area.
-            let s = rng.random::<f64>().sqrt();
-            let t = rng.random::<f64>();
-            a * (1.0 - s) + b * (s * (1.0 - t)) + c * (s * t)
-        })
-        .collect()
+    let mut points = vec![DVec3::ZERO; count];
+    points.par_chunks_mut(chunk.max(1)).enumerate().for_each(|(index, points)| {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_word_pos((index * chunk.max(1)) as u128 * WORDS_PER_SAMPLE);
+        for point in points {
+            *point = uniform_sample(mesh, areas, &mut rng);
+        }
+    });
+    points
+}
+
+fn uniform_sample(mesh: &TriangleMesh, areas: &CumulativeAreas, rng: &mut ChaCha8Rng) -> DVec3 {
+    let triangle = areas.pick(rng);
+    // A zero-area pick has probability zero, but a triangle with bad indices sits at the
+    // same running sum as its predecessor; fall back to its first corner.
+    let [a, b, c] = triangle_corners(mesh, triangle).unwrap_or([DVec3::ZERO; 3]);
+    // sqrt warps the first coordinate so that the density is uniform over the area.
+    let s = rng.random::<f64>().sqrt();
+    let t = rng.random::<f64>();
+    a * (1.0 - s) + b * (s * (1.0 - t)) + c * (s * t)
 }
 
 /// Dart throwing over the candidates (already in random order): a candidate is kept when
@@ -194,6 +212,23 @@ mod tests {
         assert_eq!(a, sample_mesh(&mesh, 1000, 7, false));
         assert_ne!(a, sample_mesh(&mesh, 1000, 8, false));
         assert_eq!(a.len(), 1000);
+    }
+
+    /// The stream one core draws, sample after sample, as the stand-ins were first made.
+    fn one_stream(mesh: &TriangleMesh, count: usize, seed: u64) -> Vec<DVec3> {
+        let areas = CumulativeAreas::of(mesh).expect("area");
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        (0..count).map(|_| uniform_sample(mesh, &areas, &mut rng)).collect()
+    }
+
+    #[test]
+    fn chunks_drawn_in_parallel_give_the_one_stream() {
+        let mesh = two_squares();
+        let areas = CumulativeAreas::of(&mesh).expect("area");
+        let serial = one_stream(&mesh, 10_007, 3);
+        for chunk in [1, 7, 64, 10_007, 1 << 20] {
+            assert_eq!(uniform_samples(&mesh, &areas, 10_007, 3, chunk), serial, "chunks of {chunk}");
+        }
     }
 
     #[test]

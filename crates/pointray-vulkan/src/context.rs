@@ -26,6 +26,8 @@ pub(crate) struct GpuContext {
     pub(crate) scratch_alignment: u64,
     /// Nanoseconds per timestamp tick; `None` when the queue has no timestamps.
     pub(crate) timestamp_period_ns: Option<f32>,
+    /// `DeviceOptions::gpu_memory`: what a scene may take where its layout names no budget.
+    pub(crate) gpu_memory: Option<u64>,
     pub(crate) allocator: ManuallyDrop<Mutex<Allocator>>,
     command_pool: vk::CommandPool,
     // Declared last: dropped after the device is destroyed in `Drop`.
@@ -90,6 +92,7 @@ impl GpuContext {
             ray_tracing_properties,
             scratch_alignment,
             timestamp_period_ns,
+            gpu_memory: options.gpu_memory,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             command_pool,
             instance,

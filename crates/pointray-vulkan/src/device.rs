@@ -53,17 +53,20 @@ pub struct DeviceOptions {
     /// extension stays out of the device, so the benchmark can measure what merely enabling
     /// it does to the driver.
     pub hit_reordering: bool,
+    /// Bytes of GPU memory each scene prepared on the device may take, building included,
+    /// unless its `SceneLayout` names a budget; `None` is the device-local heap.
+    pub gpu_memory: Option<u64>,
 }
 
 impl Default for DeviceOptions {
     fn default() -> Self {
-        Self { validation: false, hit_reordering: true }
+        Self { validation: false, hit_reordering: true, gpu_memory: None }
     }
 }
 
 impl DeviceOptions {
     /// The defaults with validation on, as tests open devices.
-    pub const VALIDATED: Self = Self { validation: true, hit_reordering: true };
+    pub const VALIDATED: Self = Self { validation: true, hit_reordering: true, gpu_memory: None };
 }
 
 /// One physical device as the loader reports it, and whether pointray can use it.

@@ -34,25 +34,33 @@ pub(crate) struct MemoryNeed {
     pub(crate) buffers: u64,
     /// The acceleration structures before compaction: a bound on what they keep.
     pub(crate) structures: u64,
-    /// The largest single build: its input (a tile's boxes, a mesh), its structure before
-    /// compaction and its scratch.
+    /// The largest single build: its input where that goes after it (a tile's boxes, the TLAS
+    /// instances), its structure before compaction and its scratch.
     pub(crate) largest_build: u64,
+    /// At most what the scene holds at once: step by step in the order `prepare` takes, with
+    /// every structure uncompacted.
+    pub(crate) bound: u64,
     /// Bottom levels: one per mesh and per tile of a point set.
     pub(crate) bottom_levels: usize,
 }
 
 impl MemoryNeed {
-    fn add(&mut self, buffers: u64, structure: u64, build: u64, bottom_levels: usize) {
-        self.buffers += buffers;
-        self.structures += structure;
-        self.largest_build = self.largest_build.max(build);
-        self.bottom_levels += bottom_levels;
+    fn held(&self) -> u64 {
+        self.buffers + self.structures
     }
 
-    /// At most what the scene takes at any moment: everything it keeps, uncompacted, and the
-    /// largest build besides.
-    pub(crate) fn bound(&self) -> u64 {
-        self.buffers + self.structures + self.largest_build
+    /// A buffer uploaded to stay.
+    fn upload(&mut self, bytes: u64) {
+        self.buffers += bytes;
+        self.bound = self.bound.max(self.held());
+    }
+
+    /// A structure of `size` bytes built with `scratch` from an `input` that goes after it.
+    fn build(&mut self, input: u64, size: u64, scratch: u64) {
+        let transient = build_peak(input, size, scratch);
+        self.largest_build = self.largest_build.max(transient);
+        self.bound = self.bound.max(self.held() + transient);
+        self.structures += size;
     }
 
     /// At least what the scene takes: its buffers once uploaded, or its largest build.
@@ -67,27 +75,31 @@ pub(crate) fn plan(context: &GpuContext, scene: &Scene, layout: SceneLayout, max
     for object in &scene.objects {
         match &object.geometry {
             Geometry::Patches(patches) => {
-                let records = record_bytes(patches, &object.material, layout.buffers);
                 let tiles = patch_tiles(patches, max_tile);
-                need.add(records, 0, 0, tiles.len());
+                need.bottom_levels += tiles.len();
                 for tile in &tiles {
                     let (size, scratch) =
                         build_sizes(context, &aabb_input(0, tile.len() as u32, layout.blas));
-                    need.add(0, size, build_peak(tile_box_bytes(tile), size, scratch), 0);
+                    need.build(tile_box_bytes(tile), size, scratch);
                 }
+                need.upload(record_bytes(patches, &object.material, layout.buffers));
             }
-            Geometry::Mesh(mesh) if mesh.triangles.is_empty() => need.add(mesh_bytes(mesh), 0, 0, 0),
             Geometry::Mesh(mesh) => {
-                let input = triangle_input(0, mesh.positions.len() as u32, 0, mesh.triangles.len() as u32);
-                let (size, scratch) = build_sizes(context, &input);
-                need.add(mesh_bytes(mesh), size, build_peak(mesh_bytes(mesh), size, scratch), 1);
+                need.upload(mesh_bytes(mesh));
+                if !mesh.triangles.is_empty() {
+                    let input =
+                        triangle_input(0, mesh.positions.len() as u32, 0, mesh.triangles.len() as u32);
+                    let (size, scratch) = build_sizes(context, &input);
+                    need.build(0, size, scratch);
+                    need.bottom_levels += 1;
+                }
             }
         }
     }
     let instances = need.bottom_levels as u64;
     let (tlas, scratch) = build_sizes(context, &instance_input(0, instances as u32));
-    let records = instances.max(1) * size_of::<ObjectRecord>() as u64;
-    need.add(records, tlas, build_peak(instances * INSTANCE_BYTES, tlas, scratch), 0);
+    need.build(instances * INSTANCE_BYTES, tlas, scratch);
+    need.upload(instances.max(1) * size_of::<ObjectRecord>() as u64);
     need
 }
 
@@ -110,7 +122,7 @@ pub(crate) fn fitted_tile(
     let mut tile = max_tile;
     loop {
         let need = plan(context, scene, layout, tile);
-        let settled = need.bound() <= budget.bytes || need.largest_build <= need.buffers;
+        let settled = need.bound <= budget.bytes || need.largest_build <= need.buffers;
         if settled || tile <= MIN_FITTED_TILE {
             return (tile, need);
         }
@@ -153,7 +165,7 @@ impl GpuBudget {
             mib(need.floor()),
             mib(need.buffers),
             mib(need.largest_build),
-            mib(need.bound()),
+            mib(need.bound),
             need.bottom_levels + 1,
             self.source,
             mib(self.bytes)

@@ -103,7 +103,9 @@ fn tile_bottom_levels(
         let (size, scratch) = build_sizes(context, &aabb_input(0, primitives, layout.blas));
         let transient = build_peak(tile_box_bytes(&tile), size, scratch);
         // The records come after the last build, so a build that leaves no room for them fails now.
-        ledger.check(transient.max(records), &format!("building bottom level {} of {count}", index + 1))?;
+        let step =
+            format!("building bottom level {} of {count} (and the patch records after the last)", index + 1);
+        ledger.check(transient.max(records), &step)?;
         let boxes = Buffer::device_with_data(
             context,
             "patch boxes",

@@ -61,7 +61,7 @@ pub struct SceneLayout {
     /// `maxPrimitiveCount` caps it whatever is asked, and `None` asks for no other limit.
     pub max_tile_patches: Option<u32>,
     /// Bytes of GPU memory the scene may take, building included; `None` is the device's
-    /// device-local memory. A scene over it is refused before anything is uploaded.
+    /// `DeviceOptions::gpu_memory`, else its device-local memory. A scene over it is refused before anything is uploaded.
     pub memory_budget: Option<u64>,
 }
 
@@ -246,7 +246,7 @@ pub(crate) fn prepare(
     if let Some(problem) = scene.objects.iter().find_map(out_of_range) {
         return Err(VulkanError::InvalidScene(problem));
     }
-    let budget = GpuBudget::new(context, layout.memory_budget);
+    let budget = GpuBudget::new(context, layout.memory_budget.or(context.gpu_memory));
     let (max_tile, need) =
         memory_plan::fitted_tile(context, scene, layout, layout.tile_limit(context), &budget);
     if need.bottom_levels > MAX_INSTANCES {

@@ -95,7 +95,7 @@ pub fn run(args: FidelityArgs) -> anyhow::Result<()> {
     options.points_centre = bounds_centre(&cloud.positions);
     let (patches, _) = args.patches.prep(&args.points, &cloud, &prep_settings)?;
     drop(cloud);
-    let backend = ChosenBackend(open_backend(args.backend, &args.device)?);
+    let backend = ChosenBackend(open_backend(args.backend, &args.device, None)?);
     println!("backend: {}", backend.name());
     let mut report = measure_fidelity(Arc::new(patches), Arc::new(mesh), &options, &backend)
         .with_context(|| format!("comparing {} against {}", args.points.display(), args.mesh.display()))?;

@@ -10,10 +10,10 @@ use pointray_scene::{AovSelection, Integrator, RenderSetting, SceneFile};
 use pointray_viewer::{Script, ViewerOptions, run_viewer, sequence_path};
 
 use crate::backend::BackendArgs;
+use crate::backend::device_options;
 use crate::progress::PrepBar;
 use crate::scene_input::SceneInputArgs;
 use crate::setting_flag::setting_flag;
-use pointray_render::device_options_from_environment as device_options;
 
 /// Open a window on a scene (TOML) or a points file, and fly around it.
 #[derive(Args)]
@@ -73,7 +73,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
     let options = ViewerOptions {
         backend: args.backend.backend,
         device: args.backend.device,
-        device_options: device_options(),
+        device_options: device_options(args.backend.gpu_memory),
         vsync: args.vsync,
         script,
     };

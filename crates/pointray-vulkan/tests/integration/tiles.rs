@@ -14,7 +14,7 @@ use glam::Vec3;
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::Aabb;
 use pointray_scene::{Geometry, Material, RenderedImage, Scene};
-use pointray_vulkan::{SceneLayout, VulkanError};
+use pointray_vulkan::{DeviceOptions, DeviceSelector, SceneLayout, VulkanError, VulkanRenderer};
 
 /// Small enough that every point set here splits into dozens of tiles, and not a divisor of
 /// their sizes, so that tiles differ in length.
@@ -154,5 +154,20 @@ fn a_budget_below_one_build_splits_the_cloud_into_tiles_that_fit() {
     let whole_image = renderer.trace(&whole, &settings).expect("traces whole");
     let fitted_image = renderer.trace(&fitted, &settings).expect("traces in tiles");
     assert_same_hits("bunny fitted to a budget", &fitted_image, &whole_image);
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn a_device_gpu_memory_option_budgets_every_scene_unless_a_layout_names_one() {
+    let Some(renderer) = renderer() else { return };
+    let scene = sphere_on_floor(0.5, 1.0);
+    let used = renderer.prepare(&scene).expect("prepares without a budget").build_report().gpu_bytes();
+    let options = DeviceOptions { gpu_memory: Some(64 * 1024), ..DeviceOptions::VALIDATED };
+    let small = VulkanRenderer::new(DeviceSelector::Auto, options).expect("the same device again");
+    let error = small.prepare(&scene).err().expect("64 KiB holds no 6,000 patches");
+    assert!(error.to_string().contains("over the GPU memory budget of 0.1 MiB"), "{error}");
+    let roomy = SceneLayout { memory_budget: Some(4 * used + (1 << 20)), ..SceneLayout::default() };
+    assert!(small.prepare_with_layout(&scene, roomy).is_ok(), "the layout's budget wins");
+    assert_no_validation_messages(&small);
     assert_no_validation_messages(&renderer);
 }
