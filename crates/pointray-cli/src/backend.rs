@@ -8,7 +8,7 @@ use pointray_render::{
     Backend, BackendChoice, DeviceOptions, DeviceSelector, device_options_from_environment,
 };
 
-use crate::memory_arg::parse_memory;
+use std::str::FromStr;
 
 /// The `--backend` and `--device` flags of the commands that render on either backend and
 /// default to `auto`.
@@ -22,7 +22,7 @@ pub struct BackendArgs {
     pub device: DeviceSelector,
     /// GPU memory a scene may take, building included, e.g. `40G` (default: the device's).
     /// A large point set is split into more tiles to fit; a scene that cannot fit is refused.
-    #[arg(long, value_parser = parse_memory)]
+    #[arg(long, value_parser = MemoryBudget::from_str)]
     pub gpu_memory: Option<MemoryBudget>,
 }
 

@@ -4,7 +4,6 @@ mod backend;
 mod columns_arg;
 mod commands;
 mod environment;
-mod memory_arg;
 mod patch_args;
 mod point_arg;
 mod prep_settings_args;

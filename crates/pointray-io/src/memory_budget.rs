@@ -3,6 +3,7 @@
 //! allocating until the process aborts.
 
 use std::fmt;
+use std::str::FromStr;
 
 /// The memory a request may use, in bytes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,6 +53,35 @@ impl MemoryBudget {
     }
 }
 
+/// A size as people write it: bytes, or a number with a binary unit (`512M`, `1.5G`,
+/// `64MiB`).
+impl FromStr for MemoryBudget {
+    type Err = String;
+
+    /// Parses `SIZE[K|M|G|T][iB|B]`; units are powers of 1024.
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let trimmed = text.trim();
+        let lower = trimmed.to_ascii_lowercase();
+        let without_b = lower.strip_suffix("ib").or_else(|| lower.strip_suffix('b')).unwrap_or(&lower);
+        let (number, shift) = match without_b.chars().last() {
+            Some('k') => (&without_b[..without_b.len() - 1], 10),
+            Some('m') => (&without_b[..without_b.len() - 1], 20),
+            Some('g') => (&without_b[..without_b.len() - 1], 30),
+            Some('t') => (&without_b[..without_b.len() - 1], 40),
+            _ => (without_b, 0),
+        };
+        let value: f64 = number
+            .trim()
+            .parse()
+            .map_err(|_| format!("'{trimmed}' is not a memory size (e.g. 512M, 4G or a byte count)"))?;
+        let bytes = value * (1u64 << shift) as f64;
+        if !bytes.is_finite() || bytes < 1.0 || bytes > u64::MAX as f64 {
+            return Err(format!("'{trimmed}' is not a usable memory size"));
+        }
+        Ok(Self { bytes: bytes as u64 })
+    }
+}
+
 /// A `/proc/meminfo` field, in bytes.
 fn meminfo(field: &str) -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
@@ -96,5 +126,16 @@ mod tests {
     fn this_machine_reports_some_memory() {
         assert!(MemoryBudget::of_this_machine().bytes > 0);
         assert!(MemoryBudget::half_of_this_machine().bytes > 0);
+    }
+
+    #[test]
+    fn sizes_take_binary_units() {
+        assert_eq!(MemoryBudget::from_str("1G").unwrap().bytes, 1 << 30);
+        assert_eq!(MemoryBudget::from_str("64MiB").unwrap().bytes, 64 << 20);
+        assert_eq!(MemoryBudget::from_str("1.5g").unwrap().bytes, 3 << 29);
+        assert_eq!(MemoryBudget::from_str("4096").unwrap().bytes, 4096);
+        for bad in ["", "G", "-1G", "lots", "1e400"] {
+            assert!(MemoryBudget::from_str(bad).is_err(), "{bad}");
+        }
     }
 }

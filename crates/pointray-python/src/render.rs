@@ -7,7 +7,9 @@ use std::sync::Arc;
 use numpy::{IntoPyArray, PyArrayMethods};
 use pointray_denoise::{DenoiseSettings, denoise};
 use pointray_io::MemoryBudget;
-use pointray_render::{Backend, BackendChoice, DeviceSelector, device_options_from_environment, error_line};
+use pointray_render::{
+    Backend, BackendChoice, DeviceOptions, DeviceSelector, device_options_from_environment, error_line,
+};
 use pointray_scene::load::{LoadOptions, load_scene_file};
 use pointray_scene::scene_file::CameraSpec;
 use pointray_scene::{PointsScene, RenderSetting, RenderSettings, RenderedImage, SceneFile, UpAxis};
@@ -46,12 +48,14 @@ pub fn render<'py>(
         .unwrap_or("auto")
         .parse()
         .map_err(|e| PyValueError::new_err(format!("device: {e}")))?;
+    let gpu_memory = memory_option(options, "gpu_memory")?;
     let denoised = flag_option(options, "denoise")?.unwrap_or(false);
     let image = py
         .detach(|| -> Result<RenderedImage, String> {
             let load_options = LoadOptions { in_memory: &in_memory, ..LoadOptions::default() };
             let loaded = load_scene_file(&file, &load_options).map_err(|e| error_line(&e))?;
-            let backend = Backend::open(backend, &device, device_options_from_environment())
+            let device_options = DeviceOptions { gpu_memory, ..device_options_from_environment() };
+            let backend = Backend::open(backend, &device, device_options)
                 .map_err(|e| format!("opening the Vulkan backend: {e}"))?;
             let mut image = backend.render(&loaded.scene, &settings).map_err(|e| error_line(&e))?;
             if denoised {
@@ -154,6 +158,21 @@ fn path_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<PathBuf>>
 
 fn flag_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<bool>> {
     option(dict, key)?.map(|value| value.extract::<bool>()).transpose()
+}
+
+/// Bytes given as an int or as a size such as `"40G"`.
+fn memory_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<u64>> {
+    let Some(value) = option(dict, key)? else { return Ok(None) };
+    let bytes = match value.extract::<u64>() {
+        Ok(bytes) => bytes,
+        Err(_) => value.extract::<String>()?.parse::<MemoryBudget>().map_err(PyValueError::new_err)?.bytes,
+    };
+    if bytes == 0 {
+        return Err(PyValueError::new_err(format!(
+            "{key}: 0 bytes is no budget; leave it out for the device's"
+        )));
+    }
+    Ok(Some(bytes))
 }
 
 /// The image as (H, W, 4) float32, linear RGB with alpha 1 where a primary ray hit the scene,

@@ -79,6 +79,10 @@ def test_bad_render_settings_are_refused_with_the_command_lines_words(bunny):
         pointray.render(bunny, backend="cpu", width=0, height=10)
     with pytest.raises(ValueError, match="unknown backend"):
         pointray.render(bunny, backend="gpu")
+    with pytest.raises(ValueError, match="'lots' is not a memory size"):
+        pointray.render(bunny, backend="cpu", gpu_memory="lots")
+    with pytest.raises(ValueError, match="gpu_memory: 0 bytes"):
+        pointray.render(bunny, backend="cpu", gpu_memory=0)
     with pytest.raises(pointray.PointrayError, match="missing.ply"):
         pointray.render("missing.ply", backend="cpu")
     with pytest.raises(pointray.PointrayError, match="unknown field"):

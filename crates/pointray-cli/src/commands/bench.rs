@@ -15,9 +15,9 @@ use pointray_vulkan::{BackendChoice, DeviceSelector, VulkanRenderer};
 
 use crate::backend::{backend_choice, device_options, open_backend};
 use crate::environment::data_dir;
-use crate::memory_arg::parse_memory;
 use crate::progress::PrepBar;
 use crate::setting_flag::setting_flag;
+use std::str::FromStr;
 
 /// Time frames with GPU timestamps: FPS, frame and trace times, rays/s, build costs.
 #[derive(Args)]
@@ -72,7 +72,7 @@ pub struct BenchArgs {
     device: DeviceSelector,
     /// GPU memory a scene may take, building included, e.g. `40G` (default: the device's).
     /// A large point set is split into more tiles to fit; a scene that cannot fit is refused.
-    #[arg(long, value_parser = parse_memory)]
+    #[arg(long, value_parser = MemoryBudget::from_str)]
     gpu_memory: Option<MemoryBudget>,
 }
 

@@ -14,9 +14,9 @@ use pointray_surface::tile_merge::{MergeSummary, merge_tile_files};
 use pointray_surface::{PrepError, PrepSettings, prep_owned};
 
 use crate::columns_arg::ColumnsArg;
-use crate::memory_arg::parse_memory;
 use crate::prep_settings_args::PrepSettingsArgs;
 use crate::progress::PrepBar;
+use std::str::FromStr;
 
 /// Fit an MLS quadratic patch to every point and write the patch store.
 #[derive(Args)]
@@ -45,7 +45,7 @@ pub struct PrepArgs {
     #[arg(long, value_name = "TILE_FILES", num_args = 1.., conflicts_with = "points")]
     merge: Vec<PathBuf>,
     /// The memory prep may use, e.g. `8G` or `512M` (default: half the machine's RAM).
-    #[arg(long, value_parser = parse_memory)]
+    #[arg(long, value_parser = MemoryBudget::from_str)]
     memory: Option<MemoryBudget>,
     #[command(flatten)]
     columns: ColumnsArg,

@@ -48,7 +48,8 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
            width: Optional[int] = None, height: Optional[int] = None, spp: Optional[int] = None,
            max_depth: Optional[int] = None, shadows: Optional[bool] = None,
            integrator: Optional[str] = None, seed: Optional[int] = None, backend: str = "auto",
-           device: str = "auto", camera: Optional[dict[str, Any]] = None, aovs: bool = False,
+           device: str = "auto", gpu_memory: Optional[int | str] = None,
+           camera: Optional[dict[str, Any]] = None, aovs: bool = False,
            denoise: bool = False, up: Optional[str] = None, floor: bool = True,
            color: str = "auto") -> RenderedImage:
     """Renders a scene or points, as ``pointray render`` does, to a :class:`RenderedImage`.
@@ -64,14 +65,15 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
     ``width``, ``height``, ``spp``, ``max_depth``, ``integrator`` (``"whitted"`` or
     ``"path"``) and ``seed`` (the path integrator's random sequence) override the scene's
     ``[render]`` settings; ``backend`` is ``"auto"`` (a hardware ray-tracing GPU, else the CPU),
-    ``"vulkan"`` or ``"cpu"``; ``camera`` is the scene file's camera table (``position``,
+    ``"vulkan"`` or ``"cpu"``; ``gpu_memory`` (bytes, or a size such as ``"40G"``) holds a
+    scene to less GPU memory than the device has, as ``--gpu-memory`` does; ``camera`` is the scene file's camera table (``position``,
     ``look_at``, ``up``, ``vfov_degrees``) in the file's coordinates; ``denoise`` filters the
     noise out of a preview of few samples, as ``pointray render --denoise`` does (the AOVs stay
     unfiltered). The GIL is released while the scene loads and renders.
     """
     options = dict(width=width, height=height, spp=spp, max_depth=max_depth, shadows=shadows,
-                   integrator=integrator, seed=seed, backend=backend, device=device, camera=camera,
-                   denoise=denoise)
+                   integrator=integrator, seed=seed, backend=backend, device=device,
+                   gpu_memory=gpu_memory, camera=camera, denoise=denoise)
     result = _native.render(_source(source, up, floor, color), options)
     image = result.pop("image").view(RenderedImage)
     image.aovs = result if aovs else None
