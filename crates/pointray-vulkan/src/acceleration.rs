@@ -33,6 +33,8 @@ pub(crate) struct AccelerationStructure {
     pub(crate) address: vk::DeviceAddress,
     /// Wall time of the build, compaction included (its inputs are already on the GPU).
     pub(crate) build_time: Duration,
+    /// GPU bytes the build held at its peak besides its input (`build_peak`).
+    pub(crate) build_bytes: u64,
     _storage: Buffer,
 }
 
@@ -132,10 +134,11 @@ pub(crate) fn build(
     let sizes = sizes_of(context, &build_info, input);
     let structure = create(context, input.ty, sizes.acceleration_structure_size)?;
     let alignment = context.scratch_alignment;
+    let scratch_bytes = sizes.build_scratch_size + alignment;
     let scratch = Buffer::new(
         context,
         "acceleration-structure scratch",
-        sizes.build_scratch_size + alignment,
+        scratch_bytes,
         addressable(vk::BufferUsageFlags::STORAGE_BUFFER),
         MemoryLocation::GpuOnly,
     )?;
@@ -160,7 +163,14 @@ pub(crate) fn build(
         None => structure,
     };
     structure.build_time = started.elapsed();
+    structure.build_bytes = build_peak(0, sizes.acceleration_structure_size, scratch_bytes);
     Ok(structure)
+}
+
+/// The most one build holds: its input and structure, with the scratch while building or a
+/// compacted copy (smaller than the structure) while compacting.
+pub(crate) fn build_peak(input: u64, structure: u64, scratch: u64) -> u64 {
+    input + structure + scratch.max(structure)
 }
 
 /// Fast tracing; bottom levels may be compacted.
@@ -235,6 +245,7 @@ fn create(
         handle,
         address,
         build_time: Duration::ZERO,
+        build_bytes: 0,
         _storage: storage,
     })
 }

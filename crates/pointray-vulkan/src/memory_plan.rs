@@ -12,7 +12,9 @@
 use pointray_io::TriangleMesh;
 use pointray_scene::{Geometry, Scene};
 
-use crate::acceleration::{aabb_input, build_sizes, instance_input, triangle_input};
+use crate::acceleration::{
+    AccelerationStructure, aabb_input, build_peak, build_sizes, instance_input, triangle_input,
+};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::ObjectRecord;
@@ -101,12 +103,6 @@ pub(crate) fn plan(context: &GpuContext, scene: &Scene, layout: SceneLayout, max
     need.build(instances * INSTANCE_BYTES, tlas, scratch);
     need.upload(instances.max(1) * size_of::<ObjectRecord>() as u64);
     need
-}
-
-/// The most one build holds: its input and structure, with the scratch while building or a
-/// compacted copy (smaller than the structure) while compacting.
-pub(crate) fn build_peak(input: u64, structure: u64, scratch: u64) -> u64 {
-    input + structure + scratch.max(structure)
 }
 
 /// The largest tile, at most `max_tile` patches, that fits the scene to `budget`: `max_tile`
@@ -206,6 +202,13 @@ impl GpuLedger {
     pub(crate) fn hold(&mut self, bytes: u64, transient: u64) {
         self.peak = self.peak.max(self.held + bytes + transient);
         self.held += bytes;
+    }
+
+    /// Counts a built structure as held, and its build, from an `input` of that many bytes, as
+    /// having been held beside what was held before it.
+    pub(crate) fn hold_structure(&mut self, structure: &AccelerationStructure, input: u64) {
+        let size = structure.size();
+        self.hold(size, (input + structure.build_bytes).saturating_sub(size));
     }
 
     /// The most the scene held at once, as far as the ledger saw.

@@ -10,12 +10,12 @@ use pointray_scene::{BufferLayout, Material};
 use pointray_surface::PatchSet;
 use pointray_surface::patch_tiles::tile_ranges;
 
-use crate::acceleration::{AccelerationStructure, aabb_input, build, build_sizes};
+use crate::acceleration::{AccelerationStructure, aabb_input, build, build_peak, build_sizes};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::{ObjectRecord, PatchCombined};
-use crate::memory_plan::{GpuLedger, build_peak};
+use crate::memory_plan::GpuLedger;
 use crate::prepared_scene::{PreparedObject, SceneLayout};
 
 /// Bytes of one patch box (`VkAabbPositionsKHR`).
@@ -113,7 +113,7 @@ fn tile_bottom_levels(
             build_input_usage(),
         )?;
         let blas = build(context, &aabb_input(boxes.device_address(), primitives, layout.blas))?;
-        ledger.hold(blas.size(), transient - blas.size().min(transient));
+        ledger.hold_structure(&blas, boxes.size);
         bottom_levels.push((blas, tile.start as u32));
     }
     Ok(bottom_levels)

@@ -61,7 +61,8 @@ pub struct SceneLayout {
     /// `maxPrimitiveCount` caps it whatever is asked, and `None` asks for no other limit.
     pub max_tile_patches: Option<u32>,
     /// Bytes of GPU memory the scene may take, building included; `None` is the device's
-    /// `DeviceOptions::gpu_memory`, else its device-local memory. A scene over it is refused before anything is uploaded.
+    /// `DeviceOptions::gpu_memory`, else its device-local memory. A scene that cannot fit is
+    /// refused before anything is uploaded, one that may not before the step that would not.
     pub memory_budget: Option<u64>,
 }
 
@@ -127,7 +128,7 @@ fn prepare_mesh(
         })
         .transpose()?;
     if let Some(blas) = &blas {
-        ledger.hold(blas.size(), 0);
+        ledger.hold_structure(blas, 0);
     }
     let record = ObjectRecord {
         vertices: vertices.device_address(),
@@ -281,7 +282,7 @@ pub(crate) fn prepare(
     let instance_buffer =
         Buffer::device_with_data(context, "TLAS instances", instance_bytes(&instances), build_input_usage())?;
     let tlas = build(context, &instance_input(instance_buffer.device_address(), instances.len() as u32))?;
-    ledger.hold(tlas.size(), instance_buffer.size);
+    ledger.hold_structure(&tlas, instance_buffer.size);
     drop(instance_buffer);
     let record_bytes = if records.is_empty() {
         vec![0u8; size_of::<ObjectRecord>()]
