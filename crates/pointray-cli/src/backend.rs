@@ -37,7 +37,12 @@ pub fn open_backend(
     device: &DeviceSelector,
     gpu_memory: Option<MemoryBudget>,
 ) -> anyhow::Result<Backend> {
-    Backend::open(choice, device, device_options(gpu_memory)).context("opening the Vulkan backend")
+    let backend =
+        Backend::open(choice, device, device_options(gpu_memory)).context("opening the Vulkan backend")?;
+    if gpu_memory.is_some() && matches!(backend, Backend::Cpu) {
+        eprintln!("note: --gpu-memory budgets the Vulkan backend; the CPU backend renders, without it");
+    }
+    Ok(backend)
 }
 
 /// The environment's device options, with `--gpu-memory`.

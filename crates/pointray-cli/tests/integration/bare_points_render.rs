@@ -127,3 +127,17 @@ fn a_turntable_orbits_the_cloud() {
         assert!((chord - expected).abs() < 1e-3 * expected, "an eighth of a turn apart: {cameras:?}");
     }
 }
+
+#[test]
+fn a_gpu_memory_budget_on_the_cpu_backend_is_named_as_unused() {
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    let mut args = vec!["render", "grid.ply", "-o", "out.png", "--backend", "cpu", "--gpu-memory", "1G"];
+    args.extend(SIZE);
+    let (ok, stdout, stderr) = pointray_in(dir.path(), &args);
+    assert!(ok, "{stdout}{stderr}");
+    assert!(stderr.contains("--gpu-memory budgets the Vulkan backend"), "{stderr}");
+    let bad = ["render", "grid.ply", "-o", "bad.png", "--backend", "cpu", "--gpu-memory", "lots"];
+    let (ok, _, stderr) = pointray_in(dir.path(), &bad);
+    assert!(!ok && stderr.contains("'lots' is not a memory size"), "{stderr}");
+}
