@@ -13,7 +13,7 @@ use pointray_io::TriangleMesh;
 use pointray_scene::{Geometry, Scene};
 
 use crate::acceleration::{
-    AccelerationStructure, aabb_input, build_peak, build_sizes, instance_input, triangle_input,
+    AccelerationStructure, BuildInput, aabb_input, build_peak, build_sizes, instance_input, triangle_input,
 };
 use crate::context::GpuContext;
 use crate::error::VulkanError;
@@ -73,6 +73,16 @@ impl MemoryNeed {
 
 /// The scene's memory with point sets in tiles of at most `max_tile` patches.
 pub(crate) fn plan(context: &GpuContext, scene: &Scene, layout: SceneLayout, max_tile: u32) -> MemoryNeed {
+    plan_with_sizes(scene, layout, max_tile, |input| build_sizes(context, input))
+}
+
+/// `plan`, with each build's structure and scratch bytes from `sizes`.
+fn plan_with_sizes(
+    scene: &Scene,
+    layout: SceneLayout,
+    max_tile: u32,
+    sizes: impl Fn(&BuildInput<'_>) -> (u64, u64),
+) -> MemoryNeed {
     let mut need = MemoryNeed::default();
     for object in &scene.objects {
         match &object.geometry {
@@ -80,8 +90,7 @@ pub(crate) fn plan(context: &GpuContext, scene: &Scene, layout: SceneLayout, max
                 let tiles = patch_tiles(patches, max_tile);
                 need.bottom_levels += tiles.len();
                 for tile in &tiles {
-                    let (size, scratch) =
-                        build_sizes(context, &aabb_input(0, tile.len() as u32, layout.blas));
+                    let (size, scratch) = sizes(&aabb_input(0, tile.len() as u32, layout.blas));
                     need.build(tile_box_bytes(tile), size, scratch);
                 }
                 need.upload(record_bytes(patches, &object.material, layout.buffers));
@@ -91,7 +100,7 @@ pub(crate) fn plan(context: &GpuContext, scene: &Scene, layout: SceneLayout, max
                 if !mesh.triangles.is_empty() {
                     let input =
                         triangle_input(0, mesh.positions.len() as u32, 0, mesh.triangles.len() as u32);
-                    let (size, scratch) = build_sizes(context, &input);
+                    let (size, scratch) = sizes(&input);
                     need.build(0, size, scratch);
                     need.bottom_levels += 1;
                 }
@@ -99,7 +108,7 @@ pub(crate) fn plan(context: &GpuContext, scene: &Scene, layout: SceneLayout, max
         }
     }
     let instances = need.bottom_levels as u64;
-    let (tlas, scratch) = build_sizes(context, &instance_input(0, instances as u32));
+    let (tlas, scratch) = sizes(&instance_input(0, instances as u32));
     need.build(instances * INSTANCE_BYTES, tlas, scratch);
     need.upload(instances.max(1) * size_of::<ObjectRecord>() as u64);
     need
@@ -115,10 +124,15 @@ pub(crate) fn fitted_tile(
     max_tile: u32,
     budget: &GpuBudget,
 ) -> (u32, MemoryNeed) {
+    fit_tile(max_tile, budget.bytes, |tile| plan(context, scene, layout, tile))
+}
+
+/// `fitted_tile` over the plans `plan` makes for a tile size.
+fn fit_tile(max_tile: u32, budget: u64, plan: impl Fn(u32) -> MemoryNeed) -> (u32, MemoryNeed) {
     let mut tile = max_tile;
     loop {
-        let need = plan(context, scene, layout, tile);
-        let settled = need.bound <= budget.bytes || need.largest_build <= need.buffers;
+        let need = plan(tile);
+        let settled = need.bound <= budget || need.largest_build <= need.buffers;
         if settled || tile <= MIN_FITTED_TILE {
             return (tile, need);
         }
@@ -219,4 +233,87 @@ impl GpuLedger {
 
 fn mib(bytes: u64) -> f64 {
     bytes as f64 / (1 << 20) as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use ash::vk;
+    use bytemuck::Zeroable;
+    use glam::{Affine3A, Vec3};
+    use pointray_kernels::{Aabb, PatchCold, PatchHot};
+    use pointray_scene::{Background, Camera, Material, SceneObject};
+    use pointray_surface::PatchSet;
+
+    use super::*;
+
+    const PATCHES: usize = 40_000;
+
+    /// A set of `PATCHES` patches alone: their records are 36 bytes each.
+    fn cloud() -> Scene {
+        let set = PatchSet {
+            aabbs: vec![Aabb::zeroed(); PATCHES],
+            hot: vec![PatchHot::zeroed(); PATCHES],
+            cold: vec![PatchCold::zeroed(); PATCHES],
+            ..PatchSet::default()
+        };
+        let object = SceneObject {
+            name: "cloud".into(),
+            transform: Affine3A::IDENTITY,
+            material: Material::default(),
+            geometry: Geometry::Patches(Arc::new(set)),
+        };
+        let camera =
+            Camera { position: Vec3::Z, look_at: Vec3::ZERO, up: Vec3::Y, vertical_fov_degrees: 45.0 };
+        Scene {
+            camera,
+            lights: Vec::new(),
+            background: Background::Gradient { top: Vec3::ONE, bottom: Vec3::ONE },
+            objects: vec![object],
+        }
+    }
+
+    /// Sizes of the kind NVIDIA's driver reports: 32 bytes a box for the structure before
+    /// compaction and 32 for the scratch; the top level is negligible here.
+    fn sizes(input: &BuildInput<'_>) -> (u64, u64) {
+        let primitives: u64 = input.ranges.iter().map(|range| range.primitive_count as u64).sum();
+        match input.ty {
+            vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL => (32 * primitives, 32 * primitives),
+            _ => (64, 64),
+        }
+    }
+
+    fn plan_for(tile: u32) -> MemoryNeed {
+        plan_with_sizes(&cloud(), SceneLayout::default(), tile, sizes)
+    }
+
+    #[test]
+    fn the_bound_counts_each_build_beside_the_structures_before_it_not_the_records_after() {
+        let patches = PATCHES as u64;
+        let whole = plan_for(u32::MAX);
+        // Boxes, structure, and its scratch or compacted copy: 24 + 32 + 32 bytes a patch,
+        // with nothing uploaded before it.
+        assert_eq!(whole.largest_build, 88 * patches);
+        assert_eq!(whole.bound, 88 * patches, "{whole:?}");
+        // In halves, the second half's build (44 bytes a patch) sits beside the first half's
+        // structure (16): less than the records and structures at the end (36 + 32), which
+        // the top level and the object records add a few hundred bytes to.
+        let halves = plan_for(PATCHES as u32 / 2);
+        assert_eq!(halves.bottom_levels, 2);
+        assert!(halves.bound >= 68 * patches && halves.bound < 68 * patches + 1024, "{halves:?}");
+    }
+
+    #[test]
+    fn tiles_are_halved_until_the_bound_fits_or_a_build_is_no_larger_than_the_records() {
+        let max = u32::MAX;
+        assert_eq!(fit_tile(max, 1 << 40, plan_for).0, max, "room for everything: no split");
+        let whole = plan_for(max).bound;
+        let (tile, need) = fit_tile(max, whole - 1, plan_for);
+        assert!(tile < PATCHES as u32 && need.bound < whole, "{tile}: {need:?}");
+        // A budget below every bound: halving stops once a tile's build is within the records.
+        let (tile, need) = fit_tile(max, 1, plan_for);
+        assert!(need.largest_build <= need.buffers, "{tile}: {need:?}");
+        assert!(plan_for(tile.saturating_mul(2)).largest_build > need.buffers, "no further than needed");
+    }
 }
