@@ -87,10 +87,11 @@ fn uniform_samples(
     seed: u64,
     chunk: usize,
 ) -> Vec<DVec3> {
+    let chunk = chunk.max(1);
     let mut points = vec![DVec3::ZERO; count];
-    points.par_chunks_mut(chunk.max(1)).enumerate().for_each(|(index, points)| {
+    points.par_chunks_mut(chunk).enumerate().for_each(|(index, points)| {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        rng.set_word_pos((index * chunk.max(1)) as u128 * WORDS_PER_SAMPLE);
+        rng.set_word_pos((index * chunk) as u128 * WORDS_PER_SAMPLE);
         for point in points {
             *point = uniform_sample(mesh, areas, &mut rng);
         }
