@@ -2,8 +2,10 @@
 //! of a scripted run, and image comparison. Each test binary is its own process, as winit's event loop may be created
 //! once per process.
 
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, ChildStdout, Command, Stdio};
+use std::sync::mpsc;
 use std::time::Duration;
 
 use pointray_scene::{LoadOptions, LoadedScene, RenderSettings, load_demo};
@@ -18,40 +20,55 @@ pub fn missing(what: &str) {
     eprintln!("note: skipping, {what}");
 }
 
-/// An Xvfb server started for this test, killed (by its own pid) when dropped.
+/// An Xvfb server started for this test, stopped when dropped.
 pub struct VirtualDisplay(Child);
 
 impl Drop for VirtualDisplay {
     fn drop(&mut self) {
-        let _ = self.0.kill();
+        // SIGTERM lets Xvfb remove its socket and lock file; a killed server leaves them behind.
+        let terminated = Command::new("kill").arg(self.0.id().to_string()).status();
+        if !terminated.is_ok_and(|status| status.success()) {
+            let _ = self.0.kill();
+        }
         let _ = self.0.wait();
     }
 }
 
-/// Uses `DISPLAY` when set; otherwise starts Xvfb on a display numbered after this process.
+/// Uses `DISPLAY` when set; otherwise starts Xvfb on a display it picks itself.
 pub fn display() -> Result<Option<VirtualDisplay>, String> {
     if std::env::var_os("DISPLAY").is_some() {
         return Ok(None);
     }
-    let name = format!(":{}", 99 + std::process::id() % 400);
-    let child = Command::new("Xvfb")
-        .args([name.as_str(), "-screen", "0", "640x480x24", "-nolisten", "tcp"])
-        .stdout(Stdio::null())
+    // `-displayfd` makes Xvfb choose a free display and write its number only once it accepts
+    // connections, so neither a display in use nor a stale socket can be mistaken for it.
+    let mut child = Command::new("Xvfb")
+        .args(["-displayfd", "1", "-screen", "0", "640x480x24", "-nolisten", "tcp"])
+        .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
         .map_err(|e| format!("Xvfb cannot be started ({e}); run scripts/install-system-deps.sh"))?;
+    let announcement = child.stdout.take().expect("Xvfb's stdout is piped");
     let server = VirtualDisplay(child);
-    let socket = format!("/tmp/.X11-unix/X{}", &name[1..]);
-    for _ in 0..100 {
-        if Path::new(&socket).exists() {
-            // SAFETY: set before any thread of this test binary reads the environment (each
-            // binary has one test, and the viewer starts after this).
-            unsafe { std::env::set_var("DISPLAY", &name) };
-            return Ok(Some(server));
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    Err(format!("Xvfb did not open {socket}"))
+    let number = announced_display(announcement)?;
+    // SAFETY: set before any thread of this test binary reads the environment (each binary has
+    // one test, and the viewer starts after this).
+    unsafe { std::env::set_var("DISPLAY", format!(":{number}")) };
+    Ok(Some(server))
+}
+
+/// The display number Xvfb writes to `-displayfd` when it is ready.
+fn announced_display(announcement: ChildStdout) -> Result<u32, String> {
+    let (sender, receiver) = mpsc::channel();
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let read = BufReader::new(announcement).read_line(&mut line).map(|_| line);
+        let _ = sender.send(read);
+    });
+    let line = receiver
+        .recv_timeout(Duration::from_secs(30))
+        .map_err(|_| "Xvfb did not announce a display within 30 s".to_string())?
+        .map_err(|e| format!("Xvfb's display number cannot be read: {e}"))?;
+    line.trim().parse().map_err(|_| format!("Xvfb exited without a display (it wrote {line:?})"))
 }
 
 /// The demo scene, with a display for the test's windows kept open while this lives.
