@@ -41,6 +41,11 @@ const EDGE_ON_COSINE: f32 = 0.02;
 /// and only the returns within the noise of a plane through the point count.
 const MAX_SPREAD: f32 = 2.0;
 
+/// A return on another line counts toward the gap between lines only when its offset across
+/// them exceeds this many standard deviations of the range noise, projected on that axis:
+/// within it, the noise could have put it on either side of the point.
+const INTERLEAVE_SIGMAS: f32 = 2.0;
+
 /// A footprint patch reaches this many angular steps from its return: 1/√2 would just meet
 /// the cell's corners on a regular grid; more covers the jitter of real azimuths.
 const FOOTPRINT_COVER: f32 = 0.75;
@@ -137,7 +142,8 @@ fn surface_patch(
     let local = |j: u32| axes.to_local(points[j as usize] - points[i]);
     let members = || neighborhood.members.iter().copied();
     let along_spacing = spacing(members().filter(|&j| on_line(j)).map(|j| local(j).x));
-    let across_spacing = spacing(members().filter(|&j| !on_line(j)).map(|j| local(j).y));
+    let interleaving = INTERLEAVE_SIGMAS * scan.range_noise * toward_sensor.dot(axes.t2).abs();
+    let across_spacing = line_gap(members().filter(|&j| !on_line(j)).map(|j| local(j).y), interleaving);
     let range = scan.sensor[i].distance(points[i]);
     let incidence = normal.dot(toward_sensor);
     let horizontal_range = (points[i] - scan.sensor[i]).truncate().length();
@@ -209,6 +215,16 @@ fn spacing(coordinates: impl Iterator<Item = f32>) -> f32 {
         (false, true) => negative,
         (false, false) => 0.0,
     }
+}
+
+/// The gap to the next lines from the `across` offsets of the returns on other lines: only
+/// those further out than `interleaving` count, unless none is. Nearer ones may lie on either
+/// side of the point, whatever their line, once the range noise moves returns across the lines
+/// by about their spacing (a 128-beam sensor's road beside the car): taken for the next line,
+/// they held the patch to a sliver and left holes between the lines.
+fn line_gap(across: impl Iterator<Item = f32> + Clone, interleaving: f32) -> f32 {
+    let beyond_noise = spacing(across.clone().filter(|offset| offset.abs() >= interleaving));
+    if beyond_noise > 0.0 { beyond_noise } else { spacing(across) }
 }
 
 /// The spacing between returns that the sensor's angular step (between lines, or along one)
@@ -311,4 +327,23 @@ fn footprint_patch(points: &[Vec3], scan: &ScanLines, i: usize, toward_sensor: V
     let frame = PackedTangentFrame::new(toward_sensor, major_axis);
     let fit = PatchFit { coefficients: [0.0; 6], kind: FitKind::Flat };
     ScanPatch { centre: points[i], normal: toward_sensor, frame, radii, fit, on_surface: false }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn returns_within_the_noise_do_not_set_the_gap_to_the_next_lines() {
+        let across = [0.004, -0.03, 0.04];
+        let all = line_gap(across.into_iter(), 0.0);
+        assert!((all - 0.012).abs() < 1e-6, "three times the nearest, {all}");
+        assert_eq!(line_gap(across.into_iter(), 0.02), 0.04);
+    }
+
+    #[test]
+    fn when_every_return_lies_within_the_noise_they_all_count() {
+        let across = [0.004, -0.006];
+        assert_eq!(line_gap(across.into_iter(), 0.02), 0.006);
+    }
 }

@@ -72,12 +72,11 @@ fn fidelity(scanned: &Scanned, view: ViewSpec, name: &str) -> FidelityMetrics {
     report.overall
 }
 
-/// The LiDAR bars, where these sweeps meet them: holes from above ≤ 2 % (0.6–1.7 %
-/// measured), false surface ≤ 1 % (0.05–0.18 %), mean normal error from above ≤ 5° (2.5–3.0°),
-/// ≥ 98 % consistent. Where not every sweep does yet, where they stand (see bench/FIDELITY.md,
-/// LiDAR) with a margin of about a fifth, as a guard against regression: holes from the sensor
-/// (bar 0.5 %: 0.25–0.84 % measured, the most with 10 % dropout) and the mean normal error from
-/// the sensor (bar 5°: 4.2–5.3°).
+/// The LiDAR bars, where these sweeps meet them: holes from the sensor ≤ 0.5 % (0.20–0.39 %
+/// measured), from above ≤ 2 % (0.6–1.1 %), false surface ≤ 1 % (0.05–0.16 %), mean normal
+/// error from above ≤ 5° (2.4–3.0°), ≥ 98 % consistent. Where not every sweep does yet, where
+/// they stand (see bench/FIDELITY.md, LiDAR) with a margin, as a guard against regression: the
+/// mean normal error from the sensor (bar 5°: 4.2–5.6°, the most with 10 % dropout).
 struct Bars {
     sensor_seen_holes: f64,
     above_seen_holes: f64,
@@ -88,7 +87,7 @@ struct Bars {
 }
 
 const BARS: Bars = Bars {
-    sensor_seen_holes: 0.0105,
+    sensor_seen_holes: 0.005,
     above_seen_holes: 0.02,
     false_surface: 0.01,
     sensor_normal_degrees: 6.5,
@@ -141,4 +140,19 @@ fn a_sixteen_beam_sweep_leaves_the_cars_whole() {
     assert!(holes <= 0.005, "holes from the sensor {holes}: {from_sensor:?}");
     let false_surface = from_sensor.false_surface_rate.expect("mesh pixels");
     assert!(false_surface <= BARS.false_surface, "false surface {false_surface}: {from_sensor:?}");
+}
+
+/// A 128-beam sweep, whose lines on the road beside the car lie 3–6 cm apart, about its 3 cm of
+/// range noise, so that the noise moves returns past the next line's: holes within the bars
+/// from the sensor and from above. They were 1.0 % and 2.7 % while such a return, moved beside
+/// the point, was taken for the next line and held the patch to a sliver.
+#[test]
+fn a_sweep_whose_lines_interleave_in_the_noise_leaves_no_holes_between_them() {
+    let sweep = Sweep { preset: SensorPreset::Os128, range_noise: 0.03, dropout: 0.0, seed: 1 };
+    let scanned = scanned(&sweep);
+    let from_sensor = fidelity(&scanned, ViewSpec::Sensor { yaws: 4 }, "os128");
+    let from_above = fidelity(&scanned, ViewSpec::Above { height: ABOVE_METRES }, "os128");
+    let holes = |m: &FidelityMetrics| m.seen_hole_rate.expect("a sensor");
+    assert!(holes(&from_sensor) <= 0.005, "holes from the sensor: {from_sensor:?}");
+    assert!(holes(&from_above) <= BARS.above_seen_holes, "holes from above: {from_above:?}");
 }
