@@ -42,6 +42,7 @@ pub mod scan_lines;
 pub mod scan_neighborhood;
 mod scan_noise;
 pub mod scan_patches;
+mod scan_plane_vote;
 mod scan_prep;
 mod shaped_patches;
 mod sorted_points;

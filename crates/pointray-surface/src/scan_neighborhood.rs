@@ -6,6 +6,7 @@ use glam::{DMat3, DVec3, Vec3};
 
 use crate::normals::smallest_eigenvector;
 use crate::scan_lines::{ScanLine, ScanLines};
+use crate::scan_plane_vote::PlaneVote;
 
 /// Returns on the point's own line that seed the planes tried: this many steps away on each
 /// side. Along a line returns lie closer together than the range noise, so the far one gives
@@ -172,34 +173,17 @@ pub fn agreeing_neighborhood(
     let scale = nearest_across(points, i, candidates);
     let ray = (points[i] - scan.sensor[i]).normalize_or_zero();
     let noise = NOISE_SIGMAS * scan.range_noise;
-    let slope = |offset: Vec3, normal: Vec3| slope(offset, normal, scale, noise * ray.dot(normal).abs());
-    let agreeing = |normal: Vec3| -> Vec<u32> {
-        candidates.window.iter().copied().filter(|&j| slope(offset(j), normal) <= MAX_RISE).collect()
-    };
     let window: Vec<Vec3> = candidates.window.iter().map(|&j| offset(j)).collect();
-    // The most returns near the plane, each counting less the further it rises out of it and
-    // the further from the point it lies (`nearness`); `None` as soon as the plane can no
-    // longer reach `to_beat`.
-    let score = |normal: Vec3, to_beat: f32| {
-        let mut score = 0.0f32;
-        for (k, &d) in window.iter().enumerate() {
-            let s = slope(d, normal);
-            if s <= MAX_RISE {
-                score += (1.0 - s / MAX_RISE) * nearness(d, normal, scale);
-            }
-            let remaining = (window.len() - k - 1) as f32;
-            if score + remaining < to_beat {
-                return None;
-            }
-        }
-        Some(score)
+    let vote = PlaneVote::new(&window, scale, noise, ray);
+    let agreeing = |normal: Vec3| -> Vec<u32> {
+        candidates.window.iter().copied().filter(|&j| vote.segment(offset(j), normal).agrees()).collect()
     };
     let along: Vec<Vec3> = candidates.along.iter().map(|&j| offset(j)).collect();
     let across: Vec<Vec3> = candidates.across.iter().map(|&j| offset(j)).collect();
     let mut best: Option<(Vec3, f32)> = None;
     for normal in plane_hypotheses(&along, &across) {
         let to_beat = best.map_or(f32::NEG_INFINITY, |(_, score)| score);
-        if let Some(score) = score(normal, to_beat).filter(|&score| score >= to_beat) {
+        if let Some(score) = vote.score(normal, to_beat) {
             best = Some((normal, score));
         }
     }
@@ -231,29 +215,6 @@ fn plane_hypotheses<'a>(along: &'a [Vec3], across: &'a [Vec3]) -> impl Iterator<
         let normal = p.cross(q);
         (normal.length() > 0.1 * p.length() * q.length()).then(|| normal.normalize())
     })
-}
-
-/// How steeply the segment `offset` rises out of the plane of `normal`, less `noise`. Short
-/// segments count as if half the neighbourhood's `scale` long: along a line, returns can lie
-/// closer together than the range noise.
-fn slope(offset: Vec3, normal: Vec3, scale: f32, noise: f32) -> f32 {
-    let rise = (offset.dot(normal).abs() - noise).max(0.0);
-    rise / run(offset, normal).max(0.5 * scale).max(f32::MIN_POSITIVE)
-}
-
-/// How much a return at `offset` counts toward the plane of `normal`: all of it near the
-/// point, half at the neighbourhood's `scale` (the nearest return on another line), less
-/// beyond. A level plane through a return on a car's side rises within `MAX_RISE` of the road
-/// metres away, which holds many more returns than the car's next line a spacing above: counted
-/// alike, the road would win and the car's side would get a level patch. 1 when there is no
-/// scale.
-fn nearness(offset: Vec3, normal: Vec3, scale: f32) -> f32 {
-    if scale > 0.0 { scale / (scale + run(offset, normal)) } else { 1.0 }
-}
-
-/// The length of `offset` within the plane of `normal`.
-fn run(offset: Vec3, normal: Vec3) -> f32 {
-    (offset - offset.dot(normal) * normal).length()
 }
 
 /// The normal of the plane that fits point `i` and `members`: the least eigenvector of their
