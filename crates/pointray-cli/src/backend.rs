@@ -20,10 +20,17 @@ pub struct BackendArgs {
     /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
     #[arg(long, default_value = "auto")]
     pub device: DeviceSelector,
+    #[command(flatten)]
+    pub gpu_memory: GpuMemoryArg,
+}
+
+/// `--gpu-memory`, for every command that may trace on a GPU.
+#[derive(Args, Clone, Copy)]
+pub struct GpuMemoryArg {
     /// GPU memory a scene may take, building included, e.g. `40G` (default: the device's).
     /// A large point set is split into more tiles to fit; a scene that cannot fit is refused.
-    #[arg(long, value_parser = MemoryBudget::from_str)]
-    pub gpu_memory: Option<MemoryBudget>,
+    #[arg(long = "gpu-memory", value_name = "SIZE", value_parser = MemoryBudget::from_str)]
+    pub budget: Option<MemoryBudget>,
 }
 
 /// `--backend auto|vulkan|cpu`.

@@ -13,11 +13,10 @@ use pointray_io::MemoryBudget;
 use pointray_scene::{Integrator, RenderSetting, RenderSettings, SceneFile};
 use pointray_vulkan::{BackendChoice, DeviceSelector, VulkanRenderer};
 
-use crate::backend::{backend_choice, device_options, open_backend};
+use crate::backend::{GpuMemoryArg, backend_choice, device_options, open_backend};
 use crate::environment::data_dir;
 use crate::progress::PrepBar;
 use crate::setting_flag::setting_flag;
-use std::str::FromStr;
 
 /// Time frames with GPU timestamps: FPS, frame and trace times, rays/s, build costs.
 #[derive(Args)]
@@ -70,10 +69,8 @@ pub struct BenchArgs {
     /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
     #[arg(long, default_value = "auto")]
     device: DeviceSelector,
-    /// GPU memory a scene may take, building included, e.g. `40G` (default: the device's).
-    /// A large point set is split into more tiles to fit; a scene that cannot fit is refused.
-    #[arg(long, value_parser = MemoryBudget::from_str)]
-    gpu_memory: Option<MemoryBudget>,
+    #[command(flatten)]
+    gpu_memory: GpuMemoryArg,
 }
 
 /// What `bench` times: a suite of models, or one scene file.
@@ -141,7 +138,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let size = RenderSettings { width, height, ..RenderSettings::default() };
         size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     }
-    let device_options = device_options(args.gpu_memory);
+    let device_options = device_options(args.gpu_memory.budget);
     let renderer =
         VulkanRenderer::new(args.device.clone(), device_options).context("opening the Vulkan backend")?;
     println!("device: {}", renderer.device_info());
@@ -197,7 +194,7 @@ fn print_row(row: &ScaleRow) {
 }
 
 fn run_scale_suite(args: &BenchArgs) -> anyhow::Result<()> {
-    let backend = open_backend(args.backend, &args.device, args.gpu_memory)?;
+    let backend = open_backend(args.backend, &args.device, args.gpu_memory.budget)?;
     let scale_backend = ScaleBackend(&backend);
     println!("backend: {}", scale_backend.describe());
     let progress = PrepBar::default();

@@ -93,7 +93,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let LoadedScene { scene, space, .. } = load_scene_file(&file, &options)?;
     println!("loaded {} in {:.2?}", args.scene.display(), started.elapsed());
     let started = Instant::now();
-    let backend = open_backend(args.backend.backend, &args.backend.device, args.backend.gpu_memory)?;
+    let backend = open_backend(args.backend.backend, &args.backend.device, args.backend.gpu_memory.budget)?;
     println!("backend: {} (opened in {:.2?})", backend.describe(), started.elapsed());
     let start = scene.camera;
     let started = Instant::now();

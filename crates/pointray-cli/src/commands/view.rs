@@ -73,7 +73,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
     let options = ViewerOptions {
         backend: args.backend.backend,
         device: args.backend.device,
-        device_options: device_options(args.backend.gpu_memory),
+        device_options: device_options(args.backend.gpu_memory.budget),
         vsync: args.vsync,
         script,
     };
