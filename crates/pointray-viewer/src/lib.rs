@@ -103,6 +103,9 @@ pub fn run_viewer(
     let backend = source.describe();
     let presentation = source.presentation();
     println!("backend: {backend}, presentation: {presentation:?}");
+    if source.is_cpu() && options.device_options.gpu_memory.is_some() {
+        eprintln!("note: the GPU memory budget goes unused: the CPU backend renders");
+    }
     if options.script.is_none() {
         println!("{KEY_HELP}");
     }
