@@ -173,8 +173,7 @@ pub fn agreeing_neighborhood(
     let scale = nearest_across(points, i, candidates);
     let ray = (points[i] - scan.sensor[i]).normalize_or_zero();
     let noise = NOISE_SIGMAS * scan.range_noise;
-    let window: Vec<Vec3> = candidates.window.iter().map(|&j| offset(j)).collect();
-    let vote = PlaneVote::new(&window, scale, noise, ray);
+    let vote = PlaneVote::new(candidates.window.iter().map(|&j| offset(j)), scale, noise, ray);
     let agreeing = |normal: Vec3| -> Vec<u32> {
         candidates.window.iter().copied().filter(|&j| vote.segment(offset(j), normal).agrees()).collect()
     };

@@ -72,21 +72,20 @@ pub(crate) struct PlaneVote {
 impl PlaneVote {
     /// `scale`: the nearest return on another line; `noise`: how far the range noise may move
     /// a return along `ray`, the point's ray.
-    pub fn new(window: &[Vec3], scale: f32, noise: f32, ray: Vec3) -> Self {
-        let padded = |coordinate: fn(&Vec3) -> f32| {
-            let mut values: Vec<f32> = window.iter().map(coordinate).collect();
-            values.resize(window.len().next_multiple_of(BLOCK), 0.0);
-            values
-        };
-        Self {
-            x: padded(|d| d.x),
-            y: padded(|d| d.y),
-            z: padded(|d| d.z),
-            returns: window.len(),
-            scale,
-            noise,
-            ray,
+    pub fn new(window: impl ExactSizeIterator<Item = Vec3>, scale: f32, noise: f32, ray: Vec3) -> Self {
+        let returns = window.len();
+        let padded = returns.next_multiple_of(BLOCK);
+        let (mut x, mut y, mut z) =
+            (Vec::with_capacity(padded), Vec::with_capacity(padded), Vec::with_capacity(padded));
+        for offset in window {
+            x.push(offset.x);
+            y.push(offset.y);
+            z.push(offset.z);
         }
+        for values in [&mut x, &mut y, &mut z] {
+            values.resize(padded, 0.0);
+        }
+        Self { x, y, z, returns, scale, noise, ray }
     }
 
     /// The segment to `offset` against the plane of `normal`.
@@ -148,7 +147,7 @@ mod tests {
         for returns in [0, 1, 7, 8, 9, 45, 64] {
             let window: Vec<Vec3> = (0..returns).map(|_| random_vector(0.05)).collect();
             let ray = random_vector(1.0).normalize();
-            let vote = PlaneVote::new(&window, 0.2, 0.01, ray);
+            let vote = PlaneVote::new(window.iter().copied(), 0.2, 0.01, ray);
             for _ in 0..20 {
                 let normal = (Vec3::Z + 0.2 * random_vector(1.0)).normalize();
                 let expected = one_by_one(&window, normal, 0.2, 0.01 * ray.dot(normal).abs());
