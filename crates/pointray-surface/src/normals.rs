@@ -48,14 +48,51 @@ pub(crate) fn neighbourhood_covariance(points: &[Vec3], i: usize, neighbours: &[
     )
 }
 
+/// The unit eigenvector of the smallest eigenvalue of a symmetric matrix. The closed form
+/// serves where that eigenvalue stands apart from the others; nearly equal eigenvalues
+/// (collinear or coincident points) go to Jacobi rotations, which stay accurate there.
+pub(crate) fn smallest_eigenvector(matrix: DMat3) -> DVec3 {
+    closed_form_smallest_eigenvector(matrix).unwrap_or_else(|| jacobi_smallest_eigenvector(matrix))
+}
+
+/// Below this ratio of the gap between the two smallest eigenvalues to the spread of all
+/// three, the closed form's eigenvector is left to Jacobi: its error grows as the inverse of
+/// that ratio (times f64 precision), while Jacobi's does not.
+const CLOSED_FORM_MIN_GAP: f64 = 1e-4;
+
+/// The smallest root of the characteristic cubic in trigonometric form, and its eigenvector
+/// as the longest cross product of two rows of `A - λI`, which span the plane orthogonal to
+/// it.
+fn closed_form_smallest_eigenvector(matrix: DMat3) -> Option<DVec3> {
+    let scale = matrix.abs().to_cols_array().into_iter().fold(0.0, f64::max);
+    if !(scale.is_normal() && scale.is_finite()) {
+        return None;
+    }
+    let a = matrix * scale.recip();
+    let mean = (a.x_axis.x + a.y_axis.y + a.z_axis.z) / 3.0;
+    let centred = a - DMat3::from_diagonal(DVec3::splat(mean));
+    let spread = (centred.to_cols_array().iter().map(|e| e * e).sum::<f64>() / 6.0).sqrt();
+    if spread <= f64::EPSILON {
+        return None;
+    }
+    let half_determinant = (centred * spread.recip()).determinant() / 2.0;
+    let angle = half_determinant.clamp(-1.0, 1.0).acos() / 3.0;
+    let smallest = mean + 2.0 * spread * (angle + 2.0 * std::f64::consts::FRAC_PI_3).cos();
+    let rows = a - DMat3::from_diagonal(DVec3::splat(smallest));
+    let (r0, r1, r2) = (rows.x_axis, rows.y_axis, rows.z_axis);
+    let longest = [r0.cross(r1), r0.cross(r2), r1.cross(r2)]
+        .into_iter()
+        .max_by(|x, y| x.length_squared().total_cmp(&y.length_squared()))?;
+    let row_spread = r0.length_squared() + r1.length_squared() + r2.length_squared();
+    (longest.length() > CLOSED_FORM_MIN_GAP * row_spread).then(|| longest.normalize())
+}
+
 /// Sweeps of the cyclic Jacobi method: it converges quadratically, so 3x3 matrices are
 /// diagonal to f64 precision after 4 or 5; the cap only guards against NaN input.
 const MAX_JACOBI_SWEEPS: usize = 16;
 
-/// The unit eigenvector of the smallest eigenvalue of a symmetric matrix, by cyclic
-/// Jacobi rotations: slower than the closed form but accurate for nearly equal or zero
-/// eigenvalues, which flat and noise-free neighbourhoods produce.
-pub(crate) fn smallest_eigenvector(matrix: DMat3) -> DVec3 {
+/// The same eigenvector by cyclic Jacobi rotations.
+fn jacobi_smallest_eigenvector(matrix: DMat3) -> DVec3 {
     let mut a = matrix.to_cols_array_2d();
     let mut v = DMat3::IDENTITY.to_cols_array_2d();
     for _ in 0..MAX_JACOBI_SWEEPS {
@@ -113,6 +150,37 @@ mod tests {
         let expected = rotation.col(1);
         let found = smallest_eigenvector(matrix);
         assert!(found.dot(expected).abs() > 1.0 - 1e-12, "{found} vs {expected}");
+    }
+
+    /// Covariances of points scattered with the given spreads along three random axes.
+    fn covariances(spreads: DVec3) -> impl Iterator<Item = DMat3> {
+        (0..200).map(move |i| {
+            let angles = (i as f64 * 0.37, i as f64 * -1.13 + 0.2, i as f64 * 0.71 - 0.5);
+            let rotation = DMat3::from_euler(glam::EulerRot::XYZ, angles.0, angles.1, angles.2);
+            rotation * DMat3::from_diagonal(spreads * spreads) * rotation.transpose()
+        })
+    }
+
+    #[test]
+    fn the_closed_form_agrees_with_the_rotations_where_it_serves() {
+        for spreads in [DVec3::new(1.0, 0.7, 0.0), DVec3::new(3.0, 1.0, 0.01), DVec3::new(1.0, 1.0, 0.5)] {
+            for matrix in covariances(spreads) {
+                let closed = closed_form_smallest_eigenvector(matrix).expect("a clear smallest eigenvalue");
+                let rotated = jacobi_smallest_eigenvector(matrix);
+                assert!(closed.dot(rotated).abs() > 1.0 - 1e-12, "{closed} vs {rotated} for {spreads}");
+            }
+        }
+    }
+
+    #[test]
+    fn nearly_equal_smallest_eigenvalues_go_to_the_rotations() {
+        for spreads in [DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 1e-7, 0.0), DVec3::ONE] {
+            for matrix in covariances(spreads) {
+                assert_eq!(closed_form_smallest_eigenvector(matrix), None, "{spreads}");
+                let found = smallest_eigenvector(matrix);
+                assert!((found.length() - 1.0).abs() < 1e-12);
+            }
+        }
     }
 
     #[test]
