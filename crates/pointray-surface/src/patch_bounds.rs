@@ -58,17 +58,35 @@ pub fn patch_box(patch: &PatchHot, kind: BoxKind) -> Aabb {
 /// of `f`, where an interior extremum lies, padded by `TIGHT_PADDING d_u`.
 fn tight_box(patch: &Patch) -> Aabb {
     let coefficients = patch.coefficients;
-    let rim = RIM_DIRECTIONS.iter().map(|&direction| direction * patch.radii);
-    let interior = [Some(Vec2::ZERO), critical_point(&coefficients).filter(|&c| patch.supports(c))];
-    let (min, max) = rim.chain(interior.into_iter().flatten()).fold(
-        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-        |(min, max), uv| {
-            let world = patch.to_world(uv.extend(evaluate(&coefficients, uv.x, uv.y)));
-            (min.min(world), max.max(world))
-        },
-    );
+    let interior = critical_point(&coefficients).filter(|&c| patch.supports(c)).unwrap_or(Vec2::ZERO);
+    let (low, high) = rim_extent(patch);
+    let (min, max) = [Vec2::ZERO, interior].into_iter().fold((low, high), |(min, max), uv| {
+        let world = patch.to_world(uv.extend(evaluate(&coefficients, uv.x, uv.y)));
+        (min.min(world), max.max(world))
+    });
     let pad = Vec3::splat(TIGHT_PADDING * patch.radii.x);
     Aabb::new(min - pad, max + pad)
+}
+
+/// The lowest and highest world coordinates of the rim samples. Written over fixed arrays,
+/// coordinate by coordinate, so that the compiler computes eight samples at a time; each
+/// sample's arithmetic is `Patch::to_world` of `evaluate`'s height, so the box is the one a
+/// sample-by-sample loop gives.
+fn rim_extent(patch: &Patch) -> (Vec3, Vec3) {
+    let (t1, t2, n, origin) = (patch.frame.t1, patch.frame.t2, patch.frame.n, patch.origin);
+    let mut world = [[0.0f32; RIM_SAMPLES]; 3];
+    for (s, direction) in RIM_DIRECTIONS.iter().enumerate() {
+        let (u, v) = (direction.x * patch.radii.x, direction.y * patch.radii.y);
+        let w = evaluate(&patch.coefficients, u, v);
+        for axis in 0..3 {
+            world[axis][s] = origin[axis] + (u * t1[axis] + v * t2[axis] + w * n[axis]);
+        }
+    }
+    let extent = |samples: &[f32; RIM_SAMPLES]| {
+        samples.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(low, high), &x| (low.min(x), high.max(x)))
+    };
+    let [(x_low, x_high), (y_low, y_high), (z_low, z_high)] = world.each_ref().map(extent);
+    (Vec3::new(x_low, y_low, z_low), Vec3::new(x_high, y_high, z_high))
 }
 
 /// Unit directions to the rim samples, computed once: 24 sines and cosines per patch were
