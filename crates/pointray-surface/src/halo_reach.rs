@@ -76,26 +76,27 @@ impl DistinctNeighbours {
     }
 
     /// An upper bound on the distance from `point` to its `k`-th nearest neighbour in the
-    /// merged cloud, from the raw points `candidates` (squared distance and index into
-    /// `points`, in any order; reordered here, where indices are lighter to move than
-    /// positions): unbounded when they hold fewer than `k` distinct neighbours.
+    /// merged cloud, from the raw points `candidates` (`candidate_key`s of points of
+    /// `points`, in any order; reordered here): unbounded when they hold fewer than `k`
+    /// distinct neighbours.
     fn bound(
         &self,
         point: Vec3,
         points: &[Vec3],
-        candidates: &mut [(f32, u32)],
+        candidates: &mut [u64],
         picked: &mut Vec<(f32, Vec3)>,
     ) -> f32 {
         picked.clear();
         // Most rows hold no duplicate: their k nearest, sorted, are all it takes.
         let nearest = self.k.min(candidates.len());
         if nearest < candidates.len() {
-            candidates.select_nth_unstable_by(nearest, |a, b| a.0.total_cmp(&b.0));
+            candidates.select_nth_unstable(nearest);
         }
         let (first, rest) = candidates.split_at_mut(nearest);
         for part in [first, rest] {
-            part.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-            for &(squared, index) in part.iter() {
+            part.sort_unstable();
+            for &key in part.iter() {
+                let (squared, index) = candidate_of(key);
                 let candidate = points[index as usize];
                 if self.stands_apart(point, squared, candidate, picked) {
                     picked.push((squared.sqrt(), candidate));
@@ -124,6 +125,18 @@ impl DistinctNeighbours {
     }
 }
 
+/// A candidate neighbour as one integer that orders by squared distance, then by index, so
+/// that candidates sort as plain integers: the bits of a non-negative float order as the
+/// float does.
+fn candidate_key(squared: f32, index: u32) -> u64 {
+    (u64::from(squared.to_bits()) << 32) | u64::from(index)
+}
+
+/// The squared distance and index of a `candidate_key`.
+fn candidate_of(key: u64) -> (f32, u32) {
+    (f32::from_bits((key >> 32) as u32), key as u32)
+}
+
 /// The most neighbours any stage of prep takes.
 fn neighbourhood_size(settings: &PrepSettings) -> usize {
     settings.k.max(settings.normal_k) as usize
@@ -142,7 +155,9 @@ fn neighbourhood_bounds(points: &[Vec3], core: Range<usize>, distinct: &Distinct
         .flatten()
         .collect();
     let queries: Vec<usize> = loose.iter().map(|&i| core.start + i).collect();
-    for (i, radius) in loose.iter().zip(exact_radii(points, &queries, distinct)) {
+    let known: Vec<f32> = loose.iter().map(|&i| bounds[i]).collect();
+    let exact = exact_radii(points, &queries, &known, distinct);
+    for (i, radius) in loose.iter().zip(exact) {
         // Both bound the radius; the tree's may find too few distinct neighbours.
         bounds[*i] = bounds[*i].min(radius);
     }
@@ -160,7 +175,9 @@ fn curve_window_radii(points: &[Vec3], core: Range<usize>, distinct: &DistinctNe
                 let point = points[i];
                 candidates.clear();
                 candidates.extend(
-                    window.filter(|&j| j != i).map(|j| ((points[j] - point).length_squared(), j as u32)),
+                    window
+                        .filter(|&j| j != i)
+                        .map(|j| candidate_key((points[j] - point).length_squared(), j as u32)),
                 );
                 distinct.bound(point, points, candidates, picked)
             },
@@ -179,23 +196,36 @@ fn stands_out(bounds: &[f32], i: usize, around: &mut Vec<f32>) -> bool {
 }
 
 /// The bound for each point of `points` named in `queries`, from its nearest points.
-fn exact_radii(points: &[Vec3], queries: &[usize], distinct: &DistinctNeighbours) -> Vec<f32> {
+/// `known[q]` bounds query `q`'s radius already: the tree is first asked for the `k + 1`
+/// nearest within it (enough where no duplicates lie among them, as almost everywhere),
+/// and for `EXACT_CANDIDATES_PER_NEIGHBOUR` times as many only where those fall short.
+fn exact_radii(points: &[Vec3], queries: &[usize], known: &[f32], distinct: &DistinctNeighbours) -> Vec<f32> {
     if queries.is_empty() {
         return Vec::new();
     }
     let entries: Vec<[f32; 3]> = points.iter().map(|p| p.to_array()).collect();
     let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
         .unwrap_or_else(|e| unreachable!("a tile's points fit u32 indices: {e}"));
-    let wanted =
+    let few = NonZeroUsize::new(distinct.k + 1).unwrap_or(NonZeroUsize::MIN);
+    let many =
         NonZeroUsize::new(EXACT_CANDIDATES_PER_NEIGHBOUR * distinct.k + 1).unwrap_or(NonZeroUsize::MIN);
     queries
         .par_iter()
+        .zip(known)
         .map_init(
             || (Vec::new(), Vec::new()),
-            |(candidates, picked), &i| {
-                let found = tree.query(&entries[i]).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
+            |(candidates, picked), (&i, &known)| {
+                let query = tree.query(&entries[i]);
+                let nearby = query.nearest_n::<SquaredEuclidean<f32>>(few).within(known * known).execute();
                 candidates.clear();
-                candidates.extend(found.iter().map(|hit| (hit.distance, hit.item)));
+                candidates.extend(nearby.iter().map(|hit| candidate_key(hit.distance, hit.item)));
+                let bound = distinct.bound(points[i], points, candidates, picked);
+                if bound.is_finite() {
+                    return bound;
+                }
+                let found = tree.query(&entries[i]).nearest_n::<SquaredEuclidean<f32>>(many).execute();
+                candidates.clear();
+                candidates.extend(found.iter().map(|hit| candidate_key(hit.distance, hit.item)));
                 distinct.bound(points[i], points, candidates, picked)
             },
         )
