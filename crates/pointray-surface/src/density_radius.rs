@@ -107,8 +107,8 @@ pub fn adaptive_radii(
 ) -> (Vec<f32>, RadiusAdjustments) {
     let outcomes: Vec<(f32, Option<Adjustment>)> = (0..points.len())
         .into_par_iter()
-        .map(|i| {
-            let around = Surroundings::of(i, frames, points, neighbors, k, paper);
+        .map_init(Surroundings::default, |around, i| {
+            around.gather(i, frames, points, neighbors, k, paper);
             adjust(paper[i], uncovered_reach(&around.cell, paper[i], &around.disks), around.median)
         })
         .collect();
@@ -133,8 +133,8 @@ pub fn cell_radii(
 ) -> Vec<f32> {
     (0..points.len())
         .into_par_iter()
-        .map(|i| {
-            let around = Surroundings::of(i, frames, points, neighbors, k, paper);
+        .map_init(Surroundings::default, |around, i| {
+            around.gather(i, frames, points, neighbors, k, paper);
             let reach = CELL_MARGIN * around.cell.iter().map(|corner| corner.length()).fold(0.0, f32::max);
             reach.min(paper[i])
         })
@@ -142,36 +142,39 @@ pub fn cell_radii(
 }
 
 /// A point's neighbours in its tangent plane (with their paper radii), its Voronoi cell
-/// among them, and the band's median.
+/// among them, and the band's median. Gathered for one point after another into the same
+/// buffers, so that no point allocates.
+#[derive(Default)]
 struct Surroundings {
     disks: Vec<(Vec2, f32)>,
     cell: Vec<Vec2>,
     median: f32,
+    band: Vec<f32>,
+    clipped: Vec<Vec2>,
 }
 
 impl Surroundings {
-    fn of(
+    fn gather(
+        &mut self,
         i: usize,
         frames: &[TangentFrame],
         points: &[glam::Vec3],
         neighbors: &Neighbors,
         k: usize,
         paper: &[f32],
-    ) -> Self {
-        let median = band_median(paper, i, &neighbors.of(i)[..k]);
-        let disks: Vec<(Vec2, f32)> = neighbors
-            .of(i)
-            .iter()
-            .map(|&j| {
-                let local = frames[i].to_local(points[j as usize] - points[i]);
-                (Vec2::new(local.x, local.y), paper[j as usize])
-            })
-            .collect();
+    ) {
+        self.median = band_median(paper, i, &neighbors.of(i)[..k], &mut self.band);
+        self.disks.clear();
+        self.disks.extend(neighbors.of(i).iter().map(|&j| {
+            let local = frames[i].to_local(points[j as usize] - points[i]);
+            (Vec2::new(local.x, local.y), paper[j as usize])
+        }));
         // Past the farthest neighbour the table knows nothing of the surface, so an open
         // cell is cut there (and at the band's top).
         let known = neighbors.distances_of(i).last().copied().unwrap_or(0.0);
-        let cell = voronoi_cell(disks.iter().map(|&(centre, _)| centre), known.min(BAND * median));
-        Self { disks, cell, median }
+        let limit = known.min(BAND * self.median);
+        let centres = self.disks.iter().map(|&(centre, _)| centre);
+        voronoi_cell(centres, limit, &mut self.cell, &mut self.clipped);
     }
 }
 
@@ -197,10 +200,10 @@ fn adjust(paper: f32, covering: f32, median: f32) -> (f32, Option<Adjustment>) {
     }
 }
 
-/// The median of the paper radii of point `i` and its fit neighbours.
-fn band_median(paper: &[f32], i: usize, fit_neighbors: &[u32]) -> f32 {
-    let mut radii: Vec<f32> =
-        std::iter::once(paper[i]).chain(fit_neighbors.iter().map(|&j| paper[j as usize])).collect();
+/// The median of the paper radii of point `i` and its fit neighbours, gathered in `radii`.
+fn band_median(paper: &[f32], i: usize, fit_neighbors: &[u32], radii: &mut Vec<f32>) -> f32 {
+    radii.clear();
+    radii.extend(std::iter::once(paper[i]).chain(fit_neighbors.iter().map(|&j| paper[j as usize])));
     let middle = radii.len() / 2;
     *radii.select_nth_unstable_by(middle, f32::total_cmp).1
 }
@@ -219,28 +222,31 @@ pub fn uncovered_reach(cell: &[Vec2], radius: f32, disks: &[(Vec2, f32)]) -> f32
         .fold(0.0, f32::max)
 }
 
-/// The origin's Voronoi cell among the `neighbors` (tangent-plane offsets) as a convex
-/// polygon, cut to the square of half-size `limit`: a cell left open on one side reaches
-/// `limit` there.
-pub fn voronoi_cell(neighbors: impl Iterator<Item = Vec2>, limit: f32) -> Vec<Vec2> {
-    let mut cell = vec![
+/// Into `cell`, the origin's Voronoi cell among the `neighbors` (tangent-plane offsets) as a
+/// convex polygon, cut to the square of half-size `limit`: a cell left open on one side
+/// reaches `limit` there. `clipped` is a second buffer, used in turn with `cell`.
+pub fn voronoi_cell(
+    neighbors: impl Iterator<Item = Vec2>,
+    limit: f32,
+    cell: &mut Vec<Vec2>,
+    clipped: &mut Vec<Vec2>,
+) {
+    cell.clear();
+    cell.extend([
         Vec2::new(-limit, -limit),
         Vec2::new(limit, -limit),
         Vec2::new(limit, limit),
         Vec2::new(-limit, limit),
-    ];
-    // Two buffers in turn: this runs for every point of the cloud, a clip per neighbour.
-    let mut clipped = Vec::with_capacity(cell.len() + 4);
+    ]);
     for q in neighbors {
         let half_distance_squared = 0.5 * q.length_squared();
         // A coincident neighbour cuts nothing: the origin would lie on its bisector. Nor
         // does one whose bisector passes beyond every corner.
         if half_distance_squared > 0.0 && cell.iter().any(|corner| corner.dot(q) > half_distance_squared) {
-            clip_to_half_plane(&cell, q, half_distance_squared, &mut clipped);
-            std::mem::swap(&mut cell, &mut clipped);
+            clip_to_half_plane(cell, q, half_distance_squared, clipped);
+            std::mem::swap(cell, clipped);
         }
     }
-    cell
 }
 
 /// Sutherland-Hodgman: into `clipped`, the part of convex polygon `polygon` where
@@ -264,6 +270,12 @@ fn clip_to_half_plane(polygon: &[Vec2], q: Vec2, bound: f32, clipped: &mut Vec<V
 mod tests {
     use super::*;
 
+    fn cell_of(neighbors: impl Iterator<Item = Vec2>, limit: f32) -> Vec<Vec2> {
+        let mut cell = Vec::new();
+        voronoi_cell(neighbors, limit, &mut cell, &mut Vec::new());
+        cell
+    }
+
     fn farthest_corner(cell: &[Vec2]) -> f32 {
         cell.iter().map(|corner| corner.length()).fold(0.0, f32::max)
     }
@@ -281,25 +293,25 @@ mod tests {
 
     #[test]
     fn a_square_grid_cell_is_the_unit_square() {
-        let reach = farthest_corner(&voronoi_cell(GRID.into_iter(), 100.0));
+        let reach = farthest_corner(&cell_of(GRID.into_iter(), 100.0));
         assert!((reach - 0.5f32.hypot(0.5)).abs() < 1e-6, "{reach}");
     }
 
     #[test]
     fn a_cell_open_on_one_side_reaches_the_limit() {
         let one_side = [Vec2::X, Vec2::new(1.0, 1.0), Vec2::new(1.0, -1.0)];
-        let reach = farthest_corner(&voronoi_cell(one_side.into_iter(), 10.0));
+        let reach = farthest_corner(&cell_of(one_side.into_iter(), 10.0));
         assert!((reach - 10.0 * 2f32.sqrt()).abs() < 1e-4, "{reach}");
     }
 
     #[test]
     fn coincident_neighbours_cut_nothing() {
-        assert_eq!(farthest_corner(&voronoi_cell([Vec2::ZERO].into_iter(), 1.0)), 2f32.sqrt());
+        assert_eq!(farthest_corner(&cell_of([Vec2::ZERO].into_iter(), 1.0)), 2f32.sqrt());
     }
 
     #[test]
     fn a_cell_covered_by_the_neighbours_disks_needs_no_reach() {
-        let cell = voronoi_cell(GRID.into_iter(), 100.0);
+        let cell = cell_of(GRID.into_iter(), 100.0);
         let wide: Vec<(Vec2, f32)> = GRID.iter().map(|&centre| (centre, 1.5)).collect();
         assert_eq!(uncovered_reach(&cell, 0.1, &wide), 0.0);
         let tiny: Vec<(Vec2, f32)> = GRID.iter().map(|&centre| (centre, 0.1)).collect();
@@ -334,6 +346,6 @@ mod tests {
     #[test]
     fn the_band_median_includes_the_point() {
         let paper = [5.0, 1.0, 2.0, 3.0];
-        assert_eq!(band_median(&paper, 0, &[1, 2, 3]), 3.0);
+        assert_eq!(band_median(&paper, 0, &[1, 2, 3], &mut Vec::new()), 3.0);
     }
 }
