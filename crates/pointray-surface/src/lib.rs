@@ -41,6 +41,7 @@ mod scan_levels;
 pub mod scan_lines;
 pub mod scan_neighborhood;
 mod scan_noise;
+mod scan_normal_smoothing;
 pub mod scan_patches;
 mod scan_plane_vote;
 mod scan_prep;

@@ -43,9 +43,10 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// set of normals; in revision 5 a scan's patches follow the levels of steps, stand on their
 /// faces and are cut back on one side; in revision 6 a scan's planes favour the returns near
 /// the point, and a patch stops short of a line beside it that saw nothing; in revision 7 the
-/// gap to the next line leaves out returns that the range noise may have moved across it), so
+/// gap to the next line leaves out returns that the range noise may have moved across it; in
+/// revision 8 a scan's planes take normals smoothed over their neighbours'), so
 /// that caches keyed on the settings also key on this and never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 7;
+pub const PREP_REVISION: u32 = 8;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(

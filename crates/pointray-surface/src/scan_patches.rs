@@ -15,6 +15,7 @@ use crate::scan_free_space::Ellipse;
 use crate::scan_levels::{LevelFit, StepFace, level_fit};
 use crate::scan_lines::ScanLines;
 use crate::scan_neighborhood::{MAX_RISE, ScanNeighborhood, agreeing_neighborhood, candidates};
+use crate::scan_normal_smoothing::smoothed_normal;
 
 /// Each radius is this multiple of the spacing to the next return on its axis: half the
 /// spacing meets the neighbour's patch, and the rest covers the corners of the cell between
@@ -91,28 +92,44 @@ impl ScanPatch {
     }
 }
 
-/// Every point's patch, in parallel.
+/// Every point's patch, in parallel: every neighbourhood's plane first, so that each patch can
+/// take its normal smoothed over its neighbours' (`scan_normal_smoothing`). The neighbourhoods
+/// are found again for the patches rather than kept, which would hold a few hundred bytes per
+/// return.
 pub fn scan_patches(points: &[Vec3], scan: &ScanLines) -> Vec<ScanPatch> {
-    (0..points.len()).into_par_iter().with_min_len(1024).map(|i| scan_patch(points, scan, i)).collect()
+    let fitted_normals: Vec<Vec3> = (0..points.len())
+        .into_par_iter()
+        .with_min_len(1024)
+        .map(|i| agreeing_neighborhood(points, scan, i, &candidates(scan, i)).normal)
+        .collect();
+    (0..points.len())
+        .into_par_iter()
+        .with_min_len(1024)
+        .map(|i| scan_patch(points, scan, i, &fitted_normals))
+        .collect()
 }
 
-fn scan_patch(points: &[Vec3], scan: &ScanLines, i: usize) -> ScanPatch {
+/// Point `i`'s patch. Its neighbourhood's fitted plane judges whether the neighbours lie on
+/// one surface; its normal smoothed over theirs (`fitted_normals`) shapes the patch.
+fn scan_patch(points: &[Vec3], scan: &ScanLines, i: usize, fitted_normals: &[Vec3]) -> ScanPatch {
     let candidates = candidates(scan, i);
     let toward_sensor = (scan.sensor[i] - points[i]).normalize_or(Vec3::Z);
     let spans_surface = |neighborhood: &ScanNeighborhood| {
         let seen_face_on = neighborhood.normal.dot(toward_sensor).abs() >= EDGE_ON_COSINE;
         neighborhood.crosses_lines && neighborhood.members.len() >= 3 && seen_face_on
     };
-    let mut neighborhood = agreeing_neighborhood(points, scan, i, &candidates);
-    if spans_surface(&neighborhood) && neighborhood.spread_over_noise(points, scan, i) > MAX_SPREAD {
+    let fitted = agreeing_neighborhood(points, scan, i, &candidates);
+    let mut normal = smoothed_normal(&fitted, fitted_normals);
+    if spans_surface(&fitted) && fitted.spread_over_noise(points, scan, i) > MAX_SPREAD {
         match level_fit(points, scan, i, &candidates) {
-            LevelFit::On(normal) => neighborhood.normal = normal,
+            LevelFit::On(level) => normal = level,
             LevelFit::Between(face) => {
                 return line_patch(points, scan, i, &candidates.along, toward_sensor, face);
             }
             LevelFit::Unknown => {}
         }
     }
+    let neighborhood = ScanNeighborhood { normal, ..fitted };
     if spans_surface(&neighborhood) {
         let ellipse = surface_patch(points, scan, i, &neighborhood, toward_sensor);
         let cut = ellipse
