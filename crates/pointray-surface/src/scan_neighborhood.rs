@@ -161,22 +161,18 @@ fn bracketing<'a>(line: &'a ScanLine, scan: &ScanLines, azimuth: f32) -> impl It
 /// The neighbourhood of point `i` among `candidates`: of the planes through the point, one
 /// seed along its line and one across, the one that most of the window's returns lie near (a
 /// small RANSAC: a wall's returns must not tilt the ground at its foot); then the window's
-/// returns that agree with it, and the plane that fits them.
+/// returns that agree with it, and the plane that fits them. Also the normal of the plane whose
+/// agreeing returns are the members, from which `neighborhood_agreeing_with` finds them again
+/// without the vote.
 pub fn agreeing_neighborhood(
     points: &[Vec3],
     scan: &ScanLines,
     i: usize,
     candidates: &Candidates,
-) -> ScanNeighborhood {
+) -> (ScanNeighborhood, Vec3) {
     let offset = |j: u32| points[j as usize] - points[i];
-    let line = scan.line_of[i];
     let scale = nearest_across(points, i, candidates);
-    let ray = (points[i] - scan.sensor[i]).normalize_or_zero();
-    let noise = NOISE_SIGMAS * scan.range_noise;
-    let vote = PlaneVote::new(candidates.window.iter().map(|&j| offset(j)), scale, noise, ray);
-    let agreeing = |normal: Vec3| -> Vec<u32> {
-        candidates.window.iter().copied().filter(|&j| vote.segment(offset(j), normal).agrees()).collect()
-    };
+    let vote = plane_vote(points, scan, i, candidates, scale);
     let along: Vec<Vec3> = candidates.along.iter().map(|&j| offset(j)).collect();
     let across: Vec<Vec3> = candidates.across.iter().map(|&j| offset(j)).collect();
     let mut best: Option<(Vec3, f32)> = None;
@@ -187,14 +183,55 @@ pub fn agreeing_neighborhood(
         }
     }
     let best = best.map(|(normal, _)| normal);
-    let mut members = best.map(agreeing).unwrap_or_default();
-    let mut normal = plane_normal(points, i, &members, scale);
-    let refined = agreeing(normal);
+    let members = best.map(|best| agreeing(points, i, candidates, &vote, best)).unwrap_or_default();
+    let normal = plane_normal(points, i, &members, scale);
+    let refined = agreeing(points, i, candidates, &vote, normal);
     if refined.len() >= members.len() {
-        normal = plane_normal(points, i, &refined, scale);
-        members = refined;
+        (neighborhood_of(points, scan, i, refined, scale), normal)
+    } else {
+        (neighborhood_of(points, scan, i, members, scale), best.unwrap_or(normal))
     }
+}
+
+/// The neighbourhood that `agreeing_neighborhood` found for point `i`, from the normal of the
+/// plane that chose its members.
+pub fn neighborhood_agreeing_with(
+    points: &[Vec3],
+    scan: &ScanLines,
+    i: usize,
+    candidates: &Candidates,
+    chooser: Vec3,
+) -> ScanNeighborhood {
+    let scale = nearest_across(points, i, candidates);
+    let members = agreeing(points, i, candidates, &plane_vote(points, scan, i, candidates, scale), chooser);
+    neighborhood_of(points, scan, i, members, scale)
+}
+
+/// The vote over the window of point `i`.
+fn plane_vote(points: &[Vec3], scan: &ScanLines, i: usize, candidates: &Candidates, scale: f32) -> PlaneVote {
+    let ray = (points[i] - scan.sensor[i]).normalize_or_zero();
+    let window = candidates.window.iter().map(|&j| points[j as usize] - points[i]);
+    PlaneVote::new(window, scale, NOISE_SIGMAS * scan.range_noise, ray)
+}
+
+/// The window's returns that lie near the plane through point `i` of unit normal `normal`.
+fn agreeing(points: &[Vec3], i: usize, candidates: &Candidates, vote: &PlaneVote, normal: Vec3) -> Vec<u32> {
+    let offset = |j: u32| points[j as usize] - points[i];
+    candidates.window.iter().copied().filter(|&j| vote.segment(offset(j), normal).agrees()).collect()
+}
+
+/// The neighbourhood of `members` (in any order): the plane that fits them and whether it
+/// spans lines.
+fn neighborhood_of(
+    points: &[Vec3],
+    scan: &ScanLines,
+    i: usize,
+    mut members: Vec<u32>,
+    scale: f32,
+) -> ScanNeighborhood {
+    let normal = plane_normal(points, i, &members, scale);
     members.sort_unstable();
+    let line = scan.line_of[i];
     let crosses_lines = members.iter().any(|&j| scan.line_of[j as usize] != line);
     ScanNeighborhood { members, normal, crosses_lines }
 }

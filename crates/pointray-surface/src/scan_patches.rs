@@ -14,7 +14,9 @@ use crate::scan_edges::{Silhouette, silhouettes};
 use crate::scan_free_space::Ellipse;
 use crate::scan_levels::{LevelFit, StepFace, level_fit};
 use crate::scan_lines::ScanLines;
-use crate::scan_neighborhood::{MAX_RISE, ScanNeighborhood, agreeing_neighborhood, candidates};
+use crate::scan_neighborhood::{
+    MAX_RISE, ScanNeighborhood, agreeing_neighborhood, candidates, neighborhood_agreeing_with,
+};
 use crate::scan_normal_smoothing::smoothed_normal;
 
 /// Each radius is this multiple of the spacing to the next return on its axis: half the
@@ -94,31 +96,41 @@ impl ScanPatch {
 
 /// Every point's patch, in parallel: every neighbourhood's plane first, so that each patch can
 /// take its normal smoothed over its neighbours' (`scan_normal_smoothing`). The neighbourhoods
-/// are found again for the patches rather than kept, which would hold a few hundred bytes per
-/// return.
+/// are not kept, which would hold a few hundred bytes per return: each is found again from the
+/// plane that chose its members, without a second vote.
 pub fn scan_patches(points: &[Vec3], scan: &ScanLines) -> Vec<ScanPatch> {
-    let fitted_normals: Vec<Vec3> = (0..points.len())
+    let (fitted_normals, choosers): (Vec<Vec3>, Vec<Vec3>) = (0..points.len())
         .into_par_iter()
         .with_min_len(1024)
-        .map(|i| agreeing_neighborhood(points, scan, i, &candidates(scan, i)).normal)
-        .collect();
+        .map(|i| {
+            let (neighborhood, chooser) = agreeing_neighborhood(points, scan, i, &candidates(scan, i));
+            (neighborhood.normal, chooser)
+        })
+        .unzip();
     (0..points.len())
         .into_par_iter()
         .with_min_len(1024)
-        .map(|i| scan_patch(points, scan, i, &fitted_normals))
+        .map(|i| scan_patch(points, scan, i, &fitted_normals, choosers[i]))
         .collect()
 }
 
-/// Point `i`'s patch. Its neighbourhood's fitted plane judges whether the neighbours lie on
-/// one surface; its normal smoothed over theirs (`fitted_normals`) shapes the patch.
-fn scan_patch(points: &[Vec3], scan: &ScanLines, i: usize, fitted_normals: &[Vec3]) -> ScanPatch {
+/// Point `i`'s patch. Its neighbourhood (found again from `chooser`, the plane that chose its
+/// members) judges whether the neighbours lie on one surface; its normal smoothed over theirs
+/// (`fitted_normals`) shapes the patch.
+fn scan_patch(
+    points: &[Vec3],
+    scan: &ScanLines,
+    i: usize,
+    fitted_normals: &[Vec3],
+    chooser: Vec3,
+) -> ScanPatch {
     let candidates = candidates(scan, i);
     let toward_sensor = (scan.sensor[i] - points[i]).normalize_or(Vec3::Z);
     let spans_surface = |neighborhood: &ScanNeighborhood| {
         let seen_face_on = neighborhood.normal.dot(toward_sensor).abs() >= EDGE_ON_COSINE;
         neighborhood.crosses_lines && neighborhood.members.len() >= 3 && seen_face_on
     };
-    let fitted = agreeing_neighborhood(points, scan, i, &candidates);
+    let fitted = neighborhood_agreeing_with(points, scan, i, &candidates, chooser);
     let mut normal = smoothed_normal(&fitted, fitted_normals);
     if spans_surface(&fitted) && fitted.spread_over_noise(points, scan, i) > MAX_SPREAD {
         match level_fit(points, scan, i, &candidates) {
