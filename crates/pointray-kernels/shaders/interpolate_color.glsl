@@ -44,12 +44,12 @@ ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatc
     float nearest_distance = 1.0 / 0.0;
     uint slots = has_address(neighbors) ? COLOR_NEIGHBORS : 0u;
     for (uint slot = 0u; slot <= slots; ++slot) {
-        uint j = slot == 0u ? centre : neighbors.indices[centre * COLOR_NEIGHBORS + slot - 1u];
+        uint j = slot == 0u ? centre : color_neighbor(neighbors, centre, COLOR_NEIGHBORS, slot - 1u);
         if (j == NO_NEIGHBOR) {
             continue;
         }
-        float distance_to_point = distance(position, patch_origin(hot.records[j]));
-        PatchCold record = cold.records[j];
+        float distance_to_point = distance(position, patch_origin(hot_record(hot, j)));
+        PatchCold record = cold_record(cold, j);
         float weight = color_weight(distance_to_point, record.color_reach);
         scan.weighted_color += weight * color_from_rgba8(record.color_rgba8);
         scan.total_weight += weight;
@@ -75,7 +75,7 @@ uint interpolate_color(vec3 position, uint hit, HotPatches hot, ColdPatches cold
         centre = scan.nearest;
     }
     if (scan.total_weight <= 0.0) {
-        return cold.records[scan.nearest].color_rgba8;
+        return cold_record(cold, scan.nearest).color_rgba8;
     }
     return color_to_rgba8(scan.weighted_color / scan.total_weight);
 }

@@ -3,6 +3,7 @@
 #define POINTRAY_LAYOUT_GLSL
 
 // 36 bytes; decode_patch (patch_frame.glsl) unpacks it.
+#define PATCH_HOT_BYTES 36u
 struct PatchHot {
     float origin_x;
     float origin_y;
@@ -19,6 +20,7 @@ vec3 patch_origin(PatchHot hot) {
     return vec3(hot.origin_x, hot.origin_y, hot.origin_z);
 }
 
+#define PATCH_COLD_BYTES 12u
 struct PatchCold {
     uint color_rgba8;    // linear RGBA8, r in the low byte
     float intensity;

@@ -14,6 +14,38 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Col
 // COLOR_NEIGHBORS patch indices per patch (NO_NEIGHBOR in unused slots).
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ColorNeighbors { uint indices[]; };
 
+// Single records, addressed by `record_address`.
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer HotPatchAt { PatchHot record; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer ColdPatchAt { PatchCold record; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer NeighborAt { uint index; };
+
+// `base` plus `index` times `size` bytes, in 64 bits. Indexing a buffer reference's array
+// (`records[index]`) lets the driver multiply the index by the record's size in 32 bits, which
+// past 4 GB (119M hot records) wraps back to the buffer's start: a large set then reads other
+// patches' records, and most of it vanishes.
+uvec2 record_address(uvec2 base, uint index, uint size) {
+    uint high;
+    uint low;
+    umulExtended(index, size, high, low);
+    uint carry;
+    uint sum = uaddCarry(base.x, low, carry);
+    return uvec2(sum, base.y + high + carry);
+}
+
+PatchHot hot_record(HotPatches records, uint index) {
+    return HotPatchAt(record_address(uvec2(records), index, PATCH_HOT_BYTES)).record;
+}
+
+PatchCold cold_record(ColdPatches records, uint index) {
+    return ColdPatchAt(record_address(uvec2(records), index, PATCH_COLD_BYTES)).record;
+}
+
+// Slot `slot` of patch `patch_index`'s row of `width` colour neighbours.
+uint color_neighbor(ColorNeighbors neighbors, uint patch_index, uint width, uint slot) {
+    uvec2 row = record_address(uvec2(neighbors), patch_index, width * 4u);
+    return NeighborAt(record_address(row, slot, 4u)).index;
+}
+
 // Whether a reference holds an address (objects without the buffer carry 0).
 bool has_address(ColorNeighbors buffer_address) {
     return uvec2(buffer_address) != uvec2(0u);

@@ -65,7 +65,7 @@ const CLOSED_FORM_MIN_GAP: f64 = 1e-4;
 /// it.
 fn closed_form_smallest_eigenvector(matrix: DMat3) -> Option<DVec3> {
     let scale = matrix.abs().to_cols_array().into_iter().fold(0.0, f64::max);
-    if !(scale.is_normal() && scale.is_finite()) {
+    if !scale.is_normal() {
         return None;
     }
     let a = matrix * scale.recip();

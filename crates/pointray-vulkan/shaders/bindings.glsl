@@ -129,11 +129,15 @@ layout(push_constant) uniform TraceSettings {
     uint first_sample; // the trace takes samples first_sample .. first_sample + samples_per_pixel
 } settings;
 
+// A combined record, addressed as `record_address` explains.
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer CombinedPatchAt { PatchCombined record; };
+
 PatchHot load_hot(ObjectRecord object, uint patch_index) {
     if (settings.buffer_layout == LAYOUT_COMBINED) {
-        return object.combined.records[patch_index].hot;
+        uvec2 address = record_address(uvec2(object.combined), patch_index, PATCH_HOT_BYTES + PATCH_COLD_BYTES);
+        return CombinedPatchAt(address).record.hot;
     }
-    return object.hot.records[patch_index];
+    return hot_record(object.hot, patch_index);
 }
 
 #endif

@@ -89,6 +89,32 @@ fn assert_few_borderline(what: &str, borderline: usize) {
     );
 }
 
+/// Record addresses past 4 GB from a buffer's start, and across the low word's carry, are the
+/// 64-bit sums: a set of more than 119M patches reads its hot records there.
+#[test]
+fn record_addresses_agree_past_four_gigabytes() {
+    let Some(context) = probe_context() else { return };
+    let cases: [(u64, u32, u32); 6] = [
+        (0x0000_0001_0000_0000, 0, 36),
+        (0x0000_0001_0000_0000, 119_304_648, 36),
+        (0x0000_0002_ffff_fff0, 1, 36),
+        (0x0000_0003_0000_0040, 999_999_999, 36),
+        (0x0000_0003_0000_0040, 999_999_999, 12),
+        (0x0000_7fff_ffff_0000, 4_000_000_000, 64),
+    ];
+    let bits = |word: u32| f32::from_bits(word);
+    let inputs: Vec<[f32; 4]> = cases
+        .iter()
+        .map(|&(base, index, size)| [bits(base as u32), bits((base >> 32) as u32), bits(index), bits(size)])
+        .collect();
+    let outputs = run(&context, twin_probe::RECORD_ADDRESS, &inputs, (1, 1));
+    for (&(base, index, size), gpu) in cases.iter().zip(&outputs) {
+        let found = u64::from(gpu[0].to_bits()) | (u64::from(gpu[1].to_bits()) << 32);
+        let expected = base + u64::from(index) * u64::from(size);
+        assert_eq!(found, expected, "base {base:#x}, index {index}, size {size}");
+    }
+}
+
 #[test]
 fn quadratic_roots_agree() {
     let Some(context) = probe_context() else { return };

@@ -25,6 +25,7 @@ pub(crate) const CAMERA_RAY: &[u8] = twin_probe!("camera_ray");
 pub(crate) const INTERPOLATE_COLOR: &[u8] = twin_probe!("interpolate_color");
 pub(crate) const PATH_SAMPLING: &[u8] = twin_probe!("path_sampling");
 pub(crate) const PATH_DRAWS: &[u8] = twin_probe!("path_draws");
+pub(crate) const RECORD_ADDRESS: &[u8] = twin_probe!("record_address");
 
 const WORKGROUP_SIZE: u32 = 64;
 
