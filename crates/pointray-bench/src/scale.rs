@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use pointray_io::{MemoryBudget, PointStream};
-use pointray_scene::RenderSettings;
+use pointray_scene::{RenderSettings, RenderedImage};
 use pointray_surface::patch_store;
 use pointray_surface::peak_memory::StagePeaks;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
@@ -87,6 +87,7 @@ pub fn run_scale(backend: ScaleBackend, options: &ScaleOptions) -> Result<ScaleR
     refuse_repository(&options.cache)?;
     ensure_cache_dir(&options.cache)?;
     let mut rows = Vec::new();
+    let mut first_image = None;
     for Rung { label, points } in options.rungs.iter().cloned() {
         let spec = StandInSpec { mesh: SCALE_MESH.into(), count: points as usize, seed: SCALE_SEED };
         let cached = stand_in_path(&options.data, &spec, &options.cache)
@@ -96,7 +97,7 @@ pub fn run_scale(backend: ScaleBackend, options: &ScaleOptions) -> Result<ScaleR
         let limits = MachineLimits::now(&options.cache, backend.device_limits());
         let outcome = match limits.why_not(points, cached) {
             Some(reason) => RungOutcome::Skipped { reason },
-            None => RungOutcome::Measured(measure_rung(backend, &label, &spec, options)?),
+            None => RungOutcome::Measured(measure_rung(backend, &label, &spec, options, &mut first_image)?),
         };
         let row = ScaleRow { label, points, stand_in: stand_in_label(&spec), outcome };
         (options.on_row)(&row);
@@ -105,12 +106,17 @@ pub fn run_scale(backend: ScaleBackend, options: &ScaleOptions) -> Result<ScaleR
     Ok(ScaleReport { backend: backend.describe(), timing: backend.timing().into(), rows })
 }
 
-/// Generates (once), preps, stores, loads and renders one rung.
+/// The size of the frame each rung's image is compared at.
+const CHECK_SIZE: (u32, u32) = (480, 270);
+
+/// Generates (once), preps, stores, loads and renders one rung, and compares its image with
+/// `first_image`, the first measured rung's (which it becomes where there is none yet).
 fn measure_rung(
     backend: ScaleBackend,
     label: &str,
     spec: &StandInSpec,
     options: &ScaleOptions,
+    first_image: &mut Option<RenderedImage>,
 ) -> Result<RungMeasurement, BenchError> {
     let points_file = stand_in_points(&options.data, spec, &options.cache)?;
     let store = options.cache.join(format!("scale-{label}.patches"));
@@ -139,6 +145,10 @@ fn measure_rung(
             Ok(SizeFps { width, height, fps: 1.0 / frame.as_secs_f64(), frame_ms: frame.as_secs_f64() * 1e3 })
         })
         .collect::<Result<_, BenchError>>()?;
+    let check = RenderSettings { width: CHECK_SIZE.0, height: CHECK_SIZE.1, ..loaded.settings };
+    let image = backend.image(&ready, &check, label)?;
+    let image_psnr_db = first_image.as_ref().map(|first| image.color_psnr(first));
+    first_image.get_or_insert(image);
     let points = spec.count as f64;
     Ok(RungMeasurement {
         prep_route: prepped.route.into(),
@@ -154,6 +164,7 @@ fn measure_rung(
         gpu_bytes_per_point: costs.gpu_bytes.map(|bytes| bytes as f64 / points),
         gpu_build_peak_bytes_per_point: costs.gpu_peak_bytes.map(|bytes| bytes as f64 / points),
         fps,
+        image_psnr_db,
     })
 }
 

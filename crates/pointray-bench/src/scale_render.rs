@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use pointray_cpu::CpuRenderer;
 use pointray_render::{Backend, ReadyScene, Tracer};
-use pointray_scene::{RenderSettings, Scene};
+use pointray_scene::{RenderSettings, RenderedImage, Scene};
 use pointray_vulkan::{PixelOutput, VulkanError};
 
 use crate::error::BenchError;
@@ -105,6 +105,16 @@ impl ScaleBackend<'_> {
             }
             Tracer::Cpu(renderer) => Ok(cpu_frame_time(renderer, settings, frames)),
         }
+    }
+
+    /// One frame of `ready` with `settings`, to compare with another rung's.
+    pub fn image(
+        &self,
+        ready: &ReadyScene,
+        settings: &RenderSettings,
+        case: &str,
+    ) -> Result<RenderedImage, BenchError> {
+        self.0.trace(ready, settings).map_err(|source| vulkan_error(case, source))
     }
 }
 

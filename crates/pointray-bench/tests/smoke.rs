@@ -175,6 +175,31 @@ fn scale_suite_runs_a_rung_on_the_cpu_backend() {
     serde_json::to_string(&report).expect("serialises");
 }
 
+/// Each rung's frame is held against the first rung's: the same rung again gives the same
+/// image, another sample of the mesh a close one.
+#[test]
+fn scale_suite_compares_each_rungs_image_with_the_first() {
+    let data = data_dir();
+    let cache = tempfile::tempdir().expect("a temporary folder");
+    let options = scale_options(data, cache.path(), &[("20K", 20_000), ("40K", 40_000), ("20K", 20_000)]);
+    let report = run_scale(ScaleBackend(&Backend::Cpu), &options).expect("runs");
+    let psnr: Vec<Option<f64>> = report
+        .rows
+        .iter()
+        .map(|row| match &row.outcome {
+            RungOutcome::Measured(m) => m.image_psnr_db,
+            RungOutcome::Skipped { reason } => panic!("{} skipped: {reason}", row.label),
+        })
+        .collect();
+    assert_eq!(psnr[0], None, "the first rung is the reference");
+    let other_sample = psnr[1].expect("the second rung is compared");
+    assert!(
+        other_sample.is_finite() && other_sample > 15.0,
+        "20K and 40K points of one mesh: {other_sample} dB"
+    );
+    assert_eq!(psnr[2], Some(f64::INFINITY), "the first rung again");
+}
+
 #[test]
 fn scale_suite_reports_gpu_bytes_on_vulkan() {
     let Some(renderer) = renderer() else { return };

@@ -38,4 +38,21 @@ impl RenderedImage {
     pub fn hit_mask(&self) -> Vec<bool> {
         self.instance_id.iter().map(|&id| id != Self::MISS).collect()
     }
+
+    /// The PSNR of this image's colours against `other`'s, each channel clamped to `[0, 1]`,
+    /// in dB; infinite when they are equal.
+    pub fn color_psnr(&self, other: &Self) -> f64 {
+        assert_eq!(self.pixel_count(), other.pixel_count(), "images of different sizes");
+        let squared: f64 = self
+            .color
+            .iter()
+            .zip(&other.color)
+            .map(|(x, y)| {
+                let d = x.clamp(Vec3::ZERO, Vec3::ONE) - y.clamp(Vec3::ZERO, Vec3::ONE);
+                f64::from(d.length_squared()) / 3.0
+            })
+            .sum();
+        let mean_squared_error = squared / self.pixel_count().max(1) as f64;
+        if mean_squared_error == 0.0 { f64::INFINITY } else { -10.0 * mean_squared_error.log10() }
+    }
 }

@@ -24,18 +24,7 @@ pub fn largest_color_difference(a: &pointray_scene::RenderedImage, b: &pointray_
 /// The PSNR of two images' colours, each channel clamped to `[0, 1]`, in dB.
 #[cfg(feature = "images")]
 pub fn psnr(a: &pointray_scene::RenderedImage, b: &pointray_scene::RenderedImage) -> f64 {
-    use glam::Vec3;
-    assert_eq!(a.pixel_count(), b.pixel_count(), "images of different sizes");
-    let squared: f64 = a
-        .color
-        .iter()
-        .zip(&b.color)
-        .map(|(x, y)| {
-            let d = x.clamp(Vec3::ZERO, Vec3::ONE) - y.clamp(Vec3::ZERO, Vec3::ONE);
-            f64::from(d.length_squared()) / 3.0
-        })
-        .sum();
-    decibels(squared / a.pixel_count() as f64, 1.0)
+    a.color_psnr(b)
 }
 
 fn decibels(mean_squared_error: f64, peak: f64) -> f64 {
