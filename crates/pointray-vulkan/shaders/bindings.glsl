@@ -129,6 +129,16 @@ layout(push_constant) uniform TraceSettings {
     uint first_sample; // the trace takes samples first_sample .. first_sample + samples_per_pixel
 } settings;
 
+// A mesh's vertex and index, addressed as `record_address` explains.
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MeshVertexAt { vec4 position; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer MeshIndexAt { uint index; };
+
+// The position of the vertex at `corner` of the object's index list.
+vec3 mesh_vertex(ObjectRecord object, uint corner) {
+    uint vertex = MeshIndexAt(record_address(uvec2(object.indices), corner, 4u)).index;
+    return MeshVertexAt(record_address(uvec2(object.vertices), vertex, 16u)).position.xyz;
+}
+
 // A combined record, addressed as `record_address` explains.
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer CombinedPatchAt { PatchCombined record; };
 

@@ -11,9 +11,9 @@ layout(location = HIT_PAYLOAD_LOCATION) rayPayloadInEXT HitPayload payload;
 void main() {
     ObjectRecord object = objects[gl_InstanceCustomIndexEXT];
     uint first = 3u * uint(gl_PrimitiveID);
-    vec3 a = object.vertices.positions[object.indices.indices[first]].xyz;
-    vec3 b = object.vertices.positions[object.indices.indices[first + 1u]].xyz;
-    vec3 c = object.vertices.positions[object.indices.indices[first + 2u]].xyz;
+    vec3 a = mesh_vertex(object, first);
+    vec3 b = mesh_vertex(object, first + 1u);
+    vec3 c = mesh_vertex(object, first + 2u);
     vec3 object_normal = cross(b - a, c - a);
     payload.normal_or_background = normalize((object_normal * gl_WorldToObjectEXT).xyz);
     payload.t = gl_HitTEXT;
