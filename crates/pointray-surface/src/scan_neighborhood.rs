@@ -194,17 +194,19 @@ pub fn agreeing_neighborhood(
 }
 
 /// The neighbourhood that `agreeing_neighborhood` found for point `i`, from the normal of the
-/// plane that chose its members.
+/// plane that chose its members and the `normal` it fitted to them.
 pub fn neighborhood_agreeing_with(
     points: &[Vec3],
     scan: &ScanLines,
     i: usize,
     candidates: &Candidates,
-    chooser: Vec3,
+    (chooser, normal): (Vec3, Vec3),
 ) -> ScanNeighborhood {
     let scale = nearest_across(points, i, candidates);
-    let members = agreeing(points, i, candidates, &plane_vote(points, scan, i, candidates, scale), chooser);
-    neighborhood_of(points, scan, i, members, scale)
+    let mut members =
+        agreeing(points, i, candidates, &plane_vote(points, scan, i, candidates, scale), chooser);
+    members.sort_unstable();
+    ScanNeighborhood { crosses_lines: crosses_lines(scan, i, &members), members, normal }
 }
 
 /// The vote over the window of point `i`.
@@ -231,9 +233,12 @@ fn neighborhood_of(
 ) -> ScanNeighborhood {
     let normal = plane_normal(points, i, &members, scale);
     members.sort_unstable();
-    let line = scan.line_of[i];
-    let crosses_lines = members.iter().any(|&j| scan.line_of[j as usize] != line);
-    ScanNeighborhood { members, normal, crosses_lines }
+    ScanNeighborhood { crosses_lines: crosses_lines(scan, i, &members), members, normal }
+}
+
+/// Whether any of `members` lies on another line than point `i`.
+fn crosses_lines(scan: &ScanLines, i: usize, members: &[u32]) -> bool {
+    members.iter().any(|&j| scan.line_of[j as usize] != scan.line_of[i])
 }
 
 /// The unit normals of the planes through the origin, one of `along` and one of `across`,

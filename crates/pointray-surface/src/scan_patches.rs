@@ -97,7 +97,7 @@ impl ScanPatch {
 /// Every point's patch, in parallel: every neighbourhood's plane first, so that each patch can
 /// take its normal smoothed over its neighbours' (`scan_normal_smoothing`). The neighbourhoods
 /// are not kept, which would hold a few hundred bytes per return: each is found again from the
-/// plane that chose its members, without a second vote.
+/// plane that chose its members and the normal fitted to them, without a second vote or fit.
 pub fn scan_patches(points: &[Vec3], scan: &ScanLines) -> Vec<ScanPatch> {
     let (fitted_normals, choosers): (Vec<Vec3>, Vec<Vec3>) = (0..points.len())
         .into_par_iter()
@@ -130,7 +130,7 @@ fn scan_patch(
         let seen_face_on = neighborhood.normal.dot(toward_sensor).abs() >= EDGE_ON_COSINE;
         neighborhood.crosses_lines && neighborhood.members.len() >= 3 && seen_face_on
     };
-    let fitted = neighborhood_agreeing_with(points, scan, i, &candidates, chooser);
+    let fitted = neighborhood_agreeing_with(points, scan, i, &candidates, (chooser, fitted_normals[i]));
     let mut normal = smoothed_normal(&fitted, fitted_normals);
     if spans_surface(&fitted) && fitted.spread_over_noise(points, scan, i) > MAX_SPREAD {
         match level_fit(points, scan, i, &candidates) {
