@@ -143,7 +143,7 @@ mod tests {
             )
         };
         let hot = vec![patch(cloud.positions[0], 2.0 * gap * 10.0), patch(cloud.positions[3], gap * 20.0)];
-        (cloud, PatchSet { hot, ..PatchSet::default() })
+        (cloud, PatchSet { hot: hot.into(), ..PatchSet::default() })
     }
 
     #[test]
@@ -164,7 +164,7 @@ mod tests {
         // 1 / sin(10°) times farther apart on it than across the beam.
         let seen = &patches.hot[1];
         let flat = PatchHot::isotropic(seen.origin(), Vec3::X, Vec3::Z, [0.0; 6], seen.radius());
-        let patches = PatchSet { hot: vec![flat], ..PatchSet::default() };
+        let patches = PatchSet { hot: vec![flat].into(), ..PatchSet::default() };
         let origins = ReturnOrigins::of_cloud(&cloud, None).unwrap();
         let report = support_against_beam_spacing(&cloud, &patches, &[3], &origins, Vec3::Z).unwrap();
         let expected = 10f64.to_radians().sin();

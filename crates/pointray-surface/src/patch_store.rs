@@ -31,16 +31,19 @@
 
 use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
+use memmap2::Mmap;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 
 use crate::density_radius::RadiusMode;
 use crate::outlier_removal::OutlierFilter;
-use crate::parallel_read;
+use crate::parallel_checksum;
 use crate::patch_bounds::BoxKind;
+use crate::patch_records::PatchRecords;
 use crate::patch_set::PatchSet;
 use crate::prep_settings::{PrepSettings, ScanMode};
 
@@ -179,8 +182,9 @@ impl StoredSettings {
 }
 
 /// Reads a patch store, checking, in order, the magic, the version, the length and the
-/// checksum. Each section is read straight into its records, on every core, so that a large
-/// store is held once and read at the pace of the disk (or of the page cache).
+/// checksum. The file is mapped, not read: its sections are the page cache's pages, which the
+/// checksum reads on every core and the renderers read again as they upload or trace, so a
+/// store larger than the machine's free memory still loads.
 pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let started = Instant::now();
     let io = |source| StoreError::Io { path: path.to_path_buf(), source };
@@ -188,16 +192,20 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let length = file.metadata().map_err(io)?.len();
     let head = bytes_at(&file, 0, length.min(HEADER_BYTES as u64)).map_err(io)?;
     let (header, layout) = checked_header(path, &head, length)?;
+    // SAFETY: the map is only read. `prep` and the cache replace a store by renaming a new
+    // file over it, which leaves a mapped one whole; only a program that cuts a store short
+    // in place while it is mapped would end this one (SIGBUS), as it would any reader that maps.
+    let map = Arc::new(unsafe { Mmap::map(&file) }.map_err(io)?);
+    let (body, stored) = map.split_at(map.len() - CHECKSUM_BYTES);
+    let checksum = parallel_checksum::checksum(body);
     let [aabbs, hot, cold, neighbors] = layout.sections;
-    let mut reader = SectionReader { file: &file, cursor: 0, hasher: crc32fast::Hasher::new() };
     let records = Records {
-        aabbs: reader.records(aabbs).map_err(io)?,
-        hot: reader.records(hot).map_err(io)?,
-        cold: reader.records(cold).map_err(io)?,
-        color_neighbors: reader.records(neighbors).map_err(io)?,
+        aabbs: mapped_section(&map, aabbs, path)?,
+        hot: mapped_section(&map, hot, path)?,
+        cold: mapped_section(&map, cold, path)?,
+        color_neighbors: mapped_section(&map, neighbors, path)?,
     };
-    let stored = bytes_at(&file, reader.cursor, CHECKSUM_BYTES as u64).map_err(io)?;
-    let patches = checked_patches(path, &header, &layout, (reader.hasher.finalize(), &stored), records)?;
+    let patches = checked_patches(path, &header, &layout, (checksum, stored), records)?;
     let (gigabytes, seconds) = (length as f64 / 1e9, started.elapsed().as_secs_f64());
     tracing::info!(
         "read {}: {} patches, {gigabytes:.2} GB in {seconds:.2} s ({:.2} GB/s)",
@@ -208,6 +216,20 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     Ok(patches)
 }
 
+/// The records of `section` of a mapped store, which `checked_header` has placed inside it
+/// at an aligned offset.
+fn mapped_section<T: Pod>(
+    map: &Arc<Mmap>,
+    section: Section,
+    path: &Path,
+) -> Result<PatchRecords<T>, StoreError> {
+    let range = section.offset as usize..(section.offset + section.length) as usize;
+    PatchRecords::mapped(map.clone(), range).ok_or_else(|| StoreError::Malformed {
+        path: path.to_path_buf(),
+        problem: "a section does not hold whole, aligned records".into(),
+    })
+}
+
 /// Reads a patch store held in memory; `path` names it in errors.
 pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
     let (header, layout) = checked_header(path, bytes, bytes.len() as u64)?;
@@ -215,39 +237,20 @@ pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
     let section = |Section { offset, length }: Section| &bytes[offset as usize..(offset + length) as usize];
     let [aabbs, hot, cold, neighbors] = layout.sections;
     let records = Records {
-        aabbs: bytemuck::pod_collect_to_vec(section(aabbs)),
-        hot: bytemuck::pod_collect_to_vec(section(hot)),
-        cold: bytemuck::pod_collect_to_vec(section(cold)),
-        color_neighbors: bytemuck::pod_collect_to_vec(section(neighbors)),
+        aabbs: bytemuck::pod_collect_to_vec(section(aabbs)).into(),
+        hot: bytemuck::pod_collect_to_vec(section(hot)).into(),
+        cold: bytemuck::pod_collect_to_vec(section(cold)).into(),
+        color_neighbors: bytemuck::pod_collect_to_vec(section(neighbors)).into(),
     };
-    checked_patches(path, &header, &layout, (parallel_read::checksum(body), stored), records)
+    checked_patches(path, &header, &layout, (parallel_checksum::checksum(body), stored), records)
 }
 
-/// A store's four sections, read but not yet checked.
+/// A store's four sections, read or mapped but not yet checked.
 struct Records {
-    aabbs: Vec<Aabb>,
-    hot: Vec<PatchHot>,
-    cold: Vec<PatchCold>,
-    color_neighbors: Vec<u32>,
-}
-
-/// Reads a store's sections in file order, hashing every byte it passes over.
-struct SectionReader<'a> {
-    file: &'a std::fs::File,
-    cursor: u64,
-    hasher: crc32fast::Hasher,
-}
-
-impl SectionReader<'_> {
-    /// The records of `section`, after the (zero) gap before it.
-    fn records<T: Pod + Send + Sync>(&mut self, section: Section) -> std::io::Result<Vec<T>> {
-        let gap = bytes_at(self.file, self.cursor, section.offset - self.cursor)?;
-        self.hasher.update(&gap);
-        let (records, hasher) = parallel_read::read_records(self.file, section.offset, section.length)?;
-        self.hasher.combine(&hasher);
-        self.cursor = section.offset + section.length;
-        Ok(records)
-    }
+    aabbs: PatchRecords<Aabb>,
+    hot: PatchRecords<PatchHot>,
+    cold: PatchRecords<PatchCold>,
+    color_neighbors: PatchRecords<u32>,
 }
 
 fn bytes_at(file: &std::fs::File, offset: u64, length: u64) -> std::io::Result<Vec<u8>> {

@@ -181,7 +181,15 @@ fn prep_with_context(
         patch_sources: source,
         stage_times: clock.times,
     };
-    Ok((PatchSet { settings: *settings, offset, aabbs, hot, cold, color_neighbors }, report))
+    let patches = PatchSet {
+        settings: *settings,
+        offset,
+        aabbs: aabbs.into(),
+        hot: hot.into(),
+        cold: cold.into(),
+        color_neighbors: color_neighbors.into(),
+    };
+    Ok((patches, report))
 }
 
 /// Patches of unstructured points: PCA normals oriented over the neighbour graph or toward a

@@ -99,7 +99,7 @@ pub fn read_tile_file(path: &Path) -> Result<(TileHeader, TilePatches), StreamEr
     }
     let table = |start: usize, len: usize| bytemuck::pod_collect_to_vec::<u8, u32>(&body[start..start + len]);
     let sources = table(HEADER_BYTES, 4 * n);
-    patches.color_neighbors = table(HEADER_BYTES + 4 * n, 4 * m * n);
+    patches.color_neighbors = table(HEADER_BYTES + 4 * n, 4 * m * n).into();
     if sources.iter().any(|&s| u64::from(s) >= header.input_points) {
         return Err(bad(path, "a patch names a point beyond the input's count"));
     }

@@ -148,13 +148,13 @@ pub fn merge_tiles(tiles: Vec<TilePatches>) -> PatchSet {
         let set = tile.patches;
         merged.settings = set.settings;
         merged.offset = set.offset;
-        merged.aabbs.extend(set.aabbs);
-        merged.hot.extend(set.hot);
-        merged.cold.extend(set.cold);
-        merged.color_neighbors.extend(
+        merged.aabbs.to_mut().extend_from_slice(&set.aabbs);
+        merged.hot.to_mut().extend_from_slice(&set.hot);
+        merged.cold.to_mut().extend_from_slice(&set.cold);
+        merged.color_neighbors.to_mut().extend(
             set.color_neighbors
-                .into_iter()
-                .map(|input| patch_of.get(input as usize).copied().unwrap_or(NO_NEIGHBOR)),
+                .iter()
+                .map(|input| patch_of.get(*input as usize).copied().unwrap_or(NO_NEIGHBOR)),
         );
     }
     merged

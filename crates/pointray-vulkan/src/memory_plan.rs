@@ -253,9 +253,9 @@ mod tests {
     /// A set of `PATCHES` patches alone: their records are 36 bytes each.
     fn cloud() -> Scene {
         let set = PatchSet {
-            aabbs: vec![Aabb::zeroed(); PATCHES],
-            hot: vec![PatchHot::zeroed(); PATCHES],
-            cold: vec![PatchCold::zeroed(); PATCHES],
+            aabbs: vec![Aabb::zeroed(); PATCHES].into(),
+            hot: vec![PatchHot::zeroed(); PATCHES].into(),
+            cold: vec![PatchCold::zeroed(); PATCHES].into(),
             ..PatchSet::default()
         };
         let object = SceneObject {

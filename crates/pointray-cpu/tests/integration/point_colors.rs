@@ -97,7 +97,7 @@ fn largest_step(image: &RenderedImage) -> f32 {
 #[test]
 fn a_gradient_plane_has_no_steps_between_patches() {
     let patches = gradient_plane(30);
-    let one_colour_per_patch = PatchSet { color_neighbors: Vec::new(), ..patches.clone() };
+    let one_colour_per_patch = PatchSet { color_neighbors: Default::default(), ..patches.clone() };
     let blended = render_plane(patches);
     let blocky = render_plane(one_colour_per_patch);
     assert!(

@@ -92,7 +92,7 @@ fn a_cloud_without_colours_or_intensities_stores_no_neighbours() {
     let coloured = sample_patches(BoxKind::Cube);
     let neighbour_bytes = 4 * COLOR_NEIGHBORS as u64 * coloured.len() as u64;
     let size = |p: &PatchSet| std::fs::metadata(written(directory.path(), p)).unwrap().len();
-    let plain = PatchSet { color_neighbors: Vec::new(), ..coloured.clone() };
+    let plain = PatchSet { color_neighbors: Default::default(), ..coloured.clone() };
     assert_eq!(size(&coloured) - size(&plain), neighbour_bytes);
     assert_eq!(patch_store::read(&written(directory.path(), &patches)).unwrap(), patches);
 }
@@ -101,7 +101,7 @@ fn a_cloud_without_colours_or_intensities_stores_no_neighbours() {
 fn a_neighbour_list_of_the_wrong_length_is_not_written() {
     let directory = tempfile::tempdir().unwrap();
     let mut patches = sample_patches(BoxKind::Cube);
-    patches.color_neighbors.pop();
+    patches.color_neighbors.to_mut().pop();
     let path = directory.path().join("model.patches");
     let error = patch_store::write(&path, &patches).unwrap_err();
     assert!(matches!(error, StoreError::InconsistentPatchSet { .. }), "{error:?}");
@@ -130,6 +130,24 @@ fn a_neighbour_beyond_the_patches_is_malformed() {
             .contains(&format!("colour neighbour {} of patch 2999 is 3000", COLOR_NEIGHBORS - 1)),
         "{error}"
     );
+}
+
+#[test]
+fn a_read_store_is_mapped_and_outlives_a_new_store_written_over_it() {
+    let directory = tempfile::tempdir().unwrap();
+    let (cubes, tight) = (sample_patches(BoxKind::Cube), sample_patches(BoxKind::Tight));
+    let path = written(directory.path(), &cubes);
+    let loaded = patch_store::read(&path).unwrap();
+    let sections = [
+        loaded.aabbs.is_mapped(),
+        loaded.hot.is_mapped(),
+        loaded.cold.is_mapped(),
+        loaded.color_neighbors.is_mapped(),
+    ];
+    assert_eq!(sections, [true; 4], "a store's sections are mapped, not copied into memory");
+    patch_store::write(&path, &tight).unwrap();
+    assert_eq!(loaded, cubes, "a store written over a mapped one leaves the mapped one whole");
+    assert_eq!(patch_store::read(&path).unwrap(), tight);
 }
 
 #[test]

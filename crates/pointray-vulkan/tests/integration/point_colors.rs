@@ -129,7 +129,7 @@ fn interpolated_colours_match_the_cpu_and_show_no_steps() {
     let Some(renderer) = renderer() else { return };
     let patches = coloured_sphere();
     assert!(!patches.color_neighbors.is_empty(), "a coloured cloud keeps colour neighbours");
-    let one_colour_per_patch = PatchSet { color_neighbors: Vec::new(), ..patches.clone() };
+    let one_colour_per_patch = PatchSet { color_neighbors: Default::default(), ..patches.clone() };
     let settings = RenderSettings { max_depth: 1, ..settings(128) };
     let render_both = |set: PatchSet, name: &str| {
         let scene = unlit(set);

@@ -16,8 +16,8 @@ pub const BACKGROUND: Vec3 = Vec3::new(0.1, 0.2, 0.3);
 pub fn patch_set(hot: Vec<PatchHot>) -> PatchSet {
     PatchSet {
         aabbs: hot.iter().map(|p| Aabb::cube(p.origin(), p.radius())).collect(),
-        cold: vec![PatchCold::default(); hot.len()],
-        hot,
+        cold: vec![PatchCold::default(); hot.len()].into(),
+        hot: hot.into(),
         ..PatchSet::default()
     }
 }

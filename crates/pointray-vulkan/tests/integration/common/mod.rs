@@ -47,15 +47,15 @@ pub fn sphere_patches(center: Vec3, radius: f32, count: usize) -> PatchSet {
         let normal = Vec3::new(ring * angle.cos(), y, ring * angle.sin());
         let origin = center + radius * normal;
         let coefficients = [0.0, 0.0, 0.0, curvature, 0.0, curvature];
-        set.hot.push(PatchHot::isotropic(
+        set.hot.to_mut().push(PatchHot::isotropic(
             origin,
             normal.any_orthonormal_vector(),
             normal,
             coefficients,
             support,
         ));
-        set.cold.push(PatchCold::default());
-        set.aabbs.push(Aabb::cube(origin, support));
+        set.cold.to_mut().push(PatchCold::default());
+        set.aabbs.to_mut().push(Aabb::cube(origin, support));
     }
     set
 }
