@@ -21,12 +21,6 @@ pub fn largest_color_difference(a: &pointray_scene::RenderedImage, b: &pointray_
     a.color.iter().zip(&b.color).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0, f32::max)
 }
 
-/// The PSNR of two images' colours, each channel clamped to `[0, 1]`, in dB.
-#[cfg(feature = "images")]
-pub fn psnr(a: &pointray_scene::RenderedImage, b: &pointray_scene::RenderedImage) -> f64 {
-    a.color_psnr(b)
-}
-
 fn decibels(mean_squared_error: f64, peak: f64) -> f64 {
     if mean_squared_error == 0.0 { f64::INFINITY } else { 10.0 * (peak * peak / mean_squared_error).log10() }
 }

@@ -16,7 +16,6 @@ use pointray_scene::{
     Background, Camera, Geometry, Material, RenderSettings, RenderedImage, Scene, SceneObject,
 };
 use pointray_surface::{NoProgress, PatchSet, PrepSettings, prep};
-use pointray_test_support::psnr;
 
 /// The linear colour each point carries, from its input position: ramps along x and y.
 fn color_field(input: DVec3) -> Vec3 {
@@ -134,7 +133,7 @@ fn interpolated_colours_match_the_cpu_and_show_no_steps() {
     let render_both = |set: PatchSet, name: &str| {
         let scene = unlit(set);
         let gpu = renderer.render(&scene, &settings).expect("the Vulkan backend renders");
-        let psnr = psnr(&pointray_cpu::render(&scene, &settings), &gpu);
+        let psnr = pointray_cpu::render(&scene, &settings).color_psnr(&gpu);
         eprintln!("unlit coloured sphere, {name}: CPU against Vulkan {psnr:.1} dB");
         (gpu, psnr)
     };
@@ -162,7 +161,7 @@ fn lit_coloured_sphere_over_a_mirror_floor_matches_the_cpu() {
     let settings = settings(128);
     let gpu = renderer.render(&scene, &settings).expect("the Vulkan backend renders");
     let cpu = pointray_cpu::render(&scene, &settings);
-    let psnr = psnr(&cpu, &gpu);
+    let psnr = cpu.color_psnr(&gpu);
     eprintln!("lit coloured sphere over a mirror floor: CPU against Vulkan {psnr:.1} dB");
     assert!(psnr >= 45.0, "CPU and Vulkan differ: PSNR {psnr:.1} dB");
     assert_no_validation_messages(&renderer);

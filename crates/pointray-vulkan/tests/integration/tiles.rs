@@ -5,7 +5,6 @@
 use crate::against_cpu::assert_images_agree;
 use crate::common;
 use crate::point_colors::{coloured_sphere, lit_on_floor};
-use pointray_test_support::psnr as psnr_db;
 
 use common::{
     assert_no_validation_messages, model_on_floor, prepped_points, renderer, settings, sphere_on_floor,
@@ -76,7 +75,7 @@ fn assert_same_hits(name: &str, tiled: &RenderedImage, whole: &RenderedImage) {
         "{name}: the same hit shades differently: {same_patch_differs:#?}"
     );
     let ties = (0..pixels).filter(|&i| tiled.primitive_id[i] != whole.primitive_id[i]).count();
-    let psnr = psnr_db(tiled, whole);
+    let psnr = tiled.color_psnr(whole);
     eprintln!("{name}: {ties} of {pixels} pixels hit another patch at the same depth; {psnr:.1} dB");
     assert!(psnr >= 50.0, "{name}: the tiled image differs from the whole one: {psnr:.1} dB");
 }
