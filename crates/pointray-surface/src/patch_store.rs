@@ -193,8 +193,9 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let head = bytes_at(&file, 0, length.min(HEADER_BYTES as u64)).map_err(io)?;
     let (header, layout) = checked_header(path, &head, length)?;
     // SAFETY: the map is only read. `prep` and the cache replace a store by renaming a new
-    // file over it, which leaves a mapped one whole; only a program that cuts a store short
-    // in place while it is mapped would end this one (SIGBUS), as it would any reader that maps.
+    // file over it, which leaves a mapped one whole; only another program writing into the
+    // store in place could change it under the checks below, or end this one by cutting it
+    // short (SIGBUS), as it would any reader that maps.
     let map = Arc::new(unsafe { Mmap::map(&file) }.map_err(io)?);
     let (body, stored) = map.split_at(map.len() - CHECKSUM_BYTES);
     let checksum = parallel_checksum::checksum(body);
