@@ -65,22 +65,32 @@ pub struct ScaleOptions<'a> {
     pub on_row: &'a dyn Fn(&ScaleRow),
 }
 
-/// The rungs named by `labels` (all when empty); an error names an unknown one.
+/// The rungs named by `labels` (all of `RUNGS` when empty): point counts, each a whole number
+/// with an optional `K`, `M` or `B` (thousands, millions, billions), such as `30M` or `2B`.
 pub fn chosen_rungs(labels: &[String]) -> Result<Vec<Rung>, String> {
-    let rung = |(label, points): (&str, u64)| Rung { label: label.into(), points };
     if labels.is_empty() {
-        return Ok(RUNGS.into_iter().map(rung).collect());
+        return Ok(RUNGS.into_iter().map(|(label, points)| Rung { label: label.into(), points }).collect());
     }
-    labels
-        .iter()
-        .map(|label| {
-            let found = RUNGS.into_iter().find(|(name, _)| name.eq_ignore_ascii_case(label.trim()));
-            found.map(rung).ok_or_else(|| {
-                let known: Vec<&str> = RUNGS.iter().map(|(name, _)| *name).collect();
-                format!("no scale rung `{label}`; the rungs are {}", known.join(", "))
-            })
-        })
-        .collect()
+    labels.iter().map(|label| rung_of(label)).collect()
+}
+
+/// The rung of `label`, labelled as the default rungs are (`30m` becomes `30M`).
+fn rung_of(label: &str) -> Result<Rung, String> {
+    let text = label.trim();
+    let digits = text.find(|c: char| !c.is_ascii_digit()).unwrap_or(text.len());
+    let (number, suffix) = text.split_at(digits);
+    let scale = match suffix.to_ascii_uppercase().as_str() {
+        "" => 1,
+        "K" => 1_000,
+        "M" => 1_000_000,
+        "B" => 1_000_000_000,
+        _ => 0,
+    };
+    let points = number.parse::<u64>().ok().and_then(|n| n.checked_mul(scale)).filter(|&n| n > 0);
+    let points = points.ok_or_else(|| {
+        format!("no scale rung `{label}`: a rung is a point count above 0, such as 300000, 250K, 30M or 2B")
+    })?;
+    Ok(Rung { label: format!("{number}{}", suffix.to_ascii_uppercase()), points })
 }
 
 pub fn run_scale(backend: ScaleBackend, options: &ScaleOptions) -> Result<ScaleReport, BenchError> {
@@ -222,5 +232,31 @@ fn refuse_repository(cache: &Path) -> Result<(), BenchError> {
             Err(BenchError::CacheInRepository { path: cache.to_path_buf(), checkout: checkout.to_path_buf() })
         }
         None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rungs(labels: &[&str]) -> Result<Vec<(String, u64)>, String> {
+        let labels: Vec<String> = labels.iter().map(|label| label.to_string()).collect();
+        Ok(chosen_rungs(&labels)?.into_iter().map(|rung| (rung.label, rung.points)).collect())
+    }
+
+    #[test]
+    fn rungs_are_any_point_count_with_a_suffix_or_none() {
+        let chosen = rungs(&["30m", " 2B", "250K", "1234"]).unwrap();
+        let expected = [("30M", 30_000_000), ("2B", 2_000_000_000), ("250K", 250_000), ("1234", 1234)];
+        assert_eq!(chosen, expected.map(|(label, points)| (label.to_string(), points)));
+        assert_eq!(rungs(&[]).unwrap().len(), RUNGS.len(), "no label runs the default rungs");
+    }
+
+    #[test]
+    fn a_rung_that_is_no_count_is_refused_by_name() {
+        for label in ["", "0M", "M", "30G", "1.5B", "-3M", "99999999999B"] {
+            let error = rungs(&[label]).expect_err(label);
+            assert!(error.contains(&format!("`{label}`")), "{error}");
+        }
     }
 }

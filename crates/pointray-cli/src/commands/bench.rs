@@ -58,8 +58,8 @@ pub struct BenchArgs {
     /// `scale` only: the renderer; `auto` takes a hardware ray-tracing GPU, else the CPU.
     #[arg(long, default_value = "auto", value_parser = backend_choice())]
     backend: BackendChoice,
-    /// `scale` only: the rungs to run, e.g. `1M,10M` (default: all; a rung that does not fit
-    /// the machine is skipped with the reason).
+    /// `scale` only: the rungs to run, as point counts, e.g. `1M,30M,500M` (default: 1M, 10M,
+    /// 100M, 300M and 1B; a rung that does not fit the machine is skipped with the reason).
     #[arg(long, value_delimiter = ',')]
     rungs: Vec<String>,
     #[arg(long)]
