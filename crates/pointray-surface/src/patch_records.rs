@@ -96,10 +96,9 @@ impl<T: Pod + PartialEq> PartialEq for PatchRecords<T> {
     }
 }
 
-impl<T: Pod> fmt::Debug for PatchRecords<T> {
+impl<T: Pod + fmt::Debug> fmt::Debug for PatchRecords<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let kind = if self.is_mapped() { "mapped" } else { "in memory" };
-        write!(f, "{} records {kind}", self.len())
+        f.debug_list().entries(self.iter()).finish()
     }
 }
 
@@ -142,6 +141,18 @@ mod tests {
         assert!(!records.is_mapped());
         assert_eq!(records[0], 99);
         assert_eq!(&records[1..], &values[5..16]);
+    }
+
+    #[test]
+    fn a_mapped_clone_shares_the_map_and_equals_the_same_records_in_memory() {
+        let values: Vec<u32> = (0..16).collect();
+        let mapped = PatchRecords::<u32>::mapped(map_of(bytemuck::cast_slice(&values)), 0..64).unwrap();
+        let clone = mapped.clone();
+        assert!(clone.is_mapped());
+        assert_eq!(clone, PatchRecords::from(values));
+        let empty = PatchRecords::<u32>::mapped(map_of(&[0u8; 8]), 8..8).expect("an empty section");
+        assert!(empty.is_empty() && empty.is_mapped());
+        assert_eq!(empty, PatchRecords::default());
     }
 
     #[test]

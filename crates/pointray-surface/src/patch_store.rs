@@ -29,7 +29,6 @@
 //! those of `pointray_kernels::layout`, so the sections can be uploaded to the GPU as
 //! they are. `docs/PATCH_STORE.md` describes the same format.
 
-use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
@@ -184,19 +183,24 @@ impl StoredSettings {
 /// Reads a patch store, checking, in order, the magic, the version, the length and the
 /// checksum. The file is mapped, not read: its sections are the page cache's pages, which the
 /// checksum reads on every core and the renderers read again as they upload or trace, so a
-/// store larger than the machine's free memory still loads.
+/// store larger than the machine's free memory still loads. Where the file system cannot map
+/// it, it is read into memory instead.
 pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let started = Instant::now();
     let io = |source| StoreError::Io { path: path.to_path_buf(), source };
     let file = std::fs::File::open(path).map_err(io)?;
-    let length = file.metadata().map_err(io)?.len();
-    let head = bytes_at(&file, 0, length.min(HEADER_BYTES as u64)).map_err(io)?;
-    let (header, layout) = checked_header(path, &head, length)?;
     // SAFETY: the map is only read. `prep` and the cache replace a store by renaming a new
     // file over it, which leaves a mapped one whole; only another program writing into the
     // store in place could change it under the checks below, or end this one by cutting it
     // short (SIGBUS), as it would any reader that maps.
-    let map = Arc::new(unsafe { Mmap::map(&file) }.map_err(io)?);
+    let map = match unsafe { Mmap::map(&file) } {
+        Ok(map) => Arc::new(map),
+        Err(error) => {
+            tracing::warn!("{}: cannot be mapped ({error}); reading it into memory", path.display());
+            return read_from(&std::fs::read(path).map_err(io)?, path);
+        }
+    };
+    let (header, layout) = checked_header(path, &map)?;
     let (body, stored) = map.split_at(map.len() - CHECKSUM_BYTES);
     let checksum = parallel_checksum::checksum(body);
     let [aabbs, hot, cold, neighbors] = layout.sections;
@@ -207,7 +211,7 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
         color_neighbors: mapped_section(&map, neighbors, path)?,
     };
     let patches = checked_patches(path, &header, &layout, (checksum, stored), records)?;
-    let (gigabytes, seconds) = (length as f64 / 1e9, started.elapsed().as_secs_f64());
+    let (gigabytes, seconds) = (map.len() as f64 / 1e9, started.elapsed().as_secs_f64());
     tracing::info!(
         "read {}: {} patches, {gigabytes:.2} GB in {seconds:.2} s ({:.2} GB/s)",
         path.display(),
@@ -233,7 +237,7 @@ fn mapped_section<T: Pod>(
 
 /// Reads a patch store held in memory; `path` names it in errors.
 pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
-    let (header, layout) = checked_header(path, bytes, bytes.len() as u64)?;
+    let (header, layout) = checked_header(path, bytes)?;
     let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
     let section = |Section { offset, length }: Section| &bytes[offset as usize..(offset + length) as usize];
     let [aabbs, hot, cold, neighbors] = layout.sections;
@@ -254,17 +258,12 @@ struct Records {
     color_neighbors: PatchRecords<u32>,
 }
 
-fn bytes_at(file: &std::fs::File, offset: u64, length: u64) -> std::io::Result<Vec<u8>> {
-    let mut bytes = vec![0; usize::try_from(length).map_err(std::io::Error::other)?];
-    file.read_exact_at(&mut bytes, offset)?;
-    Ok(bytes)
-}
-
 /// The header and the layout it implies, once magic, version, colour neighbours and the
-/// file's `length` have been verified; `head` is the file's start, its header or less.
-fn checked_header(path: &Path, head: &[u8], length: u64) -> Result<(Header, Layout), StoreError> {
+/// length of the file's `bytes` have been verified.
+fn checked_header(path: &Path, bytes: &[u8]) -> Result<(Header, Layout), StoreError> {
+    let length = bytes.len() as u64;
     let path_buf = || path.to_path_buf();
-    if head.len() < MAGIC.len() || head[..MAGIC.len()] != MAGIC {
+    if bytes.len() < MAGIC.len() || bytes[..MAGIC.len()] != MAGIC {
         return Err(StoreError::NotAPatchStore { path: path_buf() });
     }
     let too_short = || StoreError::WrongLength {
@@ -272,12 +271,12 @@ fn checked_header(path: &Path, head: &[u8], length: u64) -> Result<(Header, Layo
         expected: (HEADER_BYTES + CHECKSUM_BYTES) as u64,
         actual: length,
     };
-    let version_bytes = head.get(8..12).ok_or_else(too_short)?;
+    let version_bytes = bytes.get(8..12).ok_or_else(too_short)?;
     let found = u32::from_le_bytes(version_bytes.try_into().expect("four bytes"));
     if found != FORMAT_VERSION {
         return Err(StoreError::WrongVersion { path: path_buf(), found });
     }
-    let header: Header = bytemuck::pod_read_unaligned(head.get(..HEADER_BYTES).ok_or_else(too_short)?);
+    let header: Header = bytemuck::pod_read_unaligned(bytes.get(..HEADER_BYTES).ok_or_else(too_short)?);
     if header.neighbor_slots != 0 && header.neighbor_slots as usize != COLOR_NEIGHBORS {
         return Err(StoreError::Malformed {
             path: path_buf(),
