@@ -187,9 +187,10 @@ pub fn agreeing_neighborhood(
     let normal = plane_normal(points, i, &members, scale);
     let refined = agreeing(points, i, candidates, &vote, normal);
     if refined.len() >= members.len() {
-        (neighborhood_of(points, scan, i, refined, scale), normal)
+        let refitted = plane_normal(points, i, &refined, scale);
+        (neighborhood(scan, i, refined, refitted), normal)
     } else {
-        (neighborhood_of(points, scan, i, members, scale), best.unwrap_or(normal))
+        (neighborhood(scan, i, members, normal), best.unwrap_or(normal))
     }
 }
 
@@ -203,10 +204,8 @@ pub fn neighborhood_agreeing_with(
     (chooser, normal): (Vec3, Vec3),
 ) -> ScanNeighborhood {
     let scale = nearest_across(points, i, candidates);
-    let mut members =
-        agreeing(points, i, candidates, &plane_vote(points, scan, i, candidates, scale), chooser);
-    members.sort_unstable();
-    ScanNeighborhood { crosses_lines: crosses_lines(scan, i, &members), members, normal }
+    let members = agreeing(points, i, candidates, &plane_vote(points, scan, i, candidates, scale), chooser);
+    neighborhood(scan, i, members, normal)
 }
 
 /// The vote over the window of point `i`.
@@ -222,23 +221,12 @@ fn agreeing(points: &[Vec3], i: usize, candidates: &Candidates, vote: &PlaneVote
     candidates.window.iter().copied().filter(|&j| vote.segment(offset(j), normal).agrees()).collect()
 }
 
-/// The neighbourhood of `members` (in any order): the plane that fits them and whether it
-/// spans lines.
-fn neighborhood_of(
-    points: &[Vec3],
-    scan: &ScanLines,
-    i: usize,
-    mut members: Vec<u32>,
-    scale: f32,
-) -> ScanNeighborhood {
-    let normal = plane_normal(points, i, &members, scale);
+/// The neighbourhood of point `i` of `members` (in any order) and the `normal` of the plane
+/// that fits them: the members sorted, and whether any lies on another line than the point.
+fn neighborhood(scan: &ScanLines, i: usize, mut members: Vec<u32>, normal: Vec3) -> ScanNeighborhood {
     members.sort_unstable();
-    ScanNeighborhood { crosses_lines: crosses_lines(scan, i, &members), members, normal }
-}
-
-/// Whether any of `members` lies on another line than point `i`.
-fn crosses_lines(scan: &ScanLines, i: usize, members: &[u32]) -> bool {
-    members.iter().any(|&j| scan.line_of[j as usize] != scan.line_of[i])
+    let crosses_lines = members.iter().any(|&j| scan.line_of[j as usize] != scan.line_of[i]);
+    ScanNeighborhood { members, normal, crosses_lines }
 }
 
 /// The unit normals of the planes through the origin, one of `along` and one of `across`,
