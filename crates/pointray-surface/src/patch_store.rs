@@ -200,17 +200,14 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
             return read_from(&std::fs::read(path).map_err(io)?, path);
         }
     };
-    let (header, layout) = checked_header(path, &map)?;
-    let (body, stored) = map.split_at(map.len() - CHECKSUM_BYTES);
-    let checksum = parallel_checksum::checksum(body);
-    let [aabbs, hot, cold, neighbors] = layout.sections;
-    let records = Records {
-        aabbs: mapped_section(&map, aabbs, path)?,
-        hot: mapped_section(&map, hot, path)?,
-        cold: mapped_section(&map, cold, path)?,
-        color_neighbors: mapped_section(&map, neighbors, path)?,
-    };
-    let patches = checked_patches(path, &header, &layout, (checksum, stored), records)?;
+    let patches = checked_store(path, &map, |[aabbs, hot, cold, neighbors]| {
+        Ok(Records {
+            aabbs: mapped_section(&map, aabbs, path)?,
+            hot: mapped_section(&map, hot, path)?,
+            cold: mapped_section(&map, cold, path)?,
+            color_neighbors: mapped_section(&map, neighbors, path)?,
+        })
+    })?;
     let (gigabytes, seconds) = (map.len() as f64 / 1e9, started.elapsed().as_secs_f64());
     tracing::info!(
         "read {}: {} patches, {gigabytes:.2} GB in {seconds:.2} s ({:.2} GB/s)",
@@ -237,16 +234,27 @@ fn mapped_section<T: Pod>(
 
 /// Reads a patch store held in memory; `path` names it in errors.
 pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
+    let section = |Section { offset, length }: Section| &bytes[offset as usize..(offset + length) as usize];
+    checked_store(path, bytes, |[aabbs, hot, cold, neighbors]| {
+        Ok(Records {
+            aabbs: bytemuck::pod_collect_to_vec(section(aabbs)).into(),
+            hot: bytemuck::pod_collect_to_vec(section(hot)).into(),
+            cold: bytemuck::pod_collect_to_vec(section(cold)).into(),
+            color_neighbors: bytemuck::pod_collect_to_vec(section(neighbors)).into(),
+        })
+    })
+}
+
+/// The patch set of a whole store's `bytes`, its `records` taken from the sections the header
+/// places, once every check has passed: the same checks whether the bytes are mapped or read.
+fn checked_store(
+    path: &Path,
+    bytes: &[u8],
+    records: impl FnOnce([Section; SECTION_COUNT]) -> Result<Records, StoreError>,
+) -> Result<PatchSet, StoreError> {
     let (header, layout) = checked_header(path, bytes)?;
     let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
-    let section = |Section { offset, length }: Section| &bytes[offset as usize..(offset + length) as usize];
-    let [aabbs, hot, cold, neighbors] = layout.sections;
-    let records = Records {
-        aabbs: bytemuck::pod_collect_to_vec(section(aabbs)).into(),
-        hot: bytemuck::pod_collect_to_vec(section(hot)).into(),
-        cold: bytemuck::pod_collect_to_vec(section(cold)).into(),
-        color_neighbors: bytemuck::pod_collect_to_vec(section(neighbors)).into(),
-    };
+    let records = records(layout.sections)?;
     checked_patches(path, &header, &layout, (parallel_checksum::checksum(body), stored), records)
 }
 
