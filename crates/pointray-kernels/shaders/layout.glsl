@@ -2,17 +2,16 @@
 #ifndef POINTRAY_LAYOUT_GLSL
 #define POINTRAY_LAYOUT_GLSL
 
-// 36 bytes; decode_patch (patch_frame.glsl) unpacks it.
-#define PATCH_HOT_BYTES 36u
+// 32 bytes; decode_patch (patch_frame.glsl) unpacks it. c0 is folded into the origin.
+#define PATCH_HOT_BYTES 32u
 struct PatchHot {
-    float origin_x;
+    float origin_x;      // p_i + c0 n_i
     float origin_y;
     float origin_z;
     float radius;        // d_u, the larger support radius
-    uint normal;         // octahedral normal, two snorm16
-    uint angle_aspect;   // angle of t1 / pi (unorm16, low), d_v / d_u (unorm16, high)
-    uint c0_c1;          // c0 / d_u, c1 (half floats)
-    uint c2_c3;          // c2, c3 d_u
+    uint frame;          // octahedral normal (two snorm11, low), angle of t1 / pi (unorm10, high)
+    uint aspect_c1;      // d_v / d_u (unorm16, low), c1 (half float, high)
+    uint c2_c3;          // c2, c3 d_u (half floats)
     uint c4_c5;          // c4 d_u, c5 d_u
 };
 

@@ -6,8 +6,6 @@
 #include "layout.glsl"
 #include "tangent_frame.glsl"
 
-const float PI = 3.14159265358979;
-
 struct Patch {
     vec3 origin;
     TangentFrame frame;
@@ -21,15 +19,13 @@ struct Patch {
 };
 
 Patch decode_patch(PatchHot hot) {
-    vec2 angle_aspect = unpackUnorm2x16(hot.angle_aspect);
-    TangentFrame frame = tangent_frame_from_normal_and_angle(unpack_normal(hot.normal), angle_aspect.x * PI);
+    float aspect = unpackUnorm2x16(hot.aspect_c1).x;
+    float c1 = unpackHalf2x16(hot.aspect_c1).y;
     float unit = hot.radius > 0.0 ? hot.radius : 1.0;
-    vec2 c0_c1 = unpackHalf2x16(hot.c0_c1);
     vec2 c2_c3 = unpackHalf2x16(hot.c2_c3);
     vec2 c4_c5 = unpackHalf2x16(hot.c4_c5);
-    return Patch(patch_origin(hot), frame,
-                 vec2(hot.radius, hot.radius * angle_aspect.y), c0_c1.x * unit, c0_c1.y, c2_c3.x,
-                 c2_c3.y / unit, c4_c5.x / unit, c4_c5.y / unit);
+    return Patch(patch_origin(hot), unpack_frame(hot.frame), vec2(hot.radius, hot.radius * aspect), 0.0,
+                 c1, c2_c3.x, c2_c3.y / unit, c4_c5.x / unit, c4_c5.y / unit);
 }
 
 vec3 patch_direction_to_local(Patch surface, vec3 world) {

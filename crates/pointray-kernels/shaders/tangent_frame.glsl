@@ -2,6 +2,8 @@
 #ifndef POINTRAY_PACKED_FRAME_GLSL
 #define POINTRAY_PACKED_FRAME_GLSL
 
+const float PI = 3.14159265358979;
+
 struct TangentFrame {
     vec3 t1;
     vec3 t2;
@@ -25,8 +27,14 @@ vec3 octahedral_decode(vec2 e) {
     return normalize(vec3(x, y, z));
 }
 
+// An snorm11 in the low 11 bits, sign-extended by the arithmetic shift of an int.
+float unpack_snorm11(uint bits) {
+    return clamp(float(int(bits << 21) >> 21) / 1023.0, -1.0, 1.0);
+}
+
+// The normal of a frame word's low 22 bits.
 vec3 unpack_normal(uint word) {
-    return octahedral_decode(unpackSnorm2x16(word));
+    return octahedral_decode(vec2(unpack_snorm11(word), unpack_snorm11(word >> 11)));
 }
 
 TangentFrame tangent_frame_from_normal_and_angle(vec3 n, float angle) {
@@ -35,6 +43,11 @@ TangentFrame tangent_frame_from_normal_and_angle(vec3 n, float angle) {
     normal_basis(n, b1, b2);
     vec3 t1 = normalize(cos(angle) * b1 + sin(angle) * b2);
     return TangentFrame(t1, cross(n, t1), n);
+}
+
+TangentFrame unpack_frame(uint word) {
+    float fraction = float(word >> 22) / 1023.0;
+    return tangent_frame_from_normal_and_angle(unpack_normal(word), fraction * PI);
 }
 
 #endif

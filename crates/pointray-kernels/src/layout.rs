@@ -8,50 +8,48 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 
 use crate::packing::{pack_half2x16, pack_unorm2x16, unpack_half2x16, unpack_unorm2x16};
-use crate::tangent_frame::{TangentFrame, pack_normal, tangent_angle_fraction, unpack_normal};
+use crate::tangent_frame::{TangentFrame, pack_frame, unpack_frame, unpack_normal};
 
-/// What the intersection test reads for patch `i`, 36 bytes: its origin, its elliptical
-/// support, its tangent frame and its six quadratic coefficients, packed. `decode` gives the
-/// `Patch` the maths works on.
+/// What the intersection test reads for patch `i`, 32 bytes (one 32-byte sector of GPU
+/// memory): its surface point, its elliptical support, its tangent frame and its quadratic's
+/// coefficients, packed. `decode` gives the `Patch` the maths works on.
 ///
 /// The support is the ellipse `(u / d_u)² + (v / d_v)² <= 1` with `d_u >= d_v`, so `radius`
-/// (`d_u`) also bounds the patch. An isotropic patch has `d_v = d_u`.
+/// (`d_u`) also bounds the patch. An isotropic patch has `d_v = d_u`. The fit's constant term
+/// `c0` is folded into the origin, which moves along the normal and leaves `(u, v)` as they
+/// were, so the stored height field has `c0 = 0`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct PatchHot {
-    /// `p_i`.
+    /// `p_i + c0 n_i`: the fitted surface over the point.
     pub origin: [f32; 3],
     /// `d_u`, the support radius along the first tangent `t1`, the larger of the two.
     pub radius: f32,
-    /// The normal `n_i`, octahedral in two snorm16 (`tangent_frame::pack_normal`).
-    pub normal: u32,
-    /// The angle of `t1` from the normal's basis as a fraction of π (unorm16, low half) and
-    /// `d_v / d_u` (unorm16, high half).
-    pub angle_aspect: u32,
-    /// `c0 / d_u, c1, c2, c3 d_u, c4 d_u, c5 d_u` as half floats, low half first: scaled by the
-    /// radius so that each is of order one whatever the units, which is what half floats hold.
-    pub coefficients: [u32; 3],
+    /// The normal `n_i` and the angle of `t1` (`tangent_frame::pack_frame`).
+    pub frame: u32,
+    /// `d_v / d_u` (unorm16, low half) and `c1` (half float, high half).
+    pub aspect_c1: u32,
+    /// `c2, c3 d_u, c4 d_u, c5 d_u` as half floats, low half first: those of second order
+    /// scaled by the radius so that each is of order one whatever the units, which is what
+    /// half floats hold.
+    pub coefficients: [u32; 2],
 }
 
 /// A patch's frame as stored: what `prep` fits in, so that the fit and the stored frame agree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PackedTangentFrame {
-    normal: u32,
-    angle: u16,
+    word: u32,
 }
 
 impl PackedTangentFrame {
     /// The stored frame nearest to unit normal `n` with first tangent `t` (in `n`'s plane).
     pub fn new(n: Vec3, t: Vec3) -> Self {
-        let normal = pack_normal(n);
-        let angle = (tangent_angle_fraction(unpack_normal(normal), t) * 65535.0).round() as u16;
-        Self { normal, angle }
+        Self { word: pack_frame(n, t) }
     }
 
     /// The frame the record decodes to.
     pub fn decode(&self) -> TangentFrame {
-        let fraction = unpack_unorm2x16(u32::from(self.angle)).x;
-        TangentFrame::from_normal_and_angle(unpack_normal(self.normal), fraction * std::f32::consts::PI)
+        unpack_frame(self.word)
     }
 }
 
@@ -62,16 +60,16 @@ impl PatchHot {
     pub fn new(origin: Vec3, frame: PackedTangentFrame, radii: Vec2, coefficients: [f32; 6]) -> Self {
         let radius = radii.x;
         let aspect = if radius > 0.0 { (radii.y / radius).clamp(0.0, 1.0) } else { 1.0 };
-        let angle_aspect = u32::from(frame.angle) | (pack_unorm2x16(Vec2::new(0.0, aspect)) & 0xffff_0000);
         let [c0, c1, c2, c3, c4, c5] = coefficients;
         let unit = if radius > 0.0 { radius } else { 1.0 };
+        let surface_point = origin + c0 * frame.decode().n;
         Self {
-            origin: origin.to_array(),
+            origin: surface_point.to_array(),
             radius,
-            normal: frame.normal,
-            angle_aspect,
+            frame: frame.word,
+            aspect_c1: (pack_unorm2x16(Vec2::new(aspect, 0.0)) & 0xffff)
+                | (pack_half2x16(Vec2::new(0.0, c1)) & 0xffff_0000),
             coefficients: [
-                pack_half2x16(Vec2::new(c0 / unit, c1)),
                 pack_half2x16(Vec2::new(c2, c3 * unit)),
                 pack_half2x16(Vec2::new(c4 * unit, c5 * unit)),
             ],
@@ -84,6 +82,7 @@ impl PatchHot {
         Self::new(origin, PackedTangentFrame::new(normal, tangent), Vec2::splat(radius), coefficients)
     }
 
+    /// The patch's origin: the fitted surface over its point.
     pub fn origin(&self) -> Vec3 {
         Vec3::from_array(self.origin)
     }
@@ -95,24 +94,25 @@ impl PatchHot {
 
     /// The normal `n_i` as stored.
     pub fn normal(&self) -> Vec3 {
-        unpack_normal(self.normal)
+        unpack_normal(self.frame)
     }
 
-    /// The stored frame: the normal word and the low half of `angle_aspect`.
+    /// The stored frame.
     pub fn frame(&self) -> PackedTangentFrame {
-        PackedTangentFrame { normal: self.normal, angle: self.angle_aspect as u16 }
+        PackedTangentFrame { word: self.frame }
     }
 
     /// The patch as the maths works on it.
     pub fn decode(&self) -> Patch {
-        let aspect = unpack_unorm2x16(self.angle_aspect).y;
+        let aspect = unpack_unorm2x16(self.aspect_c1).x;
+        let c1 = unpack_half2x16(self.aspect_c1).y;
         let unit = if self.radius > 0.0 { self.radius } else { 1.0 };
-        let [c0_c1, c2_c3, c4_c5] = self.coefficients.map(unpack_half2x16);
+        let [c2_c3, c4_c5] = self.coefficients.map(unpack_half2x16);
         Patch {
             origin: self.origin(),
             frame: self.frame().decode(),
             radii: Vec2::new(self.radius, self.radius * aspect),
-            coefficients: [c0_c1.x * unit, c0_c1.y, c2_c3.x, c2_c3.y / unit, c4_c5.x / unit, c4_c5.y / unit],
+            coefficients: [0.0, c1, c2_c3.x, c2_c3.y / unit, c4_c5.x / unit, c4_c5.y / unit],
         }
     }
 }
@@ -233,7 +233,7 @@ mod tests {
 
     #[test]
     fn layouts_match_the_glsl_strides() {
-        assert_eq!(std::mem::size_of::<PatchHot>(), 36);
+        assert_eq!(std::mem::size_of::<PatchHot>(), 32);
         assert_eq!(std::mem::size_of::<PatchCold>(), 12);
         assert_eq!(std::mem::size_of::<Aabb>(), 24);
     }
@@ -257,9 +257,29 @@ mod tests {
             PatchHot::new(Vec3::new(4.0, 5.0, 6.0), frame, Vec2::new(0.02, 0.005), coefficients).decode();
         assert_eq!(patch.frame, frame.decode());
         assert!((patch.radii - Vec2::new(0.02, 0.005)).abs().max_element() < 1e-7);
-        for (decoded, wanted) in patch.coefficients.iter().zip(coefficients) {
+        // c0 moves the origin along the normal; the height field keeps the rest.
+        assert!((patch.origin - (Vec3::new(4.0, 5.0, 6.0) + 0.001 * patch.frame.n)).length() < 1e-6);
+        assert_eq!(patch.coefficients[0], 0.0);
+        for (decoded, wanted) in patch.coefficients.iter().zip(coefficients).skip(1) {
             assert!((decoded - wanted).abs() <= wanted.abs() / 1024.0, "{decoded} vs {wanted}");
         }
         assert!(patch.supports(Vec2::new(0.019, 0.0)) && !patch.supports(Vec2::new(0.0, 0.006)));
+    }
+
+    #[test]
+    fn folding_c0_into_the_origin_keeps_the_surface() {
+        let n = Vec3::new(0.3, -0.5, 0.8).normalize();
+        let frame = PackedTangentFrame::new(n, n.any_orthonormal_vector());
+        let (origin, coefficients) = (Vec3::new(1.0, 2.0, 3.0), [0.004, 0.1, -0.2, 3.0, 1.0, -2.0]);
+        let stored = PatchHot::new(origin, frame, Vec2::splat(0.05), coefficients).decode();
+        let decoded = frame.decode();
+        for (u, v) in [(0.0, 0.0), (0.03, -0.01), (-0.02, 0.04)] {
+            let [c0, c1, c2, c3, c4, c5] = coefficients;
+            let w = c0 + c1 * u + c2 * v + c3 * u * u + c4 * u * v + c5 * v * v;
+            let fitted = origin + decoded.to_world(Vec3::new(u, v, w));
+            let [_, d1, d2, d3, d4, d5] = stored.coefficients;
+            let h = d1 * u + d2 * v + d3 * u * u + d4 * u * v + d5 * v * v;
+            assert!((stored.to_world(Vec3::new(u, v, h)) - fitted).length() < 2e-5, "at ({u}, {v})");
+        }
     }
 }

@@ -44,19 +44,19 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
     ),
     (
         "patch_frame.glsl",
-        "Patch hot_patch = decode_patch(PatchHot(0.0, 0.0, 0.0, 1.0, 0u, 0u, 0u, 0u, 0u));
+        "Patch hot_patch = decode_patch(PatchHot(0.0, 0.0, 0.0, 1.0, 0u, 0u, 0u, 0u));
              result = patch_direction_to_world(hot_patch, patch_to_local(hot_patch, vec3(1.0)));",
     ),
     (
         "intersect_patch.glsl",
-        "Patch hot_patch = decode_patch(PatchHot(0.0, 0.0, 0.0, 1.0, 0u, 0u, 0u, packHalf2x16(vec2(0.0, 0.5)), packHalf2x16(vec2(0.0, 0.5))));
+        "Patch hot_patch = decode_patch(PatchHot(0.0, 0.0, 0.0, 1.0, 0u, 0u, packHalf2x16(vec2(0.0, 0.5)), packHalf2x16(vec2(0.0, 0.5))));
              float t; vec2 uv;
              bool hit = intersect_patch(Ray(vec3(0.0, 0.0, 2.0), vec3(0.0, 0.0, -1.0)), hot_patch, 0.0, 1e30, ACCEPTANCE_DISK, t, uv);
              result = vec3(uv, hit ? t : -1.0);",
     ),
     (
         "patch_normal.glsl",
-        "Patch hot_patch = decode_patch(PatchHot(0.0, 0.0, 0.0, 1.0, 0u, 0u, 0u, packHalf2x16(vec2(0.0, 0.5)), packHalf2x16(vec2(0.0, 0.5))));
+        "Patch hot_patch = decode_patch(PatchHot(0.0, 0.0, 0.0, 1.0, 0u, 0u, packHalf2x16(vec2(0.0, 0.5)), packHalf2x16(vec2(0.0, 0.5))));
              result = patch_normal(hot_patch, vec2(0.5, 0.25));",
     ),
     (

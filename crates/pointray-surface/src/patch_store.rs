@@ -1,11 +1,11 @@
 //! The patch store: the versioned binary file that caches a `PatchSet`.
 //!
-//! All numbers are little-endian. Version 5 layout:
+//! All numbers are little-endian. Version 6 layout:
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRPATCH\0"` |
-//! | 8 | 4 | format version, u32 = 5 |
+//! | 8 | 4 | format version, u32 = 6 |
 //! | 12 | 4 | header size in bytes, u32 = 208 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
 //! | 24 | 24 | offset, f64 x 3 (`input = local + offset`) |
@@ -14,7 +14,7 @@
 //! | 136 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
 //! | 140 | 68 | the `PrepSettings` the patches were made with (below) |
 //! | 208 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
-//! | 16-aligned | 36 n | hot: `PatchHot` (origin, d_u: f32 x 4; octahedral normal, tangent angle and d_v/d_u, c0..c5 as scaled halves: u32 x 5) |
+//! | 16-aligned | 32 n | hot: `PatchHot` (origin with c0 folded in, d_u: f32 x 4; octahedral normal and tangent angle, d_v/d_u and c1, c2..c5 as scaled halves: u32 x 4) |
 //! | 16-aligned | 12 n | cold: `PatchCold` (RGBA8 u32, intensity f32, colour reach f32) |
 //! | 16-aligned | 4 m n | neighbours: `m` patch indices per patch (u32, `NO_NEIGHBOR` = unused) |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
@@ -49,7 +49,7 @@ use crate::prep_settings::{PrepSettings, ScanMode};
 pub use crate::patch_store_write::{StoreSummary, write, write_sections, write_to};
 
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
-pub const FORMAT_VERSION: u32 = 5;
+pub const FORMAT_VERSION: u32 = 6;
 pub(crate) const SECTION_COUNT: usize = 4;
 pub(crate) const HEADER_BYTES: usize = std::mem::size_of::<Header>();
 const CHECKSUM_BYTES: usize = 4;
@@ -157,7 +157,7 @@ impl StoredSettings {
         }
     }
 
-    /// The settings, or which code no version-5 store holds.
+    /// The settings, or which code no version-6 store holds.
     fn decode(&self, sensor: [f64; 3]) -> Result<PrepSettings, &'static str> {
         let flag = |value: u32, what| match value {
             0 => Ok(false),
@@ -341,13 +341,13 @@ mod tests {
         let layout = Layout::new(3, COLOR_NEIGHBORS as u32).unwrap();
         assert!(layout.sections.iter().all(|s| s.offset % 16 == 0));
         assert_eq!(layout.sections[0], Section { offset: 208, length: 72 });
-        assert_eq!(layout.sections[1], Section { offset: 288, length: 108 });
-        assert_eq!(layout.sections[2], Section { offset: 400, length: 36 });
-        assert_eq!(layout.sections[3], Section { offset: 448, length: 144 });
-        assert_eq!(layout.total_bytes, 596);
+        assert_eq!(layout.sections[1], Section { offset: 288, length: 96 });
+        assert_eq!(layout.sections[2], Section { offset: 384, length: 36 });
+        assert_eq!(layout.sections[3], Section { offset: 432, length: 144 });
+        assert_eq!(layout.total_bytes, 580);
         let without = Layout::new(3, 0).unwrap();
-        assert_eq!(without.sections[3], Section { offset: 448, length: 0 });
-        assert_eq!(without.total_bytes, 452);
+        assert_eq!(without.sections[3], Section { offset: 432, length: 0 });
+        assert_eq!(without.total_bytes, 436);
         assert!(Layout::new(u64::MAX, 0).is_none());
     }
 }

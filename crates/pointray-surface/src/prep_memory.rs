@@ -10,13 +10,13 @@
 //! | 12 | the recentred f32 position | every stage reads it |
 //! | 4 | the input index of each point | attributes are gathered through it at the end |
 //! | 12 | the normal | dropped only once the radii are chosen |
-//! | 36 + 8 | the tangent frame and its packed form | the fit reads both |
+//! | 36 + 4 | the tangent frame and its packed form | the fit reads both |
 //! | 8 | two radii (the chosen one and the paper's, for the colours) | the fit and the cold records |
 //! | 16 | slack: the allocator's and rayon's per-task buffers | measured peaks run 2–10 over the terms above |
 //! | per attribute | the input's colours, intensities, normals, rings, classes, sensor origins | the cold records gather them last |
 //!
 //! The f64 positions as read (24 bytes) are freed once recentred, before the peak. The
-//! patches themselves (72 bytes) come after the peak, once the neighbours are narrowed.
+//! patches themselves (68 bytes) come after the peak, once the neighbours are narrowed.
 
 use pointray_io::MemoryBudget;
 
@@ -25,8 +25,8 @@ use crate::prep_settings::PrepSettings;
 /// A u32 neighbour index and its f32 distance.
 const NEIGHBOUR_BYTES: u64 = 8;
 
-/// Position 12, input index 4, normal 12, frame 36 + 8, radii 8, slack 16.
-const POINT_BYTES: u64 = 12 + 4 + 12 + 36 + 8 + 8 + 16;
+/// Position 12, input index 4, normal 12, frame 36 + 4, radii 8, slack 16.
+const POINT_BYTES: u64 = 12 + 4 + 12 + 36 + 4 + 8 + 16;
 
 /// The program itself: its code, thread stacks and buffers, whatever the cloud.
 pub const PREP_FIXED_BYTES: u64 = 32 << 20;

@@ -10,7 +10,7 @@
 #include "layout.glsl"
 #include "patch_buffers.glsl"
 
-// Hot and cold records together, for BufferLayout::Combined: 48 bytes, no padding.
+// Hot and cold records together, for BufferLayout::Combined: 44 bytes, no padding.
 struct PatchCombined {
     PatchHot hot;
     PatchCold cold;

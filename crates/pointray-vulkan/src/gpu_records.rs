@@ -10,7 +10,7 @@ use crate::light_table::LightTable;
 use crate::prepared_scene::PreparedScene;
 use crate::trace_target::PixelOutput;
 
-/// Hot and cold data of one patch interleaved (`BufferLayout::Combined`): 48 bytes.
+/// Hot and cold data of one patch interleaved (`BufferLayout::Combined`): 44 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub(crate) struct PatchCombined {
@@ -270,11 +270,10 @@ mod tests {
                 ("origin_y", offset_of!(PatchHot, origin) + 4),
                 ("origin_z", offset_of!(PatchHot, origin) + 8),
                 ("radius", offset_of!(PatchHot, radius)),
-                ("normal", offset_of!(PatchHot, normal)),
-                ("angle_aspect", offset_of!(PatchHot, angle_aspect)),
-                ("c0_c1", offset_of!(PatchHot, coefficients)),
-                ("c2_c3", offset_of!(PatchHot, coefficients) + 4),
-                ("c4_c5", offset_of!(PatchHot, coefficients) + 8),
+                ("frame", offset_of!(PatchHot, frame)),
+                ("aspect_c1", offset_of!(PatchHot, aspect_c1)),
+                ("c2_c3", offset_of!(PatchHot, coefficients)),
+                ("c4_c5", offset_of!(PatchHot, coefficients) + 4),
             ],
         );
         assert_members(

@@ -191,11 +191,11 @@ fn patch_case(rng: &mut ChaCha8Rng) -> (PatchHot, PatchAcceptance, Ray, f32) {
 
 fn patch_inputs(hot: &PatchHot, acceptance: PatchAcceptance, ray: &Ray, t_max: f32) -> [[f32; 4]; 5] {
     let [x, y, z] = hot.origin;
-    let [c0, c1, c2] = hot.coefficients;
+    let [c2_c3, c4_c5] = hot.coefficients;
     [
         [x, y, z, hot.radius],
-        [word(hot.normal), word(hot.angle_aspect), word(c0), word(c1)],
-        [word(c2), word(acceptance.code()), 0.0, 0.0],
+        [word(hot.frame), word(hot.aspect_c1), word(c2_c3), word(c4_c5)],
+        [word(acceptance.code()), 0.0, 0.0, 0.0],
         [ray.origin.x, ray.origin.y, ray.origin.z, t_max],
         [ray.direction.x, ray.direction.y, ray.direction.z, 0.0],
     ]

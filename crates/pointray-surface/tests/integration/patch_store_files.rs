@@ -170,11 +170,11 @@ fn damaged(damage: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, StoreError, tempfile:
 
 #[test]
 fn another_version_is_refused_by_name() {
-    // Version 4 stores (which did not record the radius mode) are refused with the way out.
-    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&4u32.to_le_bytes()));
-    assert!(matches!(error, StoreError::WrongVersion { found: 4, .. }), "{error:?}");
+    // Version 5 stores (whose hot records were 36 bytes) are refused with the way out.
+    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&5u32.to_le_bytes()));
+    assert!(matches!(error, StoreError::WrongVersion { found: 5, .. }), "{error:?}");
     let message = error.to_string();
-    assert!(message.contains("version 4, this build reads version 5: re-run `pointray prep`"), "{message}");
+    assert!(message.contains("version 5, this build reads version 6: re-run `pointray prep`"), "{message}");
     assert!(message.contains(&path.display().to_string()), "{message}");
 }
 
