@@ -21,7 +21,7 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Nei
 
 // `base` plus `index` times `size` bytes, in 64 bits. Indexing a buffer reference's array
 // (`records[index]`) lets the driver multiply the index by the record's size in 32 bits, which
-// past 4 GB (119M hot records) wraps back to the buffer's start: a large set then reads other
+// past 4 GB (134M hot records) wraps back to the buffer's start: a large set then reads other
 // patches' records, and most of it vanishes.
 uvec2 record_address(uvec2 base, uint index, uint size) {
     uint high;

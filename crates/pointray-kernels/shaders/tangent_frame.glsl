@@ -19,22 +19,27 @@ void normal_basis(vec3 n, out vec3 b1, out vec3 b2) {
     b2 = vec3(b, sign_z + n.y * n.y * a, -n.y);
 }
 
-vec3 octahedral_decode(vec2 e) {
-    float z = 1.0 - abs(e.x) - abs(e.y);
+// z from the integers, so that its sign is exact whatever the division's rounding.
+vec3 octahedral_decode(int a, int b) {
+    a = clamp(a, -1023, 1023);
+    b = clamp(b, -1023, 1023);
+    float z = float(1023 - abs(a) - abs(b)) / 1023.0;
+    float x = float(a) / 1023.0;
+    float y = float(b) / 1023.0;
     float fold = max(-z, 0.0);
-    float x = e.x + (e.x >= 0.0 ? -fold : fold);
-    float y = e.y + (e.y >= 0.0 ? -fold : fold);
+    x = x + (x >= 0.0 ? -fold : fold);
+    y = y + (y >= 0.0 ? -fold : fold);
     return normalize(vec3(x, y, z));
 }
 
-// An snorm11 in the low 11 bits, sign-extended by the arithmetic shift of an int.
-float unpack_snorm11(uint bits) {
-    return clamp(float(int(bits << 21) >> 21) / 1023.0, -1.0, 1.0);
+// An snorm11 code in the low 11 bits, sign-extended by the arithmetic shift of an int.
+int snorm11_code(uint bits) {
+    return int(bits << 21) >> 21;
 }
 
 // The normal of a frame word's low 22 bits.
 vec3 unpack_normal(uint word) {
-    return octahedral_decode(vec2(unpack_snorm11(word), unpack_snorm11(word >> 11)));
+    return octahedral_decode(snorm11_code(word), snorm11_code(word >> 11));
 }
 
 TangentFrame tangent_frame_from_normal_and_angle(vec3 n, float angle) {

@@ -53,12 +53,19 @@ pub fn octahedral_encode(n: Vec3) -> Vec2 {
     if n.z >= 0.0 { p } else { (Vec2::ONE - Vec2::new(p.y, p.x).abs()) * sign_not_zero(p) }
 }
 
-/// The inverse of `octahedral_encode`, unit length.
-pub fn octahedral_decode(e: Vec2) -> Vec3 {
-    let z = 1.0 - e.x.abs() - e.y.abs();
+/// The unit vector of octahedral codes `(a, b)`, the inverse of `octahedral_encode` scaled by
+/// `NORMAL_STEPS`. The third coordinate comes from the integers, so that its sign, which picks
+/// the fold here and the normal's basis in `normal_basis`, is exact on the CPU and the GPU
+/// alike, however each rounds a division: near the equator a rounded `1 - |x| - |y|` could
+/// fall either side of zero and turn the tangent.
+pub fn octahedral_decode(a: i32, b: i32) -> Vec3 {
+    let steps = NORMAL_STEPS as i32;
+    let (a, b) = (a.clamp(-steps, steps), b.clamp(-steps, steps));
+    let z = (steps - a.abs() - b.abs()) as f32 / NORMAL_STEPS;
+    let (x, y) = (a as f32 / NORMAL_STEPS, b as f32 / NORMAL_STEPS);
     let fold = (-z).max(0.0);
-    let x = e.x + if e.x >= 0.0 { -fold } else { fold };
-    let y = e.y + if e.y >= 0.0 { -fold } else { fold };
+    let x = x + if x >= 0.0 { -fold } else { fold };
+    let y = y + if y >= 0.0 { -fold } else { fold };
     Vec3::new(x, y, z).normalize()
 }
 
@@ -89,8 +96,8 @@ pub fn pack_normal(n: Vec3) -> u32 {
 /// The normal a frame word's low 22 bits decode to.
 pub fn unpack_normal(word: u32) -> Vec3 {
     // Sign-extends the 11 bits, as GLSL's arithmetic shift of an int does.
-    let part = |bits: u32| ((((bits << 21) as i32) >> 21) as f32 / NORMAL_STEPS).clamp(-1.0, 1.0);
-    octahedral_decode(Vec2::new(part(word), part(word >> 11)))
+    let code = |bits: u32| ((bits << 21) as i32) >> 21;
+    octahedral_decode(code(word), code(word >> 11))
 }
 
 /// The frame word of unit normal `n` with first tangent `t` (in `n`'s plane): the tangent's
@@ -146,6 +153,17 @@ mod tests {
         }
         for axis in [Vec3::Z, -Vec3::Z, Vec3::X, -Vec3::Y] {
             assert_eq!(unpack_normal(pack_normal(axis)), axis, "the axes are stored exactly");
+        }
+    }
+
+    #[test]
+    fn codes_on_the_equator_decode_to_z_of_exactly_zero() {
+        for a in -1023i32..=1023 {
+            for b in [1023 - a.abs(), a.abs() - 1023] {
+                let word = (a as u32 & 0x7ff) | ((b as u32 & 0x7ff) << 11);
+                let n = unpack_normal(word);
+                assert!(n.z == 0.0 && n.z.is_sign_positive(), "({a}, {b}) -> {n}");
+            }
         }
     }
 

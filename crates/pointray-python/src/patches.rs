@@ -43,7 +43,8 @@ impl Patches {
         self.set.offset.to_array()
     }
 
-    /// (N, 3) float64: each patch's point, in the input's coordinates.
+    /// (N, 3) float64: each patch's origin, in the input's coordinates: its point moved along
+    /// the normal onto the fitted surface.
     #[getter]
     fn centers<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let offset = self.set.offset;

@@ -12,7 +12,7 @@ use crate::quadratic_fit::evaluate;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum BoxKind {
-    /// The cube of half-size `d_i` around `p_i`, as in the paper.
+    /// The cube of half-size `d_i` around the patch's origin, as in the paper.
     Cube,
     /// The box around the patch surface `w = f(u, v)` over its support ellipse: the
     /// default, since every hit the disk test accepts lies inside it (the same hits as the

@@ -90,15 +90,15 @@ fn assert_few_borderline(what: &str, borderline: usize) {
 }
 
 /// Record addresses past 4 GB from a buffer's start, and across the low word's carry, are the
-/// 64-bit sums: a set of more than 119M patches reads its hot records there.
+/// 64-bit sums: a set of more than 134M patches reads its hot records there.
 #[test]
 fn record_addresses_agree_past_four_gigabytes() {
     let Some(context) = probe_context() else { return };
     let cases: [(u64, u32, u32); 6] = [
-        (0x0000_0001_0000_0000, 0, 36),
-        (0x0000_0001_0000_0000, 119_304_648, 36),
-        (0x0000_0002_ffff_fff0, 1, 36),
-        (0x0000_0003_0000_0040, 999_999_999, 36),
+        (0x0000_0001_0000_0000, 0, 32),
+        (0x0000_0001_0000_0000, 134_217_728, 32),
+        (0x0000_0002_ffff_fff0, 1, 32),
+        (0x0000_0003_0000_0040, 999_999_999, 44),
         (0x0000_0003_0000_0040, 999_999_999, 12),
         (0x0000_7fff_ffff_0000, 4_000_000_000, 64),
     ];
@@ -248,7 +248,7 @@ fn shading_encoding_clearance_and_frames_agree() {
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     let mut cases = Vec::with_capacity(CASES);
     let mut inputs = Vec::with_capacity(CASES * 6);
-    for _ in 0..CASES {
+    for case in 0..CASES {
         let (normal, to_viewer, to_light) = (unit(&mut rng), unit(&mut rng), unit(&mut rng));
         let radiance =
             Vec3::new(rng.random_range(0.0..2.0), rng.random_range(0.0..2.0), rng.random_range(0.0..2.0));
@@ -258,7 +258,8 @@ fn shading_encoding_clearance_and_frames_agree() {
             shininess: rng.random_range(1.0..128.0),
         };
         let radius = 10f32.powf(rng.random_range(-4.0..3.0));
-        let packed = pack_normal(unit(&mut rng));
+        // Every eighth normal on the octahedron's equator, where a rounded z could flip the basis.
+        let packed = if case % 8 == 0 { equator_code(&mut rng) } else { pack_normal(unit(&mut rng)) };
         let angle = rng.random_range(0.0..std::f32::consts::PI);
         inputs.extend([
             normal.extend(0.0).to_array(),
@@ -289,6 +290,13 @@ fn shading_encoding_clearance_and_frames_agree() {
             frame.t1
         );
     }
+}
+
+/// A normal code whose octahedral `|a| + |b|` is 1023: a normal with z = 0.
+fn equator_code(rng: &mut ChaCha8Rng) -> u32 {
+    let a: i32 = rng.random_range(-1023..=1023);
+    let b = (1023 - a.abs()) * if rng.random() { 1 } else { -1 };
+    (a as u32 & 0x7ff) | ((b as u32 & 0x7ff) << 11)
 }
 
 #[test]

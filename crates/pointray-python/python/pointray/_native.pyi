@@ -22,7 +22,8 @@ class Patches:
         """The recentring offset: ``centers = local + offset``, in float64."""
     @property
     def centers(self) -> np.ndarray:
-        """(N, 3) float64: each patch's point, in the input's coordinates."""
+        """(N, 3) float64: each patch's origin, in the input's coordinates: its point moved
+        along the normal onto the fitted surface."""
     @property
     def normals(self) -> np.ndarray:
         """(N, 3) float32 unit normals."""

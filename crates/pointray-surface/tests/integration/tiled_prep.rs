@@ -72,8 +72,9 @@ fn eight_tiles_make_the_single_pass_patches() {
     eprintln!(
         "8 tiles against one pass: normals within {normal_error:e} rad, coefficients within {coefficient_error:e}"
     );
-    // The octahedral normal's two snorm16 halves resolve about 5e-5 rad; the half-float
-    // coefficients, scaled by the radius, about 1e-3 of it.
+    // One step of the octahedral normal's snorm11 codes is about 1e-3 rad, so the normals'
+    // codes must be equal; the half-float coefficients, scaled by the radius, resolve about
+    // 1e-3 of it.
     assert!(normal_error <= 1e-4, "normals differ by {normal_error} rad");
     assert!(coefficient_error <= 1e-3, "coefficients differ by {coefficient_error}");
 }
