@@ -3,6 +3,7 @@
 //! separate job, and the merge of such tiles.
 
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use clap::Args;
 use pointray_io::MemoryBudget;
@@ -99,12 +100,21 @@ fn prep_in_memory(
     settings: &PrepSettings,
     bar: &PrepBar,
 ) -> anyhow::Result<()> {
+    // Reading and writing sit outside prep's stages, and at a billion points take as long.
+    let started = Instant::now();
     let cloud = args.columns.read_point_cloud(points)?;
+    println!("read {} points in {:.3} s", cloud.len(), started.elapsed().as_secs_f64());
     let in_file = |e: PrepError| anyhow::anyhow!("{}: {e}", points.display());
     let (patches, report) = prep_owned(cloud, settings, bar).map_err(in_file)?;
     println!("{report}");
+    let started = Instant::now();
     pointray_surface::patch_store::write(&args.output, &patches)?;
-    println!("wrote {} patches to {} (offset stored in its header)", patches.len(), args.output.display());
+    println!(
+        "wrote {} patches to {} (offset stored in its header) in {:.3} s",
+        patches.len(),
+        args.output.display(),
+        started.elapsed().as_secs_f64()
+    );
     Ok(())
 }
 
