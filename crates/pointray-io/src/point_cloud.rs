@@ -52,6 +52,40 @@ impl PointCloud {
         .per_point()
     }
 
+    /// Appends the points of `other`, a cloud with the same attributes (the next chunk of the
+    /// same file, say).
+    pub fn append(&mut self, other: PointCloud) {
+        fn join<T>(into: &mut Option<Vec<T>>, from: Option<Vec<T>>) {
+            if let (Some(into), Some(from)) = (into.as_mut(), from) {
+                into.extend(from);
+            }
+        }
+        self.positions.extend(other.positions);
+        join(&mut self.normals, other.normals);
+        join(&mut self.colors, other.colors);
+        join(&mut self.intensities, other.intensities);
+        join(&mut self.classifications, other.classifications);
+        join(&mut self.rings, other.rings);
+        join(&mut self.sensor_origins, other.sensor_origins);
+    }
+
+    /// Room for `additional` more points in the positions and every attribute held, so that
+    /// appending chunks does not grow (and for a while double) them step by step.
+    pub fn reserve(&mut self, additional: usize) {
+        fn room<T>(vec: &mut Option<Vec<T>>, additional: usize) {
+            if let Some(vec) = vec.as_mut() {
+                vec.reserve_exact(additional);
+            }
+        }
+        self.positions.reserve_exact(additional);
+        room(&mut self.normals, additional);
+        room(&mut self.colors, additional);
+        room(&mut self.intensities, additional);
+        room(&mut self.classifications, additional);
+        room(&mut self.rings, additional);
+        room(&mut self.sensor_origins, additional);
+    }
+
     /// Where point `i` was seen from, when the file says so.
     pub fn sensor_of(&self, i: usize) -> Option<DVec3> {
         self.sensor_origins.as_ref().map(|origins| origins[i]).or(self.sensor_position)

@@ -21,17 +21,6 @@ pub(crate) fn subset(cloud: &PointCloud, indices: &[u32]) -> PointCloud {
 
 /// `first`'s points followed by `second`'s (which carries the same attributes).
 pub(crate) fn concatenated(mut first: PointCloud, second: PointCloud) -> PointCloud {
-    fn join<T>(into: &mut Option<Vec<T>>, from: Option<Vec<T>>) {
-        if let (Some(into), Some(from)) = (into.as_mut(), from) {
-            into.extend(from);
-        }
-    }
-    first.positions.extend(second.positions);
-    join(&mut first.normals, second.normals);
-    join(&mut first.colors, second.colors);
-    join(&mut first.intensities, second.intensities);
-    join(&mut first.classifications, second.classifications);
-    join(&mut first.rings, second.rings);
-    join(&mut first.sensor_origins, second.sensor_origins);
+    first.append(second);
     first
 }

@@ -23,31 +23,20 @@ fn chunked(path: &Path, chunk: usize) -> PointCloud {
             Ok::<(), IoError>(())
         })
         .unwrap();
-    let mut whole = PointCloud::default();
+    let mut whole: Option<PointCloud> = None;
     stream
         .read(chunk, |part| {
-            append(&mut whole, part);
+            match whole.as_mut() {
+                Some(whole) => whole.append(part),
+                None => whole = Some(part),
+            }
             Ok::<(), IoError>(())
         })
         .unwrap();
+    let whole = whole.unwrap_or_default();
     assert_eq!(surveyed, whole.positions, "both passes see the same positions");
     assert_eq!(stream.len(), whole.len() as u64);
     whole
-}
-
-fn append(whole: &mut PointCloud, part: PointCloud) {
-    fn extend<T>(into: &mut Option<Vec<T>>, from: Option<Vec<T>>) {
-        if let Some(values) = from {
-            into.get_or_insert_with(Vec::new).extend(values);
-        }
-    }
-    whole.positions.extend(part.positions);
-    extend(&mut whole.normals, part.normals);
-    extend(&mut whole.colors, part.colors);
-    extend(&mut whole.intensities, part.intensities);
-    extend(&mut whole.classifications, part.classifications);
-    extend(&mut whole.rings, part.rings);
-    extend(&mut whole.sensor_origins, part.sensor_origins);
 }
 
 fn attributed_cloud(count: usize) -> PointCloud {
@@ -76,6 +65,11 @@ fn binary_ply_in_chunks_reads_as_a_whole() {
     );
     assert_eq!(chunked(&path, 64), whole);
     assert_eq!(chunked(&path, 1000), whole);
+    assert_eq!(read_all(&path, 64), whole);
+}
+
+fn read_all(path: &Path, chunk: usize) -> PointCloud {
+    PointStream::open(path, None, PLENTY).unwrap().read_all(chunk).unwrap()
 }
 
 #[test]
@@ -133,6 +127,7 @@ fn laz_in_chunks_reads_as_a_whole() {
     writer.close().unwrap();
     let whole = read_point_cloud(&path).unwrap();
     assert_eq!(chunked(&path, 37), whole);
+    assert_eq!(read_all(&path, 37), whole);
 }
 
 #[test]
@@ -151,6 +146,7 @@ fn text_is_read_whole_within_the_budget_and_refused_beyond_it() {
         })
         .unwrap();
     assert_eq!(count, 100);
+    assert_eq!(read_all(&path, 30), read_point_cloud(&path).unwrap());
     let small = MemoryBudget { bytes: text.len() as u64 };
     let error = PointStream::open(&path, None, small).err().expect("over the budget").to_string();
     assert!(error.contains("cloud.xyz") && error.contains("cannot be read in chunks"), "{error}");
@@ -184,6 +180,7 @@ fn raw_sweeps_in_chunks_read_as_a_whole() {
         assert_eq!(chunks.intensities, whole.intensities, "{name}: scaled by the whole file's range");
         assert_eq!(chunks.rings, whole.rings, "{name}");
         assert_eq!(whole.rings.is_some(), width == 5);
+        assert_eq!(read_all(&path, 64), whole, "{name}: read whole through the stream");
     }
 }
 
