@@ -69,23 +69,6 @@ impl PointCloud {
         join(&mut self.sensor_origins, other.sensor_origins);
     }
 
-    /// Room for `additional` more points in the positions and every attribute held, so that
-    /// appending chunks does not grow (and for a while double) them step by step.
-    pub fn reserve(&mut self, additional: usize) {
-        fn room<T>(vec: &mut Option<Vec<T>>, additional: usize) {
-            if let Some(vec) = vec.as_mut() {
-                vec.reserve_exact(additional);
-            }
-        }
-        self.positions.reserve_exact(additional);
-        room(&mut self.normals, additional);
-        room(&mut self.colors, additional);
-        room(&mut self.intensities, additional);
-        room(&mut self.classifications, additional);
-        room(&mut self.rings, additional);
-        room(&mut self.sensor_origins, additional);
-    }
-
     /// Where point `i` was seen from, when the file says so.
     pub fn sensor_of(&self, i: usize) -> Option<DVec3> {
         self.sensor_origins.as_ref().map(|origins| origins[i]).or(self.sensor_position)

@@ -152,31 +152,6 @@ impl PointStream {
         Ok(())
     }
 
-    /// Every point with its attributes as one cloud, read in chunks of at most `max` points:
-    /// the cloud a whole read of the file gives, but each chunk of a chunked format decoded
-    /// on every core, where a whole read decodes the file on one.
-    pub fn read_all(mut self, max: usize) -> Result<PointCloud, IoError> {
-        if let Source::Whole { cloud, .. } = &mut self.source {
-            return Ok(std::mem::take(cloud));
-        }
-        let (total, sensor_position) = (self.points as usize, self.sensor_position());
-        let mut whole: Option<PointCloud> = None;
-        self.read(max, |chunk| {
-            match whole.as_mut() {
-                Some(cloud) => cloud.append(chunk),
-                None => {
-                    let mut first = chunk;
-                    first.reserve(total.saturating_sub(first.len()));
-                    whole = Some(first);
-                }
-            }
-            Ok::<(), IoError>(())
-        })?;
-        let mut cloud = whole.unwrap_or_default();
-        cloud.sensor_position = sensor_position;
-        Ok(cloud)
-    }
-
     fn initial_ranges(&self) -> Ranges {
         match self.source {
             Source::Ply(_) => Ranges::Ply(0.0),

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
-use pointray_io::{MemoryBudget, PointStream};
+use pointray_io::MemoryBudget;
 use pointray_surface::peak_memory::peak_rss;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
 use pointray_surface::streamed_prep::{prep_one_tile, prep_streamed};
@@ -77,7 +77,8 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     let mut stream = args.columns.open_stream(points, memory)?;
     let route = prep_route(stream.len(), &settings, stream.attribute_bytes_per_point(), memory);
     if args.tiles.is_none() && route == PrepRoute::InMemory {
-        return prep_in_memory(stream, &args, &settings, &bar);
+        drop(stream);
+        return prep_in_memory(points, &args, &settings, &bar);
     }
     let count = TileCount::AtLeast(args.tiles.unwrap_or(1) as usize);
     let merged = prep_streamed(&mut stream, &settings, (count, memory), &args.output, &bar)?;
@@ -93,20 +94,15 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Points read a chunk at a time when the whole cloud is read for prep in memory: large enough
-/// that decoding a chunk keeps every core busy.
-const READ_CHUNK_POINTS: usize = 1 << 22;
-
 fn prep_in_memory(
-    stream: PointStream,
+    points: &Path,
     args: &PrepArgs,
     settings: &PrepSettings,
     bar: &PrepBar,
 ) -> anyhow::Result<()> {
     // Reading and writing sit outside prep's stages, and at a billion points take as long.
     let started = Instant::now();
-    let points = stream.path().to_path_buf();
-    let cloud = stream.read_all(READ_CHUNK_POINTS)?;
+    let cloud = args.columns.read_point_cloud(points)?;
     println!("read {} points in {:.3} s", cloud.len(), started.elapsed().as_secs_f64());
     let in_file = |e: PrepError| anyhow::anyhow!("{}: {e}", points.display());
     let (patches, report) = prep_owned(cloud, settings, bar).map_err(in_file)?;
