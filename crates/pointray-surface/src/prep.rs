@@ -44,9 +44,10 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// faces and are cut back on one side; in revision 6 a scan's planes favour the returns near
 /// the point, and a patch stops short of a line beside it that saw nothing; in revision 7 the
 /// gap to the next line leaves out returns that the range noise may have moved across it; in
-/// revision 8 a scan's planes take normals smoothed over their neighbours'), so
-/// that caches keyed on the settings also key on this and never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 8;
+/// revision 8 a scan's planes take normals smoothed over their neighbours'; in revision 9
+/// the hot record is 32 bytes, its frame and `c0` packed anew), so that caches keyed on the
+/// settings also key on this and never serve patches of an older rule.
+pub const PREP_REVISION: u32 = 9;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(
