@@ -3,6 +3,9 @@
 #define POINTRAY_PACKED_FRAME_GLSL
 
 const float PI = 3.14159265358979;
+// The largest magnitude of an snorm11 octahedral code, and of the unorm10 angle.
+const int NORMAL_STEPS = 1023;
+const float ANGLE_STEPS = 1023.0;
 
 struct TangentFrame {
     vec3 t1;
@@ -21,11 +24,12 @@ void normal_basis(vec3 n, out vec3 b1, out vec3 b2) {
 
 // z from the integers, so that its sign is exact whatever the division's rounding.
 vec3 octahedral_decode(int a, int b) {
-    a = clamp(a, -1023, 1023);
-    b = clamp(b, -1023, 1023);
-    float z = float(1023 - abs(a) - abs(b)) / 1023.0;
-    float x = float(a) / 1023.0;
-    float y = float(b) / 1023.0;
+    a = clamp(a, -NORMAL_STEPS, NORMAL_STEPS);
+    b = clamp(b, -NORMAL_STEPS, NORMAL_STEPS);
+    float steps = float(NORMAL_STEPS);
+    float z = float(NORMAL_STEPS - abs(a) - abs(b)) / steps;
+    float x = float(a) / steps;
+    float y = float(b) / steps;
     float fold = max(-z, 0.0);
     x = x + (x >= 0.0 ? -fold : fold);
     y = y + (y >= 0.0 ? -fold : fold);
@@ -51,7 +55,7 @@ TangentFrame tangent_frame_from_normal_and_angle(vec3 n, float angle) {
 }
 
 TangentFrame unpack_frame(uint word) {
-    float fraction = float(word >> 22) / 1023.0;
+    float fraction = float(word >> 22) / ANGLE_STEPS;
     return tangent_frame_from_normal_and_angle(unpack_normal(word), fraction * PI);
 }
 

@@ -62,7 +62,7 @@ impl PatchHot {
         let aspect = if radius > 0.0 { (radii.y / radius).clamp(0.0, 1.0) } else { 1.0 };
         let [c0, c1, c2, c3, c4, c5] = coefficients;
         let unit = if radius > 0.0 { radius } else { 1.0 };
-        let surface_point = origin + c0 * frame.decode().n;
+        let surface_point = origin + c0 * unpack_normal(frame.word);
         Self {
             origin: surface_point.to_array(),
             radius,

@@ -83,14 +83,19 @@ const ANGLE_SHIFT: u32 = 22;
 /// halves the error of rounding each coordinate alone.
 pub fn pack_normal(n: Vec3) -> u32 {
     let e = octahedral_encode(n).clamp(Vec2::NEG_ONE, Vec2::ONE) * NORMAL_STEPS;
-    let part = |v: f32| (v as i32 as u32) & 0x7ff;
-    let code = |x: f32, y: f32| part(x) | (part(y) << 11);
+    let step = |v: f32, up: f32| (v.floor() + up).min(NORMAL_STEPS) as i32;
     let candidates = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
-        .map(|(dx, dy)| code((e.x.floor() + dx).min(NORMAL_STEPS), (e.y.floor() + dy).min(NORMAL_STEPS)));
+        .map(|(dx, dy)| normal_bits(step(e.x, dx), step(e.y, dy)));
     candidates
         .into_iter()
         .max_by(|&a, &b| unpack_normal(a).dot(n).total_cmp(&unpack_normal(b).dot(n)))
         .expect("four codes")
+}
+
+/// The normal bits of octahedral codes `(a, b)`, each in `[-1023, 1023]`: two snorm11 in the
+/// low 22 bits.
+pub fn normal_bits(a: i32, b: i32) -> u32 {
+    (a as u32 & 0x7ff) | ((b as u32 & 0x7ff) << 11)
 }
 
 /// The normal a frame word's low 22 bits decode to.
@@ -160,8 +165,7 @@ mod tests {
     fn codes_on_the_equator_decode_to_z_of_exactly_zero() {
         for a in -1023i32..=1023 {
             for b in [1023 - a.abs(), a.abs() - 1023] {
-                let word = (a as u32 & 0x7ff) | ((b as u32 & 0x7ff) << 11);
-                let n = unpack_normal(word);
+                let n = unpack_normal(normal_bits(a, b));
                 assert!(n.z == 0.0 && n.z.is_sign_positive(), "({a}, {b}) -> {n}");
             }
         }

@@ -11,7 +11,7 @@ use glam::{UVec2, Vec2, Vec3};
 use pointray_kernels::bsdf::BSDF_PLASTIC;
 use pointray_kernels::interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
 use pointray_kernels::light_source::LIGHT_QUAD;
-use pointray_kernels::tangent_frame::{pack_normal, unpack_normal};
+use pointray_kernels::tangent_frame::{normal_bits, pack_normal, unpack_normal};
 use pointray_kernels::{
     Bsdf, LightSource, PatchCold, bsdf_eval, bsdf_pdf, bsdf_sample, light_sample, random_next, random_next2,
     random_sequence,
@@ -296,7 +296,7 @@ fn shading_encoding_clearance_and_frames_agree() {
 fn equator_code(rng: &mut ChaCha8Rng) -> u32 {
     let a: i32 = rng.random_range(-1023..=1023);
     let b = (1023 - a.abs()) * if rng.random() { 1 } else { -1 };
-    (a as u32 & 0x7ff) | ((b as u32 & 0x7ff) << 11)
+    normal_bits(a, b)
 }
 
 #[test]
