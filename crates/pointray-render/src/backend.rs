@@ -39,9 +39,11 @@ impl Backend {
     /// `scene` made ready for frames with `settings`' buffer layout.
     pub fn prepare(&self, scene: &Scene, settings: &RenderSettings) -> Result<ReadyScene, VulkanError> {
         Ok(match self {
-            Backend::Vulkan(renderer) => ReadyScene::Vulkan(Box::new(
-                renderer.prepare_with_layout(scene, SceneLayout::for_settings(settings))?,
-            )),
+            Backend::Vulkan(renderer) => {
+                let stream_tiles_for = Some((settings.width, settings.height));
+                let layout = SceneLayout { stream_tiles_for, ..SceneLayout::for_settings(settings) };
+                ReadyScene::Vulkan(Box::new(renderer.prepare_with_layout(scene, layout)?))
+            }
             Backend::Cpu => ReadyScene::Cpu(Box::new(CpuRenderer::new(scene))),
         })
     }

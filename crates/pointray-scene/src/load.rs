@@ -113,7 +113,7 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
 
 fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
     let unit_box = Aabb::new(Vec3::splat(-0.5), Vec3::splat(0.5));
-    let aspect = settings.width as f32 / settings.height as f32;
+    let aspect = settings.aspect();
     Scene::framing_camera(bounds.unwrap_or(&unit_box), DEFAULT_VIEW_DIRECTION, DEFAULT_VFOV_DEGREES, aspect)
 }
 

@@ -106,6 +106,11 @@ impl RenderSetting {
 }
 
 impl RenderSettings {
+    /// The image's width over its height.
+    pub fn aspect(&self) -> f32 {
+        self.width as f32 / self.height.max(1) as f32
+    }
+
     /// Whether an image of this size fits in `budget`; the error says which size would.
     pub fn check_memory(&self, budget: &pointray_io::MemoryBudget) -> Result<(), String> {
         let pixels = u64::from(self.width) * u64::from(self.height);

@@ -2,7 +2,7 @@
 //! present, see `frame_source`), title statistics, and the scripted turntable.
 
 use std::collections::HashSet;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use glam::{Vec2, Vec3};
 use pointray_scene::{Camera, RenderSettings, RenderedImage};
@@ -24,6 +24,11 @@ use crate::screenshots;
 use crate::view_state::ViewState;
 use crate::{Script, ViewerOptions};
 use pointray_scene::orbit_camera;
+use pointray_vulkan::TileResidency;
+
+/// The longest an interactive frame spends loading a streamed scene's tiles (at least one
+/// tile a frame): a moving camera keeps about 30 frames a second while they come.
+const STREAM_STEP: Duration = Duration::from_millis(30);
 
 /// The scripted run's progress.
 struct ScriptRun {
@@ -57,6 +62,8 @@ pub(crate) struct App {
     last_tick: Instant,
     pub(crate) frames_presented: u64,
     pub(crate) error: Option<ViewerError>,
+    /// Where a streamed scene's tiles stood after the last frame.
+    residency: Option<TileResidency>,
 }
 
 impl App {
@@ -82,6 +89,7 @@ impl App {
             last_tick: now,
             frames_presented: 0,
             error: None,
+            residency: None,
         }
     }
 
@@ -143,11 +151,13 @@ impl App {
                 Presentation::Direct => "direct",
                 Presentation::HostCopy => "host copy",
             };
+            let tiles = self.residency.map(|tiles| format!(", {} of {} tiles", tiles.resident, tiles.tiles));
             let title = format!(
-                "pointray view: {fps:.1} fps, {:.1} ms/frame, {} spp, {}, {path}",
+                "pointray view: {fps:.1} fps, {:.1} ms/frame, {} spp, {}, {path}{}",
                 mean.as_secs_f64() * 1e3,
                 self.refinement.taken().max(self.view.settings.samples_per_pixel),
-                self.source.describe()
+                self.source.describe(),
+                tiles.unwrap_or_default()
             );
             if let Some(window) = &self.window {
                 window.set_title(&title);
@@ -165,6 +175,8 @@ impl App {
         run.next_frame += 1;
         let last = run.next_frame == run.script.frames;
         let keep = run.script.sequence.is_some() || (last && run.script.screenshot.is_some());
+        // Every tile the frame needs, as `pointray render` loads them.
+        self.stream_tiles(self.view.settings.aspect(), None)?;
         let started = Instant::now();
         let drawn = self.source.draw(&self.view.scene, &self.view.settings, keep)?;
         let run = self.script.as_mut().expect("scripted");
@@ -184,9 +196,20 @@ impl App {
             self.refinement.restart(now);
         }
         self.view.sync_camera();
+        let size = self.window.as_ref().map(Window::inner_size).unwrap_or(PhysicalSize::new(1, 1));
+        self.stream_tiles(size.width as f32 / size.height.max(1) as f32, Some(STREAM_STEP))?;
         let Some(pass) = self.refinement.next(now, self.source.is_cpu()) else { return Ok(None) };
         let settings = self.pass_settings(pass);
         Ok(Some(self.source.draw(&self.view.scene, &settings, false)?))
+    }
+
+    /// Loads the tiles the camera needs, for at most `limit`; a change restarts the refinement.
+    fn stream_tiles(&mut self, aspect: f32, limit: Option<Duration>) -> Result<(), ViewerError> {
+        self.residency = self.source.stream_tiles(&self.view.scene, aspect, limit)?;
+        if self.residency.is_some_and(|residency| residency.changed()) {
+            self.refinement.restart(Instant::now());
+        }
+        Ok(())
     }
 
     /// The window's size (divided for previews) and the pass's samples.
@@ -312,7 +335,10 @@ impl App {
 
     /// Whether frames must keep coming without input.
     fn busy(&self) -> bool {
-        self.script.is_some() || !self.refinement.done() || controls::fly_direction(&self.held) != Vec3::ZERO
+        self.script.is_some()
+            || !self.refinement.done()
+            || controls::fly_direction(&self.held) != Vec3::ZERO
+            || self.residency.is_some_and(|residency| residency.pending > 0)
     }
 }
 

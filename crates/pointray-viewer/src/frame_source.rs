@@ -7,11 +7,12 @@
 use pointray_cpu::CpuRenderer;
 use pointray_scene::{Light, RenderSettings, RenderedImage, Scene};
 use pointray_vulkan::{
-    BackendChoice, DeviceOptions, DeviceSelector, MessageCounter, PreparedScene, ReadBack, VulkanRenderer,
-    WindowTarget,
+    BackendChoice, DeviceOptions, DeviceSelector, MessageCounter, PreparedScene, ReadBack, SceneLayout,
+    TileResidency, VulkanRenderer, WindowTarget,
 };
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use std::sync::Arc;
+use std::time::Duration;
 
 use crate::display_image::image_from_display;
 use crate::error::ViewerError;
@@ -61,6 +62,7 @@ impl FrameSource {
         device: &DeviceSelector,
         options: DeviceOptions,
         scene: &Scene,
+        view_size: (u32, u32),
         display: Option<RawDisplayHandle>,
     ) -> Result<Self, ViewerError> {
         let open = || match display {
@@ -71,7 +73,7 @@ impl FrameSource {
         match renderer {
             Some(renderer) => Ok(Self::Vulkan {
                 window: None,
-                prepared: Box::new(renderer.prepare(scene)?),
+                prepared: Box::new(renderer.prepare_with_layout(scene, streaming_layout(view_size))?),
                 lights: scene.lights.clone(),
                 renderer: Box::new(renderer),
             }),
@@ -208,6 +210,24 @@ impl FrameSource {
         }
     }
 
+    /// Moves the camera to `scene`'s and, where the scene's point sets stream, loads the tiles
+    /// it needs for at most `limit` and evicts those it no longer does; `None` where nothing
+    /// streams.
+    pub(crate) fn stream_tiles(
+        &mut self,
+        scene: &Scene,
+        aspect: f32,
+        limit: Option<Duration>,
+    ) -> Result<Option<TileResidency>, ViewerError> {
+        match self {
+            Self::Vulkan { prepared, .. } => {
+                prepared.camera = scene.camera;
+                Ok(prepared.stream_tiles(aspect, limit)?)
+            }
+            Self::Cpu { .. } => Ok(None),
+        }
+    }
+
     /// Sets the camera and the lights. Neither is in an acceleration structure: changing
     /// them rebuilds nothing.
     fn update_scene(&mut self, scene: &Scene) -> Result<(), ViewerError> {
@@ -226,6 +246,12 @@ impl FrameSource {
         }
         Ok(())
     }
+}
+
+/// Point sets over the GPU memory budget stream, their tiles following the camera of an
+/// image of `view_size` pixels; the others upload whole.
+fn streaming_layout(view_size: (u32, u32)) -> SceneLayout {
+    SceneLayout { stream_tiles_for: Some(view_size), ..SceneLayout::default() }
 }
 
 /// The host path: the frame's bytes, scaled to the swapchain, uploaded and presented.
@@ -289,6 +315,7 @@ mod tests {
                 &DeviceSelector::Auto,
                 DeviceOptions::VALIDATED,
                 &loaded.scene,
+                (settings.width, settings.height),
                 None,
             ) {
                 Ok(source) => source,

@@ -98,8 +98,15 @@ pub fn run_viewer(
     }
     let event_loop = event_loop()?;
     let display = event_loop.display_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
-    let source =
-        FrameSource::open(options.backend, &options.device, options.device_options, &scene, Some(display))?;
+    let view_size = (settings.width, settings.height);
+    let source = FrameSource::open(
+        options.backend,
+        &options.device,
+        options.device_options,
+        &scene,
+        view_size,
+        Some(display),
+    )?;
     let backend = source.describe();
     let presentation = source.presentation();
     println!("backend: {backend}, presentation: {presentation:?}");

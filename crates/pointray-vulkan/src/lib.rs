@@ -38,6 +38,8 @@ mod shaders;
 mod spirv_reflection;
 mod surface_choice;
 mod swapchain;
+mod tile_stream;
+mod tile_view;
 mod trace;
 mod trace_target;
 #[cfg(test)]
@@ -59,6 +61,7 @@ pub use present_device::PresentDevice;
 pub use present_loop::{PresentLoop, Presented};
 pub use renderer::{TraceTiming, VulkanRenderer};
 pub use swapchain::{Swapchain, SwapchainDevice, record_copy_to_present_image};
+pub use tile_stream::TileResidency;
 pub use trace_target::{PixelOutput, TraceTarget};
 pub use validation::MessageCounter;
 pub use window_target::{DisplayImage, ReadBack, WindowTarget};

@@ -22,7 +22,7 @@ use crate::patch_upload::{patch_tiles, record_bytes, tile_box_bytes};
 use crate::prepared_scene::SceneLayout;
 
 /// Bytes of one TLAS instance record (`VkAccelerationStructureInstanceKHR`).
-const INSTANCE_BYTES: u64 = 64;
+pub(crate) const INSTANCE_BYTES: u64 = 64;
 
 /// The smallest tile a budget splits a point set into: below it, the structures' fixed
 /// costs outweigh what a smaller build saves.
@@ -225,13 +225,18 @@ impl GpuLedger {
         self.hold(size, (input + structure.build_bytes).saturating_sub(size));
     }
 
+    /// What the budget leaves beside what is held.
+    pub(crate) fn room(&self) -> u64 {
+        self.budget.bytes.saturating_sub(self.held)
+    }
+
     /// The most the scene held at once, as far as the ledger saw.
     pub(crate) fn peak(&self) -> u64 {
         self.peak
     }
 }
 
-fn mib(bytes: u64) -> f64 {
+pub(crate) fn mib(bytes: u64) -> f64 {
     bytes as f64 / (1 << 20) as f64
 }
 

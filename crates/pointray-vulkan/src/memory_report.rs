@@ -2,6 +2,7 @@
 
 use std::time::Duration;
 
+use crate::acceleration::AccelerationStructure;
 use crate::prepared_scene::PreparedScene;
 
 /// Build times and memory of a prepared scene's acceleration structures and buffers.
@@ -34,16 +35,21 @@ impl BuildReport {
 }
 
 impl PreparedScene {
-    /// What building this scene took and what it occupies.
+    /// What building this scene took and what it occupies; a streamed scene's resident
+    /// tiles count as built.
     pub fn build_report(&self) -> BuildReport {
+        let tiles = self.streaming.iter().flat_map(|streaming| streaming.tiles.resident.values());
+        let bottom_levels: Vec<&AccelerationStructure> =
+            self._bottom_levels.iter().chain(tiles.clone().map(|tile| &tile.blas)).collect();
+        let buffers = self._geometry.iter().chain(tiles.flat_map(|tile| &tile.buffers));
         BuildReport {
-            blas_count: self._bottom_levels.len(),
-            blas_build: self._bottom_levels.iter().map(|b| b.build_time).sum(),
+            blas_count: bottom_levels.len(),
+            blas_build: bottom_levels.iter().map(|b| b.build_time).sum(),
             tlas_build: self.tlas.build_time,
-            blas_bytes: self._bottom_levels.iter().map(|b| b.size()).sum(),
+            blas_bytes: bottom_levels.iter().map(|b| b.size()).sum(),
             tlas_bytes: self.tlas.size(),
             peak_build_bytes: self.build_peak,
-            geometry_bytes: self._geometry.iter().map(|b| b.size).sum::<u64>()
+            geometry_bytes: buffers.map(|b| b.size).sum::<u64>()
                 + [&self.environment, &self.emissive]
                     .iter()
                     .filter_map(|table| table.as_ref())

@@ -1,16 +1,17 @@
 //! A point set onto the GPU: one BLAS per tile (`pointray_surface::patch_tiles`), then the
 //! per-patch records its traces read, all tiles sharing the set's buffers.
 
+use std::borrow::Cow;
 use std::ops::Range;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR};
+use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot};
 use pointray_scene::{BufferLayout, Material};
 use pointray_surface::PatchSet;
 use pointray_surface::patch_tiles::tile_ranges;
 
-use crate::acceleration::{AccelerationStructure, aabb_input, build, build_peak, build_sizes};
+use crate::acceleration::{AccelerationStructure, BlasLayout, aabb_input, build, build_peak, build_sizes};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
@@ -40,16 +41,8 @@ pub(crate) fn prepare_patches(
     max_tile_patches: u32,
     ledger: &mut GpuLedger,
 ) -> Result<PreparedObject, VulkanError> {
+    check_patch_set(patches)?;
     let count = patches.len();
-    if patches.aabbs.len() != count || patches.cold.len() != count {
-        return Err(VulkanError::InvalidScene(format!(
-            "a patch set has {} hot records, {} cold records and {} boxes; they must match",
-            count,
-            patches.cold.len(),
-            patches.aabbs.len()
-        )));
-    }
-    check_color_neighbors(patches)?;
     let colors = reads_point_colors(material);
     let records = record_bytes(patches, material, layout.buffers);
     let started = Instant::now();
@@ -58,19 +51,7 @@ pub(crate) fn prepare_patches(
     log_phase(&what, count as u64 * BOX_BYTES, started.elapsed());
     ledger.check(records, "uploading the patch records")?;
     let started = Instant::now();
-    let (mut record, mut buffers) = patch_records(context, patches, layout.buffers, colors)?;
-    // Only coloured clouds carry neighbour lists; the others keep address 0, which the
-    // closest-hit shader never dereferences.
-    if colors && !patches.color_neighbors.is_empty() {
-        let lists = Buffer::device_with_data(
-            context,
-            "colour neighbour lists",
-            bytemuck::cast_slice(&patches.color_neighbors),
-            storage_usage(),
-        )?;
-        record.color_neighbors = lists.device_address();
-        buffers.push(lists);
-    }
+    let (record, buffers) = patch_records(context, patches, 0..count, layout.buffers, colors)?;
     let uploaded: u64 = buffers.iter().map(|buffer| buffer.size).sum();
     ledger.hold(uploaded, 0);
     log_phase(&format!("uploaded {count} patches' records"), uploaded, started.elapsed());
@@ -106,63 +87,111 @@ fn tile_bottom_levels(
         let step =
             format!("building bottom level {} of {count} (and the patch records after the last)", index + 1);
         ledger.check(transient.max(records), &step)?;
-        let boxes = Buffer::device_with_data(
-            context,
-            "patch boxes",
-            bytemuck::cast_slice(&patches.aabbs[tile.clone()]),
-            build_input_usage(),
-        )?;
-        let blas = build(context, &aabb_input(boxes.device_address(), primitives, layout.blas))?;
-        ledger.hold_structure(&blas, boxes.size);
+        let blas = tile_blas(context, patches, tile.clone(), layout.blas)?;
+        ledger.hold_structure(&blas, tile_box_bytes(&tile));
         bottom_levels.push((blas, tile.start as u32));
     }
     Ok(bottom_levels)
 }
 
-/// The per-patch records the trace reads, in `buffers`' layout only: the hot buffer (and
-/// the cold one where the trace colours hits by the points), or the combined one. The colour
-/// blend walks the split hot and cold buffers (`interpolate_color`), so where the trace
-/// colours hits by the points the combined layout uploads them too.
-fn patch_records(
+/// The bottom level of the patches in `tile`, built from their boxes, which are uploaded for
+/// the build alone: the structure keeps its own copy and no shader reads them.
+pub(crate) fn tile_blas(
     context: &Arc<GpuContext>,
     patches: &PatchSet,
+    tile: Range<usize>,
+    layout: BlasLayout,
+) -> Result<AccelerationStructure, VulkanError> {
+    let primitives = tile.len() as u32;
+    let boxes = Buffer::device_with_data(
+        context,
+        "patch boxes",
+        bytemuck::cast_slice(&patches.aabbs[tile]),
+        build_input_usage(),
+    )?;
+    build(context, &aabb_input(boxes.device_address(), primitives, layout))
+}
+
+/// The per-patch records of the patches in `range` that the trace reads, in `buffers'`
+/// layout only: the hot buffer (and the cold one where the trace colours hits by the
+/// points), or the combined one. The colour blend walks the split hot and cold buffers
+/// (`interpolate_color`), so where the trace colours hits by the points the combined layout
+/// uploads them too, with the neighbour lists.
+///
+/// The shaders index every buffer by the patch's index in the whole set, so the addresses
+/// recorded for a range are its buffers' less the range's start: a set uploaded a tile at
+/// a time (`tile_stream`) is then read as one uploaded whole is. A tile's colour neighbours
+/// outside it are dropped, as they may not be on the GPU.
+pub(crate) fn patch_records(
+    context: &Arc<GpuContext>,
+    patches: &PatchSet,
+    range: Range<usize>,
     buffers: BufferLayout,
     colors: bool,
 ) -> Result<(ObjectRecord, Vec<Buffer>), VulkanError> {
-    let upload = |name, bytes: &[u8]| Buffer::device_with_data(context, name, bytes, storage_usage());
-    let mut record = ObjectRecord::default();
     let mut uploaded = Vec::new();
+    let mut upload = |name, bytes: &[u8], stride: usize| -> Result<u64, VulkanError> {
+        let buffer = Buffer::device_with_data(context, name, bytes, storage_usage())?;
+        let address = buffer.device_address().wrapping_sub((range.start * stride) as u64);
+        uploaded.push(buffer);
+        Ok(address)
+    };
+    let mut record = ObjectRecord::default();
     if buffers == BufferLayout::Split || colors {
-        let hot = upload("hot patch records", bytemuck::cast_slice(&patches.hot))?;
-        record.hot = hot.device_address();
-        uploaded.push(hot);
+        let hot = bytemuck::cast_slice(&patches.hot[range.clone()]);
+        record.hot = upload("hot patch records", hot, size_of::<PatchHot>())?;
     }
     if colors {
-        let cold = upload("cold patch records", bytemuck::cast_slice(&patches.cold))?;
-        record.cold = cold.device_address();
-        uploaded.push(cold);
+        let cold = bytemuck::cast_slice(&patches.cold[range.clone()]);
+        record.cold = upload("cold patch records", cold, size_of::<PatchCold>())?;
     }
     if buffers == BufferLayout::Combined {
-        let combined: Vec<PatchCombined> = patches
-            .hot
+        let combined: Vec<PatchCombined> = patches.hot[range.clone()]
             .iter()
-            .zip(&patches.cold)
+            .zip(&patches.cold[range.clone()])
             .map(|(&hot, &cold)| PatchCombined::new(hot, cold))
             .collect();
-        let combined = upload("combined patch records", bytemuck::cast_slice(&combined))?;
-        record.combined = combined.device_address();
-        uploaded.push(combined);
+        let combined = bytemuck::cast_slice(&combined);
+        record.combined = upload("combined patch records", combined, size_of::<PatchCombined>())?;
+    }
+    // Only coloured clouds carry neighbour lists; the others keep address 0, which the
+    // closest-hit shader never dereferences.
+    if colors && !patches.color_neighbors.is_empty() {
+        let lists = neighbors_within(patches, range.clone());
+        let stride = COLOR_NEIGHBORS * size_of::<u32>();
+        record.color_neighbors = upload("colour neighbour lists", bytemuck::cast_slice(&lists), stride)?;
     }
     Ok((record, uploaded))
 }
 
+/// The colour neighbour lists of the patches in `range`, naming only patches within it.
+fn neighbors_within(patches: &PatchSet, range: Range<usize>) -> Cow<'_, [u32]> {
+    let lists = &patches.color_neighbors[range.start * COLOR_NEIGHBORS..range.end * COLOR_NEIGHBORS];
+    if range == (0..patches.len()) {
+        return Cow::Borrowed(lists);
+    }
+    let within = |&j: &u32| if range.contains(&(j as usize)) { j } else { NO_NEIGHBOR };
+    Cow::Owned(lists.iter().map(within).collect())
+}
+
 /// The GPU bytes of the records a trace of `patches` with `material` reads.
 pub(crate) fn record_bytes(patches: &PatchSet, material: &Material, buffers: BufferLayout) -> u64 {
-    let count = patches.len() as u64;
-    let hot = size_of::<pointray_kernels::PatchHot>() as u64;
-    let cold = size_of::<pointray_kernels::PatchCold>() as u64;
+    range_record_bytes(patches, 0..patches.len(), material, buffers)
+}
+
+/// The GPU bytes of the records of the patches in `range` that a trace with `material` reads.
+pub(crate) fn range_record_bytes(
+    patches: &PatchSet,
+    range: Range<usize>,
+    material: &Material,
+    buffers: BufferLayout,
+) -> u64 {
+    let count = range.len() as u64;
+    let hot = size_of::<PatchHot>() as u64;
+    let cold = size_of::<PatchCold>() as u64;
     let colors = reads_point_colors(material);
-    let neighbors = if colors { patches.color_neighbors.len() as u64 * 4 } else { 0 };
+    let lists = colors && !patches.color_neighbors.is_empty();
+    let neighbors = if lists { count * (COLOR_NEIGHBORS * size_of::<u32>()) as u64 } else { 0 };
     let split = match (buffers, colors) {
         (_, true) => count * (hot + cold),
         (BufferLayout::Split, false) => count * hot,
@@ -176,6 +205,20 @@ pub(crate) fn record_bytes(patches: &PatchSet, material: &Material, buffers: Buf
 /// The build input of one tile: its patches' boxes.
 pub(crate) fn tile_box_bytes(tile: &Range<usize>) -> u64 {
     tile.len() as u64 * BOX_BYTES
+}
+
+/// Refuses a patch set whose sections disagree, which the shaders would read past.
+pub(crate) fn check_patch_set(patches: &PatchSet) -> Result<(), VulkanError> {
+    let count = patches.len();
+    if patches.aabbs.len() != count || patches.cold.len() != count {
+        return Err(VulkanError::InvalidScene(format!(
+            "a patch set has {} hot records, {} cold records and {} boxes; they must match",
+            count,
+            patches.cold.len(),
+            patches.aabbs.len()
+        )));
+    }
+    check_color_neighbors(patches)
 }
 
 /// The shader follows neighbour indices without bounds checks: each list must have its

@@ -2,6 +2,7 @@
 //! TLAS, the instance (material) records and the lights. Built once, traced many times.
 
 use std::sync::Arc;
+use std::time::Duration;
 
 use ash::vk;
 use glam::{Affine3A, Vec4};
@@ -10,15 +11,18 @@ use pointray_scene::{Background, BufferLayout, Camera, Geometry, Light, RenderSe
 use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
 use rayon::prelude::*;
 
-use crate::acceleration::{AccelerationStructure, BlasLayout, build, instance_input, triangle_input};
+use crate::acceleration::{
+    AccelerationStructure, BlasLayout, build, build_peak, build_sizes, instance_input, triangle_input,
+};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
-use crate::error::VulkanError;
+use crate::error::{VkContext, VulkanError};
 use crate::gpu_records::{LightRecord, ObjectRecord};
 use crate::light_table::LightTable;
-use crate::memory_plan::{self, GpuBudget, GpuLedger};
+use crate::memory_plan::{self, GpuBudget, GpuLedger, INSTANCE_BYTES, mib};
 use crate::patch_upload::prepare_patches;
 use crate::pipeline::{HIT_GROUP_PATCHES, HIT_GROUP_TRIANGLES};
+use crate::tile_stream::{TileResidency, TileStream};
 
 /// The most instances (meshes and point-set tiles) whose records an instance's 24-bit
 /// custom index can name.
@@ -48,6 +52,16 @@ pub struct PreparedScene {
     // `memory_report.rs`).
     pub(crate) _bottom_levels: Vec<AccelerationStructure>,
     pub(crate) _geometry: Vec<Buffer>,
+    /// Where the point sets stream: their tiles, and the instances that stay whatever the
+    /// camera.
+    pub(crate) streaming: Option<Streaming>,
+}
+
+/// A streamed scene's tiles (`tile_stream`) and the instances it holds whole (meshes), which
+/// come first in every top level it builds.
+pub(crate) struct Streaming {
+    pub(crate) tiles: TileStream,
+    fixed: Vec<(vk::AccelerationStructureInstanceKHR, ObjectRecord)>,
 }
 
 /// How a scene goes onto the GPU: its BLAS layout, which per-patch buffers the traces of it
@@ -64,6 +78,11 @@ pub struct SceneLayout {
     /// `DeviceOptions::gpu_memory`, else its device-local memory. A scene that cannot fit is
     /// refused before anything is uploaded, one that may not before the step that would not.
     pub memory_budget: Option<u64>,
+    /// `Some(image size)`: where the scene's point sets do not fit the budget, stream them
+    /// rather than refuse the scene. Their tiles are loaded as far as the budget allows, in
+    /// the order a camera rendering an image of this size needs them, first for the scene's
+    /// camera and then for each `PreparedScene::stream_tiles`.
+    pub stream_tiles_for: Option<(u32, u32)>,
 }
 
 impl SceneLayout {
@@ -207,6 +226,42 @@ impl PreparedScene {
         )))
     }
 
+    /// Where the scene's point sets stream (`SceneLayout::stream_tiles_for`): evicts the
+    /// tiles the scene's camera, rendering an image `aspect` (width over height) wide, no
+    /// longer needs, loads the ones it needs, most needed first, for at most `limit` (at
+    /// least one tile a call), and rebuilds the top level if anything changed. `None` for a
+    /// scene held whole.
+    pub fn stream_tiles(
+        &mut self,
+        aspect: f32,
+        limit: Option<Duration>,
+    ) -> Result<Option<TileResidency>, VulkanError> {
+        let Some(streaming) = &mut self.streaming else { return Ok(None) };
+        let context = &self.context;
+        // Frames in flight may read the tiles evicted and the top level replaced.
+        let idle = || unsafe { context.device.device_wait_idle() }.during("waiting to stream tiles");
+        let residency = streaming.tiles.update(context, &self.camera, aspect, limit, idle)?;
+        if residency.changed() {
+            let mut instances = Vec::with_capacity(streaming.fixed.len() + residency.resident);
+            let mut records = Vec::with_capacity(instances.capacity());
+            for (instance, record) in &streaming.fixed {
+                instances.push(*instance);
+                records.push(*record);
+            }
+            for tile in streaming.tiles.resident.values() {
+                instances.push(instance(
+                    &tile.transform,
+                    records.len() as u32,
+                    &tile.blas,
+                    HIT_GROUP_PATCHES,
+                ));
+                records.push(tile.record);
+            }
+            (self.tlas, self.objects) = top_level(context, &instances, &records)?;
+        }
+        Ok(Some(residency))
+    }
+
     /// Replaces the scene's lights; the next trace shades with them. Geometry, and so every
     /// acceleration structure, stays as it is.
     pub fn set_lights(&mut self, lights: &[Light]) -> Result<(), VulkanError> {
@@ -247,16 +302,35 @@ pub(crate) fn prepare(
     if let Some(problem) = scene.objects.iter().find_map(out_of_range) {
         return Err(VulkanError::InvalidScene(problem));
     }
+    match upload(context, scene, layout, false) {
+        Err(VulkanError::OverBudget(why)) if layout.stream_tiles_for.is_some() && has_point_sets(scene) => {
+            tracing::info!("{why}: streaming the point sets' tiles instead");
+            upload(context, scene, layout, true)
+        }
+        result => result,
+    }
+}
+
+/// Uploads `scene` whole, or with `streamed` its meshes alone and its point sets' tiles as
+/// the camera needs them.
+fn upload(
+    context: &Arc<GpuContext>,
+    scene: &Scene,
+    layout: SceneLayout,
+    streamed: bool,
+) -> Result<PreparedScene, VulkanError> {
     let budget = GpuBudget::new(context, layout.memory_budget.or(context.gpu_memory));
     let (max_tile, need) =
         memory_plan::fitted_tile(context, scene, layout, layout.tile_limit(context), &budget);
-    if need.bottom_levels > MAX_INSTANCES {
-        return Err(VulkanError::InvalidScene(format!(
-            "{} meshes and point-set tiles of at most {max_tile} patches; at most {MAX_INSTANCES} fit",
-            need.bottom_levels
-        )));
+    if !streamed {
+        if need.bottom_levels > MAX_INSTANCES {
+            return Err(VulkanError::InvalidScene(format!(
+                "{} meshes and point-set tiles of at most {max_tile} patches; at most {MAX_INSTANCES} fit",
+                need.bottom_levels
+            )));
+        }
+        budget.check_plan(&need)?;
     }
-    budget.check_plan(&need)?;
     let mut ledger = GpuLedger::new(budget);
     let mut records = Vec::with_capacity(need.bottom_levels);
     let mut instances = Vec::with_capacity(need.bottom_levels);
@@ -264,6 +338,7 @@ pub(crate) fn prepare(
     let mut geometry = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
         let (prepared, hit_group) = match &object.geometry {
+            Geometry::Patches(_) if streamed => continue,
             Geometry::Patches(patches) => (
                 prepare_patches(context, patches, &object.material, layout, max_tile, &mut ledger)?,
                 HIT_GROUP_PATCHES,
@@ -278,19 +353,13 @@ pub(crate) fn prepare(
         }
         geometry.extend(prepared.buffers);
     }
-    // Like the boxes, the instances are only the build's input.
-    let instance_buffer =
-        Buffer::device_with_data(context, "TLAS instances", instance_bytes(&instances), build_input_usage())?;
-    let tlas = build(context, &instance_input(instance_buffer.device_address(), instances.len() as u32))?;
-    ledger.hold_structure(&tlas, instance_buffer.size);
-    drop(instance_buffer);
-    let record_bytes = if records.is_empty() {
-        vec![0u8; size_of::<ObjectRecord>()]
-    } else {
-        bytemuck::cast_slice(&records).to_vec()
-    };
+    let streaming = streamed
+        .then(|| start_streaming(context, scene, layout, &ledger, &instances, &records))
+        .transpose()?;
+    let (tlas, objects) = top_level(context, &instances, &records)?;
+    ledger.hold_structure(&tlas, instance_bytes(&instances).len() as u64);
     let emissive = scene.emissive_triangles();
-    Ok(PreparedScene {
+    let mut prepared = PreparedScene {
         context: context.clone(),
         camera: scene.camera,
         background: scene.background.clone(),
@@ -303,12 +372,85 @@ pub(crate) fn prepare(
         emissive_area: emissive.total_area(),
         light_count: scene.lights.len() as u32,
         ray_epsilon: scene.ray_epsilon(),
-        objects: Buffer::device_with_data(context, "object records", &record_bytes, storage_usage())?,
+        objects,
         lights: light_buffer(context, &scene.lights)?,
         tlas,
         buffer_layout: layout.buffers,
         build_peak: ledger.peak(),
         _bottom_levels: bottom_levels,
         _geometry: geometry,
-    })
+        streaming,
+    };
+    if let Some((width, height)) = layout.stream_tiles_for.filter(|_| streamed) {
+        prepared.stream_tiles(width as f32 / height.max(1) as f32, None)?;
+    }
+    Ok(prepared)
+}
+
+fn has_point_sets(scene: &Scene) -> bool {
+    scene.objects.iter().any(|object| matches!(object.geometry, Geometry::Patches(_)))
+}
+
+/// The tiles of `scene`'s point sets, none loaded, with a budget of what `ledger`'s leaves
+/// beside the scene's other holdings (`instances` and `records` so far), a top level over
+/// every tile and one tile's build.
+fn start_streaming(
+    context: &Arc<GpuContext>,
+    scene: &Scene,
+    layout: SceneLayout,
+    ledger: &GpuLedger,
+    instances: &[vk::AccelerationStructureInstanceKHR],
+    records: &[ObjectRecord],
+) -> Result<Streaming, VulkanError> {
+    let (mut tiles, largest_build) = TileStream::new(context, scene, layout, layout.tile_limit(context))?;
+    let count = instances.len() + tiles.len();
+    if count > MAX_INSTANCES {
+        return Err(VulkanError::InvalidScene(format!(
+            "{count} meshes and point-set tiles; at most {MAX_INSTANCES} fit"
+        )));
+    }
+    let (tlas, scratch) = build_sizes(context, &instance_input(0, count as u32));
+    let top = build_peak(count as u64 * INSTANCE_BYTES, tlas, scratch)
+        + count as u64 * size_of::<ObjectRecord>() as u64;
+    let reserved = top + largest_build;
+    ledger.check(
+        reserved,
+        "streaming the point sets' tiles (a top level over them all and one tile's build)",
+    )?;
+    let room = ledger.room().saturating_sub(reserved);
+    if room < tiles.smallest_tile_bytes() {
+        return Err(VulkanError::OverBudget(format!(
+            "streaming the point sets' tiles leaves {:.1} MiB for them beside a top level over them all and \
+             one tile's build ({:.1} MiB), less than their smallest tile takes ({:.1} MiB); raise the GPU \
+             memory budget or use the CPU backend",
+            mib(room),
+            mib(reserved),
+            mib(tiles.smallest_tile_bytes())
+        )));
+    }
+    tiles.set_budget(room);
+    let fixed = instances.iter().copied().zip(records.iter().copied()).collect();
+    Ok(Streaming { tiles, fixed })
+}
+
+/// The top level over `instances` and the object records the shaders index by their
+/// custom indices.
+fn top_level(
+    context: &Arc<GpuContext>,
+    instances: &[vk::AccelerationStructureInstanceKHR],
+    records: &[ObjectRecord],
+) -> Result<(AccelerationStructure, Buffer), VulkanError> {
+    // Like the boxes, the instances are only the build's input.
+    let instance_buffer =
+        Buffer::device_with_data(context, "TLAS instances", instance_bytes(instances), build_input_usage())?;
+    let tlas = build(context, &instance_input(instance_buffer.device_address(), instances.len() as u32))?;
+    drop(instance_buffer);
+    // Storage buffers may not be empty.
+    let record_bytes = if records.is_empty() {
+        vec![0u8; size_of::<ObjectRecord>()]
+    } else {
+        bytemuck::cast_slice(records).to_vec()
+    };
+    let objects = Buffer::device_with_data(context, "object records", &record_bytes, storage_usage())?;
+    Ok((tlas, objects))
 }

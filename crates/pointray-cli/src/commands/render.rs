@@ -12,6 +12,7 @@ use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
 use pointray_scene::{
     BufferLayout, Integrator, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera,
 };
+use pointray_vulkan::TileResidency;
 
 use crate::backend::{BackendArgs, open_backend};
 use crate::progress::PrepBar;
@@ -103,6 +104,9 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     for (index, output) in (0..).zip(&outputs) {
         let camera = orbit_camera(&start, index, frames, 360.0);
         ready.set_camera(camera);
+        if let Some(residency) = ready.stream_tiles(&settings)? {
+            report_residency(&residency);
+        }
         let started = Instant::now();
         let mut image = backend.trace(&ready, &settings)?;
         let elapsed = started.elapsed();
@@ -153,4 +157,33 @@ fn apply_flags(args: &RenderArgs, mut settings: RenderSettings) -> RenderSetting
 fn cache_dir_for(output: &Path) -> PathBuf {
     let parent = output.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     parent.join(".pointray-cache")
+}
+
+/// What a streamed scene holds for this frame, and what the image lacks for it.
+fn report_residency(residency: &TileResidency) {
+    let mib = |bytes: u64| bytes as f64 / f64::from(1 << 20);
+    println!(
+        "streamed tiles: {} of {} on the GPU ({:.1} of {:.1} MiB), {} of the {} in view (loaded {}, evicted {})",
+        residency.resident,
+        residency.tiles,
+        mib(residency.resident_bytes),
+        mib(residency.budget_bytes),
+        residency.in_view_resident,
+        residency.in_view,
+        residency.loaded,
+        residency.evicted
+    );
+    let missing = residency.in_view - residency.in_view_resident;
+    if missing > 0 {
+        eprintln!(
+            "warning: {missing} tiles in view do not fit the GPU memory budget: the image lacks them \
+             (raise --gpu-memory, or render on the CPU backend)"
+        );
+    } else if residency.resident < residency.tiles {
+        eprintln!(
+            "note: the {} tiles out of view that do not fit the GPU memory budget cast no shadows and \
+             show in no reflections",
+            residency.tiles - residency.resident
+        );
+    }
 }

@@ -15,5 +15,6 @@ mod reflection;
 mod shadow;
 mod silhouette;
 mod sphere_normals;
+mod streamed_tiles;
 mod tiles;
 mod trace_target;

@@ -12,23 +12,29 @@ use common::{
 use glam::Vec3;
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::Aabb;
-use pointray_scene::{Geometry, Material, RenderedImage, Scene};
+use pointray_scene::{Geometry, Material, RenderedImage, Scene, SceneObject};
 use pointray_vulkan::{DeviceOptions, DeviceSelector, SceneLayout, VulkanError, VulkanRenderer};
 
 /// Small enough that every point set here splits into dozens of tiles, and not a divisor of
 /// their sizes, so that tiles differ in length.
 const SMALL_TILE: u32 = 97;
 
-fn bunny_on_floor(path: &std::path::Path) -> Scene {
+/// The prepped bunny, and its bounds in the world.
+pub(crate) fn bunny_object(path: &std::path::Path) -> (SceneObject, Aabb) {
     let bunny = prepped_points("bunny", path, Material { reflectivity: 0.0, ..Material::default() });
     let Geometry::Patches(patches) = &bunny.geometry else { unreachable!("prepped points are patches") };
     let bounds = patches.bounds().expect("the bunny has patches");
     let offset = patches.offset.as_vec3();
     let world = Aabb::new(Vec3::from(bounds.min) + offset, Vec3::from(bounds.max) + offset);
+    (bunny, world)
+}
+
+fn bunny_on_floor(path: &std::path::Path) -> Scene {
+    let (bunny, world) = bunny_object(path);
     model_on_floor(bunny, world, 0.4)
 }
 
-fn patch_count(scene: &Scene) -> usize {
+pub(crate) fn patch_count(scene: &Scene) -> usize {
     let count = |geometry: &Geometry| match geometry {
         Geometry::Patches(set) => set.len(),
         Geometry::Mesh(_) => 0,
@@ -42,7 +48,7 @@ fn patch_count(scene: &Scene) -> usize {
 /// pixel in twenty does; the backends disagree on those as much): the renderer keeps
 /// whichever its traversal reports first, tiled or not, so there the image may differ
 /// only by what separates two patches through the same point.
-fn assert_same_hits(name: &str, tiled: &RenderedImage, whole: &RenderedImage) {
+pub(crate) fn assert_same_hits(name: &str, tiled: &RenderedImage, whole: &RenderedImage) {
     let pixels = whole.pixel_count();
     let same_nearest = |i: usize| {
         tiled.instance_id[i] == whole.instance_id[i] && tiled.depth[i].to_bits() == whole.depth[i].to_bits()

@@ -1,0 +1,164 @@
+//! A point set over its GPU memory budget, streamed: the tiles a camera sees are loaded as far
+//! as the budget allows, and draw what the whole set draws there; moving the camera evicts
+//! tiles it no longer sees and loads the ones it now does, within the budget.
+
+use std::time::Duration;
+
+use crate::common;
+use crate::point_colors::{coloured_sphere, lit_on_floor};
+use crate::tiles::{assert_same_hits, bunny_object, patch_count};
+
+use common::{assert_no_validation_messages, model_on_floor, renderer, settings};
+use glam::Vec3;
+use pointray_kernels::Aabb;
+use pointray_scene::{Camera, RenderSettings, RenderedImage, Scene};
+use pointray_vulkan::{PreparedScene, SceneLayout, TileResidency, VulkanError, VulkanRenderer};
+
+const SIZE: u32 = 96;
+
+/// About 35 tiles of the bunny's 35,000 patches.
+const TILE: u32 = 1000;
+
+/// The bunny on a floor that neither reflects nor, as nothing casts shadows, shows what the
+/// tiles out of view would add: a view's image depends on the tiles it sees alone.
+fn bunny_scene() -> (Scene, Aabb) {
+    let (bunny, bounds) = bunny_object(&pointray_test_support::data_file("points/bunny.ply"));
+    (model_on_floor(bunny, bounds, 0.0), bounds)
+}
+
+fn unshadowed() -> RenderSettings {
+    RenderSettings { shadows: false, max_depth: 1, ..settings(SIZE) }
+}
+
+/// A close view of the bunny's `side` (-1 or 1 along x), a narrow one that sees part of it.
+fn close_view(bounds: &Aabb, side: f32) -> Camera {
+    let (min, max) = (Vec3::from(bounds.min), Vec3::from(bounds.max));
+    let size = (max - min).max_element();
+    let center = 0.5 * (min + max);
+    let target = Vec3::new(if side < 0.0 { min.x } else { max.x }, center.y, center.z);
+    Camera {
+        position: target + Vec3::new(0.3 * side * size, 0.0, 0.3 * size),
+        look_at: target,
+        up: Vec3::Y,
+        vertical_fov_degrees: 20.0,
+    }
+}
+
+fn streamed(
+    renderer: &VulkanRenderer,
+    scene: &Scene,
+    budget: u64,
+    tile: u32,
+) -> Result<PreparedScene, VulkanError> {
+    let layout = SceneLayout {
+        memory_budget: Some(budget),
+        stream_tiles_for: Some((SIZE, SIZE)),
+        max_tile_patches: Some(tile),
+        ..SceneLayout::default()
+    };
+    renderer.prepare_with_layout(scene, layout)
+}
+
+fn stream(prepared: &mut PreparedScene, camera: Camera, limit: Option<Duration>) -> TileResidency {
+    prepared.camera = camera;
+    let residency = prepared.stream_tiles(1.0, limit).expect("streams").expect("the bunny streams");
+    eprintln!("{residency:?}");
+    residency
+}
+
+fn whole_image(renderer: &VulkanRenderer, whole: &mut PreparedScene, camera: Camera) -> RenderedImage {
+    whole.camera = camera;
+    renderer.trace(whole, &unshadowed()).expect("traces whole")
+}
+
+#[test]
+fn a_cloud_over_its_budget_streams_the_tiles_each_view_sees_and_draws_what_it_draws_whole() {
+    let Some(renderer) = renderer() else { return };
+    let (scene, bounds) = bunny_scene();
+    let mut whole = renderer.prepare(&scene).expect("prepares whole");
+    let whole_bytes = whole.build_report().gpu_bytes();
+    let budget = whole_bytes * 3 / 4;
+    let mut prepared = streamed(&renderer, &scene, budget, TILE).expect("streams within the budget");
+    for side in [-1.0, 1.0, -1.0] {
+        let camera = close_view(&bounds, side);
+        let residency = stream(&mut prepared, camera, None);
+        assert!(residency.tiles >= 30, "{residency:?}: {} patches", patch_count(&scene));
+        assert!(residency.resident < residency.tiles, "{residency:?}: the budget holds some tiles only");
+        assert_eq!(residency.in_view_resident, residency.in_view, "{residency:?}: every tile in view fits");
+        assert_eq!(residency.pending, 0, "{residency:?}");
+        assert!(residency.resident_bytes <= residency.budget_bytes, "{residency:?}");
+        let held = prepared.build_report().gpu_bytes();
+        assert!(held <= budget, "the streamed scene holds {held} bytes, over its budget of {budget}");
+        let image = renderer.trace(&prepared, &unshadowed()).expect("traces streamed");
+        assert!(image.hit_mask().iter().filter(|&&hit| hit).count() > (SIZE * SIZE / 4) as usize);
+        let name = format!("bunny streamed, seen from side {side}");
+        assert_same_hits(&name, &image, &whole_image(&renderer, &mut whole, camera));
+    }
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn turning_to_another_view_evicts_tiles_and_a_time_limit_loads_one_tile_a_call() {
+    let Some(renderer) = renderer() else { return };
+    let (scene, bounds) = bunny_scene();
+    let budget = renderer.prepare(&scene).expect("prepares whole").build_report().gpu_bytes() * 3 / 4;
+    let mut prepared = streamed(&renderer, &scene, budget, TILE).expect("streams within the budget");
+    let first = stream(&mut prepared, close_view(&bounds, -1.0), None);
+    let turned = stream(&mut prepared, close_view(&bounds, 1.0), Some(Duration::ZERO));
+    assert!(turned.evicted > 0 && turned.loaded == 1, "{turned:?} after {first:?}");
+    let mut pending = turned.pending;
+    assert!(pending > 0, "{turned:?}: more than one tile is wanted");
+    while pending > 0 {
+        let next = stream(&mut prepared, close_view(&bounds, 1.0), Some(Duration::ZERO));
+        assert_eq!((next.loaded, next.evicted, next.pending), (1, 0, pending - 1), "{next:?}");
+        pending = next.pending;
+    }
+    let settled = stream(&mut prepared, close_view(&bounds, 1.0), None);
+    assert!(!settled.changed(), "{settled:?}: a settled view loads nothing");
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn a_budget_without_room_for_one_tile_is_refused_and_a_roomy_one_uploads_the_set_whole() {
+    let Some(renderer) = renderer() else { return };
+    let (scene, _) = bunny_scene();
+    let error = streamed(&renderer, &scene, 64 * 1024, TILE).err().expect("64 KiB streams nothing");
+    assert!(matches!(error, VulkanError::OverBudget(_)), "{error:?}");
+    assert!(error.to_string().contains("streaming the point sets' tiles"), "{error}");
+    let mut roomy = streamed(&renderer, &scene, 1 << 30, TILE).expect("a roomy budget uploads whole");
+    let tiles = patch_count(&scene).div_ceil(TILE as usize);
+    assert_eq!(roomy.build_report().blas_count, tiles + 1, "every tile of the bunny, and the floor");
+    assert_eq!(roomy.stream_tiles(1.0, None).expect("nothing to stream"), None);
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn a_coloured_cloud_streams_with_its_colours_blended_within_each_tile() {
+    let Some(renderer) = renderer() else { return };
+    let mut scene = lit_on_floor(coloured_sphere());
+    scene.objects[1].material.reflectivity = 0.0;
+    let mut whole = renderer.prepare(&scene).expect("prepares whole");
+    let budget = whole.build_report().gpu_bytes() * 3 / 4;
+    let mut prepared = streamed(&renderer, &scene, budget, 250).expect("streams within the budget");
+    // A narrow view of the sphere's right edge (its radius is 0.8), which passes through a
+    // few of its tiles: the tiles of a shell hold the shell's inside in their boxes.
+    let center: Vec3 = scene.objects[0].transform.translation.into();
+    let edge = center + Vec3::new(0.7, 0.0, 0.0);
+    let camera = Camera {
+        position: edge + Vec3::new(0.0, 0.0, 3.0),
+        look_at: edge,
+        up: Vec3::Y,
+        vertical_fov_degrees: 5.0,
+    };
+    let residency = stream(&mut prepared, camera, None);
+    assert!(residency.resident < residency.tiles, "{residency:?}");
+    assert_eq!(residency.in_view_resident, residency.in_view, "{residency:?}");
+    let image = renderer.trace(&prepared, &unshadowed()).expect("traces streamed");
+    let hits = image.hit_mask().iter().filter(|&&hit| hit).count();
+    assert!(hits > (SIZE * SIZE / 8) as usize, "{hits} pixels see the sphere");
+    let reference = whole_image(&renderer, &mut whole, camera);
+    let psnr = image.color_psnr(&reference);
+    eprintln!("coloured sphere streamed: {psnr:.1} dB");
+    assert!(psnr >= 35.0, "{psnr:.1} dB");
+    assert_no_validation_messages(&renderer);
+}
