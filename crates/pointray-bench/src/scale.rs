@@ -139,23 +139,21 @@ fn measure_rung(
     })?;
     let scene_path = options.cache.join(format!("scale-{label}.toml"));
     let loaded = load_with_model(label, &table, "points", &store, &scene_path, &options.cache)?;
-    let (ready, costs) = backend.prepare(&loaded.scene, &loaded.settings, label)?;
+    let (mut ready, costs) = backend.prepare(&loaded.scene, &loaded.settings, label)?;
     let load = started.elapsed();
     let fps = options
         .sizes
         .iter()
         .map(|&(width, height)| {
             let settings = RenderSettings { width, height, ..loaded.settings };
-            let frame = backend.frame_time(
-                &ready,
-                &settings,
-                options.frames,
-                &format!("{label} {width}x{height}"),
-            )?;
+            let case = format!("{label} {width}x{height}");
+            backend.stream_tiles(&mut ready, &settings, &case)?;
+            let frame = backend.frame_time(&ready, &settings, options.frames, &case)?;
             Ok(SizeFps { width, height, fps: 1.0 / frame.as_secs_f64(), frame_ms: frame.as_secs_f64() * 1e3 })
         })
         .collect::<Result<_, BenchError>>()?;
     let check = RenderSettings { width: CHECK_SIZE.0, height: CHECK_SIZE.1, ..loaded.settings };
+    backend.stream_tiles(&mut ready, &check, label)?;
     let image = backend.image(&ready, &check, label)?;
     let image_psnr_db = first_image.as_ref().map(|first| image.color_psnr(first));
     first_image.get_or_insert(image);

@@ -88,6 +88,27 @@ impl ScaleBackend<'_> {
         Ok((ready, costs))
     }
 
+    /// Where `ready`'s point sets stream, loads the tiles its camera needs for frames of
+    /// `settings`' size and says how many are on the GPU.
+    pub fn stream_tiles(
+        &self,
+        ready: &mut ReadyScene,
+        settings: &RenderSettings,
+        case: &str,
+    ) -> Result<(), BenchError> {
+        if let Some(tiles) = ready.stream_tiles(settings).map_err(|source| vulkan_error(case, source))? {
+            println!(
+                "{case}: {} of {} tiles on the GPU ({:.2} GB), {} of the {} in view",
+                tiles.resident,
+                tiles.tiles,
+                tiles.resident_bytes as f64 / 1e9,
+                tiles.in_view_resident,
+                tiles.in_view
+            );
+        }
+        Ok(())
+    }
+
     /// The median time of one whole frame of `ready` with `settings`; `case` names it in
     /// errors.
     pub fn frame_time(

@@ -225,6 +225,11 @@ impl GpuLedger {
         self.hold(size, (input + structure.build_bytes).saturating_sub(size));
     }
 
+    /// What is held so far.
+    pub(crate) fn held(&self) -> u64 {
+        self.held
+    }
+
     /// What the budget leaves beside what is held.
     pub(crate) fn room(&self) -> u64 {
         self.budget.bytes.saturating_sub(self.held)

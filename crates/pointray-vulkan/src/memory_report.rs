@@ -36,7 +36,8 @@ impl BuildReport {
 
 impl PreparedScene {
     /// What building this scene took and what it occupies; a streamed scene's resident
-    /// tiles count as built.
+    /// tiles count as built, and its peak is the most its tiles held at once beside a top
+    /// level over all of them.
     pub fn build_report(&self) -> BuildReport {
         let tiles = self.streaming.iter().flat_map(|streaming| streaming.tiles.resident.values());
         let bottom_levels: Vec<&AccelerationStructure> =
@@ -48,7 +49,9 @@ impl PreparedScene {
             tlas_build: self.tlas.build_time,
             blas_bytes: bottom_levels.iter().map(|b| b.size()).sum(),
             tlas_bytes: self.tlas.size(),
-            peak_build_bytes: self.build_peak,
+            peak_build_bytes: self.streaming.as_ref().map_or(self.build_peak, |streaming| {
+                self.build_peak.max(streaming.beside_tiles + streaming.tiles.peak)
+            }),
             geometry_bytes: buffers.map(|b| b.size).sum::<u64>()
                 + [&self.environment, &self.emissive]
                     .iter()

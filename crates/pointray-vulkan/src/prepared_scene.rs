@@ -62,6 +62,9 @@ pub struct PreparedScene {
 pub(crate) struct Streaming {
     pub(crate) tiles: TileStream,
     fixed: Vec<(vk::AccelerationStructureInstanceKHR, ObjectRecord)>,
+    /// What the scene holds beside the tiles at most: its meshes and a top level over
+    /// every tile.
+    pub(crate) beside_tiles: u64,
 }
 
 /// How a scene goes onto the GPU: its BLAS layout, which per-patch buffers the traces of it
@@ -304,7 +307,7 @@ pub(crate) fn prepare(
     }
     match upload(context, scene, layout, false) {
         Err(VulkanError::OverBudget(why)) if layout.stream_tiles_for.is_some() && has_point_sets(scene) => {
-            tracing::info!("{why}: streaming the point sets' tiles instead");
+            tracing::info!("streaming the point sets' tiles, as the scene does not fit whole: {why}");
             upload(context, scene, layout, true)
         }
         result => result,
@@ -430,7 +433,7 @@ fn start_streaming(
     }
     tiles.set_budget(room);
     let fixed = instances.iter().copied().zip(records.iter().copied()).collect();
-    Ok(Streaming { tiles, fixed })
+    Ok(Streaming { tiles, fixed, beside_tiles: ledger.held() + top })
 }
 
 /// The top level over `instances` and the object records the shaders index by their

@@ -80,6 +80,8 @@ struct StreamedTile {
     /// the compacted size seen once loaded, so that which tiles a camera gets does not
     /// depend on which were loaded before.
     bytes: u64,
+    /// The most its build holds at once: boxes, structure and scratch.
+    build: u64,
 }
 
 /// A tile on the GPU.
@@ -105,6 +107,8 @@ pub(crate) struct TileStream {
     /// What the tiles may hold at once: the budget less the scene's other holdings and the
     /// room one tile's build takes while it runs.
     budget: u64,
+    /// The most the tiles held at once, a load's build included.
+    pub(crate) peak: u64,
 }
 
 impl TileStream {
@@ -116,8 +120,14 @@ impl TileStream {
         layout: SceneLayout,
         max_tile: u32,
     ) -> Result<(Self, u64), VulkanError> {
-        let mut stream =
-            Self { sets: Vec::new(), tiles: Vec::new(), resident: BTreeMap::new(), layout, budget: 0 };
+        let mut stream = Self {
+            sets: Vec::new(),
+            tiles: Vec::new(),
+            resident: BTreeMap::new(),
+            layout,
+            budget: 0,
+            peak: 0,
+        };
         let mut largest_build = 0;
         for (index, object) in scene.objects.iter().enumerate() {
             let Geometry::Patches(patches) = &object.geometry else { continue };
@@ -127,10 +137,17 @@ impl TileStream {
             for range in tile_ranges(patches.len(), most) {
                 let (structure, scratch) =
                     build_sizes(context, &aabb_input(0, range.len() as u32, layout.blas));
-                largest_build = largest_build.max(build_peak(tile_box_bytes(&range), structure, scratch));
+                let build = build_peak(tile_box_bytes(&range), structure, scratch);
+                largest_build = largest_build.max(build);
                 let records = range_record_bytes(patches, range.clone(), &object.material, layout.buffers);
                 let bounds = world_bounds(patches, range.clone(), &object.transform);
-                stream.tiles.push(StreamedTile { set, patches: range, bounds, bytes: records + structure });
+                stream.tiles.push(StreamedTile {
+                    set,
+                    patches: range,
+                    bounds,
+                    bytes: records + structure,
+                    build,
+                });
             }
             let record = ObjectRecord::default().with_material(&object.material).for_tile(index as u32, 0);
             let colors = reads_point_colors(&object.material);
@@ -189,7 +206,10 @@ impl TileStream {
             if loaded > 0 && limit.is_some_and(|limit| started.elapsed() >= limit) {
                 break;
             }
+            let held: u64 = self.resident.values().map(ResidentTile::bytes).sum();
+            self.peak = self.peak.max(held + self.tiles[tile].build);
             self.resident.insert(tile, self.load(context, tile)?);
+            self.peak = self.peak.max(held + self.resident[&tile].bytes());
             loaded += 1;
         }
         let seen: Vec<usize> = (0..self.tiles.len()).filter(|&tile| view.sees_box(&bounds[tile])).collect();

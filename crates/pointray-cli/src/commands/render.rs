@@ -2,7 +2,7 @@
 //! to a turntable of frames orbiting it.
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
 use pointray_denoise::{DenoiseSettings, denoise};
@@ -104,8 +104,9 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     for (index, output) in (0..).zip(&outputs) {
         let camera = orbit_camera(&start, index, frames, 360.0);
         ready.set_camera(camera);
+        let started = Instant::now();
         if let Some(residency) = ready.stream_tiles(&settings)? {
-            report_residency(&residency);
+            report_residency(&residency, started.elapsed());
         }
         let started = Instant::now();
         let mut image = backend.trace(&ready, &settings)?;
@@ -160,10 +161,11 @@ fn cache_dir_for(output: &Path) -> PathBuf {
 }
 
 /// What a streamed scene holds for this frame, and what the image lacks for it.
-fn report_residency(residency: &TileResidency) {
+fn report_residency(residency: &TileResidency, took: Duration) {
     let mib = |bytes: u64| bytes as f64 / f64::from(1 << 20);
     println!(
-        "streamed tiles: {} of {} on the GPU ({:.1} of {:.1} MiB), {} of the {} in view (loaded {}, evicted {})",
+        "streamed tiles: {} of {} on the GPU ({:.1} of {:.1} MiB), {} of the {} in view (loaded {}, evicted {} \
+         in {took:.2?})",
         residency.resident,
         residency.tiles,
         mib(residency.resident_bytes),

@@ -87,8 +87,10 @@ fn a_cloud_over_its_budget_streams_the_tiles_each_view_sees_and_draws_what_it_dr
         assert_eq!(residency.in_view_resident, residency.in_view, "{residency:?}: every tile in view fits");
         assert_eq!(residency.pending, 0, "{residency:?}");
         assert!(residency.resident_bytes <= residency.budget_bytes, "{residency:?}");
-        let held = prepared.build_report().gpu_bytes();
+        let report = prepared.build_report();
+        let (held, peak) = (report.gpu_bytes(), report.peak_build_bytes);
         assert!(held <= budget, "the streamed scene holds {held} bytes, over its budget of {budget}");
+        assert!(peak >= held && peak <= budget, "{report:?}: its peak is over its budget of {budget}");
         let image = renderer.trace(&prepared, &unshadowed()).expect("traces streamed");
         assert!(image.hit_mask().iter().filter(|&&hit| hit).count() > (SIZE * SIZE / 4) as usize);
         let name = format!("bunny streamed, seen from side {side}");
