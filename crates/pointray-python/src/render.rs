@@ -9,12 +9,14 @@ use pointray_denoise::{DenoiseSettings, denoise};
 use pointray_io::MemoryBudget;
 use pointray_render::{
     Backend, BackendChoice, DeviceOptions, DeviceSelector, device_options_from_environment, error_line,
+    missing_tiles,
 };
 use pointray_scene::load::{LoadOptions, load_scene_file};
 use pointray_scene::scene_file::CameraSpec;
 use pointray_scene::{PointsScene, RenderSetting, RenderSettings, RenderedImage, SceneFile, UpAxis};
 use pointray_surface::PatchSet;
-use pyo3::exceptions::PyValueError;
+use pointray_vulkan::TileResidency;
+use pyo3::exceptions::{PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use serde::Deserialize;
@@ -50,21 +52,25 @@ pub fn render<'py>(
         .map_err(|e| PyValueError::new_err(format!("device: {e}")))?;
     let gpu_memory = memory_option(options, "gpu_memory")?;
     let denoised = flag_option(options, "denoise")?.unwrap_or(false);
-    let image = py
-        .detach(|| -> Result<RenderedImage, String> {
+    let (image, residency) = py
+        .detach(|| -> Result<(RenderedImage, Option<TileResidency>), String> {
             let load_options = LoadOptions { in_memory: &in_memory, ..LoadOptions::default() };
             let loaded = load_scene_file(&file, &load_options).map_err(|e| error_line(&e))?;
             let device_options = DeviceOptions { gpu_memory, ..device_options_from_environment() };
             let backend = Backend::open(backend, &device, device_options)
                 .map_err(|e| format!("opening the Vulkan backend: {e}"))?;
-            let mut image = backend.render(&loaded.scene, &settings).map_err(|e| error_line(&e))?;
+            let (mut image, residency) =
+                backend.render(&loaded.scene, &settings).map_err(|e| error_line(&e))?;
             if denoised {
                 image = denoise(&image, &DenoiseSettings::default());
             }
             image.scale_depth(loaded.space.scale as f32);
-            Ok(image)
+            Ok((image, residency))
         })
         .map_err(PointrayError::new_err)?;
+    if let Some(missing) = residency.as_ref().and_then(missing_tiles) {
+        PyErr::warn(py, &py.get_type::<PyUserWarning>(), &std::ffi::CString::new(missing)?, 1)?;
+    }
     image_to_dict(py, image)
 }
 

@@ -131,3 +131,9 @@ def test_denoise_filters_as_the_command_line_does(bunny, tmp_path):
     image.save(tmp_path / "python.exr")
     assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
     assert not np.array_equal(image, pointray.render(scene, backend="cpu"))
+
+
+def test_a_render_over_its_gpu_budget_streams_and_warns_of_the_tiles_it_lacks(bunny):
+    with pytest.warns(UserWarning, match="tiles in view do not fit the GPU memory budget"):
+        image = pointray.render(bunny, width=48, height=48, backend="vulkan", gpu_memory="2M")
+    assert image.shape == (48, 48, 4) and image[..., 3].any()

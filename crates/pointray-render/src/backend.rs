@@ -3,7 +3,7 @@
 use pointray_cpu::CpuRenderer;
 use pointray_scene::{RenderSettings, RenderedImage, Scene};
 use pointray_vulkan::{
-    BackendChoice, DeviceOptions, DeviceSelector, SceneLayout, VulkanError, VulkanRenderer,
+    BackendChoice, DeviceOptions, DeviceSelector, SceneLayout, TileResidency, VulkanError, VulkanRenderer,
 };
 
 use crate::ready_scene::{ReadyScene, Tracer};
@@ -31,9 +31,15 @@ impl Backend {
         }
     }
 
-    /// Prepares and traces one frame.
-    pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<RenderedImage, VulkanError> {
-        self.trace(&self.prepare(scene, settings)?, settings)
+    /// Prepares and traces one frame, and says where a streamed scene's tiles stood for it.
+    pub fn render(
+        &self,
+        scene: &Scene,
+        settings: &RenderSettings,
+    ) -> Result<(RenderedImage, Option<TileResidency>), VulkanError> {
+        let mut ready = self.prepare(scene, settings)?;
+        let residency = ready.stream_tiles(settings)?;
+        Ok((self.trace(&ready, settings)?, residency))
     }
 
     /// `scene` made ready for frames with `settings`' buffer layout.

@@ -5,10 +5,12 @@
 mod backend;
 mod environment;
 mod error_line;
+mod missing_tiles;
 mod ready_scene;
 
 pub use backend::Backend;
 pub use environment::device_options_from_environment;
 pub use error_line::error_line;
+pub use missing_tiles::missing_tiles;
 pub use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector};
 pub use ready_scene::{ReadyScene, Tracer};

@@ -17,7 +17,7 @@ use crate::backend::{backend_choice, open_backend};
 use crate::patch_args::PatchArgs;
 use crate::setting_flag::setting_flag;
 use crate::view_args::ViewArgs;
-use pointray_render::Backend;
+use pointray_render::{Backend, missing_tiles};
 
 /// Render the points' patches and the mesh from the same cameras and report holes, false
 /// surfaces, depth and normal error (against the mesh's interpolated vertex normals) and
@@ -58,8 +58,16 @@ impl ImageRenderer for ChosenBackend {
         self.0.describe()
     }
 
+    /// Refuses a streamed scene short of any tile: what it lacks, or the shadows and
+    /// reflections of what it lacks, would count as the points' error.
     fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<RenderedImage, RenderError> {
-        Ok(self.0.render(scene, settings)?)
+        let (image, residency) = self.0.render(scene, settings)?;
+        match residency.as_ref().and_then(missing_tiles) {
+            Some(missing) => {
+                Err(format!("measuring fidelity needs every tile on the GPU, but {missing}").into())
+            }
+            None => Ok(image),
+        }
     }
 }
 

@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use clap::{Args, ValueEnum};
 use pointray_denoise::{DenoiseSettings, denoise};
 use pointray_io::MemoryBudget;
+use pointray_render::missing_tiles;
 use pointray_scene::image_output::{AovSelection, check_image_outputs, write_image};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
 use pointray_scene::{
@@ -175,17 +176,8 @@ fn report_residency(residency: &TileResidency, took: Duration) {
         residency.loaded,
         residency.evicted
     );
-    let missing = residency.in_view - residency.in_view_resident;
-    if missing > 0 {
-        eprintln!(
-            "warning: {missing} tiles in view do not fit the GPU memory budget: the image lacks them \
-             (raise --gpu-memory, or render on the CPU backend)"
-        );
-    } else if residency.resident < residency.tiles {
-        eprintln!(
-            "note: the {} tiles out of view that do not fit the GPU memory budget cast no shadows and \
-             show in no reflections",
-            residency.tiles - residency.resident
-        );
+    if let Some(missing) = missing_tiles(residency) {
+        let severity = if residency.in_view_resident < residency.in_view { "warning" } else { "note" };
+        eprintln!("{severity}: {missing}");
     }
 }

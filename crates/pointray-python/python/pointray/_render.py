@@ -66,7 +66,9 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
     ``"path"``) and ``seed`` (the path integrator's random sequence) override the scene's
     ``[render]`` settings; ``backend`` is ``"auto"`` (a hardware ray-tracing GPU, else the CPU),
     ``"vulkan"`` or ``"cpu"``; ``gpu_memory`` (bytes, or a size such as ``"40G"``) holds a
-    scene to less GPU memory than the device has, as ``--gpu-memory`` does; ``camera`` is the scene file's camera table (``position``,
+    scene to less GPU memory than the device has, as ``--gpu-memory`` does (point sets that do
+    not fit stream: the tiles the camera sees are loaded first, and a ``UserWarning`` says what
+    the image lacks); ``camera`` is the scene file's camera table (``position``,
     ``look_at``, ``up``, ``vfov_degrees``) in the file's coordinates; ``denoise`` filters the
     noise out of a preview of few samples, as ``pointray render --denoise`` does (the AOVs stay
     unfiltered). The GIL is released while the scene loads and renders.
