@@ -27,13 +27,17 @@ use crate::patch_upload::{
 use crate::prepared_scene::SceneLayout;
 use crate::tile_view::TileView;
 
-/// Tiles a streamed set is split into at least (device limits allowing fewer patches per
-/// tile may make more): enough that the budget can follow the camera, few enough that a tile
-/// loads in one step of an interactive frame's time.
+/// Tiles a streamed set is split into, unless its tiles would be smaller than
+/// `MIN_STREAMED_TILE` or larger than `MAX_STREAMED_TILE` (or the device's limit): enough that
+/// the budget can follow the camera.
 const TILES_PER_SET: usize = 64;
 
 /// The fewest patches a streamed tile holds, below which a bottom level's fixed costs dominate.
 const MIN_STREAMED_TILE: usize = 4096;
+
+/// The most patches a streamed tile holds, so that loading one (about 17 ms for 1.56M patches
+/// on an H100) keeps within a frame's share of time however large the set.
+const MAX_STREAMED_TILE: usize = 1 << 21;
 
 /// Where the tiles of a streamed scene stand after `TileStream::update`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -133,7 +137,11 @@ impl TileStream {
             let Geometry::Patches(patches) = &object.geometry else { continue };
             check_patch_set(patches)?;
             let set = stream.sets.len();
-            let most = patches.len().div_ceil(TILES_PER_SET).max(MIN_STREAMED_TILE).min(max_tile as usize);
+            let most = patches
+                .len()
+                .div_ceil(TILES_PER_SET)
+                .clamp(MIN_STREAMED_TILE, MAX_STREAMED_TILE)
+                .min(max_tile as usize);
             for range in tile_ranges(patches.len(), most) {
                 let (structure, scratch) =
                     build_sizes(context, &aabb_input(0, range.len() as u32, layout.blas));
