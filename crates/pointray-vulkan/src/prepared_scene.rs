@@ -65,6 +65,20 @@ pub(crate) struct Streaming {
     /// What the scene holds beside the tiles at most: its meshes and a top level over
     /// every tile.
     pub(crate) beside_tiles: u64,
+    /// Whether the top level names the resident tiles alone (not while it is rebuilt).
+    top_level_current: bool,
+}
+
+impl Streaming {
+    /// The top level over the fixed instances and the resident tiles, and its object records.
+    fn top_level(&self, context: &Arc<GpuContext>) -> Result<(AccelerationStructure, Buffer), VulkanError> {
+        let (mut instances, mut records): (Vec<_>, Vec<_>) = self.fixed.iter().copied().unzip();
+        for tile in self.tiles.resident.values() {
+            instances.push(instance(&tile.transform, records.len() as u32, &tile.blas, HIT_GROUP_PATCHES));
+            records.push(tile.record);
+        }
+        top_level(context, &instances, &records)
+    }
 }
 
 /// How a scene goes onto the GPU: its BLAS layout, which per-patch buffers the traces of it
@@ -241,28 +255,32 @@ impl PreparedScene {
     ) -> Result<Option<TileResidency>, VulkanError> {
         let Some(streaming) = &mut self.streaming else { return Ok(None) };
         let context = &self.context;
-        // Frames in flight may read the tiles evicted and the top level replaced.
-        let idle = || unsafe { context.device.device_wait_idle() }.during("waiting to stream tiles");
-        let residency = streaming.tiles.update(context, &self.camera, aspect, limit, idle)?;
-        if residency.changed() {
-            let mut instances = Vec::with_capacity(streaming.fixed.len() + residency.resident);
-            let mut records = Vec::with_capacity(instances.capacity());
-            for (instance, record) in &streaming.fixed {
-                instances.push(*instance);
-                records.push(*record);
-            }
-            for tile in streaming.tiles.resident.values() {
-                instances.push(instance(
-                    &tile.transform,
-                    records.len() as u32,
-                    &tile.blas,
-                    HIT_GROUP_PATCHES,
-                ));
-                records.push(tile.record);
-            }
-            (self.tlas, self.objects) = top_level(context, &instances, &records)?;
+        let idle = || {
+            // SAFETY: the device is alive; waiting for it to go idle has no other requirement.
+            unsafe { context.device.device_wait_idle() }.during("waiting to stream tiles")
+        };
+        // Frames in flight may read the tiles evicted and the top level replaced; a load that
+        // fails may follow evictions, so the top level is rebuilt over what is resident then.
+        let updated = streaming.tiles.update(context, &self.camera, aspect, limit, idle);
+        if updated.as_ref().is_ok_and(|residency| !residency.changed()) {
+            return updated.map(Some);
         }
-        Ok(Some(residency))
+        streaming.top_level_current = false;
+        (self.tlas, self.objects) = streaming.top_level(context)?;
+        streaming.top_level_current = true;
+        updated.map(Some)
+    }
+
+    /// Refuses to trace a streamed scene whose top level may name evicted tiles.
+    pub(crate) fn check_traceable(&self) -> Result<(), VulkanError> {
+        match &self.streaming {
+            Some(streaming) if !streaming.top_level_current => Err(VulkanError::InvalidScene(
+                "the streamed scene's top level could not be rebuilt after its tiles changed; stream its \
+                 tiles again"
+                    .into(),
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// Replaces the scene's lights; the next trace shades with them. Geometry, and so every
@@ -433,7 +451,7 @@ fn start_streaming(
     }
     tiles.set_budget(room);
     let fixed = instances.iter().copied().zip(records.iter().copied()).collect();
-    Ok(Streaming { tiles, fixed, beside_tiles: ledger.held() + top })
+    Ok(Streaming { tiles, fixed, beside_tiles: ledger.held() + top, top_level_current: true })
 }
 
 /// The top level over `instances` and the object records the shaders index by their

@@ -180,7 +180,7 @@ impl VulkanRenderer {
         if !Arc::ptr_eq(&scene.context, &self.context) {
             return Err(VulkanError::InvalidScene("the scene was prepared by another renderer".into()));
         }
-        Ok(())
+        scene.check_traceable()
     }
 
     /// Prepares and traces in one go.
