@@ -9,8 +9,8 @@ pub fn missing_tiles(residency: &TileResidency) -> Option<String> {
     let unseen = residency.in_view - residency.in_view_resident;
     if unseen > 0 {
         return Some(format!(
-            "{unseen} tiles in view do not fit the GPU memory budget: the image lacks them \
-             (raise the budget, or render on the CPU backend)"
+            "{unseen} tiles in or beside the view do not fit the GPU memory budget: the image may lack \
+             them (raise the budget, or render on the CPU backend)"
         ));
     }
     let left_out = residency.tiles - residency.resident;
@@ -32,7 +32,7 @@ mod tests {
             TileResidency { tiles: 8, resident: 8, in_view: 3, in_view_resident: 3, ..Default::default() };
         assert_eq!(missing_tiles(&all), None);
         let unseen = TileResidency { resident: 5, in_view_resident: 2, ..all };
-        assert!(missing_tiles(&unseen).is_some_and(|text| text.starts_with("1 tiles in view")));
+        assert!(missing_tiles(&unseen).is_some_and(|text| text.starts_with("1 tiles in or beside the view")));
         let out_of_view = TileResidency { resident: 5, ..all };
         assert!(missing_tiles(&out_of_view).is_some_and(|text| text.starts_with("the 3 tiles out of view")));
     }

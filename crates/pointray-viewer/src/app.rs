@@ -197,7 +197,10 @@ impl App {
         }
         self.view.sync_camera();
         let size = self.window.as_ref().map(Window::inner_size).unwrap_or(PhysicalSize::new(1, 1));
-        self.stream_tiles(size.width as f32 / size.height.max(1) as f32, Some(STREAM_STEP))?;
+        // A minimised window has no view to load tiles for: the ones held stay.
+        if size.width > 0 && size.height > 0 {
+            self.stream_tiles(size.width as f32 / size.height as f32, Some(STREAM_STEP))?;
+        }
         let Some(pass) = self.refinement.next(now, self.source.is_cpu()) else { return Ok(None) };
         let settings = self.pass_settings(pass);
         Ok(Some(self.source.draw(&self.view.scene, &settings, false)?))

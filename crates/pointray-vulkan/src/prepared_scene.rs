@@ -262,12 +262,11 @@ impl PreparedScene {
         // Frames in flight may read the tiles evicted and the top level replaced; a load that
         // fails may follow evictions, so the top level is rebuilt over what is resident then.
         let updated = streaming.tiles.update(context, &self.camera, aspect, limit, idle);
-        if updated.as_ref().is_ok_and(|residency| !residency.changed()) {
-            return updated.map(Some);
+        if streaming.tiles.take_changes() || !streaming.top_level_current {
+            streaming.top_level_current = false;
+            (self.tlas, self.objects) = streaming.top_level(context)?;
+            streaming.top_level_current = true;
         }
-        streaming.top_level_current = false;
-        (self.tlas, self.objects) = streaming.top_level(context)?;
-        streaming.top_level_current = true;
         updated.map(Some)
     }
 

@@ -113,6 +113,8 @@ pub(crate) struct TileStream {
     budget: u64,
     /// The most the tiles held at once, a load's build included.
     pub(crate) peak: u64,
+    /// Whether tiles were evicted or loaded since `take_changes` last looked.
+    changed: bool,
 }
 
 impl TileStream {
@@ -131,6 +133,7 @@ impl TileStream {
             layout,
             budget: 0,
             peak: 0,
+            changed: false,
         };
         let mut largest_build = 0;
         for (index, object) in scene.objects.iter().enumerate() {
@@ -208,6 +211,7 @@ impl TileStream {
         }
         for tile in &evict {
             self.resident.remove(tile);
+            self.changed = true;
         }
         let mut loaded = 0;
         for tile in missing {
@@ -217,6 +221,7 @@ impl TileStream {
             let held: u64 = self.resident.values().map(ResidentTile::bytes).sum();
             self.peak = self.peak.max(held + self.tiles[tile].build);
             self.resident.insert(tile, self.load(context, tile)?);
+            self.changed = true;
             self.peak = self.peak.max(held + self.resident[&tile].bytes());
             loaded += 1;
         }
@@ -232,6 +237,12 @@ impl TileStream {
             resident_bytes: self.resident.values().map(ResidentTile::bytes).sum(),
             budget_bytes: self.budget,
         })
+    }
+
+    /// Whether tiles were evicted or loaded since the last call: the top level must then be
+    /// rebuilt, even where the update failed part way.
+    pub(crate) fn take_changes(&mut self) -> bool {
+        std::mem::take(&mut self.changed)
     }
 
     /// The tiles to hold, in `ranked` order: each that fits beside those before it.
