@@ -28,7 +28,9 @@ pub struct BackendArgs {
 #[derive(Args, Clone, Copy)]
 pub struct GpuMemoryArg {
     /// GPU memory a scene may take, building included, e.g. `40G` (default: the device's).
-    /// A large point set is split into more tiles to fit; a scene that cannot fit is refused.
+    /// A large point set is split into more tiles to fit. Where point sets still do not fit,
+    /// `render`, `view` and `bench scale` stream their tiles (those the camera sees first, as
+    /// many as fit); the other commands refuse the scene.
     #[arg(long = "gpu-memory", value_name = "SIZE", value_parser = MemoryBudget::from_str)]
     pub budget: Option<MemoryBudget>,
 }
