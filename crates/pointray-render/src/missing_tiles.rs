@@ -6,7 +6,7 @@ use pointray_vulkan::TileResidency;
 /// where tiles out of view did not (they cast no shadows and show in no reflections); `None`
 /// when every tile is on the GPU.
 pub fn missing_tiles(residency: &TileResidency) -> Option<String> {
-    let unseen = residency.in_view - residency.in_view_resident;
+    let unseen = residency.missing_in_view();
     if unseen > 0 {
         return Some(format!(
             "{unseen} tiles in or beside the view do not fit the GPU memory budget: the image may lack \

@@ -340,30 +340,19 @@ fn upload(
     streamed: bool,
 ) -> Result<PreparedScene, VulkanError> {
     let budget = GpuBudget::new(context, layout.memory_budget.or(context.gpu_memory));
-    let (max_tile, need) =
-        memory_plan::fitted_tile(context, scene, layout, layout.tile_limit(context), &budget);
-    if !streamed {
-        if need.bottom_levels > MAX_INSTANCES {
-            return Err(VulkanError::InvalidScene(format!(
-                "{} meshes and point-set tiles of at most {max_tile} patches; at most {MAX_INSTANCES} fit",
-                need.bottom_levels
-            )));
-        }
-        budget.check_plan(&need)?;
-    }
+    // A streamed scene's point sets are not uploaded here, so their tiles need no plan.
+    let max_tile = (!streamed).then(|| planned_tile(context, scene, layout, &budget)).transpose()?;
     let mut ledger = GpuLedger::new(budget);
-    let mut records = Vec::with_capacity(need.bottom_levels);
-    let mut instances = Vec::with_capacity(need.bottom_levels);
-    let mut bottom_levels = Vec::with_capacity(need.bottom_levels);
-    let mut geometry = Vec::new();
+    let (mut records, mut instances, mut bottom_levels, mut geometry) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (index, object) in scene.objects.iter().enumerate() {
-        let (prepared, hit_group) = match &object.geometry {
-            Geometry::Patches(_) if streamed => continue,
-            Geometry::Patches(patches) => (
+        let (prepared, hit_group) = match (&object.geometry, max_tile) {
+            (Geometry::Patches(_), None) => continue,
+            (Geometry::Patches(patches), Some(max_tile)) => (
                 prepare_patches(context, patches, &object.material, layout, max_tile, &mut ledger)?,
                 HIT_GROUP_PATCHES,
             ),
-            Geometry::Mesh(mesh) => (prepare_mesh(context, mesh, &mut ledger)?, HIT_GROUP_TRIANGLES),
+            (Geometry::Mesh(mesh), _) => (prepare_mesh(context, mesh, &mut ledger)?, HIT_GROUP_TRIANGLES),
         };
         let record = prepared.record.with_material(&object.material);
         for (blas, first) in prepared.bottom_levels {
@@ -405,6 +394,26 @@ fn upload(
         prepared.stream_tiles(width as f32 / height.max(1) as f32, None)?;
     }
     Ok(prepared)
+}
+
+/// The largest tile of the scene's point sets that fits `budget` (`memory_plan`), or why the
+/// scene cannot fit.
+fn planned_tile(
+    context: &GpuContext,
+    scene: &Scene,
+    layout: SceneLayout,
+    budget: &GpuBudget,
+) -> Result<u32, VulkanError> {
+    let (max_tile, need) =
+        memory_plan::fitted_tile(context, scene, layout, layout.tile_limit(context), budget);
+    if need.bottom_levels > MAX_INSTANCES {
+        return Err(VulkanError::InvalidScene(format!(
+            "{} meshes and point-set tiles of at most {max_tile} patches; at most {MAX_INSTANCES} fit",
+            need.bottom_levels
+        )));
+    }
+    budget.check_plan(&need)?;
+    Ok(max_tile)
 }
 
 fn has_point_sets(scene: &Scene) -> bool {

@@ -64,6 +64,11 @@ impl TileResidency {
     pub fn changed(&self) -> bool {
         self.loaded + self.evicted > 0
     }
+
+    /// Tiles in or beside the view that are not on the GPU.
+    pub fn missing_in_view(&self) -> usize {
+        self.in_view - self.in_view_resident
+    }
 }
 
 /// One streamed point set: its patches, where it stands and its record (material, object).
@@ -202,7 +207,8 @@ impl TileStream {
         let started = Instant::now();
         let view = TileView::new(camera, aspect);
         let bounds: Vec<Aabb> = self.tiles.iter().map(|tile| tile.bounds).collect();
-        let wanted = self.wanted(&view.rank(&bounds));
+        let seen: Vec<bool> = bounds.iter().map(|tile| view.sees(tile)).collect();
+        let wanted = self.wanted(&view.rank(&bounds, &seen));
         let evict: Vec<usize> = self.resident.keys().copied().filter(|tile| !wanted.contains(tile)).collect();
         let missing: Vec<usize> =
             wanted.iter().copied().filter(|tile| !self.resident.contains_key(tile)).collect();
@@ -214,27 +220,29 @@ impl TileStream {
             self.changed = true;
         }
         let mut loaded = 0;
+        let mut held: u64 = self.resident.values().map(ResidentTile::bytes).sum();
         for tile in missing {
             if loaded > 0 && limit.is_some_and(|limit| started.elapsed() >= limit) {
                 break;
             }
-            let held: u64 = self.resident.values().map(ResidentTile::bytes).sum();
             self.peak = self.peak.max(held + self.tiles[tile].build);
-            self.resident.insert(tile, self.load(context, tile)?);
+            let resident = self.load(context, tile)?;
+            held += resident.bytes();
+            self.peak = self.peak.max(held);
+            self.resident.insert(tile, resident);
             self.changed = true;
-            self.peak = self.peak.max(held + self.resident[&tile].bytes());
             loaded += 1;
         }
-        let seen: Vec<usize> = (0..self.tiles.len()).filter(|&tile| view.sees_box(&bounds[tile])).collect();
+        let in_view = (0..self.tiles.len()).filter(|&tile| seen[tile]);
         Ok(TileResidency {
             tiles: self.tiles.len(),
             resident: self.resident.len(),
-            in_view: seen.len(),
-            in_view_resident: seen.iter().filter(|tile| self.resident.contains_key(tile)).count(),
+            in_view: in_view.clone().count(),
+            in_view_resident: in_view.filter(|tile| self.resident.contains_key(tile)).count(),
             loaded,
             evicted: evict.len(),
             pending: wanted.iter().filter(|tile| !self.resident.contains_key(tile)).count(),
-            resident_bytes: self.resident.values().map(ResidentTile::bytes).sum(),
+            resident_bytes: held,
             budget_bytes: self.budget,
         })
     }

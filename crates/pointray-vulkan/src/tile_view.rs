@@ -38,7 +38,7 @@ impl TileView {
     /// Whether `bounds` reaches into the frustum: no side plane (nor the plane through the
     /// camera facing forward) has the whole box behind it. Conservative near the frustum's
     /// edges, where a box beside two planes may count without touching the frustum.
-    fn sees(&self, bounds: &Aabb) -> bool {
+    pub(crate) fn sees(&self, bounds: &Aabb) -> bool {
         let (min, max) = (Vec3::from(bounds.min), Vec3::from(bounds.max));
         let ahead = |normal: Vec3| {
             let farthest = Vec3::select(normal.cmpge(Vec3::ZERO), max, min);
@@ -54,14 +54,16 @@ impl TileView {
         if distance <= radius { f32::INFINITY } else { radius / distance }
     }
 
-    /// The indices of `tiles` (world-space bounds) in the order they should be loaded: seen
-    /// ones before unseen ones, each group by apparent size, largest first; ties by index.
-    pub(crate) fn rank(&self, tiles: &[Aabb]) -> Vec<usize> {
+    /// The indices of `tiles` (world-space bounds, `seen` where `sees` says so) in the order
+    /// they should be loaded: seen ones before unseen ones, each group by apparent size,
+    /// largest first; ties by index.
+    pub(crate) fn rank(&self, tiles: &[Aabb], seen: &[bool]) -> Vec<usize> {
         let keys: Vec<(bool, f32)> = tiles
             .iter()
-            .map(|tile| {
+            .zip(seen)
+            .map(|(tile, &seen)| {
                 let (center, radius) = sphere(tile);
-                (!self.sees(tile), -self.apparent_size(center, radius))
+                (!seen, -self.apparent_size(center, radius))
             })
             .collect();
         let mut order: Vec<usize> = (0..tiles.len()).collect();
@@ -69,11 +71,6 @@ impl TileView {
             keys[a].0.cmp(&keys[b].0).then(keys[a].1.total_cmp(&keys[b].1)).then(a.cmp(&b))
         });
         order
-    }
-
-    /// Whether the frustum reaches `tile`.
-    pub(crate) fn sees_box(&self, tile: &Aabb) -> bool {
-        self.sees(tile)
     }
 }
 
@@ -98,14 +95,14 @@ mod tests {
     #[test]
     fn boxes_in_front_are_seen_and_boxes_behind_or_beside_are_not() {
         let view = TileView::new(&camera_looking_along_x(), 1.0);
-        assert!(view.sees_box(&unit_box_at(Vec3::new(10.0, 0.0, 0.0))));
-        assert!(view.sees_box(&unit_box_at(Vec3::new(10.0, 5.0, 5.0))), "inside the 60° cone's corner");
-        assert!(!view.sees_box(&unit_box_at(Vec3::new(-10.0, 0.0, 0.0))), "behind");
-        assert!(!view.sees_box(&unit_box_at(Vec3::new(10.0, 0.0, 10.0))), "above the top plane");
-        assert!(!view.sees_box(&unit_box_at(Vec3::new(10.0, 12.0, 0.0))), "left of a square image");
+        assert!(view.sees(&unit_box_at(Vec3::new(10.0, 0.0, 0.0))));
+        assert!(view.sees(&unit_box_at(Vec3::new(10.0, 5.0, 5.0))), "inside the 60° cone's corner");
+        assert!(!view.sees(&unit_box_at(Vec3::new(-10.0, 0.0, 0.0))), "behind");
+        assert!(!view.sees(&unit_box_at(Vec3::new(10.0, 0.0, 10.0))), "above the top plane");
+        assert!(!view.sees(&unit_box_at(Vec3::new(10.0, 12.0, 0.0))), "left of a square image");
         let wide = TileView::new(&camera_looking_along_x(), 3.0);
-        assert!(wide.sees_box(&unit_box_at(Vec3::new(10.0, 12.0, 0.0))), "inside a wide image");
-        assert!(view.sees_box(&Aabb::cube(Vec3::new(-1.0, 0.0, 0.0), 2.0)), "the camera inside");
+        assert!(wide.sees(&unit_box_at(Vec3::new(10.0, 12.0, 0.0))), "inside a wide image");
+        assert!(view.sees(&Aabb::cube(Vec3::new(-1.0, 0.0, 0.0), 2.0)), "the camera inside");
     }
 
     #[test]
@@ -118,6 +115,8 @@ mod tests {
             unit_box_at(Vec3::new(-30.0, 0.0, 0.0)), // behind, far
             unit_box_at(Vec3::new(0.2, 0.0, 0.0)),   // around the camera
         ];
-        assert_eq!(view.rank(&tiles), vec![4, 2, 1, 0, 3]);
+        let seen: Vec<bool> = tiles.iter().map(|tile| view.sees(tile)).collect();
+        assert_eq!(seen, [false, true, true, false, true]);
+        assert_eq!(view.rank(&tiles, &seen), vec![4, 2, 1, 0, 3]);
     }
 }

@@ -177,7 +177,7 @@ fn report_residency(residency: &TileResidency, took: Duration) {
         residency.evicted
     );
     if let Some(missing) = missing_tiles(residency) {
-        let severity = if residency.in_view_resident < residency.in_view { "warning" } else { "note" };
+        let severity = if residency.missing_in_view() > 0 { "warning" } else { "note" };
         eprintln!("{severity}: {missing}");
     }
 }
