@@ -84,12 +84,11 @@ const ANGLE_SHIFT: u32 = 22;
 pub fn pack_normal(n: Vec3) -> u32 {
     let e = octahedral_encode(n).clamp(Vec2::NEG_ONE, Vec2::ONE) * NORMAL_STEPS;
     let step = |v: f32, up: f32| (v.floor() + up).min(NORMAL_STEPS) as i32;
-    let candidates = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
-        .map(|(dx, dy)| normal_bits(step(e.x, dx), step(e.y, dy)));
-    candidates
-        .into_iter()
-        .max_by(|&a, &b| unpack_normal(a).dot(n).total_cmp(&unpack_normal(b).dot(n)))
-        .expect("four codes")
+    let candidates = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)].map(|(dx, dy)| {
+        let bits = normal_bits(step(e.x, dx), step(e.y, dy));
+        (bits, unpack_normal(bits).dot(n))
+    });
+    candidates.into_iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("four codes").0
 }
 
 /// The normal bits of octahedral codes `(a, b)`, each in `[-1023, 1023]`: two snorm11 in the
