@@ -3,11 +3,8 @@
 
 use pointray_io::MemoryBudget;
 
-use crate::prep_memory::prep_bytes_per_point;
+use crate::prep_memory::{PREP_FIXED_BYTES, prep_bytes_per_point};
 use crate::prep_settings::PrepSettings;
-
-/// Held back for the program itself, its threads and buffers.
-const RESERVED_BYTES: u64 = 24 << 20;
 
 /// A tile is planned to take at most this share of its prep's memory with its own points;
 /// the rest is left for its halo.
@@ -39,7 +36,7 @@ pub(crate) struct StreamBudget {
 
 impl StreamBudget {
     pub(crate) fn new(memory: MemoryBudget, attribute_bytes: u64) -> Self {
-        Self { usable: memory.bytes.saturating_sub(RESERVED_BYTES), attribute_bytes }
+        Self { usable: memory.bytes.saturating_sub(PREP_FIXED_BYTES), attribute_bytes }
     }
 
     /// Bytes a point of a tile (owned or halo) takes while the tile is prepped and the next

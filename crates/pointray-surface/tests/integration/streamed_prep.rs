@@ -84,13 +84,13 @@ fn budgets_too_small_are_refused_with_what_would_fit() {
     let dir = tempfile::tempdir().unwrap();
     let (path, settings) = sheet_file(dir.path());
     let output = dir.path().join("out.patches");
-    let tiny = MemoryBudget { bytes: (24 << 20) + (512 << 10) };
+    let tiny = MemoryBudget { bytes: (32 << 20) + (512 << 10) };
     let error =
         prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(1), tiny), &output, &NoProgress)
             .unwrap_err();
     assert!(matches!(error, StreamError::OverBudget { .. }), "{error}");
     assert!(error.to_string().contains("cannot hold one tile"), "{error}");
-    let small = MemoryBudget { bytes: 30 << 20 };
+    let small = MemoryBudget { bytes: 38 << 20 };
     let error = prep_one_tile(&mut open(&path), &settings, (0, 1), small, &output, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("cut the cloud into at least"), "{error}");
     assert!(!output.exists());
