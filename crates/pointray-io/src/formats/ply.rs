@@ -21,6 +21,11 @@ use crate::{IoError, PointCloud, TriangleMesh};
 
 /// Reads the vertices of a PLY file (faces, if any, are ignored) as a point cloud.
 pub fn read_point_cloud(path: &Path) -> Result<PointCloud, IoError> {
+    if let Some(chunked) = chunks::PlyChunks::open(path)?
+        && let Some(cloud) = chunked.read_whole()?
+    {
+        return Ok(cloud);
+    }
     let contents = reader::read_contents(path, false)?;
     vertex::into_point_cloud(&contents.vertices, &contents.layout).map_err(|p| IoError::malformed(path, p))
 }

@@ -128,3 +128,36 @@ fn the_scanner_layout_reads_right() {
     assert_eq!(cloud.sensor_origins, Some(points.map(|p| DVec3::from(p.6)).to_vec()));
     assert_eq!(cloud.sensor_of(1), Some(DVec3::new(10.0, 0.0, 1.8)));
 }
+
+/// A binary cloud of `count` points (x, y, z, intensity as floats), point `i` at (i, 0, 0)
+/// with intensity 150, but for the `changed` points.
+fn binary_cloud(count: usize, changed: &[(usize, [f32; 4])]) -> Vec<u8> {
+    let header = format!(
+        "ply\nformat binary_little_endian 1.0\nelement vertex {count}\nproperty float x\n\
+         property float y\nproperty float z\nproperty float intensity\nend_header\n"
+    );
+    let mut rows: Vec<[f32; 4]> = (0..count).map(|i| [i as f32, 0.0, 0.0, 150.0]).collect();
+    for &(i, row) in changed {
+        rows[i] = row;
+    }
+    let body = rows.iter().flatten().flat_map(|value| value.to_le_bytes());
+    header.bytes().chain(body).collect()
+}
+
+#[test]
+fn a_binary_cloud_read_whole_in_chunks_is_scaled_and_checked_as_one() {
+    // More points than one chunk of the whole read holds.
+    let count = (1 << 20) + 5;
+    let last = count - 1;
+    let (_dir, path) = fixture("strengths.ply", &binary_cloud(count, &[(last, [0.0, 0.0, 0.0, 600.0])]));
+    let cloud = ply::read_point_cloud(&path).unwrap();
+    assert_eq!(cloud.len(), count);
+    assert_eq!(cloud.positions[last - 1], DVec3::new((last - 1) as f64, 0.0, 0.0));
+    let intensities = cloud.intensities.unwrap();
+    assert_eq!((intensities[0], intensities[last]), (0.25, 1.0), "divided by the largest of the file");
+
+    let (_dir, path) = fixture("nan.ply", &binary_cloud(count, &[(last - 2, [f32::NAN, 0.0, 0.0, 1.0])]));
+    let error = ply::read_point_cloud(&path).unwrap_err().to_string();
+    assert!(error.contains(&format!("point {} has a non-finite coordinate", last - 2)), "{error}");
+    assert!(error.contains("nan.ply"), "{error}");
+}

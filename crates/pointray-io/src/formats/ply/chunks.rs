@@ -1,6 +1,6 @@
-//! Binary PLY read in chunks of vertices (`point_stream`): the vertex element's fixed-size
-//! records are decoded straight from the file, with the checks and conversions of the whole
-//! read. Files whose vertices cannot be reached without parsing (ascii, a list property, an
+//! Binary PLY read in chunks of vertices (`point_stream`, and whole reads, a chunk at a time
+//! on every core): the vertex element's fixed-size records are decoded straight from the
+//! file, with the checks and conversions of the element-by-element read. Files whose vertices cannot be reached without parsing (ascii, a list property, an
 //! element before the vertices) are not chunked.
 
 use rayon::prelude::*;
@@ -20,14 +20,22 @@ pub(crate) struct PlyChunks {
     path: PathBuf,
     reader: BufReader<File>,
     layout: VertexLayout,
-    /// Each vertex property in file order: its type and the record field it fills.
-    properties: Vec<(ScalarType, Option<Field>)>,
+    /// Each vertex property in file order: its type, its size in bytes and the record field
+    /// it fills.
+    properties: Vec<(ScalarType, usize, Option<Field>)>,
     big_endian: bool,
     record_bytes: usize,
     body_start: u64,
     count: u64,
     read: u64,
+    /// Whether every element has fixed-size records, so that `open` checked the body's length
+    /// against the header's counts to the byte.
+    body_checked: bool,
 }
+
+/// Vertices decoded at a time when a file is read whole: enough to keep every core busy,
+/// few enough that the raw bytes and decoded records of one chunk stay small beside the cloud.
+const WHOLE_READ_CHUNK: usize = 1 << 20;
 
 impl PlyChunks {
     /// `None` when the file is PLY that cannot be read in chunks.
@@ -45,7 +53,7 @@ impl PlyChunks {
         let mut properties = Vec::new();
         for (name, property) in &vertex.properties {
             let PropertyType::Scalar(scalar) = &property.data_type else { return Ok(None) };
-            properties.push((scalar.clone(), Field::named(name)));
+            properties.push((scalar.clone(), minimum_size(&property.data_type) as usize, Field::named(name)));
         }
         let record_bytes: u64 = vertex.properties.values().map(|p| minimum_size(&p.data_type)).sum();
         let fixed_size = header.elements.values().all(|e| e.properties.values().all(is_scalar));
@@ -71,7 +79,29 @@ impl PlyChunks {
             body_start,
             count: vertex.count as u64,
             read: 0,
+            body_checked: fixed_size,
         }))
+    }
+
+    /// Every vertex, decoded a chunk at a time on every core; `None` for a file whose body
+    /// `open` could not check whole (an element of lists, such as a mesh's faces), which the
+    /// element-by-element read checks instead.
+    pub(crate) fn read_whole(mut self) -> Result<Option<PointCloud>, IoError> {
+        if !self.body_checked {
+            return Ok(None);
+        }
+        let mut largest = 0.0;
+        if self.layout.intensity_unit.is_some() {
+            while self.next(WHOLE_READ_CHUNK, &mut largest, true)?.is_some() {}
+            self.rewind()?;
+        }
+        let mut cloud = into_point_cloud_from(&[], &self.layout, 0, intensity_divisor(largest))
+            .map_err(|problem| IoError::malformed(&self.path, problem))?;
+        cloud.positions.reserve_exact(self.count as usize);
+        while let Some(chunk) = self.next(WHOLE_READ_CHUNK, &mut largest, false)? {
+            cloud.append(chunk);
+        }
+        Ok(Some(cloud))
     }
 
     pub(crate) fn declared_points(&self) -> u64 {
@@ -132,9 +162,8 @@ impl PlyChunks {
 
     fn decode(&self, mut bytes: &[u8]) -> VertexRecord {
         let mut record = VertexRecord::default();
-        for (scalar, field) in &self.properties {
-            let size = minimum_size(&PropertyType::Scalar(scalar.clone())) as usize;
-            let (value, rest) = bytes.split_at(size);
+        for (scalar, size, field) in &self.properties {
+            let (value, rest) = bytes.split_at(*size);
             bytes = rest;
             if let Some(field) = field {
                 *record.slot(*field) = scalar_from(scalar, value, self.big_endian);

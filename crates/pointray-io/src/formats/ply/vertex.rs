@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 use ply_rs_bw::ply::{ElementDef, Property, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType};
+use rayon::prelude::*;
 
 use crate::PointCloud;
 
@@ -244,9 +245,10 @@ pub(super) fn into_point_cloud_from(
     let numbered = |problem: String| renumbered(problem, first);
     let positions = positions(records).map_err(numbered)?;
     let normals =
-        layout.has_normals.then(|| records.iter().map(|r| DVec3::from(r.normal).as_vec3()).collect());
-    let colors =
-        layout.color_unit.map(|unit| records.iter().map(|r| r.color.map(|c| to_byte(c / unit))).collect());
+        layout.has_normals.then(|| records.par_iter().map(|r| DVec3::from(r.normal).as_vec3()).collect());
+    let colors = layout
+        .color_unit
+        .map(|unit| records.par_iter().map(|r| r.color.map(|c| to_byte(c / unit))).collect());
     let intensities =
         layout.intensity_unit.map(|unit| normalised_intensities(records, unit, intensity_divisor));
     let rings = layout
@@ -276,8 +278,8 @@ pub(super) fn into_point_cloud_from(
 /// The named integer property's values, each within `[0, max]`.
 fn whole_numbers(records: &[VertexRecord], name: &str, max: f64) -> Result<Vec<f64>, String> {
     let field = Field::named(name).ok_or("not a vertex attribute")?;
-    let values: Vec<f64> = records.iter().map(|record| record.get(field)).collect();
-    match values.iter().position(|value| !(0.0..=max).contains(value)) {
+    let values: Vec<f64> = records.par_iter().map(|record| record.get(field)).collect();
+    match values.par_iter().position_first(|value| !(0.0..=max).contains(value)) {
         Some(index) => {
             Err(format!("point {index} has {name} {}; it must lie between 0 and {max}", values[index]))
         }
@@ -286,8 +288,8 @@ fn whole_numbers(records: &[VertexRecord], name: &str, max: f64) -> Result<Vec<f
 }
 
 fn sensor_origins(records: &[VertexRecord]) -> Result<Vec<DVec3>, String> {
-    let origins: Vec<DVec3> = records.iter().map(|record| DVec3::from(record.sensor)).collect();
-    match origins.iter().position(|origin| !origin.is_finite()) {
+    let origins: Vec<DVec3> = records.par_iter().map(|record| DVec3::from(record.sensor)).collect();
+    match origins.par_iter().position_first(|origin| !origin.is_finite()) {
         Some(index) => Err(format!("point {index} has a non-finite sensor position {}", origins[index])),
         None => Ok(origins),
     }
@@ -295,18 +297,11 @@ fn sensor_origins(records: &[VertexRecord]) -> Result<Vec<DVec3>, String> {
 
 /// The positions in file order; an error names the first point with a NaN or infinite coordinate.
 pub(super) fn positions(records: &[VertexRecord]) -> Result<Vec<DVec3>, String> {
-    records
-        .iter()
-        .enumerate()
-        .map(|(index, record)| {
-            let position = DVec3::from(record.position);
-            if position.is_finite() {
-                Ok(position)
-            } else {
-                Err(format!("point {index} has a non-finite coordinate {position}"))
-            }
-        })
-        .collect()
+    let positions: Vec<DVec3> = records.par_iter().map(|record| DVec3::from(record.position)).collect();
+    match positions.par_iter().position_first(|position| !position.is_finite()) {
+        Some(index) => Err(format!("point {index} has a non-finite coordinate {}", positions[index])),
+        None => Ok(positions),
+    }
 }
 
 fn to_byte(unit_channel: f64) -> u8 {
@@ -326,7 +321,7 @@ fn renumbered(problem: String, first: u64) -> String {
 
 /// The largest finite intensity on its type's unit scale (0 when none is above 0).
 pub(super) fn largest_intensity(records: &[VertexRecord], unit_value: f64) -> f64 {
-    records.iter().map(|r| r.intensity / unit_value).filter(|v| v.is_finite()).fold(0.0, f64::max)
+    records.par_iter().map(|r| r.intensity / unit_value).filter(|v| v.is_finite()).reduce(|| 0.0, f64::max)
 }
 
 /// Floating-point intensities outside [0, 1] (scanners write raw return strengths) are
@@ -337,7 +332,7 @@ pub(super) fn intensity_divisor(largest: f64) -> f64 {
 
 /// Intensities on [0, 1].
 fn normalised_intensities(records: &[VertexRecord], unit_value: f64, divisor: f64) -> Vec<f32> {
-    records.iter().map(|r| (r.intensity / unit_value / divisor).clamp(0.0, 1.0) as f32).collect()
+    records.par_iter().map(|r| (r.intensity / unit_value / divisor).clamp(0.0, 1.0) as f32).collect()
 }
 
 /// Records for writing a cloud back out.
