@@ -107,7 +107,7 @@ impl Runs<'_> {
         }
         let size = layout.bytes();
         let mut keyed: Vec<(RecordKey, u32)> =
-            self.records.chunks_exact(size).enumerate().map(|(i, r)| (record_key(r), i as u32)).collect();
+            self.records.par_chunks_exact(size).enumerate().map(|(i, r)| (record_key(r), i as u32)).collect();
         keyed.par_sort_unstable();
         let path = self.plan.folder.join(format!("run-{}", self.files.len()));
         let scratch = |e| StreamError::scratch(&path, e);
