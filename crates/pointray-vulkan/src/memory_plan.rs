@@ -141,7 +141,7 @@ fn fit_tile(max_tile: u32, budget: u64, plan: impl Fn(u32) -> MemoryNeed) -> (u3
 }
 
 /// Vertices as vec4 and u32 indices, as the trace reads them.
-fn mesh_bytes(mesh: &TriangleMesh) -> u64 {
+pub(crate) fn mesh_bytes(mesh: &TriangleMesh) -> u64 {
     mesh.positions.len() as u64 * 16 + mesh.triangles.len() as u64 * 12
 }
 

@@ -135,6 +135,17 @@ fn prepare_mesh(
             "a mesh triangle uses vertex {bad}, but the mesh has {vertex_count}"
         )));
     }
+    let triangle_count = mesh.triangles.len() as u32;
+    let input = |vertices: vk::DeviceAddress, indices: vk::DeviceAddress| {
+        triangle_input(vertices, vertex_count as u32, indices, triangle_count)
+    };
+    // Checked before each step, so that a mesh over the budget is refused, not built past it.
+    let buffer_bytes = memory_plan::mesh_bytes(mesh);
+    ledger.check(buffer_bytes, "a mesh's vertices and indices")?;
+    if triangle_count > 0 {
+        let (structure, scratch) = build_sizes(context, &input(0, 0));
+        ledger.check(buffer_bytes + build_peak(0, structure, scratch), "a mesh's bottom-level build")?;
+    }
     let vertices: Vec<Vec4> = mesh.positions.iter().map(|p| p.extend(1.0)).collect();
     let vertices = Buffer::device_with_data(
         context,
@@ -149,19 +160,8 @@ fn prepare_mesh(
         build_input_usage(),
     )?;
     ledger.hold(vertices.size + indices.size, 0);
-    let triangle_count = mesh.triangles.len() as u32;
     let blas = (triangle_count > 0)
-        .then(|| {
-            build(
-                context,
-                &triangle_input(
-                    vertices.device_address(),
-                    vertex_count as u32,
-                    indices.device_address(),
-                    triangle_count,
-                ),
-            )
-        })
+        .then(|| build(context, &input(vertices.device_address(), indices.device_address())))
         .transpose()?;
     if let Some(blas) = &blas {
         ledger.hold_structure(blas, 0);

@@ -135,6 +135,18 @@ fn a_budget_without_room_for_one_tile_is_refused_and_a_roomy_one_uploads_the_set
 }
 
 #[test]
+fn a_mesh_whose_build_does_not_fit_is_refused_by_name_not_built_past_the_budget() {
+    let Some(renderer) = renderer() else { return };
+    let (mut scene, _) = bunny_scene();
+    let sphere = pointray_test_support::sphere_mesh(1.0, 400, 800);
+    scene.objects.push(common::object("sphere", common::mesh(sphere), Default::default()));
+    let error = streamed(&renderer, &scene, 2 << 20, TILE).err().expect("2 MiB holds no 640,000 triangles");
+    assert!(matches!(error, VulkanError::OverBudget(_)), "{error:?}");
+    assert!(error.to_string().contains("a mesh's"), "{error}");
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
 fn a_coloured_cloud_streams_with_its_colours_blended_within_each_tile() {
     let Some(renderer) = renderer() else { return };
     let mut scene = lit_on_floor(coloured_sphere());
