@@ -422,7 +422,7 @@ fn has_point_sets(scene: &Scene) -> bool {
 
 /// The tiles of `scene`'s point sets, none loaded, with a budget of what `ledger`'s leaves
 /// beside the scene's other holdings (`instances` and `records` so far), a top level over
-/// every tile and one tile's build.
+/// every tile (built beside the one it replaces) and one tile's build.
 fn start_streaming(
     context: &Arc<GpuContext>,
     scene: &Scene,
@@ -439,18 +439,21 @@ fn start_streaming(
         )));
     }
     let (tlas, scratch) = build_sizes(context, &instance_input(0, count as u32));
-    let top = build_peak(count as u64 * INSTANCE_BYTES, tlas, scratch)
-        + count as u64 * size_of::<ObjectRecord>() as u64;
+    let object_records = count as u64 * size_of::<ObjectRecord>() as u64;
+    // The top level in use and its object records stay until their rebuild replaces them.
+    let replaced = tlas + object_records;
+    let top = build_peak(count as u64 * INSTANCE_BYTES, tlas, scratch) + object_records + replaced;
     let reserved = top + largest_build;
     ledger.check(
         reserved,
-        "streaming the point sets' tiles (a top level over them all and one tile's build)",
+        "streaming the point sets' tiles (a top level over them all, built beside the one it replaces, \
+         and one tile's build)",
     )?;
     let room = ledger.room().saturating_sub(reserved);
     if room < tiles.smallest_tile_bytes() {
         return Err(VulkanError::OverBudget(format!(
-            "streaming the point sets' tiles leaves {:.1} MiB for them beside a top level over them all and \
-             one tile's build ({:.1} MiB), less than their smallest tile takes ({:.1} MiB); raise the GPU \
+            "streaming the point sets' tiles leaves {:.1} MiB for them beside a top level over them all, \
+             the one it replaces and one tile's build ({:.1} MiB), less than their smallest tile takes ({:.1} MiB); raise the GPU \
              memory budget or use the CPU backend",
             mib(room),
             mib(reserved),
