@@ -10,6 +10,7 @@ use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot};
 use pointray_scene::{BufferLayout, Material};
 use pointray_surface::PatchSet;
 use pointray_surface::patch_tiles::tile_ranges;
+use rayon::prelude::*;
 
 use crate::acceleration::{AccelerationStructure, BlasLayout, aabb_input, build, build_peak, build_sizes};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
@@ -231,7 +232,8 @@ fn check_color_neighbors(patches: &PatchSet) -> Result<(), VulkanError> {
             neighbors.len()
         )));
     }
-    match neighbors.iter().position(|&j| j != NO_NEIGHBOR && j as usize >= count) {
+    // Six lists a patch: billions of entries for the largest sets.
+    match neighbors.par_iter().position_first(|&j| j != NO_NEIGHBOR && j as usize >= count) {
         Some(bad) => Err(VulkanError::InvalidScene(format!(
             "patch {} names colour neighbour {}, but the set has {count} patches",
             bad / COLOR_NEIGHBORS,

@@ -2,6 +2,7 @@
 //! vertex at infinity) is refused with an error naming the object, before any upload.
 
 use glam::Vec3;
+use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR};
 use pointray_scene::{Material, Scene};
 
 use crate::common::{floor, mesh, object, patches, renderer, settings, sphere_on_floor, sphere_patches};
@@ -29,4 +30,16 @@ fn out_of_range_geometry_is_refused_by_object_name() {
     }
     let fine = renderer.render(&sphere_on_floor(0.0, 1.0), &settings(16));
     assert!(fine.is_ok(), "the renderer still renders good scenes");
+}
+
+#[test]
+fn a_colour_neighbour_outside_its_set_is_refused_by_patch() {
+    let Some(renderer) = renderer() else { return };
+    let mut sphere = sphere_patches(Vec3::ZERO, 1.0, 200);
+    let mut neighbors = vec![NO_NEIGHBOR; sphere.len() * COLOR_NEIGHBORS];
+    neighbors[150 * COLOR_NEIGHBORS + 2] = sphere.len() as u32 + 5;
+    sphere.color_neighbors = neighbors.into();
+    let error =
+        renderer.render(&with_object("stray", patches(sphere)), &settings(16)).unwrap_err().to_string();
+    assert!(error.contains("patch 150 names colour neighbour 205"), "{error}");
 }
