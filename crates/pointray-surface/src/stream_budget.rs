@@ -6,6 +6,9 @@ use pointray_io::MemoryBudget;
 use crate::prep_memory::{PREP_FIXED_BYTES, prep_bytes_per_point};
 use crate::prep_settings::PrepSettings;
 
+/// Each input point's patch, noted while the store is written.
+const PATCH_MAP_BYTES: u64 = 4;
+
 /// A tile is planned to take at most this share of its prep's memory with its own points;
 /// the rest is left for its halo.
 const CORE_SHARE: u64 = 3;
@@ -76,13 +79,21 @@ impl StreamBudget {
 
     /// Whether writing the store, which maps each input point to its patch, fits.
     pub(crate) fn holds_patch_map(&self, points: u64) -> bool {
-        points.saturating_mul(4) <= self.usable / 2
+        points.saturating_mul(PATCH_MAP_BYTES) <= self.usable / 2
     }
 
     /// What is left once the map from `points` input points to their patches is held
     /// through the tiles' prep.
     pub(crate) fn with_patch_map(self, points: u64) -> Self {
-        Self { usable: self.usable.saturating_sub(points.saturating_mul(4)), ..self }
+        Self { usable: self.usable.saturating_sub(points.saturating_mul(PATCH_MAP_BYTES)), ..self }
+    }
+
+    /// The smallest memory budget whose tiles hold `MIN_TILE_POINTS` points of their own
+    /// (`core_capacity`) beside the map from `points` input points to their patches.
+    pub(crate) fn memory_for_smallest_tile(&self, settings: &PrepSettings, points: u64) -> u64 {
+        MIN_TILE_POINTS * CORE_SHARE * self.tile_bytes_per_point(settings)
+            + points.saturating_mul(PATCH_MAP_BYTES)
+            + PREP_FIXED_BYTES
     }
 
     pub(crate) fn usable(&self) -> u64 {

@@ -284,7 +284,7 @@ fn tile_count(
             "the memory budget ({} MiB for the work) cannot hold one tile of {MIN_TILE_POINTS} points \
              with its halo: give it at least {} MiB",
             budget.usable() >> 20,
-            ((MIN_TILE_POINTS * 3 * budget.tile_bytes_per_point(settings) + 4 * points) >> 20) + 25
+            budget.memory_for_smallest_tile(settings, points).div_ceil(1 << 20)
         )));
     }
     let needed = points.div_ceil(core) as usize;

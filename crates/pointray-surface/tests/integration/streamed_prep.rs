@@ -90,6 +90,23 @@ fn budgets_too_small_are_refused_with_what_would_fit() {
             .unwrap_err();
     assert!(matches!(error, StreamError::OverBudget { .. }), "{error}");
     assert!(error.to_string().contains("cannot hold one tile"), "{error}");
+    let advised: u64 = error
+        .to_string()
+        .split("give it at least ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next()?.parse().ok())
+        .unwrap_or_else(|| panic!("the refusal advises a budget: {error}"));
+    // A lower bound: tiles that small may still find halos beyond it, but the budget holds the
+    // patch map and one tile.
+    let advised = MemoryBudget { bytes: advised << 20 };
+    let result =
+        prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(1), advised), &output, &NoProgress);
+    assert!(
+        result.as_ref().err().is_none_or(|error| !error.to_string().contains("cannot hold")),
+        "{:?}",
+        result.err()
+    );
+    let _ = std::fs::remove_file(&output);
     let small = MemoryBudget { bytes: 38 << 20 };
     let error = prep_one_tile(&mut open(&path), &settings, (0, 1), small, &output, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("cut the cloud into at least"), "{error}");
