@@ -453,8 +453,8 @@ fn start_streaming(
     if room < tiles.smallest_tile_bytes() {
         return Err(VulkanError::OverBudget(format!(
             "streaming the point sets' tiles leaves {:.1} MiB for them beside a top level over them all, \
-             the one it replaces and one tile's build ({:.1} MiB), less than their smallest tile takes ({:.1} MiB); raise the GPU \
-             memory budget or use the CPU backend",
+             the one it replaces and one tile's build ({:.1} MiB), less than their smallest tile takes \
+             ({:.1} MiB); raise the GPU memory budget or use the CPU backend",
             mib(room),
             mib(reserved),
             mib(tiles.smallest_tile_bytes())

@@ -1,7 +1,8 @@
 //! Binary PLY read in chunks of vertices (`point_stream`, and whole reads, a chunk at a time
 //! on every core): the vertex element's fixed-size records are decoded straight from the
-//! file, with the checks and conversions of the element-by-element read. Files whose vertices cannot be reached without parsing (ascii, a list property, an
-//! element before the vertices) are not chunked.
+//! file, with the checks and conversions of the element-by-element read. Files whose
+//! vertices cannot be reached without parsing (ascii, a list property, an element before the
+//! vertices) are not chunked.
 
 use rayon::prelude::*;
 use std::fs::File;
