@@ -81,12 +81,6 @@ impl Streaming {
     }
 }
 
-/// The most patches one BLAS holds unless a layout asks otherwise. A billion patches trace
-/// in 60 bottom levels of this size in under half the time they take in the two that the
-/// device's own limit allows (bench/RESULTS.md, "A billion points in bottom levels of 16M
-/// patches"). It is lavapipe's limit too.
-const BLAS_TILE_PATCHES: u32 = (1 << 24) - 1;
-
 /// How a scene goes onto the GPU: its BLAS layout, which per-patch buffers the traces of it
 /// will read (only those are uploaded), how large a point set's tiles may be and how much
 /// GPU memory it may take.
@@ -95,8 +89,7 @@ pub struct SceneLayout {
     pub blas: BlasLayout,
     pub buffers: BufferLayout,
     /// At most this many patches in one BLAS (`pointray_surface::patch_tiles`); the device's
-    /// `maxPrimitiveCount` caps it whatever is asked, and `None` asks for
-    /// `BLAS_TILE_PATCHES`.
+    /// `maxPrimitiveCount` caps it whatever is asked, and `None` asks for no other limit.
     pub max_tile_patches: Option<u32>,
     /// Bytes of GPU memory the scene may take, building included; `None` is the device's
     /// `DeviceOptions::gpu_memory`, else its device-local memory. A scene that cannot fit is
@@ -118,7 +111,7 @@ impl SceneLayout {
     /// The most patches one tile holds on `context`'s device.
     fn tile_limit(&self, context: &GpuContext) -> u32 {
         let device = u32::try_from(context.info.max_blas_primitives).unwrap_or(u32::MAX).max(1);
-        self.max_tile_patches.unwrap_or(BLAS_TILE_PATCHES).clamp(1, device)
+        self.max_tile_patches.unwrap_or(u32::MAX).clamp(1, device)
     }
 }
 
