@@ -67,6 +67,9 @@ pub(crate) struct Streaming {
     pub(crate) beside_tiles: u64,
     /// Whether the top level names the resident tiles alone (not while it is rebuilt).
     top_level_current: bool,
+    /// Tiles loaded and evicted while the scene was prepared, which the first
+    /// `PreparedScene::stream_tiles` reports.
+    unreported: (usize, usize),
 }
 
 impl Streaming {
@@ -267,7 +270,14 @@ impl PreparedScene {
             (self.tlas, self.objects) = streaming.top_level(context)?;
             streaming.top_level_current = true;
         }
-        updated.map(Some)
+        let (loaded, evicted) = std::mem::take(&mut streaming.unreported);
+        updated.map(|residency| {
+            Some(TileResidency {
+                loaded: residency.loaded + loaded,
+                evicted: residency.evicted + evicted,
+                ..residency
+            })
+        })
     }
 
     /// Refuses to trace a streamed scene whose top level may name evicted tiles.
@@ -391,7 +401,10 @@ fn upload(
         streaming,
     };
     if let Some((width, height)) = layout.stream_tiles_for.filter(|_| streamed) {
-        prepared.stream_tiles(width as f32 / height.max(1) as f32, None)?;
+        let first = prepared.stream_tiles(width as f32 / height.max(1) as f32, None)?;
+        if let (Some(streaming), Some(first)) = (&mut prepared.streaming, first) {
+            streaming.unreported = (first.loaded, first.evicted);
+        }
     }
     Ok(prepared)
 }
@@ -462,7 +475,13 @@ fn start_streaming(
     }
     tiles.set_budget(room);
     let fixed = instances.iter().copied().zip(records.iter().copied()).collect();
-    Ok(Streaming { tiles, fixed, beside_tiles: ledger.held() + top, top_level_current: true })
+    Ok(Streaming {
+        tiles,
+        fixed,
+        beside_tiles: ledger.held() + top,
+        top_level_current: true,
+        unreported: (0, 0),
+    })
 }
 
 /// The top level over `instances` and the object records the shaders index by their

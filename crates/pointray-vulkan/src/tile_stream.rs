@@ -49,7 +49,8 @@ pub struct TileResidency {
     /// Tiles the camera's view reaches, and how many of them are on the GPU.
     pub in_view: usize,
     pub in_view_resident: usize,
-    /// Tiles this update loaded and evicted.
+    /// Tiles this update loaded and evicted; the first update after a streamed scene is
+    /// prepared counts those its preparation loaded too.
     pub loaded: usize,
     pub evicted: usize,
     /// Tiles that fit the budget but were not loaded within the update's time limit.

@@ -59,6 +59,12 @@ fn streamed(
     renderer.prepare_with_layout(scene, layout)
 }
 
+/// `scene` streamed in three quarters of what it takes whole.
+fn streamed_in_three_quarters(renderer: &VulkanRenderer, scene: &Scene) -> PreparedScene {
+    let budget = renderer.prepare(scene).expect("prepares whole").build_report().gpu_bytes() * 3 / 4;
+    streamed(renderer, scene, budget, TILE).expect("streams within the budget")
+}
+
 fn stream(prepared: &mut PreparedScene, camera: Camera, limit: Option<Duration>) -> TileResidency {
     prepared.camera = camera;
     let residency = prepared.stream_tiles(1.0, limit).expect("streams").expect("the bunny streams");
@@ -103,8 +109,7 @@ fn a_cloud_over_its_budget_streams_the_tiles_each_view_sees_and_draws_what_it_dr
 fn turning_to_another_view_evicts_tiles_and_a_time_limit_loads_one_tile_a_call() {
     let Some(renderer) = renderer() else { return };
     let (scene, bounds) = bunny_scene();
-    let budget = renderer.prepare(&scene).expect("prepares whole").build_report().gpu_bytes() * 3 / 4;
-    let mut prepared = streamed(&renderer, &scene, budget, TILE).expect("streams within the budget");
+    let mut prepared = streamed_in_three_quarters(&renderer, &scene);
     let first = stream(&mut prepared, close_view(&bounds, -1.0), None);
     let turned = stream(&mut prepared, close_view(&bounds, 1.0), Some(Duration::ZERO));
     assert!(turned.evicted > 0 && turned.loaded == 1, "{turned:?} after {first:?}");
@@ -117,6 +122,18 @@ fn turning_to_another_view_evicts_tiles_and_a_time_limit_loads_one_tile_a_call()
     }
     let settled = stream(&mut prepared, close_view(&bounds, 1.0), None);
     assert!(!settled.changed(), "{settled:?}: a settled view loads nothing");
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn the_first_update_reports_the_tiles_the_preparation_loaded() {
+    let Some(renderer) = renderer() else { return };
+    let (scene, _) = bunny_scene();
+    let mut prepared = streamed_in_three_quarters(&renderer, &scene);
+    let first = stream(&mut prepared, scene.camera, None);
+    assert!(first.loaded > 0 && first.loaded == first.resident, "{first:?}: the preparation's loads");
+    let again = stream(&mut prepared, scene.camera, None);
+    assert_eq!((again.loaded, again.evicted), (0, 0), "{again:?}: reported once");
     assert_no_validation_messages(&renderer);
 }
 
