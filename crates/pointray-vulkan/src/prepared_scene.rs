@@ -22,7 +22,7 @@ use crate::light_table::LightTable;
 use crate::memory_plan::{self, GpuBudget, GpuLedger, INSTANCE_BYTES, mib};
 use crate::patch_upload::prepare_patches;
 use crate::pipeline::{HIT_GROUP_PATCHES, HIT_GROUP_TRIANGLES};
-use crate::tile_stream::{TileResidency, TileStream};
+use crate::tile_stream::{MIN_STREAMED_TILE, TileResidency, TileStream};
 
 /// The most instances (meshes and point-set tiles) whose records an instance's 24-bit
 /// custom index can name.
@@ -444,7 +444,28 @@ fn start_streaming(
     instances: &[vk::AccelerationStructureInstanceKHR],
     records: &[ObjectRecord],
 ) -> Result<Streaming, VulkanError> {
-    let (mut tiles, largest_build) = TileStream::new(context, scene, layout, layout.tile_limit(context))?;
+    let mut max_tile = layout.tile_limit(context);
+    loop {
+        let (tiles, largest_build) = TileStream::new(context, scene, layout, max_tile)?;
+        let largest = tiles.largest_tile_patches();
+        match stream_within_budget(context, (tiles, largest_build), ledger, instances, records) {
+            // Smaller tiles take less room to build and to hold one of.
+            Err(VulkanError::OverBudget(_)) if largest / 2 >= MIN_STREAMED_TILE => {
+                max_tile = (largest / 2) as u32;
+            }
+            started => return started,
+        }
+    }
+}
+
+/// `tiles` streamed beside the scene's other holdings, or why the budget cannot hold them.
+fn stream_within_budget(
+    context: &GpuContext,
+    (mut tiles, largest_build): (TileStream, u64),
+    ledger: &GpuLedger,
+    instances: &[vk::AccelerationStructureInstanceKHR],
+    records: &[ObjectRecord],
+) -> Result<Streaming, VulkanError> {
     let count = instances.len() + tiles.len();
     if count > MAX_INSTANCES {
         return Err(VulkanError::InvalidScene(format!(

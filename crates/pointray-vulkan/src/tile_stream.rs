@@ -28,12 +28,13 @@ use crate::prepared_scene::SceneLayout;
 use crate::tile_view::TileView;
 
 /// Tiles a streamed set is split into, unless its tiles would be smaller than
-/// `MIN_STREAMED_TILE` or larger than `MAX_STREAMED_TILE` (or the device's limit): enough that
-/// the budget can follow the camera.
+/// `MIN_STREAMED_TILE` or larger than `MAX_STREAMED_TILE` (or the device's limit, or what
+/// the budget holds: `prepared_scene::start_streaming`): enough that the budget can follow
+/// the camera.
 const TILES_PER_SET: usize = 64;
 
 /// The fewest patches a streamed tile holds, below which a bottom level's fixed costs dominate.
-const MIN_STREAMED_TILE: usize = 4096;
+pub(crate) const MIN_STREAMED_TILE: usize = 4096;
 
 /// The most patches a streamed tile holds, so that loading one (about 17 ms for 1.56M patches
 /// on an H100) keeps within a frame's share of time however large the set.
@@ -181,6 +182,11 @@ impl TileStream {
     /// Tiles in all.
     pub(crate) fn len(&self) -> usize {
         self.tiles.len()
+    }
+
+    /// The patches of the largest tile.
+    pub(crate) fn largest_tile_patches(&self) -> usize {
+        self.tiles.iter().map(|tile| tile.patches.len()).max().unwrap_or(0)
     }
 
     /// The GPU bytes of the smallest tile, loaded.

@@ -8,10 +8,14 @@ use crate::common;
 use crate::point_colors::{coloured_sphere, lit_on_floor};
 use crate::tiles::{assert_same_hits, bunny_object, patch_count};
 
-use common::{assert_no_validation_messages, model_on_floor, renderer, settings};
+use common::{assert_no_validation_messages, model_on_floor, object, point_light, renderer, settings};
 use glam::Vec3;
-use pointray_kernels::Aabb;
+use std::sync::Arc;
+
+use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_scene::{Background, Geometry, Material};
 use pointray_scene::{Camera, RenderSettings, RenderedImage, Scene};
+use pointray_surface::PatchSet;
 use pointray_vulkan::{PreparedScene, SceneLayout, TileResidency, VulkanError, VulkanRenderer};
 
 const SIZE: u32 = 96;
@@ -148,6 +152,60 @@ fn a_budget_without_room_for_one_tile_is_refused_and_a_roomy_one_uploads_the_set
     let tiles = patch_count(&scene).div_ceil(TILE as usize);
     assert_eq!(roomy.build_report().blas_count, tiles + 1, "every tile of the bunny, and the floor");
     assert_eq!(roomy.stream_tiles(1.0, None).expect("nothing to stream"), None);
+    assert_no_validation_messages(&renderer);
+}
+
+/// A flat grid of `side` x `side` round patches, a unit apart, far larger than the bunny so
+/// that its streamed tiles hold more than the fewest a tile may.
+fn grid_scene(side: u32) -> Scene {
+    let hot: Vec<PatchHot> = (0..side * side)
+        .map(|i| Vec3::new((i % side) as f32, 0.0, (i / side) as f32))
+        .map(|origin| PatchHot::isotropic(origin, Vec3::X, Vec3::Y, [0.0; 6], 1.0))
+        .collect();
+    let aabbs = hot.iter().map(|patch| Aabb::cube(patch.origin(), patch.radius())).collect();
+    let patches = PatchSet {
+        aabbs,
+        cold: vec![PatchCold::default(); hot.len()].into(),
+        hot: hot.into(),
+        ..PatchSet::default()
+    };
+    let bounds = Aabb { min: [0.0; 3], max: [side as f32, 0.0, side as f32] };
+    Scene {
+        camera: Scene::framing_camera(&bounds, Vec3::new(0.3, 0.4, 1.0), 40.0, 1.0),
+        lights: vec![point_light(Vec3::new(0.0, side as f32, 0.0), 1.0)],
+        background: Background::Solid(Vec3::splat(0.2)),
+        objects: vec![object("grid", Geometry::Patches(Arc::new(patches)), Material::default())],
+    }
+}
+
+#[test]
+fn a_budget_too_small_for_a_sets_usual_tiles_streams_smaller_ones() {
+    let Some(renderer) = renderer() else { return };
+    let scene = grid_scene(800);
+    let streams_in = |budget: u64, tile: Option<u32>| {
+        let layout = SceneLayout {
+            memory_budget: Some(budget),
+            stream_tiles_for: Some((SIZE, SIZE)),
+            max_tile_patches: tile,
+            ..SceneLayout::default()
+        };
+        renderer.prepare_with_layout(&scene, layout)
+    };
+    // The least budget that streams tiles of half the usual 10,000 patches.
+    let (mut refused, mut streams) = (1u64 << 16, 1u64 << 30);
+    while streams - refused > 1 << 12 {
+        let middle = (refused + streams) / 2;
+        match streams_in(middle, Some(5000)) {
+            Ok(_) => streams = middle,
+            Err(_) => refused = middle,
+        }
+    }
+    let tiles_in = |budget: u64| {
+        let mut prepared = streams_in(budget, None).expect("streams");
+        prepared.stream_tiles(1.0, None).expect("streams").expect("the grid streams").tiles
+    };
+    assert_eq!(tiles_in(4 * streams), 64, "a roomier budget keeps the usual tiles of 10,000 patches");
+    assert_eq!(tiles_in(streams), 128, "where those do not fit, tiles of 5,000 stream");
     assert_no_validation_messages(&renderer);
 }
 
