@@ -45,7 +45,7 @@ pub use environment_map::{
     environment_uv,
 };
 pub use face_forward::face_forward;
-pub use interpolate_color::{COLOR_NEIGHBORS, NO_NEIGHBOR, interpolate_color};
+pub use interpolate_color::{COLOR_NEIGHBORS, COLOR_WALK_SCANS, NO_NEIGHBOR, interpolate_color};
 pub use intersect_patch::{PatchAcceptance, PatchHit, intersect_patch};
 pub use layout::{Aabb, PackedTangentFrame, Patch, PatchCold, PatchHot};
 pub use light_source::{

@@ -16,6 +16,7 @@ mod backend_choice;
 mod barrier;
 mod binding_table;
 mod buffer;
+mod color_halo;
 mod context;
 mod device;
 mod device_type;

@@ -1,7 +1,6 @@
 //! A point set onto the GPU: one BLAS per tile (`pointray_surface::patch_tiles`), then the
 //! per-patch records its traces read, all tiles sharing the set's buffers.
 
-use std::borrow::Cow;
 use std::ops::Range;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -14,6 +13,7 @@ use rayon::prelude::*;
 
 use crate::acceleration::{AccelerationStructure, BlasLayout, aabb_input, build, build_peak, build_sizes};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
+use crate::color_halo::ColorHalo;
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::{ObjectRecord, PatchCombined};
@@ -156,14 +156,16 @@ pub(crate) fn patch_records(
         uploaded.push(buffer);
         Ok(address)
     };
+    let lists = colors && !patches.color_neighbors.is_empty();
+    let halo = if lists { ColorHalo::new(patches, range.clone()) } else { ColorHalo::default() };
     let mut record = ObjectRecord::default();
     if buffers == BufferLayout::Split || colors {
-        let hot = bytemuck::cast_slice(&patches.hot[range.clone()]);
-        record.hot = upload("hot patch records", hot, size_of::<PatchHot>())?;
+        let hot = halo.records(&patches.hot, range.clone());
+        record.hot = upload("hot patch records", bytemuck::cast_slice(&hot), size_of::<PatchHot>())?;
     }
     if colors {
-        let cold = bytemuck::cast_slice(&patches.cold[range.clone()]);
-        record.cold = upload("cold patch records", cold, size_of::<PatchCold>())?;
+        let cold = halo.records(&patches.cold, range.clone());
+        record.cold = upload("cold patch records", bytemuck::cast_slice(&cold), size_of::<PatchCold>())?;
     }
     if buffers == BufferLayout::Combined {
         let combined: Vec<PatchCombined> = patches.hot[range.clone()]
@@ -176,22 +178,12 @@ pub(crate) fn patch_records(
     }
     // Only coloured clouds carry neighbour lists; the others keep address 0, which the
     // closest-hit shader never dereferences.
-    if colors && !patches.color_neighbors.is_empty() {
-        let lists = neighbors_within(patches, range.clone());
+    if lists {
+        let lists = halo.neighbor_lists(patches, range.clone());
         let stride = COLOR_NEIGHBORS * size_of::<u32>();
         record.color_neighbors = upload("colour neighbour lists", bytemuck::cast_slice(&lists), stride)?;
     }
     Ok((record, uploaded))
-}
-
-/// The colour neighbour lists of the patches in `range`, naming only patches within it.
-fn neighbors_within(patches: &PatchSet, range: Range<usize>) -> Cow<'_, [u32]> {
-    let lists = &patches.color_neighbors[range.start * COLOR_NEIGHBORS..range.end * COLOR_NEIGHBORS];
-    if range == (0..patches.len()) {
-        return Cow::Borrowed(lists);
-    }
-    let within = |&j: &u32| if range.contains(&(j as usize)) { j } else { NO_NEIGHBOR };
-    Cow::Owned(lists.iter().map(within).collect())
 }
 
 /// The GPU bytes of the records a trace of `patches` with `material` reads.
@@ -206,11 +198,13 @@ pub(crate) fn range_record_bytes(
     material: &Material,
     buffers: BufferLayout,
 ) -> u64 {
-    let count = range.len() as u64;
+    let own = range.len() as u64;
     let hot = size_of::<PatchHot>() as u64;
     let cold = size_of::<PatchCold>() as u64;
     let colors = reads_point_colors(material);
     let lists = colors && !patches.color_neighbors.is_empty();
+    // A tile of a coloured set holds its colour halo's records and lists too.
+    let count = if lists { own + ColorHalo::new(patches, range.clone()).len() as u64 } else { own };
     let neighbors = if lists { count * (COLOR_NEIGHBORS * size_of::<u32>()) as u64 } else { 0 };
     let split = match (buffers, colors) {
         (_, true) => count * (hot + cold),
@@ -218,7 +212,7 @@ pub(crate) fn range_record_bytes(
         (BufferLayout::Combined, false) => 0,
     };
     let combined =
-        if buffers == BufferLayout::Combined { count * size_of::<PatchCombined>() as u64 } else { 0 };
+        if buffers == BufferLayout::Combined { own * size_of::<PatchCombined>() as u64 } else { 0 };
     neighbors + split + combined
 }
 

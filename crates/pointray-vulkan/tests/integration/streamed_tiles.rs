@@ -222,12 +222,13 @@ fn a_mesh_whose_build_does_not_fit_is_refused_by_name_not_built_past_the_budget(
 }
 
 #[test]
-fn a_coloured_cloud_streams_with_its_colours_blended_within_each_tile() {
+fn a_coloured_cloud_streams_with_its_colours_blended_across_its_tiles_as_whole() {
     let Some(renderer) = renderer() else { return };
     let mut scene = lit_on_floor(coloured_sphere());
     scene.objects[1].material.reflectivity = 0.0;
     let mut whole = renderer.prepare(&scene).expect("prepares whole");
-    let budget = whole.build_report().gpu_bytes() * 3 / 4;
+    // Tiles of 250 patches carry colour halos nearly their own size.
+    let budget = whole.build_report().gpu_bytes() * 9 / 10;
     let mut prepared = streamed(&renderer, &scene, budget, 250).expect("streams within the budget");
     // A narrow view of the sphere's right edge (its radius is 0.8), which passes through a
     // few of its tiles: the tiles of a shell hold the shell's inside in their boxes.
@@ -248,6 +249,7 @@ fn a_coloured_cloud_streams_with_its_colours_blended_within_each_tile() {
     let reference = whole_image(&renderer, &mut whole, camera);
     let psnr = image.color_psnr(&reference);
     eprintln!("coloured sphere streamed: {psnr:.1} dB");
-    assert!(psnr >= 35.0, "{psnr:.1} dB");
+    // Blends that stopped at tile borders left seams at 57.7 dB.
+    assert!(psnr >= 90.0, "{psnr:.1} dB");
     assert_no_validation_messages(&renderer);
 }
