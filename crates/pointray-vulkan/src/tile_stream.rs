@@ -216,7 +216,9 @@ impl TileStream {
         let bounds: Vec<Aabb> = self.tiles.iter().map(|tile| tile.bounds).collect();
         let seen: Vec<bool> = bounds.iter().map(|tile| view.sees(tile)).collect();
         let wanted = self.wanted(&view.rank(&bounds, &seen));
-        let evict: Vec<usize> = self.resident.keys().copied().filter(|tile| !wanted.contains(tile)).collect();
+        let mut keep = vec![false; self.tiles.len()];
+        wanted.iter().for_each(|&tile| keep[tile] = true);
+        let evict: Vec<usize> = self.resident.keys().copied().filter(|&tile| !keep[tile]).collect();
         let missing: Vec<usize> =
             wanted.iter().copied().filter(|tile| !self.resident.contains_key(tile)).collect();
         if !evict.is_empty() || !missing.is_empty() {
