@@ -41,13 +41,17 @@ fn a_scripted_orbit_over_the_gpu_budget_streams_tiles_and_ends_on_the_streamed_i
     let size = (run.settings.width, run.settings.height);
     let layout = SceneLayout { stream_tiles_for: Some(size), ..SceneLayout::for_settings(&run.settings) };
     let mut streamed = renderer.prepare_with_layout(&final_scene, layout).expect("the demo streams");
-    let residency = streamed
-        .stream_tiles(run.settings.width as f32 / run.settings.height as f32, None)
-        .expect("streams")
-        .expect("the demo's point sets stream on this budget");
+    let aspect = run.settings.width as f32 / run.settings.height as f32;
+    let mut stream = || streamed.stream_tiles(aspect, None).expect("streams").expect("the demo streams here");
+    let residency = stream();
     eprintln!("{budget} of {whole_bytes} bytes: {residency:?}");
     assert!(residency.resident < residency.tiles, "{residency:?}: the budget holds some tiles only");
-    assert!(!residency.changed(), "{residency:?}: preparing loaded the final camera's tiles");
+    assert_eq!(
+        residency.loaded, residency.resident,
+        "{residency:?}: preparing loaded the final camera's tiles"
+    );
+    let again = stream();
+    assert!(!again.changed(), "{again:?}: nothing more to load for the same camera");
     let reference = renderer.trace(&streamed, &run.settings).expect("the reference renders");
     assert_eq!(renderer.validation_messages(), 0, "validation messages (printed above)");
     let reference_path = run.dir.path().join("reference.png");
