@@ -65,8 +65,10 @@ impl ColorHalo {
         if self.patches.is_empty() {
             return Cow::Borrowed(&all[range]);
         }
-        let halo = self.patches.iter().map(|&j| all[j as usize]);
-        Cow::Owned(all[range].iter().copied().chain(halo).collect())
+        let mut records = Vec::with_capacity(range.len() + self.patches.len());
+        records.extend_from_slice(&all[range]);
+        records.par_extend(self.patches.par_iter().map(|&j| all[j as usize]));
+        Cow::Owned(records)
     }
 
     /// The neighbour lists of the patches in `range`, then the halo's, naming patches of the
@@ -77,7 +79,6 @@ impl ColorHalo {
         if range == (0..patches.len()) {
             return Cow::Borrowed(own);
         }
-        let halo = self.patches.iter().flat_map(|&j| neighbors_of(patches, j).iter());
         let local = |&j: &u32| -> u32 {
             if range.contains(&(j as usize)) {
                 return j;
@@ -87,7 +88,11 @@ impl ColorHalo {
                 Err(_) => NO_NEIGHBOR,
             }
         };
-        Cow::Owned(own.iter().chain(halo).map(local).collect())
+        let mut lists: Vec<u32> = own.par_iter().map(local).collect();
+        lists.par_extend(
+            self.patches.par_iter().flat_map_iter(|&j| neighbors_of(patches, j).iter().map(local)),
+        );
+        Cow::Owned(lists)
     }
 }
 
@@ -99,7 +104,87 @@ fn neighbors_of(patches: &PatchSet, patch: u32) -> &[u32] {
 
 #[cfg(test)]
 mod tests {
+    use glam::Vec3;
+    use pointray_kernels::{PatchCold, PatchHot, interpolate_color};
+
     use super::*;
+
+    const SIDE: u32 = 30;
+
+    /// A `SIDE` x `SIDE` grid of patches a unit apart, each listing the neighbours on its
+    /// four sides and two of its diagonals (the rest of its list empty), its colour a gradient over the grid.
+    fn coloured_grid() -> PatchSet {
+        let cell = |i: u32| (i % SIDE, i / SIDE);
+        let hot: Vec<PatchHot> = (0..SIDE * SIDE)
+            .map(|i| Vec3::new(cell(i).0 as f32, cell(i).1 as f32, 0.0))
+            .map(|origin| PatchHot::isotropic(origin, Vec3::X, Vec3::Z, [0.0; 6], 1.0))
+            .collect();
+        let color = |(x, y): (u32, u32)| (x * 8) | (y * 8) << 8 | ((x * y) % 256) << 16 | 0xff00_0000;
+        let cold: Vec<PatchCold> = (0..SIDE * SIDE)
+            .map(|i| PatchCold { color_rgba8: color(cell(i)), intensity: 0.0, color_reach: 1.2 })
+            .collect();
+        let offsets = [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (-1, -1)];
+        let neighbor = |i: u32, (dx, dy): (i32, i32)| {
+            let (x, y) = (cell(i).0 as i32 + dx, cell(i).1 as i32 + dy);
+            let inside = (0..SIDE as i32).contains(&x) && (0..SIDE as i32).contains(&y);
+            if inside { y as u32 * SIDE + x as u32 } else { NO_NEIGHBOR }
+        };
+        let list = |i: u32| {
+            let mut list = [NO_NEIGHBOR; COLOR_NEIGHBORS];
+            list.iter_mut().zip(offsets).for_each(|(slot, offset)| *slot = neighbor(i, offset));
+            list
+        };
+        let lists: Vec<u32> = (0..SIDE * SIDE).flat_map(list).collect();
+        let aabbs = vec![Default::default(); hot.len()];
+        PatchSet {
+            hot: hot.into(),
+            cold: cold.into(),
+            aabbs: aabbs.into(),
+            color_neighbors: lists.into(),
+            ..PatchSet::default()
+        }
+    }
+
+    #[test]
+    fn a_tile_with_its_halo_blends_at_its_border_as_the_whole_set_does() {
+        let patches = coloured_grid();
+        let range = (10 * SIDE) as usize..(20 * SIDE) as usize;
+        let halo = ColorHalo::new(&patches, range.clone());
+        // The tile as its buffers read it. Below its start lie black points where the grid's
+        // are, so that a blend reading there would change colour.
+        let black = PatchCold { color_rgba8: 0xff00_0000, intensity: 0.0, color_reach: 1.2 };
+        let hot: Vec<PatchHot> = patches.hot[..range.start]
+            .iter()
+            .copied()
+            .chain(halo.records(&patches.hot, range.clone()).iter().copied())
+            .collect();
+        let cold: Vec<PatchCold> = std::iter::repeat_n(black, range.start)
+            .chain(halo.records(&patches.cold, range.clone()).iter().copied())
+            .collect();
+        let lists: Vec<u32> = std::iter::repeat_n(NO_NEIGHBOR, range.start * COLOR_NEIGHBORS)
+            .chain(halo.neighbor_lists(&patches, range.clone()).iter().copied())
+            .collect();
+        // Hits on the tile's first and last rows, blended up to three rows past its border,
+        // where the blend walks three scans out.
+        let rows = [(10, -1.0), (19, 1.0)];
+        for (row, outward) in rows {
+            for x in 0..SIDE {
+                let hit = row * SIDE + x;
+                for (step, across) in [0.0, 0.6, 1.6, 2.4].into_iter().zip([0.3, -0.3, 0.2, -0.2]) {
+                    let position = Vec3::new(x as f32 + across, row as f32 + outward * step, 0.0);
+                    let whole = interpolate_color(
+                        position,
+                        hit,
+                        &patches.hot,
+                        &patches.cold,
+                        &patches.color_neighbors,
+                    );
+                    let tile = interpolate_color(position, hit, &hot, &cold, &lists);
+                    assert_eq!(tile, whole, "hit {hit} at {position}");
+                }
+            }
+        }
+    }
 
     /// Ten patches in a row, each naming the one before and after it.
     fn row() -> PatchSet {
@@ -111,7 +196,8 @@ mod tests {
                 list
             })
             .collect::<Vec<u32>>();
-        PatchSet { color_neighbors: lists.into(), ..PatchSet::default() }
+        let hot = vec![PatchHot::default(); 10];
+        PatchSet { hot: hot.into(), color_neighbors: lists.into(), ..PatchSet::default() }
     }
 
     #[test]
@@ -127,6 +213,8 @@ mod tests {
         assert_eq!(pair(1), (4, 9), "patch 5: patch 6 is the halo's fourth");
         assert_eq!(pair(2), (NO_NEIGHBOR, 7), "patch 1: patch 0 lies beyond the halo");
         assert_eq!(pair(7), (10, NO_NEIGHBOR), "patch 8: patch 7 at 6 + 4, patch 9 beyond the halo");
-        assert_eq!(ColorHalo::new(&patches, 0..10).len(), 0, "a whole set has none");
+        let whole = ColorHalo::new(&patches, 0..10);
+        assert_eq!(whole.len(), 0, "a whole set has none");
+        assert!(matches!(whole.neighbor_lists(&patches, 0..10), Cow::Borrowed(_)), "and keeps its lists");
     }
 }

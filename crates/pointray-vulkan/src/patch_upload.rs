@@ -38,7 +38,8 @@ pub(crate) fn reads_point_colors(material: &Material) -> bool {
 const ONE_BLAS_MOST_PATCHES: usize = 1 << 27;
 const LARGE_SET_TILE_PATCHES: u32 = (1 << 24) - 1;
 
-/// The tiles of `patches` for a device whose BLASes hold at most `max_tile_patches`.
+/// The tiles of `patches` for a device whose BLASes hold at most `max_tile_patches`, in
+/// tiles of at most `LARGE_SET_TILE_PATCHES` for sets past `ONE_BLAS_MOST_PATCHES`.
 pub(crate) fn patch_tiles(patches: &PatchSet, max_tile_patches: u32) -> Vec<Range<usize>> {
     tile_ranges(patches.len(), tile_size(patches.len(), max_tile_patches) as usize)
 }
@@ -63,7 +64,7 @@ pub(crate) fn prepare_patches(
 ) -> Result<PreparedObject, VulkanError> {
     check_patch_set(patches)?;
     let count = patches.len();
-    let colors = reads_point_colors(material);
+    let colors = reads_point_colors(material).then(ColorHalo::default);
     let records = record_bytes(patches, material, layout.buffers);
     let started = Instant::now();
     let bottom_levels = tile_bottom_levels(context, patches, layout, max_tile_patches, records, ledger)?;
@@ -71,7 +72,7 @@ pub(crate) fn prepare_patches(
     log_phase(&what, count as u64 * BOX_BYTES, started.elapsed());
     ledger.check(records, "uploading the patch records")?;
     let started = Instant::now();
-    let (record, buffers) = patch_records(context, patches, 0..count, layout.buffers, colors)?;
+    let (record, buffers) = patch_records(context, patches, 0..count, layout.buffers, colors.as_ref())?;
     let uploaded: u64 = buffers.iter().map(|buffer| buffer.size).sum();
     ledger.hold(uploaded, 0);
     log_phase(&format!("uploaded {count} patches' records"), uploaded, started.elapsed());
@@ -140,14 +141,15 @@ pub(crate) fn tile_blas(
 ///
 /// The shaders index every buffer by the patch's index in the whole set, so the addresses
 /// recorded for a range are its buffers' less the range's start: a set uploaded a tile at
-/// a time (`tile_stream`) is then read as one uploaded whole is. A tile's colour neighbours
-/// outside it are dropped, as they may not be on the GPU.
+/// a time (`tile_stream`) is then read as one uploaded whole is. `colors` is the range's
+/// colour halo (`color_halo`) where the trace colours hits by the points, else `None`; the
+/// halo's records and neighbour lists follow the range's own.
 pub(crate) fn patch_records(
     context: &Arc<GpuContext>,
     patches: &PatchSet,
     range: Range<usize>,
     buffers: BufferLayout,
-    colors: bool,
+    colors: Option<&ColorHalo>,
 ) -> Result<(ObjectRecord, Vec<Buffer>), VulkanError> {
     let mut uploaded = Vec::new();
     let mut upload = |name, bytes: &[u8], stride: usize| -> Result<u64, VulkanError> {
@@ -156,8 +158,10 @@ pub(crate) fn patch_records(
         uploaded.push(buffer);
         Ok(address)
     };
-    let lists = colors && !patches.color_neighbors.is_empty();
-    let halo = if lists { ColorHalo::new(patches, range.clone()) } else { ColorHalo::default() };
+    let no_halo = ColorHalo::default();
+    let halo = colors.unwrap_or(&no_halo);
+    let lists = colors.is_some() && !patches.color_neighbors.is_empty();
+    let colors = colors.is_some();
     let mut record = ObjectRecord::default();
     if buffers == BufferLayout::Split || colors {
         let hot = halo.records(&patches.hot, range.clone());
@@ -188,23 +192,24 @@ pub(crate) fn patch_records(
 
 /// The GPU bytes of the records a trace of `patches` with `material` reads.
 pub(crate) fn record_bytes(patches: &PatchSet, material: &Material, buffers: BufferLayout) -> u64 {
-    range_record_bytes(patches, 0..patches.len(), material, buffers)
+    range_record_bytes(patches, 0..patches.len(), material, buffers, &ColorHalo::default())
 }
 
-/// The GPU bytes of the records of the patches in `range` that a trace with `material` reads.
+/// The GPU bytes of the records of the patches in `range` that a trace with `material` reads,
+/// with those of the range's colour `halo` where it colours hits by the points.
 pub(crate) fn range_record_bytes(
     patches: &PatchSet,
     range: Range<usize>,
     material: &Material,
     buffers: BufferLayout,
+    halo: &ColorHalo,
 ) -> u64 {
     let own = range.len() as u64;
     let hot = size_of::<PatchHot>() as u64;
     let cold = size_of::<PatchCold>() as u64;
     let colors = reads_point_colors(material);
     let lists = colors && !patches.color_neighbors.is_empty();
-    // A tile of a coloured set holds its colour halo's records and lists too.
-    let count = if lists { own + ColorHalo::new(patches, range.clone()).len() as u64 } else { own };
+    let count = if colors { own + halo.len() as u64 } else { own };
     let neighbors = if lists { count * (COLOR_NEIGHBORS * size_of::<u32>()) as u64 } else { 0 };
     let split = match (buffers, colors) {
         (_, true) => count * (hot + cold),

@@ -92,7 +92,8 @@ pub struct SceneLayout {
     pub blas: BlasLayout,
     pub buffers: BufferLayout,
     /// At most this many patches in one BLAS (`pointray_surface::patch_tiles`); the device's
-    /// `maxPrimitiveCount` caps it whatever is asked, and `None` asks for no other limit.
+    /// `maxPrimitiveCount` caps it whatever is asked, and so does 2^24 - 1 for sets of more
+    /// than 2^27 patches (`patch_upload::patch_tiles`). `None` asks for no other limit.
     pub max_tile_patches: Option<u32>,
     /// Bytes of GPU memory the scene may take, building included; `None` is the device's
     /// `DeviceOptions::gpu_memory`, else its device-local memory. A scene that cannot fit is
@@ -270,14 +271,13 @@ impl PreparedScene {
             (self.tlas, self.objects) = streaming.top_level(context)?;
             streaming.top_level_current = true;
         }
+        let residency = updated?;
         let (loaded, evicted) = std::mem::take(&mut streaming.unreported);
-        updated.map(|residency| {
-            Some(TileResidency {
-                loaded: residency.loaded + loaded,
-                evicted: residency.evicted + evicted,
-                ..residency
-            })
-        })
+        Ok(Some(TileResidency {
+            loaded: residency.loaded + loaded,
+            evicted: residency.evicted + evicted,
+            ..residency
+        }))
     }
 
     /// Refuses to trace a streamed scene whose top level may name evicted tiles.

@@ -18,6 +18,7 @@ use rayon::prelude::*;
 
 use crate::acceleration::{AccelerationStructure, aabb_input, build_peak, build_sizes};
 use crate::buffer::Buffer;
+use crate::color_halo::ColorHalo;
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::ObjectRecord;
@@ -62,7 +63,8 @@ pub struct TileResidency {
 }
 
 impl TileResidency {
-    /// Whether this update changed what the scene shows.
+    /// Whether this update, or for the first one the scene's preparation, changed what the
+    /// scene shows.
     pub fn changed(&self) -> bool {
         self.loaded + self.evicted > 0
     }
@@ -78,7 +80,6 @@ struct StreamedSet {
     patches: Arc<PatchSet>,
     transform: Affine3A,
     record: ObjectRecord,
-    colors: bool,
 }
 
 /// One tile of a streamed set.
@@ -93,6 +94,9 @@ struct StreamedTile {
     bytes: u64,
     /// The most its build holds at once: boxes, structure and scratch.
     build: u64,
+    /// Where its set's hits are coloured by the points, the patches past its border that its
+    /// colour blends read.
+    colors: Option<ColorHalo>,
 }
 
 /// A tile on the GPU.
@@ -143,6 +147,7 @@ impl TileStream {
             changed: false,
         };
         let mut largest_build = 0;
+        let no_halo = ColorHalo::default();
         for (index, object) in scene.objects.iter().enumerate() {
             let Geometry::Patches(patches) = &object.geometry else { continue };
             check_patch_set(patches)?;
@@ -157,7 +162,11 @@ impl TileStream {
                     build_sizes(context, &aabb_input(0, range.len() as u32, layout.blas));
                 let build = build_peak(tile_box_bytes(&range), structure, scratch);
                 largest_build = largest_build.max(build);
-                let records = range_record_bytes(patches, range.clone(), &object.material, layout.buffers);
+                let colors =
+                    reads_point_colors(&object.material).then(|| ColorHalo::new(patches, range.clone()));
+                let halo = colors.as_ref().map_or(&no_halo, |halo| halo);
+                let records =
+                    range_record_bytes(patches, range.clone(), &object.material, layout.buffers, halo);
                 let bounds = world_bounds(patches, range.clone(), &object.transform);
                 stream.tiles.push(StreamedTile {
                     set,
@@ -165,16 +174,11 @@ impl TileStream {
                     bounds,
                     bytes: records + structure,
                     build,
+                    colors,
                 });
             }
             let record = ObjectRecord::default().with_material(&object.material).for_tile(index as u32, 0);
-            let colors = reads_point_colors(&object.material);
-            stream.sets.push(StreamedSet {
-                patches: patches.clone(),
-                transform: object.transform,
-                record,
-                colors,
-            });
+            stream.sets.push(StreamedSet { patches: patches.clone(), transform: object.transform, record });
         }
         Ok((stream, largest_build))
     }
@@ -280,8 +284,13 @@ impl TileStream {
         let tile = &self.tiles[index];
         let set = &self.sets[tile.set];
         let blas = tile_blas(context, &set.patches, tile.patches.clone(), self.layout.blas)?;
-        let (addresses, buffers) =
-            patch_records(context, &set.patches, tile.patches.clone(), self.layout.buffers, set.colors)?;
+        let (addresses, buffers) = patch_records(
+            context,
+            &set.patches,
+            tile.patches.clone(),
+            self.layout.buffers,
+            tile.colors.as_ref(),
+        )?;
         let record = ObjectRecord {
             hot: addresses.hot,
             cold: addresses.cold,

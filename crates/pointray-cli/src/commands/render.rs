@@ -166,7 +166,7 @@ fn report_residency(residency: &TileResidency, took: Duration) {
     let mib = |bytes: u64| bytes as f64 / f64::from(1 << 20);
     println!(
         "streamed tiles: {} of {} on the GPU ({:.1} of {:.1} MiB), {} of the {} in view (loaded {}, evicted {} \
-         in {took:.2?})",
+         since the last frame or the scene's preparation; updated in {took:.2?})",
         residency.resident,
         residency.tiles,
         mib(residency.resident_bytes),
