@@ -13,10 +13,12 @@ use rayon::prelude::*;
 
 /// The halo's patches, in order; a tile's buffers hold halo patch `k` at index
 /// `tile.end + k`, past the tile's own.
-#[derive(Default)]
 pub(crate) struct ColorHalo {
     patches: Vec<u32>,
 }
+
+/// The halo of a set uploaded whole: none.
+pub(crate) static NO_HALO: ColorHalo = ColorHalo { patches: Vec::new() };
 
 impl ColorHalo {
     /// The halo of the patches in `range` of `patches`; empty for a whole set, and for a set

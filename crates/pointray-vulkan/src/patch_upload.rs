@@ -13,7 +13,7 @@ use rayon::prelude::*;
 
 use crate::acceleration::{AccelerationStructure, BlasLayout, aabb_input, build, build_peak, build_sizes};
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
-use crate::color_halo::ColorHalo;
+use crate::color_halo::{ColorHalo, NO_HALO};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::{ObjectRecord, PatchCombined};
@@ -64,7 +64,7 @@ pub(crate) fn prepare_patches(
 ) -> Result<PreparedObject, VulkanError> {
     check_patch_set(patches)?;
     let count = patches.len();
-    let colors = reads_point_colors(material).then(ColorHalo::default);
+    let colors = reads_point_colors(material).then_some(&NO_HALO);
     let records = record_bytes(patches, material, layout.buffers);
     let started = Instant::now();
     let bottom_levels = tile_bottom_levels(context, patches, layout, max_tile_patches, records, ledger)?;
@@ -72,7 +72,7 @@ pub(crate) fn prepare_patches(
     log_phase(&what, count as u64 * BOX_BYTES, started.elapsed());
     ledger.check(records, "uploading the patch records")?;
     let started = Instant::now();
-    let (record, buffers) = patch_records(context, patches, 0..count, layout.buffers, colors.as_ref())?;
+    let (record, buffers) = patch_records(context, patches, 0..count, layout.buffers, colors)?;
     let uploaded: u64 = buffers.iter().map(|buffer| buffer.size).sum();
     ledger.hold(uploaded, 0);
     log_phase(&format!("uploaded {count} patches' records"), uploaded, started.elapsed());
@@ -158,10 +158,9 @@ pub(crate) fn patch_records(
         uploaded.push(buffer);
         Ok(address)
     };
-    let no_halo = ColorHalo::default();
-    let halo = colors.unwrap_or(&no_halo);
-    let lists = colors.is_some() && !patches.color_neighbors.is_empty();
+    let halo = colors.unwrap_or(&NO_HALO);
     let colors = colors.is_some();
+    let lists = colors && !patches.color_neighbors.is_empty();
     let mut record = ObjectRecord::default();
     if buffers == BufferLayout::Split || colors {
         let hot = halo.records(&patches.hot, range.clone());
@@ -192,24 +191,24 @@ pub(crate) fn patch_records(
 
 /// The GPU bytes of the records a trace of `patches` with `material` reads.
 pub(crate) fn record_bytes(patches: &PatchSet, material: &Material, buffers: BufferLayout) -> u64 {
-    range_record_bytes(patches, 0..patches.len(), material, buffers, &ColorHalo::default())
+    range_record_bytes(patches, 0..patches.len(), buffers, reads_point_colors(material).then_some(&NO_HALO))
 }
 
-/// The GPU bytes of the records of the patches in `range` that a trace with `material` reads,
-/// with those of the range's colour `halo` where it colours hits by the points.
+/// The GPU bytes of the records of the patches in `range` that a trace reads: with `colors`,
+/// the range's colour halo where it colours hits by the points (as `patch_records`), those
+/// of the halo too.
 pub(crate) fn range_record_bytes(
     patches: &PatchSet,
     range: Range<usize>,
-    material: &Material,
     buffers: BufferLayout,
-    halo: &ColorHalo,
+    colors: Option<&ColorHalo>,
 ) -> u64 {
     let own = range.len() as u64;
     let hot = size_of::<PatchHot>() as u64;
     let cold = size_of::<PatchCold>() as u64;
-    let colors = reads_point_colors(material);
+    let count = own + colors.map_or(0, ColorHalo::len) as u64;
+    let colors = colors.is_some();
     let lists = colors && !patches.color_neighbors.is_empty();
-    let count = if colors { own + halo.len() as u64 } else { own };
     let neighbors = if lists { count * (COLOR_NEIGHBORS * size_of::<u32>()) as u64 } else { 0 };
     let split = match (buffers, colors) {
         (_, true) => count * (hot + cold),

@@ -147,7 +147,6 @@ impl TileStream {
             changed: false,
         };
         let mut largest_build = 0;
-        let no_halo = ColorHalo::default();
         for (index, object) in scene.objects.iter().enumerate() {
             let Geometry::Patches(patches) = &object.geometry else { continue };
             check_patch_set(patches)?;
@@ -164,9 +163,7 @@ impl TileStream {
                 largest_build = largest_build.max(build);
                 let colors =
                     reads_point_colors(&object.material).then(|| ColorHalo::new(patches, range.clone()));
-                let halo = colors.as_ref().map_or(&no_halo, |halo| halo);
-                let records =
-                    range_record_bytes(patches, range.clone(), &object.material, layout.buffers, halo);
+                let records = range_record_bytes(patches, range.clone(), layout.buffers, colors.as_ref());
                 let bounds = world_bounds(patches, range.clone(), &object.transform);
                 stream.tiles.push(StreamedTile {
                     set,
