@@ -19,6 +19,9 @@ use crate::stream_error::StreamError;
 /// Records per block of the index.
 const BLOCK_POINTS: u64 = 4096;
 
+/// Records each thread decodes at a time.
+const DECODE_BATCH: usize = 1 << 16;
+
 /// Blocks each thread reads at a time when gathering the points in a box.
 const BLOCKS_AT_A_TIME: usize = 4;
 
@@ -48,18 +51,30 @@ impl SortedPoints {
         let size = self.layout.bytes() as u64;
         let mut bytes = vec![0u8; ((range.end - range.start) * size) as usize];
         self.file.read_exact_at(&mut bytes, range.start * size).map_err(|e| self.scratch(e))?;
-        Ok(self.decode(bytes.chunks_exact(size as usize)))
+        Ok(self.decode_records(&bytes))
     }
 
     /// The points of `records` (whole records, as `near` hands them out), with their input
-    /// indices.
+    /// indices, decoded a batch per thread.
     pub(crate) fn decode_records(&self, records: &[u8]) -> (PointCloud, Vec<u32>) {
-        self.decode(records.chunks_exact(self.layout.bytes()))
+        let size = self.layout.bytes();
+        let batches: Vec<(PointCloud, Vec<u32>)> =
+            records.par_chunks(DECODE_BATCH * size).map(|batch| self.decode(batch)).collect();
+        let mut cloud = self.layout.empty_cloud(self.sensor_position);
+        let mut indices = Vec::with_capacity(records.len() / size);
+        for (batch, batch_indices) in batches {
+            cloud.append(batch);
+            indices.extend(batch_indices);
+        }
+        (cloud, indices)
     }
 
-    fn decode<'a>(&self, records: impl Iterator<Item = &'a [u8]>) -> (PointCloud, Vec<u32>) {
+    fn decode(&self, records: &[u8]) -> (PointCloud, Vec<u32>) {
         let mut cloud = self.layout.empty_cloud(self.sensor_position);
-        let indices = records.map(|record| self.layout.decode_into(record, &mut cloud).1).collect();
+        let indices = records
+            .chunks_exact(self.layout.bytes())
+            .map(|record| self.layout.decode_into(record, &mut cloud).1)
+            .collect();
         (cloud, indices)
     }
 

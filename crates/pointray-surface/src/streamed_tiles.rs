@@ -13,7 +13,7 @@ use glam::{DVec3, Vec3};
 use pointray_io::{MemoryBudget, PointCloud, PointStream};
 use rayon::prelude::*;
 
-use crate::cloud_subset::{concatenated, subset};
+use crate::cloud_subset::subset;
 use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::halo_test::HaloTest;
 use crate::morton::MortonGrid;
@@ -160,12 +160,12 @@ impl StreamPlan {
         drop(halo_records);
         // The halo in input order, as the in-memory tiles take it.
         let mut by_input: Vec<u32> = (0..halo_inputs.len() as u32).collect();
-        by_input.sort_unstable_by_key(|&j| halo_inputs[j as usize]);
-        let core_len = core.len() as u32;
-        let order: Vec<u32> = (0..core_len).chain(by_input.iter().map(|&j| core_len + j)).collect();
+        by_input.par_sort_unstable_by_key(|&j| halo_inputs[j as usize]);
+        let core_len = core.len();
         let members: Vec<u32> =
             core_inputs.iter().copied().chain(by_input.iter().map(|&j| halo_inputs[j as usize])).collect();
-        let cloud = subset(&concatenated(core, halo), &order);
+        let mut cloud = core;
+        cloud.append(subset(&halo, &by_input));
         tracing::debug!(
             "tile {range:?} gathered: {halo_count} halo points; read {read:.2?}, reach {:.2?}, \
              halo {:.2?}, assemble {:.2?}",
@@ -173,7 +173,7 @@ impl StreamPlan {
             gathered - reached,
             started.elapsed() - gathered
         );
-        Ok(Gathered::Tile(Box::new(GatheredTile { range, cloud, members, core: core_len as usize })))
+        Ok(Gathered::Tile(Box::new(GatheredTile { range, cloud, members, core: core_len })))
     }
 
     /// Preps a gathered tile.

@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use pointray_kernels::NO_NEIGHBOR;
+use rayon::prelude::*;
 
 use crate::patch_store::{self, StoreSummary};
 use crate::prep_progress::{PrepProgress, Stage};
@@ -64,9 +65,7 @@ impl TileSpool {
         if !sources.is_empty() {
             total.neighbor_slots = (set.color_neighbors.len() / sources.len()) as u32;
         }
-        for (patch, &input) in sources.iter().enumerate() {
-            self.patch_of[input as usize] = (total.patches + patch as u64) as u32;
-        }
+        let first_patch = total.patches;
         total.patches += set.len() as u64;
         total.bounds = match (total.bounds, set.bounds()) {
             (Some(a), Some(b)) => Some(a.union(&b)),
@@ -78,9 +77,21 @@ impl TileSpool {
             bytemuck::cast_slice(&set.cold),
             bytemuck::cast_slice(&set.color_neighbors),
         ];
-        for ((file, path), bytes) in self.files.iter_mut().zip(&self.paths).zip(sections) {
-            file.write_all(bytes).map_err(|e| StreamError::scratch(path, e))?;
-        }
+        let patch_of = &mut self.patch_of;
+        // Each section goes to its own file, so they are written side by side.
+        let (_, written) = rayon::join(
+            || {
+                for (patch, &input) in sources.iter().enumerate() {
+                    patch_of[input as usize] = (first_patch + patch as u64) as u32;
+                }
+            },
+            || {
+                self.files.par_iter_mut().zip(&self.paths).zip(sections).try_for_each(
+                    |((file, path), bytes)| file.write_all(bytes).map_err(|e| StreamError::scratch(path, e)),
+                )
+            },
+        );
+        written?;
         self.tiles += 1;
         Ok(())
     }

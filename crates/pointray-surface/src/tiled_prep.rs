@@ -114,24 +114,28 @@ fn halo_of(
 /// as input indices.
 pub(crate) fn own_patches(set: PatchSet, sources: &[u32], members: &[u32], core: usize) -> TilePatches {
     let input_of = |patch: usize| members[sources[patch] as usize];
-    let keep: Vec<usize> = (0..set.len()).filter(|&j| (sources[j] as usize) < core).collect();
+    let keep: Vec<usize> = (0..set.len()).into_par_iter().filter(|&j| (sources[j] as usize) < core).collect();
     let width = if set.is_empty() { 0 } else { set.color_neighbors.len() / set.len() };
-    let color_neighbors = keep
-        .iter()
-        .flat_map(|&j| set.color_neighbors[j * width..(j + 1) * width].iter())
+    let color_neighbors: Vec<u32> = keep
+        .par_iter()
+        .flat_map_iter(|&j| set.color_neighbors[j * width..(j + 1) * width].iter())
         .map(|&n| if n == NO_NEIGHBOR { NO_NEIGHBOR } else { input_of(n as usize) })
         .collect();
     TilePatches {
-        sources: keep.iter().map(|&j| input_of(j)).collect(),
+        sources: keep.par_iter().map(|&j| input_of(j)).collect(),
         patches: PatchSet {
             settings: set.settings,
             offset: set.offset,
-            aabbs: keep.iter().map(|&j| set.aabbs[j]).collect(),
-            hot: keep.iter().map(|&j| set.hot[j]).collect(),
-            cold: keep.iter().map(|&j| set.cold[j]).collect(),
-            color_neighbors,
+            aabbs: picked(&set.aabbs, &keep).into(),
+            hot: picked(&set.hot, &keep).into(),
+            cold: picked(&set.cold, &keep).into(),
+            color_neighbors: color_neighbors.into(),
         },
     }
+}
+
+fn picked<T: Copy + Send + Sync>(records: &[T], keep: &[usize]) -> Vec<T> {
+    keep.par_iter().map(|&j| records[j]).collect()
 }
 
 /// The tiles' patches as one set, in tile order; colour neighbours whose point made no
