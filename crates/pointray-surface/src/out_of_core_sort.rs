@@ -6,7 +6,9 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::fs::File;
-use std::io::{BufReader, Read, Write};
+use std::io::Write;
+use std::ops::Range;
+use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
@@ -16,7 +18,7 @@ use rayon::prelude::*;
 use crate::morton::MortonGrid;
 use crate::point_records::{RecordKey, RecordLayout, record_key};
 use crate::prep_progress::{PrepProgress, Stage};
-use crate::sorted_points::{SortedPoints, SortedWriter};
+use crate::sorted_points::{BlockBounds, SortedFile, SortedPiece, SortedPoints};
 use crate::stream_error::StreamError;
 
 /// Points each thread encodes at a time.
@@ -26,8 +28,15 @@ const ENCODE_BATCH: usize = 1 << 14;
 /// beside any budget, large enough to share among threads.
 const WRITE_BATCH_BYTES: usize = 1 << 20;
 
-/// Buffered bytes per run while merging.
+/// Buffered bytes per run and per piece while merging, at most.
 const MERGE_BUFFER_BYTES: usize = 256 << 10;
+
+/// Pieces the merge is cut into per thread, so that pieces of uneven length still keep every
+/// core busy.
+const MERGE_PIECES_PER_THREAD: usize = 4;
+
+/// Keys sampled from each run per piece, to place the pieces' bounds.
+const SAMPLES_PER_PIECE: usize = 8;
 
 /// How a cloud is sorted: the curve, the recentring and the memory each part may take.
 pub(crate) struct SortPlan<'a> {
@@ -55,9 +64,9 @@ pub(crate) fn sort_points(
     })?;
     runs.flush()?;
     progress.stage_finished(Stage::SortRuns, started.elapsed());
-    let Runs { layout, files, read, .. } = runs;
+    let Runs { layout, files, .. } = runs;
     let layout = layout.unwrap_or_default();
-    let sorted = merge_runs(&files, layout, plan, read, stream.sensor_position(), progress)?;
+    let sorted = merge_runs(&files, layout, plan, stream.sensor_position(), progress)?;
     files.iter().for_each(|file| {
         let _ = std::fs::remove_file(file);
     });
@@ -127,56 +136,171 @@ impl Runs<'_> {
     }
 }
 
-/// Merges the sorted runs into one sorted file with its block index.
+/// Merges the sorted runs into one sorted file with its block index. The merge is cut into
+/// pieces by keys sampled from the runs; each piece merges its stretch of every run into its
+/// own place in the file, on every core.
 fn merge_runs(
     files: &[PathBuf],
     layout: RecordLayout,
     plan: &SortPlan,
-    count: u64,
     sensor_position: Option<DVec3>,
     progress: &dyn PrepProgress,
 ) -> Result<SortedPoints, StreamError> {
+    let size = layout.bytes();
+    let runs = files.iter().map(|path| Run::open(path, size)).collect::<Result<Vec<_>, _>>()?;
+    let count: u64 = runs.iter().map(|run| run.records).sum();
     progress.stage_started(Stage::MergeRuns, count);
     let started = std::time::Instant::now();
-    let size = layout.bytes();
-    let path = plan.folder.join("sorted");
-    let mut writer = SortedWriter::create(&path, layout, plan.offset)?;
-    let mut readers = files
-        .iter()
-        .map(|file| {
-            File::open(file)
-                .map(|f| BufReader::with_capacity(MERGE_BUFFER_BYTES, f))
-                .map_err(|e| StreamError::scratch(file, e))
+    let pieces = piece_starts(&runs, rayon::current_num_threads() * MERGE_PIECES_PER_THREAD)?;
+    let sorted = SortedFile::create(&plan.folder.join("sorted"), layout, plan.offset, count)?;
+    let buffer_bytes =
+        (plan.run_bytes / (rayon::current_num_threads() * (runs.len() + 1))).clamp(size, MERGE_BUFFER_BYTES);
+    let blocks = pieces
+        .par_windows(2)
+        .map(|piece| {
+            let first = piece[0].iter().sum();
+            let out = sorted.piece(first, buffer_bytes);
+            let merged = merge_piece(&runs, (&piece[0], &piece[1]), out, buffer_bytes)?;
+            progress.advanced(piece[1].iter().sum::<u64>() - first);
+            Ok(merged)
         })
-        .collect::<Result<Vec<_>, _>>()?;
-    let mut heads = vec![vec![0u8; size]; files.len()];
-    let mut heap = BinaryHeap::new();
-    for (run, reader) in readers.iter_mut().enumerate() {
-        if next_record(reader, &mut heads[run], &files[run])? {
-            heap.push(Reverse((record_key(&heads[run]), run)));
-        }
-    }
-    let mut merged = 0u64;
-    while let Some(Reverse((_, run))) = heap.pop() {
-        writer.push(&heads[run])?;
-        merged += 1;
-        if merged.is_multiple_of(1 << 16) {
-            progress.advanced(1 << 16);
-        }
-        if next_record(&mut readers[run], &mut heads[run], &files[run])? {
-            heap.push(Reverse((record_key(&heads[run]), run)));
-        }
-    }
-    let sorted = writer.finish(sensor_position)?;
+        .collect::<Result<Vec<_>, StreamError>>()?;
+    let sorted = sorted.finish(blocks, sensor_position);
     progress.stage_finished(Stage::MergeRuns, started.elapsed());
     Ok(sorted)
 }
 
-/// Reads the next record of a run into `record`; false at the run's end.
-fn next_record(reader: &mut impl Read, record: &mut [u8], path: &Path) -> Result<bool, StreamError> {
-    match reader.read_exact(record) {
-        Ok(()) => Ok(true),
-        Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => Ok(false),
-        Err(e) => Err(StreamError::scratch(path, e)),
+/// Where each piece of the merge starts in each run, then every run's end: the pieces' keys
+/// split a sample of keys from every run evenly.
+fn piece_starts(runs: &[Run], pieces: usize) -> Result<Vec<Vec<u64>>, StreamError> {
+    let per_run = (pieces * SAMPLES_PER_PIECE) as u64;
+    let sampled = runs
+        .par_iter()
+        .map(|run| (0..per_run.min(run.records)).map(|i| run.key_at(i * run.records / per_run)).collect())
+        .collect::<Result<Vec<Vec<RecordKey>>, StreamError>>()?;
+    let mut samples = sampled.concat();
+    samples.sort_unstable();
+    let mut splitters: Vec<RecordKey> =
+        (1..pieces).filter_map(|j| samples.get(j * samples.len() / pieces).copied()).collect();
+    splitters.dedup();
+    let inner = splitters
+        .par_iter()
+        .map(|&key| runs.iter().map(|run| run.first_not_below(key)).collect())
+        .collect::<Result<Vec<Vec<u64>>, StreamError>>()?;
+    let mut starts = vec![vec![0; runs.len()]];
+    starts.extend(inner);
+    starts.push(runs.iter().map(|run| run.records).collect());
+    Ok(starts)
+}
+
+/// Merges the stretch `from[r]..to[r]` of every run `r` into `out`.
+fn merge_piece(
+    runs: &[Run],
+    (from, to): (&[u64], &[u64]),
+    mut out: SortedPiece,
+    buffer_bytes: usize,
+) -> Result<Vec<(u64, BlockBounds)>, StreamError> {
+    let mut cursors = runs
+        .iter()
+        .zip(from.iter().zip(to))
+        .map(|(run, (&start, &end))| RunCursor::new(run, start..end, buffer_bytes))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut heap: BinaryHeap<Reverse<(RecordKey, usize)>> = cursors
+        .iter()
+        .enumerate()
+        .filter_map(|(run, cursor)| cursor.current().map(|record| Reverse((record_key(record), run))))
+        .collect();
+    while let Some(Reverse((_, run))) = heap.pop() {
+        let cursor = &mut cursors[run];
+        out.push(cursor.current().expect("a run in the heap has a record"))?;
+        if let Some(record) = cursor.advance()? {
+            heap.push(Reverse((record_key(record), run)));
+        }
+    }
+    out.finish()
+}
+
+/// A sorted run on disk.
+struct Run<'a> {
+    path: &'a Path,
+    file: File,
+    record_bytes: usize,
+    records: u64,
+}
+
+impl<'a> Run<'a> {
+    fn open(path: &'a Path, record_bytes: usize) -> Result<Self, StreamError> {
+        let scratch = |e| StreamError::scratch(path, e);
+        let file = File::open(path).map_err(scratch)?;
+        let records = file.metadata().map_err(scratch)?.len() / record_bytes as u64;
+        Ok(Self { path, file, record_bytes, records })
+    }
+
+    fn read_at(&self, buffer: &mut [u8], record: u64) -> Result<(), StreamError> {
+        self.file
+            .read_exact_at(buffer, record * self.record_bytes as u64)
+            .map_err(|e| StreamError::scratch(self.path, e))
+    }
+
+    fn key_at(&self, record: u64) -> Result<RecordKey, StreamError> {
+        let mut bytes = vec![0; self.record_bytes];
+        self.read_at(&mut bytes, record)?;
+        Ok(record_key(&bytes))
+    }
+
+    /// The first record whose key is not below `key` (binary search).
+    fn first_not_below(&self, key: RecordKey) -> Result<u64, StreamError> {
+        let (mut low, mut high) = (0, self.records);
+        while low < high {
+            let middle = low + (high - low) / 2;
+            if self.key_at(middle)? < key {
+                low = middle + 1;
+            } else {
+                high = middle;
+            }
+        }
+        Ok(low)
+    }
+}
+
+/// A stretch of a run read a buffer at a time.
+struct RunCursor<'a> {
+    run: &'a Run<'a>,
+    /// The records not yet read into the buffer.
+    unread: Range<u64>,
+    buffer: Vec<u8>,
+    /// Where the current record starts in the buffer.
+    at: usize,
+    capacity: u64,
+}
+
+impl<'a> RunCursor<'a> {
+    fn new(run: &'a Run<'a>, records: Range<u64>, buffer_bytes: usize) -> Result<Self, StreamError> {
+        let capacity = (buffer_bytes / run.record_bytes).max(1) as u64;
+        let mut cursor = Self { run, unread: records, buffer: Vec::new(), at: 0, capacity };
+        cursor.refill()?;
+        Ok(cursor)
+    }
+
+    fn current(&self) -> Option<&[u8]> {
+        self.buffer.get(self.at..self.at + self.run.record_bytes)
+    }
+
+    /// Moves to the next record and returns it; none past the stretch's end.
+    fn advance(&mut self) -> Result<Option<&[u8]>, StreamError> {
+        self.at += self.run.record_bytes;
+        if self.at >= self.buffer.len() {
+            self.refill()?;
+        }
+        Ok(self.current())
+    }
+
+    fn refill(&mut self) -> Result<(), StreamError> {
+        let records = self.capacity.min(self.unread.end - self.unread.start);
+        self.buffer.resize(records as usize * self.run.record_bytes, 0);
+        self.run.read_at(&mut self.buffer, self.unread.start)?;
+        self.unread.start += records;
+        self.at = 0;
+        Ok(())
     }
 }

@@ -3,7 +3,6 @@
 //! points in a box are found by reading only the blocks whose bounds meet it.
 
 use std::fs::File;
-use std::io::{BufWriter, Write};
 use std::ops::Range;
 use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
@@ -13,7 +12,7 @@ use pointray_io::PointCloud;
 use rayon::prelude::*;
 
 use crate::halo_test::HaloTest;
-use crate::point_records::{RecordLayout, record_key, record_position};
+use crate::point_records::{RecordLayout, record_position};
 use crate::stream_error::StreamError;
 
 /// Records per block of the index.
@@ -143,53 +142,113 @@ impl SortedPoints {
     }
 }
 
-/// Writes the sorted file record by record, keeping the block bounds.
-pub(crate) struct SortedWriter {
+/// A block's local bounds (min, max).
+pub(crate) type BlockBounds = (Vec3, Vec3);
+
+/// The sorted file, written in pieces side by side: each piece is a stretch of consecutive
+/// records at a place known in advance, and notes the bounds of the blocks it touches.
+pub(crate) struct SortedFile {
     path: PathBuf,
-    out: BufWriter<File>,
+    file: File,
     layout: RecordLayout,
     offset: DVec3,
     count: u64,
-    blocks: Vec<(Vec3, Vec3)>,
-    last_key: Option<(u64, u32)>,
 }
 
-impl SortedWriter {
-    pub(crate) fn create(path: &Path, layout: RecordLayout, offset: DVec3) -> Result<Self, StreamError> {
+impl SortedFile {
+    /// A file at `path` for `count` records of `layout`, positions recentred by `offset`.
+    pub(crate) fn create(
+        path: &Path,
+        layout: RecordLayout,
+        offset: DVec3,
+        count: u64,
+    ) -> Result<Self, StreamError> {
+        let scratch = |e| StreamError::scratch(path, e);
         let file = std::fs::OpenOptions::new()
             .read(true)
             .write(true)
             .create_new(true)
             .open(path)
-            .map_err(|e| StreamError::scratch(path, e))?;
-        Ok(Self {
-            path: path.to_path_buf(),
-            out: BufWriter::with_capacity(1 << 20, file),
-            layout,
-            offset,
-            count: 0,
+            .map_err(scratch)?;
+        file.set_len(count * layout.bytes() as u64).map_err(scratch)?;
+        Ok(Self { path: path.to_path_buf(), file, layout, offset, count })
+    }
+
+    /// A writer of the records from sorted position `first` on, holding `buffer_bytes`.
+    pub(crate) fn piece(&self, first: u64, buffer_bytes: usize) -> SortedPiece<'_> {
+        let size = self.layout.bytes();
+        let capacity = (buffer_bytes / size).max(1) * size;
+        SortedPiece {
+            file: self,
+            first,
+            written: 0,
+            buffer: Vec::with_capacity(capacity),
             blocks: Vec::new(),
-            last_key: None,
-        })
-    }
-
-    pub(crate) fn push(&mut self, record: &[u8]) -> Result<(), StreamError> {
-        let key = record_key(record);
-        debug_assert!(self.last_key.is_none_or(|last| last < key), "records arrive in order");
-        self.last_key = Some(key);
-        let local = (record_position(record) - self.offset).as_vec3();
-        if self.count.is_multiple_of(BLOCK_POINTS) {
-            self.blocks.push((local, local));
         }
-        let block = self.blocks.last_mut().expect("a block was opened");
-        *block = (block.0.min(local), block.1.max(local));
-        self.count += 1;
-        self.out.write_all(record).map_err(|e| StreamError::scratch(&self.path, e))
     }
 
-    pub(crate) fn finish(self, sensor_position: Option<DVec3>) -> Result<SortedPoints, StreamError> {
-        let Self { path, out, layout, offset, count, blocks, .. } = self;
-        let file = out.into_inner().map_err(|e| StreamError::scratch(&path, e.into_error()))?;
-        Ok(SortedPoints { path, file, layout, offset, count, blocks, sensor_position })
+    /// The sorted points, once every piece is written; `pieces` holds the block bounds each
+    /// piece noted.
+    pub(crate) fn finish(
+        self,
+        pieces: Vec<Vec<(u64, BlockBounds)>>,
+        sensor_position: Option<DVec3>,
+    ) -> SortedPoints {
+        let Self { path, file, layout, offset, count } = self;
+        let empty = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        let mut blocks = vec![empty; count.div_ceil(BLOCK_POINTS) as usize];
+        for (block, (low, high)) in pieces.into_iter().flatten() {
+            let bounds = &mut blocks[block as usize];
+            *bounds = (bounds.0.min(low), bounds.1.max(high));
+        }
+        SortedPoints { path, file, layout, offset, count, blocks, sensor_position }
+    }
+}
+
+/// One piece of the sorted file, written in order.
+pub(crate) struct SortedPiece<'a> {
+    file: &'a SortedFile,
+    /// The sorted position of the piece's first record.
+    first: u64,
+    /// Records written out so far.
+    written: u64,
+    buffer: Vec<u8>,
+    /// The bounds of the blocks the piece touches, in order.
+    blocks: Vec<(u64, BlockBounds)>,
+}
+
+impl SortedPiece<'_> {
+    pub(crate) fn push(&mut self, record: &[u8]) -> Result<(), StreamError> {
+        let size = self.file.layout.bytes();
+        let position = self.first + self.written + (self.buffer.len() / size) as u64;
+        let local = (record_position(record) - self.file.offset).as_vec3();
+        let block = position / BLOCK_POINTS;
+        match self.blocks.last_mut() {
+            Some((last, bounds)) if *last == block => *bounds = (bounds.0.min(local), bounds.1.max(local)),
+            _ => self.blocks.push((block, (local, local))),
+        }
+        self.buffer.extend_from_slice(record);
+        if self.buffer.len() == self.buffer.capacity() {
+            self.flush()?;
+        }
+        Ok(())
+    }
+
+    /// Writes what is buffered and returns the bounds of the blocks the piece touched.
+    pub(crate) fn finish(mut self) -> Result<Vec<(u64, BlockBounds)>, StreamError> {
+        self.flush()?;
+        Ok(self.blocks)
+    }
+
+    fn flush(&mut self) -> Result<(), StreamError> {
+        let size = self.file.layout.bytes() as u64;
+        let at = (self.first + self.written) * size;
+        self.file
+            .file
+            .write_all_at(&self.buffer, at)
+            .map_err(|e| StreamError::scratch(&self.file.path, e))?;
+        self.written += self.buffer.len() as u64 / size;
+        self.buffer.clear();
+        Ok(())
     }
 }
