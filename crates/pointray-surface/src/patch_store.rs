@@ -46,7 +46,7 @@ use crate::patch_records::PatchRecords;
 use crate::patch_set::PatchSet;
 use crate::prep_settings::{PrepSettings, ScanMode};
 
-pub use crate::patch_store_write::{StoreSummary, write, write_sections, write_to};
+pub use crate::patch_store_write::{StoreSummary, write, write_section_files, write_sections, write_to};
 
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
 pub const FORMAT_VERSION: u32 = 6;

@@ -1,16 +1,19 @@
 //! Writing the patch store (`patch_store`'s layout): whole from a `PatchSet`, or section by
 //! section from parts that never sit in memory together (the tiles of a merge).
 
+use std::fs::File;
 use std::io::Write;
-use std::path::Path;
+use std::os::unix::fs::FileExt;
+use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS};
+use rayon::prelude::*;
 
 use crate::patch_set::PatchSet;
 use crate::patch_store::{
-    FORMAT_VERSION, HEADER_BYTES, Header, Layout, MAGIC, SECTION_ALIGNMENT, SECTION_COUNT, StoreError,
-    StoredSettings,
+    FORMAT_VERSION, HEADER_BYTES, Header, Layout, MAGIC, SECTION_ALIGNMENT, SECTION_COUNT, Section,
+    StoreError, StoredSettings,
 };
 use crate::prep_settings::PrepSettings;
 
@@ -51,14 +54,95 @@ pub fn write_sections(
     summary: &StoreSummary,
     mut fill: impl FnMut(usize, &mut SectionSink) -> std::io::Result<()>,
 ) -> Result<(), StoreError> {
-    pointray_io::write_atomically(path, |file| write_contents(file, summary, &mut fill)).map_err(|error| {
-        match error {
-            pointray_io::IoError::Os { path, source } => StoreError::Io { path, source },
-            other => {
-                StoreError::Io { path: path.to_path_buf(), source: std::io::Error::other(other.to_string()) }
+    pointray_io::write_atomically(path, |file| write_contents(file, summary, &mut fill))
+        .map_err(|error| store_error(path, error))
+}
+
+/// Writes a store of `summary`'s patches to `path` atomically from the files `sections` that
+/// hold its sections (0: boxes, 1: hot, 2: cold, 3: colour neighbours), copied and
+/// checksummed a piece per thread at a time; `neighbor` turns each colour neighbour as its
+/// file holds it into the store's.
+pub fn write_section_files(
+    path: &Path,
+    summary: &StoreSummary,
+    sections: &[PathBuf; SECTION_COUNT],
+    neighbor: impl Fn(u32) -> u32 + Sync,
+) -> Result<(), StoreError> {
+    let layout = Layout::new(summary.patches, summary.neighbor_slots)
+        .ok_or_else(|| StoreError::Io { path: path.to_path_buf(), source: overflow() })?;
+    pointray_io::write_atomically(path, |writer| {
+        let header = header_for(summary, &layout);
+        writer.write_all(bytemuck::bytes_of(&header))?;
+        writer.flush()?;
+        let store = writer.get_ref();
+        let mut hasher = crc32fast::Hasher::new();
+        hasher.update(bytemuck::bytes_of(&header));
+        let mut position = HEADER_BYTES as u64;
+        for (index, (section, source)) in layout.sections.iter().zip(sections).enumerate() {
+            // The padding is never written: the file reads zeros there.
+            hasher.update(&[0u8; SECTION_ALIGNMENT][..(section.offset - position) as usize]);
+            let source = File::open(source)?;
+            let found = source.metadata()?.len();
+            if found != section.length {
+                return Err(wrong_length(index, found, section.length));
             }
+            let words = (index == NEIGHBOR_SECTION).then_some(&neighbor as &(dyn Fn(u32) -> u32 + Sync));
+            let pieces = (0..section.length.div_ceil(COPY_PIECE_BYTES))
+                .into_par_iter()
+                .map(|piece| copy_piece(&source, (store, section), piece, words))
+                .collect::<std::io::Result<Vec<_>>>()?;
+            pieces.iter().for_each(|piece| hasher.combine(piece));
+            position = section.offset + section.length;
         }
+        store.write_all_at(&hasher.finalize().to_le_bytes(), position)
     })
+    .map_err(|error| store_error(path, error))
+}
+
+/// The section of colour neighbours, whose words name patches.
+const NEIGHBOR_SECTION: usize = 3;
+
+/// Bytes of a section copied at a time by one thread (a multiple of every record's size).
+const COPY_PIECE_BYTES: u64 = 1 << 20;
+
+/// Copies piece `piece` of `section` from `source` into `store`, its words mapped through
+/// `words` when given, and returns the piece's checksum.
+fn copy_piece(
+    source: &File,
+    (store, section): (&File, &Section),
+    piece: u64,
+    words: Option<&(dyn Fn(u32) -> u32 + Sync)>,
+) -> std::io::Result<crc32fast::Hasher> {
+    let start = piece * COPY_PIECE_BYTES;
+    let mut bytes = vec![0u8; (COPY_PIECE_BYTES.min(section.length - start)) as usize];
+    source.read_exact_at(&mut bytes, start)?;
+    if let Some(map) = words {
+        for word in bytes.chunks_exact_mut(4) {
+            let mapped = map(u32::from_le_bytes([word[0], word[1], word[2], word[3]]));
+            word.copy_from_slice(&mapped.to_le_bytes());
+        }
+    }
+    store.write_all_at(&bytes, section.offset + start)?;
+    let mut hasher = crc32fast::Hasher::new();
+    hasher.update(&bytes);
+    Ok(hasher)
+}
+
+fn store_error(path: &Path, error: pointray_io::IoError) -> StoreError {
+    match error {
+        pointray_io::IoError::Os { path, source } => StoreError::Io { path, source },
+        other => {
+            StoreError::Io { path: path.to_path_buf(), source: std::io::Error::other(other.to_string()) }
+        }
+    }
+}
+
+fn overflow() -> std::io::Error {
+    std::io::Error::other("the patch count overflows the store's length")
+}
+
+fn wrong_length(index: usize, found: u64, wanted: u64) -> std::io::Error {
+    std::io::Error::other(format!("section {index} has {found} bytes, its patches need {wanted}"))
 }
 
 fn summary_of(patches: &PatchSet, path: &Path) -> Result<StoreSummary, StoreError> {
@@ -106,8 +190,7 @@ fn write_contents(
     fill: &mut impl FnMut(usize, &mut SectionSink) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let mut writer = ChecksummedWriter::new(file);
-    let layout = Layout::new(summary.patches, summary.neighbor_slots)
-        .ok_or_else(|| std::io::Error::other("the patch count overflows the store's length"))?;
+    let layout = Layout::new(summary.patches, summary.neighbor_slots).ok_or_else(overflow)?;
     writer.write_all(bytemuck::bytes_of(&header_for(summary, &layout)))?;
     let mut position = HEADER_BYTES as u64;
     for (index, section) in layout.sections.iter().enumerate().take(SECTION_COUNT) {
@@ -119,8 +202,7 @@ fn write_contents(
             writer.write_all(bytes)
         })?;
         if written != section.length {
-            let problem = format!("section {index} has {written} bytes, its patches need {}", section.length);
-            return Err(std::io::Error::other(problem));
+            return Err(wrong_length(index, written, section.length));
         }
         position = section.offset + section.length;
     }

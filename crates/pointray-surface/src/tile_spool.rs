@@ -6,7 +6,7 @@
 //! per section.
 
 use std::fs::File;
-use std::io::{BufReader, BufWriter, Read, Write};
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
@@ -23,7 +23,7 @@ use crate::tiled_prep::TilePatches;
 /// The store's sections: boxes, hot records, cold records, colour neighbours.
 const SECTIONS: usize = 4;
 
-/// Bytes read or written at a time.
+/// Bytes buffered per section file.
 const BUFFER_BYTES: usize = 4 << 20;
 
 pub(crate) struct TileSpool {
@@ -108,43 +108,12 @@ impl TileSpool {
         }
         progress.stage_started(Stage::MergeTiles, summary.patches);
         let started = std::time::Instant::now();
-        patch_store::write_sections(output, &summary, |section, sink| {
-            let mut reader = BufReader::with_capacity(BUFFER_BYTES, File::open(&paths[section])?);
-            let mut buffer = vec![0u8; BUFFER_BYTES];
-            loop {
-                let read = read_words(&mut reader, &mut buffer)?;
-                if read == 0 {
-                    return Ok(());
-                }
-                if section + 1 < SECTIONS {
-                    sink(&buffer[..read])?;
-                    continue;
-                }
-                let patches: Vec<u32> = bytemuck::pod_collect_to_vec::<u8, u32>(&buffer[..read])
-                    .into_iter()
-                    .map(|input| patch_of.get(input as usize).copied().unwrap_or(NO_NEIGHBOR))
-                    .collect();
-                sink(bytemuck::cast_slice(&patches))?;
-            }
+        let sections: [PathBuf; SECTIONS] = paths.try_into().expect("one file per section");
+        patch_store::write_section_files(output, &summary, &sections, |input| {
+            patch_of.get(input as usize).copied().unwrap_or(NO_NEIGHBOR)
         })?;
         progress.advanced(summary.patches);
         progress.stage_finished(Stage::MergeTiles, started.elapsed());
         Ok(MergeSummary { tiles, input_points, patches: summary.patches })
     }
-}
-
-/// Fills `buffer` as far as the file allows, in whole 4-byte words (every record's size is
-/// a multiple of 4); the count read, 0 at the end.
-fn read_words(reader: &mut impl Read, buffer: &mut [u8]) -> std::io::Result<usize> {
-    let mut filled = 0;
-    while filled < buffer.len() {
-        match reader.read(&mut buffer[filled..])? {
-            0 => break,
-            read => filled += read,
-        }
-    }
-    if !filled.is_multiple_of(4) {
-        return Err(std::io::Error::other("a spooled section ends inside a record"));
-    }
-    Ok(filled)
 }
