@@ -11,6 +11,7 @@ mod halo_reach;
 mod halo_test;
 pub mod input_validation;
 pub mod morton;
+mod nearest_cells;
 pub mod neighbors;
 pub mod normals;
 pub mod orientation;

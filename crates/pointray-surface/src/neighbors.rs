@@ -6,6 +6,8 @@ use glam::Vec3;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 
+use crate::nearest_cells::{Block, CellGrid, key as cell_key, neighbour_key, neighbour_of};
+
 /// `k` neighbours per point in one flat table. Row `i` lists point `i`'s neighbours by
 /// increasing Euclidean distance and never contains `i` itself.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -54,42 +56,105 @@ impl Neighbors {
 /// Points per rayon task: large enough to amortise scheduling, small enough to balance.
 const CHUNK: usize = 4096;
 
-/// The `k` nearest neighbours of every point, in parallel.
+/// The `k` nearest neighbours of every point, in parallel: from a grid of cells where it can
+/// tell them for sure (`nearest_cells`), else from a k-d tree.
 ///
 /// Callers guarantee `points.len() > k` and fewer than `u32::MAX` points. Should a row
 /// still come up short, it is padded by repeating its farthest neighbour so the table
-/// keeps its shape. Coincident points are neighbours of each other at distance 0.
+/// keeps its shape. Coincident points are neighbours of each other at distance 0; equally
+/// distant neighbours come in index order.
 pub fn k_nearest(points: &[Vec3], k: usize) -> Neighbors {
     if k == 0 || points.is_empty() {
         return Neighbors { k, ..Neighbors::default() };
     }
-    let entries: Vec<[f32; 3]> = points.iter().map(|p| p.to_array()).collect();
-    let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
-        .unwrap_or_else(|e| unreachable!("point indices fit u32 by contract: {e}"));
+    let grid = CellGrid::new(points, k + 1);
     let mut indices = vec![0u32; points.len() * k];
     let mut distances = vec![0f32; points.len() * k];
-    indices.par_chunks_mut(CHUNK * k).zip(distances.par_chunks_mut(CHUNK * k)).enumerate().for_each(
-        |(chunk, (index_rows, distance_rows))| {
-            let first = chunk * CHUNK;
-            let rows = index_rows.chunks_mut(k).zip(distance_rows.chunks_mut(k));
+    let unsettled: Vec<Vec<usize>> = indices
+        .par_chunks_mut(CHUNK * k)
+        .zip(distances.par_chunks_mut(CHUNK * k))
+        .enumerate()
+        .map(|(chunk, (index_rows, distance_rows))| {
+            let (mut block, mut nearest, mut left) = (Block::default(), Vec::new(), Vec::new());
             let mut previous: Option<(Vec3, f32)> = None;
-            for (offset, (row, row_distances)) in rows.enumerate() {
+            let rows = index_rows.len() / k;
+            let first = chunk * CHUNK;
+            // Queries of one cell share its block: taken cell by cell, each block is
+            // gathered about once a chunk.
+            let mut order: Vec<(u64, u32)> = match &grid {
+                Some(grid) => (0..rows as u32)
+                    .map(|j| (cell_key(grid.cell_of(points[first + j as usize])), j))
+                    .collect(),
+                None => Vec::new(),
+            };
+            order.sort_unstable();
+            for offset in order.iter().map(|&(_, j)| j as usize) {
                 let i = first + offset;
+                let (row, row_distances) = (
+                    &mut index_rows[offset * k..(offset + 1) * k],
+                    &mut distance_rows[offset * k..(offset + 1) * k],
+                );
+                let within = previous
+                    .map(|(point, reach)| ((reach + point.distance(points[i])) * BOUND_SLACK).powi(2));
+                previous = None;
+                match &grid {
+                    Some(grid) if grid.nearest((i, k + 1), within, &mut block, &mut nearest) => {
+                        let hits = nearest
+                            .iter()
+                            .map(|&key| neighbour_of(key))
+                            .map(|(squared, index)| (index, squared));
+                        write_row(hits, i as u32, row, row_distances);
+                        previous = Some((points[i], row_distances[k - 1]));
+                    }
+                    _ => left.push(i),
+                }
+            }
+            if grid.is_none() {
+                left.extend(first..first + rows);
+            }
+            left.sort_unstable();
+            left
+        })
+        .collect();
+    if unsettled.iter().any(|left| !left.is_empty()) {
+        fill_from_tree(points, k, (&mut indices, &mut distances), &unsettled);
+    }
+    Neighbors { k, indices, distances }
+}
+
+/// Fills the rows `unsettled[c]` of each chunk `c` from a k-d tree of `points`.
+fn fill_from_tree(
+    points: &[Vec3],
+    k: usize,
+    (indices, distances): (&mut [u32], &mut [f32]),
+    unsettled: &[Vec<usize>],
+) {
+    let entries: Vec<[f32; 3]> = points.par_iter().map(|p| p.to_array()).collect();
+    let tree: ImmutableKdTree<f32, 3> = ImmutableKdTree::new_from_slice_parallel(&entries)
+        .unwrap_or_else(|e| unreachable!("point indices fit u32 by contract: {e}"));
+    indices
+        .par_chunks_mut(CHUNK * k)
+        .zip(distances.par_chunks_mut(CHUNK * k))
+        .zip(unsettled)
+        .enumerate()
+        .for_each(|(chunk, ((index_rows, distance_rows), left))| {
+            let mut previous: Option<(Vec3, f32)> = None;
+            for &i in left {
+                let offset = i - chunk * CHUNK;
+                let row = &mut index_rows[offset * k..(offset + 1) * k];
+                let row_distances = &mut distance_rows[offset * k..(offset + 1) * k];
                 let bound = previous.map(|(point, reach)| reach + point.distance(points[i]));
                 let reach = fill_row(&tree, &entries[i], i as u32, bound, row, row_distances);
                 previous = Some((points[i], reach));
             }
-        },
-    );
-    Neighbors { k, indices, distances }
+        });
 }
 
-/// Queries `k + 1` points and drops `self_index`; returns the distance to the farthest of
-/// them. Dropping by index, not by position, matters when duplicates tie with the query
-/// point at distance 0.
+/// Queries `k + 1` points and writes all but `self_index` (`write_row`), equally distant
+/// ones in index order; returns the distance to the farthest of them.
 ///
-/// `bound`, when given, is a distance within which `k + 1` points are known to lie (the
-/// previous query's reach plus the step to this one, by the triangle inequality): it prunes
+/// `bound`, when given, is a distance within which `k + 1` points are known to lie (an
+/// earlier query's reach plus the step to this one, by the triangle inequality): it prunes
 /// the search without changing its answer.
 fn fill_row(
     tree: &ImmutableKdTree<f32, 3>,
@@ -110,15 +175,37 @@ fn fill_row(
         }
         None => unbounded(),
     };
-    let mut others = found.iter().filter(|hit| hit.item != self_index).take(k);
+    let farthest = found.last().map_or(0.0, |hit| hit.distance);
+    // Every point as near as the farthest found, so that ties there go by index too.
+    let tied = tree.query(query).within::<SquaredEuclidean<f32>>(farthest * BOUND_SLACK.powi(2)).execute();
+    let mut keys: Vec<u64> = tied.iter().map(|hit| neighbour_key(hit.distance, hit.item)).collect();
+    keys.sort_unstable();
+    write_row(
+        keys.iter().take(k + 1).map(|&key| neighbour_of(key)).map(|(squared, index)| (index, squared)),
+        self_index,
+        row,
+        row_distances,
+    );
+    farthest.sqrt()
+}
+
+/// Writes the first `row.len()` of `hits` (index, squared distance; nearest first) other
+/// than `self_index`: dropping by index, not by position, matters when duplicates tie with
+/// the query point at distance 0. A short row repeats its farthest neighbour.
+fn write_row(
+    hits: impl Iterator<Item = (u32, f32)>,
+    self_index: u32,
+    row: &mut [u32],
+    row_distances: &mut [f32],
+) {
+    let mut others = hits.filter(|&(index, _)| index != self_index);
     let mut last = (self_index, 0.0);
     for (slot, slot_distance) in row.iter_mut().zip(row_distances.iter_mut()) {
-        if let Some(hit) = others.next() {
-            last = (hit.item, hit.distance.sqrt());
+        if let Some((index, squared)) = others.next() {
+            last = (index, squared.sqrt());
         }
         (*slot, *slot_distance) = last;
     }
-    found.last().map_or(0.0, |hit| hit.distance.sqrt())
 }
 
 /// Widens a bound against rounding, so that a point exactly at it is never lost.

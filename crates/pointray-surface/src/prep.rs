@@ -45,9 +45,10 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// the point, and a patch stops short of a line beside it that saw nothing; in revision 7 the
 /// gap to the next line leaves out returns that the range noise may have moved across it; in
 /// revision 8 a scan's planes take normals smoothed over their neighbours'; in revision 9
-/// the hot record is 32 bytes, its frame and `c0` packed anew), so that caches keyed on the
-/// settings also key on this and never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 9;
+/// the hot record is 32 bytes, its frame and `c0` packed anew; in revision 10 equally distant
+/// neighbours come in index order), so that caches keyed on the settings also key on this and
+/// never serve patches of an older rule.
+pub const PREP_REVISION: u32 = 10;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(
