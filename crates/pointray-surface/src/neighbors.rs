@@ -70,56 +70,59 @@ pub fn k_nearest(points: &[Vec3], k: usize) -> Neighbors {
     let grid = CellGrid::new(points, k + 1);
     let mut indices = vec![0u32; points.len() * k];
     let mut distances = vec![0f32; points.len() * k];
-    let unsettled: Vec<Vec<usize>> = indices
-        .par_chunks_mut(CHUNK * k)
-        .zip(distances.par_chunks_mut(CHUNK * k))
-        .enumerate()
-        .map(|(chunk, (index_rows, distance_rows))| {
-            let (mut block, mut nearest, mut left) = (Block::default(), Vec::new(), Vec::new());
-            let mut previous: Option<(Vec3, f32)> = None;
-            let rows = index_rows.len() / k;
-            let first = chunk * CHUNK;
-            // Queries of one cell share its block: taken cell by cell, each block is
-            // gathered about once a chunk.
-            let mut order: Vec<(u64, u32)> = match &grid {
-                Some(grid) => (0..rows as u32)
-                    .map(|j| (cell_key(grid.cell_of(points[first + j as usize])), j))
-                    .collect(),
-                None => Vec::new(),
-            };
-            order.sort_unstable();
-            for offset in order.iter().map(|&(_, j)| j as usize) {
-                let i = first + offset;
-                let (row, row_distances) = (
-                    &mut index_rows[offset * k..(offset + 1) * k],
-                    &mut distance_rows[offset * k..(offset + 1) * k],
-                );
-                let within = previous
-                    .map(|(point, reach)| ((reach + point.distance(points[i])) * BOUND_SLACK).powi(2));
-                previous = None;
-                match &grid {
-                    Some(grid) if grid.nearest((i, k + 1), within, &mut block, &mut nearest) => {
-                        let hits = nearest
-                            .iter()
-                            .map(|&key| neighbour_of(key))
-                            .map(|(squared, index)| (index, squared));
-                        write_row(hits, i as u32, row, row_distances);
-                        previous = Some((points[i], row_distances[k - 1]));
-                    }
-                    _ => left.push(i),
-                }
-            }
-            if grid.is_none() {
-                left.extend(first..first + rows);
-            }
-            left.sort_unstable();
-            left
-        })
-        .collect();
+    let unsettled: Vec<Vec<usize>> = match &grid {
+        Some(grid) => indices
+            .par_chunks_mut(CHUNK * k)
+            .zip(distances.par_chunks_mut(CHUNK * k))
+            .enumerate()
+            .map(|(chunk, rows)| settle_from_grid(grid, (points, k), chunk * CHUNK, rows))
+            .collect(),
+        None => (0..points.len())
+            .step_by(CHUNK)
+            .map(|first| (first..(first + CHUNK).min(points.len())).collect())
+            .collect(),
+    };
     if unsettled.iter().any(|left| !left.is_empty()) {
         fill_from_tree(points, k, (&mut indices, &mut distances), &unsettled);
     }
     Neighbors { k, indices, distances }
+}
+
+/// Fills the rows (`index_rows`, `distance_rows`) of the points from `first` on that the
+/// grid settles, and returns the others, ascending.
+fn settle_from_grid(
+    grid: &CellGrid,
+    (points, k): (&[Vec3], usize),
+    first: usize,
+    (index_rows, distance_rows): (&mut [u32], &mut [f32]),
+) -> Vec<usize> {
+    let (mut block, mut nearest, mut left) = (Block::default(), Vec::new(), Vec::new());
+    let mut previous: Option<(Vec3, f32)> = None;
+    for offset in cell_by_cell(grid, &points[first..first + index_rows.len() / k]) {
+        let i = first + offset;
+        let rows = offset * k..(offset + 1) * k;
+        let within =
+            previous.map(|(point, reach)| ((reach + point.distance(points[i])) * BOUND_SLACK).powi(2));
+        previous = None;
+        if grid.nearest((i, k + 1), within, &mut block, &mut nearest) {
+            let hits = nearest.iter().map(|&key| neighbour_of(key)).map(|(squared, index)| (index, squared));
+            write_row(hits, i as u32, &mut index_rows[rows.clone()], &mut distance_rows[rows.clone()]);
+            previous = Some((points[i], distance_rows[rows.end - 1]));
+        } else {
+            left.push(i);
+        }
+    }
+    left.sort_unstable();
+    left
+}
+
+/// The positions of `points` cell by cell: queries of one cell share its block, so each
+/// block is gathered about once.
+fn cell_by_cell(grid: &CellGrid, points: &[Vec3]) -> Vec<usize> {
+    let mut order: Vec<(u64, u32)> =
+        points.iter().enumerate().map(|(j, &p)| (cell_key(grid.cell_of(p)), j as u32)).collect();
+    order.sort_unstable();
+    order.into_iter().map(|(_, j)| j as usize).collect()
 }
 
 /// Fills the rows `unsettled[c]` of each chunk `c` from a k-d tree of `points`.
