@@ -6,7 +6,6 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::fs::File;
-use std::io::Write;
 use std::ops::Range;
 use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
@@ -24,8 +23,8 @@ use crate::stream_error::StreamError;
 /// Points each thread encodes at a time.
 const ENCODE_BATCH: usize = 1 << 14;
 
-/// Bytes of records a sorted run gathers in order, in parallel, before writing them: small
-/// beside any budget, large enough to share among threads.
+/// Bytes of records each thread gathers in sorted order and writes in its place in the run:
+/// small beside any budget, large enough to keep the writes few.
 const WRITE_BATCH_BYTES: usize = 1 << 20;
 
 /// Buffered bytes per run and per piece while merging, at most.
@@ -87,20 +86,18 @@ impl Runs<'_> {
         let layout = *self.layout.get_or_insert_with(|| RecordLayout::of(chunk));
         assert_eq!(layout, RecordLayout::of(chunk), "every chunk of a stream carries the same attributes");
         let first = self.read;
-        let (grid, offset) = (self.plan.grid, self.plan.offset);
-        let encoded: Vec<Vec<u8>> = (0..chunk.len())
-            .into_par_iter()
-            .chunks(ENCODE_BATCH)
-            .map(|batch| {
-                let mut records = Vec::with_capacity(batch.len() * layout.bytes());
-                for i in batch {
-                    let code = grid.code((chunk.positions[i] - offset).as_vec3());
-                    layout.encode(chunk, i, (code, (first + i as u64) as u32), &mut records);
-                }
-                records
-            })
-            .collect();
-        encoded.iter().for_each(|records| self.records.extend_from_slice(records));
+        let (grid, offset, size) = (self.plan.grid, self.plan.offset, layout.bytes());
+        let start = self.records.len();
+        self.records.resize(start + chunk.len() * size, 0);
+        // Each thread encodes a batch into its own place in the run.
+        self.records[start..].par_chunks_mut(ENCODE_BATCH * size).enumerate().for_each(|(batch, out)| {
+            let mut records = Vec::with_capacity(out.len());
+            for i in batch * ENCODE_BATCH..batch * ENCODE_BATCH + out.len() / size {
+                let code = grid.code((chunk.positions[i] - offset).as_vec3());
+                layout.encode(chunk, i, (code, (first + i as u64) as u32), &mut records);
+            }
+            out.copy_from_slice(&records);
+        });
         self.read += chunk.len() as u64;
         if self.records.len() >= self.plan.run_bytes {
             self.flush()?;
@@ -120,16 +117,20 @@ impl Runs<'_> {
         keyed.par_sort_unstable();
         let path = self.plan.folder.join(format!("run-{}", self.files.len()));
         let scratch = |e| StreamError::scratch(&path, e);
-        let mut out = File::create(&path).map_err(scratch)?;
-        let mut ordered = Vec::new();
-        for part in keyed.chunks((WRITE_BATCH_BYTES / size).max(1)) {
-            ordered.resize(part.len() * size, 0);
-            ordered.par_chunks_exact_mut(size).zip(part).for_each(|(slot, &(_, i))| {
-                let start = i as usize * size;
-                slot.copy_from_slice(&self.records[start..start + size]);
-            });
-            out.write_all(&ordered).map_err(scratch)?;
-        }
+        let out = File::create(&path).map_err(scratch)?;
+        // Each thread gathers a batch of the sorted run and writes it in its place.
+        let batch = (WRITE_BATCH_BYTES / size).max(1);
+        keyed
+            .par_chunks(batch)
+            .enumerate()
+            .try_for_each(|(part, keys)| {
+                let mut ordered = Vec::with_capacity(keys.len() * size);
+                for &(_, i) in keys {
+                    ordered.extend_from_slice(&self.records[i as usize * size..(i as usize + 1) * size]);
+                }
+                out.write_all_at(&ordered, (part * batch * size) as u64)
+            })
+            .map_err(scratch)?;
         self.files.push(path);
         self.records.clear();
         Ok(())

@@ -45,22 +45,36 @@ impl SortedPoints {
         self.layout.bytes()
     }
 
-    /// The points at sorted positions `range`, with their input indices.
+    /// The points at sorted positions `range`, with their input indices, read and decoded a
+    /// batch per thread.
     pub(crate) fn read_range(&self, range: Range<u64>) -> Result<(PointCloud, Vec<u32>), StreamError> {
-        let size = self.layout.bytes() as u64;
-        let mut bytes = vec![0u8; ((range.end - range.start) * size) as usize];
-        self.file.read_exact_at(&mut bytes, range.start * size).map_err(|e| self.scratch(e))?;
-        Ok(self.decode_records(&bytes))
+        let size = self.layout.bytes();
+        let batches = (range.start..range.end)
+            .step_by(DECODE_BATCH)
+            .collect::<Vec<u64>>()
+            .into_par_iter()
+            .map(|first| {
+                let count = (DECODE_BATCH as u64).min(range.end - first) as usize;
+                let mut bytes = vec![0u8; count * size];
+                self.file.read_exact_at(&mut bytes, first * size as u64).map_err(|e| self.scratch(e))?;
+                Ok(self.decode(&bytes))
+            })
+            .collect::<Result<Vec<_>, StreamError>>()?;
+        Ok(self.joined(batches))
     }
 
     /// The points of `records` (whole records, as `near` hands them out), with their input
     /// indices, decoded a batch per thread.
     pub(crate) fn decode_records(&self, records: &[u8]) -> (PointCloud, Vec<u32>) {
         let size = self.layout.bytes();
-        let batches: Vec<(PointCloud, Vec<u32>)> =
-            records.par_chunks(DECODE_BATCH * size).map(|batch| self.decode(batch)).collect();
+        self.joined(records.par_chunks(DECODE_BATCH * size).map(|batch| self.decode(batch)).collect())
+    }
+
+    /// Decoded batches, one after another.
+    fn joined(&self, batches: Vec<(PointCloud, Vec<u32>)>) -> (PointCloud, Vec<u32>) {
         let mut cloud = self.layout.empty_cloud(self.sensor_position);
-        let mut indices = Vec::with_capacity(records.len() / size);
+        let mut indices = Vec::with_capacity(batches.iter().map(|(_, batch)| batch.len()).sum());
+        cloud.positions.reserve(indices.capacity());
         for (batch, batch_indices) in batches {
             cloud.append(batch);
             indices.extend(batch_indices);
