@@ -22,6 +22,8 @@ use glam::Vec3;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 
+use crate::curve_span::CurveSpan;
+use crate::halo_test::{HALO_RUN_POINTS, reach_box};
 use crate::prep_settings::PrepSettings;
 
 /// The points on either side of a point along the curve among which its neighbourhood is
@@ -45,17 +47,46 @@ pub(crate) const CURVE_CONTEXT: usize = CURVE_WINDOW;
 /// them still leave `k` distinct ones.
 const EXACT_CANDIDATES_PER_NEIGHBOUR: usize = 4;
 
+/// The points on either side of a point along the curve of the quick bound that keeps a
+/// run of tile points inside its tile.
+const QUICK_WINDOW: usize = 8;
+
 /// How far the halo reaches around each point of `curve[core]`. `curve` holds a stretch of
 /// the cloud in Morton order: the tile's points (`core`) and up to `CURVE_CONTEXT` points on
 /// either side of them. Prep merges points within `duplicate_distance` of each other.
+///
+/// Given the tile's `span` of the curve, the runs of `HALO_RUN_POINTS` tile points that a
+/// quick bound keeps inside it reach no other tile's point whatever their bounds, and get
+/// reaches of zero: most of a tile's points lie deep inside it.
 pub(crate) fn halo_reaches(
     curve: &[Vec3],
     core: Range<usize>,
     settings: &PrepSettings,
-    duplicate_distance: f32,
+    (duplicate_distance, span): (f32, Option<&CurveSpan>),
 ) -> Vec<f32> {
     let distinct = DistinctNeighbours::new(neighbourhood_size(settings), duplicate_distance);
-    neighbourhood_bounds(curve, core, &distinct)
+    let near_faces = match span {
+        Some(span) => runs_near_faces(curve, core.clone(), &distinct, span),
+        None => vec![true; core.len().div_ceil(HALO_RUN_POINTS)],
+    };
+    neighbourhood_bounds(curve, core, &distinct, &near_faces)
+}
+
+/// Whether each run of `HALO_RUN_POINTS` points of `points[core]` may reach past `span`, by
+/// bounds from `QUICK_WINDOW` points on either side.
+fn runs_near_faces(
+    points: &[Vec3],
+    core: Range<usize>,
+    distinct: &DistinctNeighbours,
+    span: &CurveSpan,
+) -> Vec<bool> {
+    let everywhere = vec![true; core.len().div_ceil(HALO_RUN_POINTS)];
+    let quick = curve_window_radii(points, core.clone(), distinct, (QUICK_WINDOW, &everywhere));
+    points[core]
+        .par_chunks(HALO_RUN_POINTS)
+        .zip(quick.par_chunks(HALO_RUN_POINTS))
+        .map(|(run, reaches)| !span.holds(reach_box(run, reaches)))
+        .collect()
 }
 
 /// Counts neighbours as the merged cloud has them. Prep keeps a point only when no point kept
@@ -144,13 +175,19 @@ fn neighbourhood_size(settings: &PrepSettings) -> usize {
 
 /// For each point of `points[core]`, an upper bound on the distance to its `k`-th nearest
 /// neighbour in any merged cloud that holds `points`. Unbounded for too few points.
-fn neighbourhood_bounds(points: &[Vec3], core: Range<usize>, distinct: &DistinctNeighbours) -> Vec<f32> {
+fn neighbourhood_bounds(
+    points: &[Vec3],
+    core: Range<usize>,
+    distinct: &DistinctNeighbours,
+    near_faces: &[bool],
+) -> Vec<f32> {
     if points.len() <= distinct.k || distinct.k == 0 {
         return vec![f32::INFINITY; core.len()];
     }
-    let mut bounds = curve_window_radii(points, core.clone(), distinct);
+    let mut bounds = curve_window_radii(points, core.clone(), distinct, (CURVE_WINDOW, near_faces));
     let loose: Vec<usize> = (0..bounds.len())
         .into_par_iter()
+        .filter(|&i| near_faces[i / HALO_RUN_POINTS])
         .map_init(Vec::new, |around, i| stands_out(&bounds, i, around).then_some(i))
         .flatten()
         .collect();
@@ -164,14 +201,24 @@ fn neighbourhood_bounds(points: &[Vec3], core: Range<usize>, distinct: &Distinct
     bounds
 }
 
-/// The bound for each point of `points[core]` from the `CURVE_WINDOW` points on either side
-/// of it: the `k`-th nearest of a subset lies no nearer than the `k`-th nearest of all.
-fn curve_window_radii(points: &[Vec3], core: Range<usize>, distinct: &DistinctNeighbours) -> Vec<f32> {
+/// The bound for each point of `points[core]` from the `half_width` points on either side of
+/// it (the `k`-th nearest of a subset lies no nearer than the `k`-th nearest of all), in the
+/// runs of `HALO_RUN_POINTS` that `wanted` marks; zero in the others.
+fn curve_window_radii(
+    points: &[Vec3],
+    core: Range<usize>,
+    distinct: &DistinctNeighbours,
+    (half_width, wanted): (usize, &[bool]),
+) -> Vec<f32> {
+    let start = core.start;
     core.into_par_iter()
         .map_init(
             || (Vec::new(), Vec::new()),
             |(candidates, picked), i| {
-                let window = i.saturating_sub(CURVE_WINDOW)..(i + CURVE_WINDOW + 1).min(points.len());
+                if !wanted[(i - start) / HALO_RUN_POINTS] {
+                    return 0.0;
+                }
+                let window = i.saturating_sub(half_width)..(i + half_width + 1).min(points.len());
                 let point = points[i];
                 candidates.clear();
                 candidates.extend(
@@ -255,6 +302,12 @@ mod tests {
         morton_order(&points).into_iter().map(|i| points[i as usize]).collect()
     }
 
+    /// The bound of every point, the whole cloud taken as the tile.
+    fn every_bound(points: &[Vec3], distinct: &DistinctNeighbours) -> Vec<f32> {
+        let runs = points.len().div_ceil(HALO_RUN_POINTS);
+        neighbourhood_bounds(points, 0..points.len(), distinct, &vec![true; runs])
+    }
+
     fn exact(points: &[Vec3], k: usize) -> Vec<f32> {
         let neighbors = k_nearest(points, k);
         (0..points.len()).map(|i| neighbors.distances_of(i)[k - 1]).collect()
@@ -265,7 +318,7 @@ mod tests {
         let points = sheets();
         for k in [1, 9, 16] {
             let exact = exact(&points, k);
-            let bounds = neighbourhood_bounds(&points, 0..points.len(), &DistinctNeighbours::new(k, 0.0));
+            let bounds = every_bound(&points, &DistinctNeighbours::new(k, 0.0));
             for (i, (bound, radius)) in bounds.iter().zip(&exact).enumerate() {
                 assert!(bound >= radius, "k {k}, point {i}: bound {bound} below the radius {radius}");
             }
@@ -276,7 +329,7 @@ mod tests {
     fn the_bounds_stay_near_the_kth_neighbour() {
         let points = sheets();
         let exact = exact(&points, 16);
-        let bounds = neighbourhood_bounds(&points, 0..points.len(), &DistinctNeighbours::new(16, 0.0));
+        let bounds = every_bound(&points, &DistinctNeighbours::new(16, 0.0));
         let mut ratios: Vec<f32> = bounds.iter().zip(&exact).map(|(b, r)| b / r).collect();
         ratios.sort_by(f32::total_cmp);
         let mean = ratios.iter().sum::<f32>() / ratios.len() as f32;
@@ -298,7 +351,7 @@ mod tests {
             .flat_map(|&p| [p, p + Vec3::splat(0.4 * near), p - Vec3::new(0.3 * near, 0.0, 0.0)])
             .collect();
         let exact = exact(&distinct_points, 16);
-        let bounds = neighbourhood_bounds(&points, 0..points.len(), &DistinctNeighbours::new(16, near));
+        let bounds = every_bound(&points, &DistinctNeighbours::new(16, near));
         for (i, radius) in exact.iter().enumerate() {
             let bound = bounds[3 * i];
             assert!(bound >= *radius, "point {i}: bound {bound} below the merged radius {radius}");
@@ -309,7 +362,7 @@ mod tests {
     #[test]
     fn too_few_points_are_unbounded() {
         let points = [Vec3::ZERO, Vec3::X, Vec3::Y];
-        let bounds = |k| neighbourhood_bounds(&points, 0..3, &DistinctNeighbours::new(k, 0.0));
+        let bounds = |k| every_bound(&points, &DistinctNeighbours::new(k, 0.0));
         assert_eq!(bounds(3), vec![f32::INFINITY; 3]);
         assert!(bounds(2).iter().all(|b| b.is_finite()));
     }

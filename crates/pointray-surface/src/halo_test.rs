@@ -16,7 +16,7 @@ use rayon::prelude::*;
 use crate::reach_cells::ReachCells;
 
 /// Consecutive core points whose reaches share one box.
-const RUN_POINTS: usize = 256;
+pub(crate) const HALO_RUN_POINTS: usize = 256;
 
 /// Widens each box against rounding: by this share of its reaches, and of its coordinates.
 const BOX_SLACK: f32 = 1e-3;
@@ -36,11 +36,13 @@ pub(crate) struct HaloTest<'a> {
 impl<'a> HaloTest<'a> {
     pub(crate) fn new(core_points: &'a [Vec3], reaches: &'a [f32]) -> Self {
         let runs: Vec<(Range<usize>, (Vec3, Vec3))> = core_points
-            .par_chunks(RUN_POINTS)
-            .zip(reaches.par_chunks(RUN_POINTS))
+            .par_chunks(HALO_RUN_POINTS)
+            .zip(reaches.par_chunks(HALO_RUN_POINTS))
             .enumerate()
+            // A reach of zero reaches no other point.
+            .filter(|(_, (_, reaches))| reaches.iter().any(|&reach| reach != 0.0))
             .map(|(run, (points, reaches))| {
-                let start = run * RUN_POINTS;
+                let start = run * HALO_RUN_POINTS;
                 (start..start + points.len(), reach_box(points, reaches))
             })
             .collect();
@@ -111,7 +113,7 @@ impl<'a> HaloTest<'a> {
 
 /// The box that holds every point within `reaches[i]` of `points[i]`, for any `i`, widened
 /// against rounding.
-fn reach_box(points: &[Vec3], reaches: &[f32]) -> (Vec3, Vec3) {
+pub(crate) fn reach_box(points: &[Vec3], reaches: &[f32]) -> (Vec3, Vec3) {
     let (lo, hi, widest) = points
         .iter()
         .zip(reaches)

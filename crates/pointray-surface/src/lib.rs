@@ -3,6 +3,7 @@
 mod cloud_subset;
 pub mod cold_records;
 mod component_signs;
+mod curve_span;
 pub mod density_radius;
 mod duplicate_clusters;
 pub mod duplicates;

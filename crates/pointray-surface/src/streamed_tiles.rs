@@ -14,6 +14,7 @@ use pointray_io::{MemoryBudget, PointCloud, PointStream};
 use rayon::prelude::*;
 
 use crate::cloud_subset::subset;
+use crate::curve_span::CurveSpan;
 use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::halo_test::HaloTest;
 use crate::morton::MortonGrid;
@@ -42,6 +43,8 @@ pub enum TileCount {
 pub struct StreamPlan {
     input: PathBuf,
     pub frame: TileContext,
+    /// The curve the points are sorted along.
+    grid: MortonGrid,
     sorted: SortedPoints,
     tiles: Vec<Range<u64>>,
     budget: StreamBudget,
@@ -75,8 +78,9 @@ impl StreamPlan {
         let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
         let frame =
             TileContext { offset, duplicate_distance: settings.duplicate_tolerance * (high - low).length() };
+        let grid = MortonGrid::over(low, high);
         let plan = SortPlan {
-            grid: MortonGrid::over(low, high),
+            grid,
             offset,
             chunk_points: budget.chunk_points(),
             run_bytes: budget.run_bytes(),
@@ -87,7 +91,7 @@ impl StreamPlan {
             .into_iter()
             .map(|range| range.start as u64..range.end as u64)
             .collect();
-        Ok(Self { input, frame, sorted, tiles, budget })
+        Ok(Self { input, frame, grid, sorted, tiles, budget })
     }
 
     pub fn tile_count(&self) -> usize {
@@ -144,7 +148,14 @@ impl StreamPlan {
         let curve: Vec<Vec3> = [local(&before), local(&core), local(&after)].concat();
         let core_in_curve = before.len()..before.len() + core.len();
         let read = started.elapsed();
-        let reaches = halo_reaches(&curve, core_in_curve.clone(), settings, self.frame.duplicate_distance);
+        let span =
+            CurveSpan::new(self.grid, self.sorted.code_at(range.start)?, self.sorted.code_at(range.end - 1)?);
+        let reaches = halo_reaches(
+            &curve,
+            core_in_curve.clone(),
+            settings,
+            (self.frame.duplicate_distance, Some(&span)),
+        );
         let reached = started.elapsed();
         let core_points = &curve[core_in_curve];
         let capacity = self.budget.tile_capacity(settings);

@@ -81,7 +81,8 @@ pub fn prep_tile(
         range.start.saturating_sub(CURVE_CONTEXT)..(range.end + CURVE_CONTEXT).min(plan.order.len());
     let curve: Vec<Vec3> = plan.order[context.clone()].par_iter().map(|&i| local(i)).collect();
     let core_in_curve = range.start - context.start..range.end - context.start;
-    let reaches = halo_reaches(&curve, core_in_curve.clone(), settings, plan.frame.duplicate_distance);
+    let reaches =
+        halo_reaches(&curve, core_in_curve.clone(), settings, (plan.frame.duplicate_distance, None));
     let core_points = &curve[core_in_curve];
     let halo = halo_of(cloud.len(), core, core_points, &reaches, local);
     let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
