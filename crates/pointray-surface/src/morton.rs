@@ -12,10 +12,9 @@ const MAX_CELL: f32 = ((1u32 << BITS_PER_AXIS) - 1) as f32;
 /// `sorted[i] = points[perm[i]]`. Ties (points in one cell) keep input order, so the
 /// result is deterministic. Non-finite coordinates land in cell 0 of their axis.
 pub fn morton_order(points: &[Vec3]) -> Vec<u32> {
-    let Some((min, max)) = finite_bounds(points) else {
+    let Some(grid) = MortonGrid::of(points) else {
         return (0..points.len() as u32).collect();
     };
-    let grid = MortonGrid::over(min, max);
     let mut keyed: Vec<(u64, u32)> =
         points.par_iter().enumerate().map(|(i, &p)| (grid.code(p), i as u32)).collect();
     keyed.par_sort_unstable();
@@ -31,6 +30,12 @@ pub struct MortonGrid {
 }
 
 impl MortonGrid {
+    /// The grid `morton_order` sorts `points` along: over their finite bounding box; none
+    /// when no point is finite.
+    pub fn of(points: &[Vec3]) -> Option<Self> {
+        finite_bounds(points).map(|(min, max)| Self::over(min, max))
+    }
+
     /// The grid over the box from `min` to `max`.
     pub fn over(min: Vec3, max: Vec3) -> Self {
         // One scale for all axes (the bounding cube): per-axis scales would stretch a flat

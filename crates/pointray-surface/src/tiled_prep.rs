@@ -16,9 +16,10 @@ use pointray_kernels::NO_NEIGHBOR;
 use rayon::prelude::*;
 
 use crate::cloud_subset::subset;
+use crate::curve_span::CurveSpan;
 use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::halo_test::HaloTest;
-use crate::morton::morton_order;
+use crate::morton::{MortonGrid, morton_order};
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
 use crate::prep::{TileContext, duplicate_distance, prep_in_context, recentre};
@@ -30,7 +31,9 @@ use crate::prep_settings::PrepSettings;
 /// separate jobs agree on it.
 pub struct TilePlan {
     pub frame: TileContext,
-    /// Input indices along the Morton curve of the whole cloud.
+    /// The Morton curve of the whole cloud (none when no point is finite).
+    grid: Option<MortonGrid>,
+    /// Input indices along that curve.
     order: Vec<u32>,
     tiles: Vec<Range<usize>>,
 }
@@ -48,9 +51,9 @@ impl TilePlan {
     pub fn new(cloud: &PointCloud, settings: &PrepSettings, tiles: usize) -> Self {
         let (offset, recentred) = recentre(&cloud.positions);
         let frame = TileContext { offset, duplicate_distance: duplicate_distance(settings, &recentred) };
-        let order = morton_order(&recentred);
+        let (grid, order) = (MortonGrid::of(&recentred), morton_order(&recentred));
         let tiles = even_ranges(order.len(), tiles.max(1));
-        Self { frame, order, tiles }
+        Self { frame, grid, order, tiles }
     }
 
     pub fn tile_count(&self) -> usize {
@@ -81,8 +84,13 @@ pub fn prep_tile(
         range.start.saturating_sub(CURVE_CONTEXT)..(range.end + CURVE_CONTEXT).min(plan.order.len());
     let curve: Vec<Vec3> = plan.order[context.clone()].par_iter().map(|&i| local(i)).collect();
     let core_in_curve = range.start - context.start..range.end - context.start;
+    let ends = core.first().zip(core.last());
+    let span = plan
+        .grid
+        .zip(ends)
+        .map(|(grid, (&first, &last))| CurveSpan::new(grid, grid.code(local(first)), grid.code(local(last))));
     let reaches =
-        halo_reaches(&curve, core_in_curve.clone(), settings, (plan.frame.duplicate_distance, None));
+        halo_reaches(&curve, core_in_curve.clone(), settings, (plan.frame.duplicate_distance, span.as_ref()));
     let core_points = &curve[core_in_curve];
     let halo = halo_of(cloud.len(), core, core_points, &reaches, local);
     let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
