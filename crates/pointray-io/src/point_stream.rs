@@ -135,21 +135,38 @@ impl PointStream {
     }
 
     /// The points with their attributes, in chunks of at most `max` points; surveys first
-    /// when that has not been done.
-    pub fn read<E: From<IoError>>(
+    /// when that has not been done. `each` takes the chunks on a thread of its own while the
+    /// next one is read, so at most three chunks are held at once.
+    pub fn read<E: From<IoError> + Send>(
         &mut self,
         max: usize,
-        mut each: impl FnMut(PointCloud) -> Result<(), E>,
+        each: impl FnMut(PointCloud) -> Result<(), E> + Send,
     ) -> Result<(), E> {
         if self.ranges.is_none() {
             self.survey(max, |_| Ok::<(), E>(()))?;
         }
         let mut ranges = self.ranges.unwrap_or_default();
         self.rewind()?;
-        while let Some(chunk) = self.next(max, &mut ranges, false)? {
-            each(chunk)?;
-        }
-        Ok(())
+        std::thread::scope(|scope| {
+            let (sender, chunks) = std::sync::mpsc::sync_channel(1);
+            let taker = scope.spawn(move || chunks.into_iter().try_for_each(each));
+            let read = loop {
+                match self.next(max, &mut ranges, false) {
+                    // A closed channel means `each` failed: its error is the one to report.
+                    Ok(Some(chunk)) => {
+                        if sender.send(chunk).is_err() {
+                            break Ok(());
+                        }
+                    }
+                    Ok(None) => break Ok(()),
+                    Err(error) => break Err(error),
+                }
+            };
+            drop(sender);
+            let handed = taker.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            handed?;
+            Ok(read?)
+        })
     }
 
     fn initial_ranges(&self) -> Ranges {

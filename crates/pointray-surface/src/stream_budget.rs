@@ -51,7 +51,8 @@ impl StreamBudget {
             + self.attribute_bytes
     }
 
-    /// Points read from the input at a time.
+    /// Points read from the input at a time: three such chunks may be held at once (one
+    /// being read, one waiting, one taken), a tenth of the budget.
     pub(crate) fn chunk_points(&self) -> usize {
         (self.usable / 32 / READ_BYTES_PER_POINT).clamp(256, 1 << 20) as usize
     }

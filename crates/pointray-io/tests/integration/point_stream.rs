@@ -200,3 +200,29 @@ fn a_raw_sweep_that_misreads_is_refused_as_a_whole_read_refuses_it() {
 fn le_bytes(values: &[f32]) -> Vec<u8> {
     values.iter().flat_map(|value| value.to_le_bytes()).collect()
 }
+
+#[test]
+fn a_failing_taker_stops_the_read_and_its_error_is_the_one_returned() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("cloud.ply");
+    let cloud = PointCloud::from_positions((0..1000).map(|i| DVec3::new(i as f64, 0.5, 2.0)).collect());
+    write_point_cloud_as(&path, &cloud, PlyEncoding::BinaryLittleEndian).unwrap();
+    let mut stream = PointStream::open(&path, None, PLENTY).unwrap();
+    let mut taken = 0;
+    let error = stream
+        .read(100, |part| {
+            taken += part.len();
+            if taken >= 300 { Err(IoError::unusable("taker", "enough")) } else { Ok(()) }
+        })
+        .expect_err("the taker fails");
+    assert!(error.to_string().contains("enough"), "{error}");
+    assert_eq!(taken, 300, "no chunk is taken after the failure");
+    let mut again = 0;
+    stream
+        .read(100, |part| {
+            again += part.len();
+            Ok::<(), IoError>(())
+        })
+        .unwrap();
+    assert_eq!(again, 1000, "the stream reads whole again after a failed read");
+}
