@@ -124,6 +124,18 @@ fn laz_in_chunks_reads_as_a_whole() {
     assert_eq!(chunked(&path, 37), whole);
 }
 
+/// The points a read of `stream` in chunks of `chunk` hands out.
+fn points_read(stream: &mut PointStream, chunk: usize) -> usize {
+    let mut count = 0;
+    stream
+        .read(chunk, |part| {
+            count += part.len();
+            Ok::<(), IoError>(())
+        })
+        .unwrap();
+    count
+}
+
 #[test]
 fn text_is_read_whole_within_the_budget_and_refused_beyond_it() {
     let dir = tempfile::tempdir().unwrap();
@@ -132,14 +144,7 @@ fn text_is_read_whole_within_the_budget_and_refused_beyond_it() {
     std::fs::write(&path, &text).unwrap();
     let mut stream = PointStream::open(&path, None, PLENTY).unwrap();
     assert!(!stream.is_chunked());
-    let mut count = 0;
-    stream
-        .read(30, |part| {
-            count += part.len();
-            Ok::<(), IoError>(())
-        })
-        .unwrap();
-    assert_eq!(count, 100);
+    assert_eq!(points_read(&mut stream, 30), 100);
     let small = MemoryBudget { bytes: text.len() as u64 };
     let error = PointStream::open(&path, None, small).err().expect("over the budget").to_string();
     assert!(error.contains("cloud.xyz") && error.contains("cannot be read in chunks"), "{error}");
@@ -217,12 +222,5 @@ fn a_failing_taker_stops_the_read_and_its_error_is_the_one_returned() {
         .expect_err("the taker fails");
     assert!(error.to_string().contains("enough"), "{error}");
     assert_eq!(taken, 300, "no chunk is taken after the failure");
-    let mut again = 0;
-    stream
-        .read(100, |part| {
-            again += part.len();
-            Ok::<(), IoError>(())
-        })
-        .unwrap();
-    assert_eq!(again, 1000, "the stream reads whole again after a failed read");
+    assert_eq!(points_read(&mut stream, 100), 1000, "the stream reads whole again after a failed read");
 }
