@@ -1,15 +1,16 @@
 //! A cloud's chosen points with every attribute they carry.
 
 use pointray_io::PointCloud;
-use rayon::prelude::*;
+
+use crate::prep::gather;
 
 /// The points `indices` of `cloud`, in that order, with their attributes.
 pub(crate) fn subset(cloud: &PointCloud, indices: &[u32]) -> PointCloud {
     fn pick<T: Copy + Send + Sync>(values: &Option<Vec<T>>, indices: &[u32]) -> Option<Vec<T>> {
-        values.as_ref().map(|values| indices.par_iter().map(|&i| values[i as usize]).collect())
+        values.as_ref().map(|values| gather(values, indices))
     }
     PointCloud {
-        positions: indices.par_iter().map(|&i| cloud.positions[i as usize]).collect(),
+        positions: gather(&cloud.positions, indices),
         normals: pick(&cloud.normals, indices),
         colors: pick(&cloud.colors, indices),
         intensities: pick(&cloud.intensities, indices),

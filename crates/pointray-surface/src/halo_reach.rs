@@ -24,6 +24,7 @@ use rayon::prelude::*;
 
 use crate::curve_span::CurveSpan;
 use crate::halo_test::{HALO_RUN_POINTS, reach_box};
+use crate::neighbors::{neighbour_key, neighbour_of};
 use crate::prep_settings::PrepSettings;
 
 /// The points on either side of a point along the curve among which its neighbourhood is
@@ -107,7 +108,7 @@ impl DistinctNeighbours {
     }
 
     /// An upper bound on the distance from `point` to its `k`-th nearest neighbour in the
-    /// merged cloud, from the raw points `candidates` (`candidate_key`s of points of
+    /// merged cloud, from the raw points `candidates` (`neighbour_key`s of points of
     /// `points`, in any order; reordered here): unbounded when they hold fewer than `k`
     /// distinct neighbours.
     fn bound(
@@ -127,7 +128,7 @@ impl DistinctNeighbours {
         for part in [first, rest] {
             part.sort_unstable();
             for &key in part.iter() {
-                let (squared, index) = candidate_of(key);
+                let (squared, index) = neighbour_of(key);
                 let candidate = points[index as usize];
                 if self.stands_apart(point, squared, candidate, picked) {
                     picked.push((squared.sqrt(), candidate));
@@ -154,18 +155,6 @@ impl DistinctNeighbours {
                 .take_while(|(distance, _)| *distance >= reach)
                 .all(|&(_, other)| apart(other))
     }
-}
-
-/// A candidate neighbour as one integer that orders by squared distance, then by index, so
-/// that candidates sort as plain integers: the bits of a non-negative float order as the
-/// float does.
-fn candidate_key(squared: f32, index: u32) -> u64 {
-    (u64::from(squared.to_bits()) << 32) | u64::from(index)
-}
-
-/// The squared distance and index of a `candidate_key`.
-fn candidate_of(key: u64) -> (f32, u32) {
-    (f32::from_bits((key >> 32) as u32), key as u32)
 }
 
 /// The most neighbours any stage of prep takes.
@@ -224,7 +213,7 @@ fn curve_window_radii(
                 candidates.extend(
                     window
                         .filter(|&j| j != i)
-                        .map(|j| candidate_key((points[j] - point).length_squared(), j as u32)),
+                        .map(|j| neighbour_key((points[j] - point).length_squared(), j as u32)),
                 );
                 distinct.bound(point, points, candidates, picked)
             },
@@ -265,14 +254,14 @@ fn exact_radii(points: &[Vec3], queries: &[usize], known: &[f32], distinct: &Dis
                 let query = tree.query(&entries[i]);
                 let nearby = query.nearest_n::<SquaredEuclidean<f32>>(few).within(known * known).execute();
                 candidates.clear();
-                candidates.extend(nearby.iter().map(|hit| candidate_key(hit.distance, hit.item)));
+                candidates.extend(nearby.iter().map(|hit| neighbour_key(hit.distance, hit.item)));
                 let bound = distinct.bound(points[i], points, candidates, picked);
                 if bound.is_finite() {
                     return bound;
                 }
                 let found = tree.query(&entries[i]).nearest_n::<SquaredEuclidean<f32>>(many).execute();
                 candidates.clear();
-                candidates.extend(found.iter().map(|hit| candidate_key(hit.distance, hit.item)));
+                candidates.extend(found.iter().map(|hit| neighbour_key(hit.distance, hit.item)));
                 distinct.bound(points[i], points, candidates, picked)
             },
         )

@@ -51,7 +51,7 @@ impl MortonGrid {
 }
 
 /// The bounding box of the finite points, or `None` when there are none.
-fn finite_bounds(points: &[Vec3]) -> Option<(Vec3, Vec3)> {
+pub(crate) fn finite_bounds(points: &[Vec3]) -> Option<(Vec3, Vec3)> {
     points
         .par_iter()
         .filter(|p| p.is_finite())

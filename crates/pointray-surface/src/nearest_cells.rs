@@ -6,8 +6,13 @@
 //! which every other point lies. Queries where it is not (sparse points, crowded blocks) are
 //! left to the tree.
 
+use std::ops::Range;
+
 use glam::{IVec3, UVec3, Vec3};
 use rayon::prelude::*;
+
+use crate::morton::finite_bounds;
+use crate::neighbors::{neighbour_key, neighbour_of};
 
 /// A block holding more candidates than this leaves its queries to the tree: scanning them
 /// would cost more than the tree's walk.
@@ -47,13 +52,10 @@ impl<'a> CellGrid<'a> {
     /// A grid over `points` sized for their `wanted` nearest points; none when the points
     /// give no finite size.
     pub(crate) fn new(points: &'a [Vec3], wanted: usize) -> Option<Self> {
-        let (min, max) = points
-            .par_iter()
-            .fold(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
-            .reduce(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)));
+        let (min, max) = finite_bounds(points)?;
         let extent = (max - min).max_element();
         let width = typical_radius(points, wanted)?.max(extent / (1 << AXIS_BITS) as f32);
-        if !(width.is_finite() && width > 0.0 && min.is_finite()) {
+        if !(width.is_finite() && width > 0.0) {
             return None;
         }
         let slack = 8.0 * f32::EPSILON * (min.abs().max(max.abs()).max_element() + extent);
@@ -77,7 +79,17 @@ impl<'a> CellGrid<'a> {
         Some(grid)
     }
 
-    pub(crate) fn cell_of(&self, p: Vec3) -> UVec3 {
+    /// The positions `range` of the points, cell by cell: queries of one cell share its
+    /// block, so each block is gathered about once.
+    pub(crate) fn cell_by_cell(&self, range: Range<usize>) -> Vec<usize> {
+        let start = range.start;
+        let mut order: Vec<(CellKey, u32)> =
+            range.map(|i| (key(self.cell_of(self.points[i])), (i - start) as u32)).collect();
+        order.sort_unstable();
+        order.into_iter().map(|(_, j)| j as usize).collect()
+    }
+
+    fn cell_of(&self, p: Vec3) -> UVec3 {
         let most = Vec3::splat(((1 << AXIS_BITS) - 1) as f32);
         ((p - self.origin) / self.width).floor().clamp(Vec3::ZERO, most).as_uvec3()
     }
@@ -148,7 +160,7 @@ impl<'a> CellGrid<'a> {
     }
 }
 
-pub(crate) fn key(cell: UVec3) -> CellKey {
+fn key(cell: UVec3) -> CellKey {
     (u64::from(cell.x) << (2 * AXIS_BITS)) | (u64::from(cell.y) << AXIS_BITS) | u64::from(cell.z)
 }
 
@@ -233,17 +245,6 @@ impl Block {
         }
         self.index.extend_from_slice(members);
     }
-}
-
-/// A neighbour as one integer that orders by squared distance, then by index: the bits of
-/// a non-negative float order as the float does.
-pub(crate) fn neighbour_key(squared: f32, index: u32) -> u64 {
-    (u64::from(squared.to_bits()) << 32) | u64::from(index)
-}
-
-/// The squared distance and index of a `neighbour_key`.
-pub(crate) fn neighbour_of(key: u64) -> (f32, u32) {
-    (f32::from_bits((key >> 32) as u32), key as u32)
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use glam::Vec3;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 
-use crate::nearest_cells::{Block, CellGrid, key as cell_key, neighbour_key, neighbour_of};
+use crate::nearest_cells::{Block, CellGrid};
 
 /// `k` neighbours per point in one flat table. Row `i` lists point `i`'s neighbours by
 /// increasing Euclidean distance and never contains `i` itself.
@@ -98,15 +98,14 @@ fn settle_from_grid(
 ) -> Vec<usize> {
     let (mut block, mut nearest, mut left) = (Block::default(), Vec::new(), Vec::new());
     let mut previous: Option<(Vec3, f32)> = None;
-    for offset in cell_by_cell(grid, &points[first..first + index_rows.len() / k]) {
+    for offset in grid.cell_by_cell(first..first + index_rows.len() / k) {
         let i = first + offset;
         let rows = offset * k..(offset + 1) * k;
         let within =
             previous.map(|(point, reach)| ((reach + point.distance(points[i])) * BOUND_SLACK).powi(2));
         previous = None;
         if grid.nearest((i, k + 1), within, &mut block, &mut nearest) {
-            let hits = nearest.iter().map(|&key| neighbour_of(key)).map(|(squared, index)| (index, squared));
-            write_row(hits, i as u32, &mut index_rows[rows.clone()], &mut distance_rows[rows.clone()]);
+            write_row(&nearest, i as u32, &mut index_rows[rows.clone()], &mut distance_rows[rows.clone()]);
             previous = Some((points[i], distance_rows[rows.end - 1]));
         } else {
             left.push(i);
@@ -114,15 +113,6 @@ fn settle_from_grid(
     }
     left.sort_unstable();
     left
-}
-
-/// The positions of `points` cell by cell: queries of one cell share its block, so each
-/// block is gathered about once.
-fn cell_by_cell(grid: &CellGrid, points: &[Vec3]) -> Vec<usize> {
-    let mut order: Vec<(u64, u32)> =
-        points.iter().enumerate().map(|(j, &p)| (cell_key(grid.cell_of(p)), j as u32)).collect();
-    order.sort_unstable();
-    order.into_iter().map(|(_, j)| j as usize).collect()
 }
 
 /// Fills the rows `unsettled[c]` of each chunk `c` from a k-d tree of `points`.
@@ -183,32 +173,34 @@ fn fill_row(
     let tied = tree.query(query).within::<SquaredEuclidean<f32>>(farthest * BOUND_SLACK.powi(2)).execute();
     let mut keys: Vec<u64> = tied.iter().map(|hit| neighbour_key(hit.distance, hit.item)).collect();
     keys.sort_unstable();
-    write_row(
-        keys.iter().take(k + 1).map(|&key| neighbour_of(key)).map(|(squared, index)| (index, squared)),
-        self_index,
-        row,
-        row_distances,
-    );
+    keys.truncate(k + 1);
+    write_row(&keys, self_index, row, row_distances);
     farthest.sqrt()
 }
 
-/// Writes the first `row.len()` of `hits` (index, squared distance; nearest first) other
-/// than `self_index`: dropping by index, not by position, matters when duplicates tie with
-/// the query point at distance 0. A short row repeats its farthest neighbour.
-fn write_row(
-    hits: impl Iterator<Item = (u32, f32)>,
-    self_index: u32,
-    row: &mut [u32],
-    row_distances: &mut [f32],
-) {
-    let mut others = hits.filter(|&(index, _)| index != self_index);
+/// Writes the first `row.len()` of `nearest` (`neighbour_key`s, nearest first) other than
+/// `self_index`: dropping by index, not by position, matters when duplicates tie with the
+/// query point at distance 0. A short row repeats its farthest neighbour.
+fn write_row(nearest: &[u64], self_index: u32, row: &mut [u32], row_distances: &mut [f32]) {
+    let mut others = nearest.iter().map(|&key| neighbour_of(key)).filter(|&(_, index)| index != self_index);
     let mut last = (self_index, 0.0);
     for (slot, slot_distance) in row.iter_mut().zip(row_distances.iter_mut()) {
-        if let Some((index, squared)) = others.next() {
+        if let Some((squared, index)) = others.next() {
             last = (index, squared.sqrt());
         }
         (*slot, *slot_distance) = last;
     }
+}
+
+/// A neighbour as one integer that orders by squared distance, then by index, so that
+/// neighbours sort as plain integers: the bits of a non-negative float order as the float does.
+pub(crate) fn neighbour_key(squared: f32, index: u32) -> u64 {
+    (u64::from(squared.to_bits()) << 32) | u64::from(index)
+}
+
+/// The squared distance and index of a `neighbour_key`.
+pub(crate) fn neighbour_of(key: u64) -> (f32, u32) {
+    (f32::from_bits((key >> 32) as u32), key as u32)
 }
 
 /// Widens a bound against rounding, so that a point exactly at it is never lost.

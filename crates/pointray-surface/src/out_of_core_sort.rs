@@ -15,7 +15,7 @@ use pointray_io::{PointCloud, PointStream};
 use rayon::prelude::*;
 
 use crate::morton::MortonGrid;
-use crate::point_records::{RecordKey, RecordLayout, record_key};
+use crate::point_records::{RecordKey, RecordLayout, key_at, record_key};
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::sorted_points::{BlockBounds, SortedFile, SortedPiece, SortedPoints};
 use crate::stream_error::StreamError;
@@ -244,9 +244,7 @@ impl<'a> Run<'a> {
     }
 
     fn key_at(&self, record: u64) -> Result<RecordKey, StreamError> {
-        let mut bytes = vec![0; self.record_bytes];
-        self.read_at(&mut bytes, record)?;
-        Ok(record_key(&bytes))
+        key_at(&self.file, self.record_bytes, record).map_err(|e| StreamError::scratch(self.path, e))
     }
 
     /// The first record whose key is not below `key` (binary search).

@@ -14,7 +14,8 @@ pub fn checksum(bytes: &[u8]) -> u32 {
     bytes.par_chunks(PIECE_BYTES).map(piece_hasher).reduce(Hasher::new, joined).finalize()
 }
 
-fn piece_hasher(piece: &[u8]) -> Hasher {
+/// The hasher of one piece's bytes, to be joined in order with its neighbours'.
+pub(crate) fn piece_hasher(piece: &[u8]) -> Hasher {
     let mut hasher = Hasher::new();
     hasher.update(piece);
     hasher

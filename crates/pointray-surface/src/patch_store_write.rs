@@ -10,6 +10,7 @@ use glam::DVec3;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS};
 use rayon::prelude::*;
 
+use crate::parallel_checksum;
 use crate::patch_set::PatchSet;
 use crate::patch_store::{
     FORMAT_VERSION, HEADER_BYTES, Header, Layout, MAGIC, SECTION_ALIGNMENT, SECTION_COUNT, Section,
@@ -123,9 +124,7 @@ fn copy_piece(
         }
     }
     store.write_all_at(&bytes, section.offset + start)?;
-    let mut hasher = crc32fast::Hasher::new();
-    hasher.update(&bytes);
-    Ok(hasher)
+    Ok(parallel_checksum::piece_hasher(&bytes))
 }
 
 fn store_error(path: &Path, error: pointray_io::IoError) -> StoreError {

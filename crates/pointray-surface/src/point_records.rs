@@ -111,6 +111,14 @@ impl RecordLayout {
     }
 }
 
+/// The key of the record at `position` of a file of `record_bytes`-byte records.
+pub(crate) fn key_at(file: &std::fs::File, record_bytes: usize, position: u64) -> std::io::Result<RecordKey> {
+    use std::os::unix::fs::FileExt;
+    let mut record = vec![0u8; record_bytes];
+    file.read_exact_at(&mut record, position * record_bytes as u64)?;
+    Ok(record_key(&record))
+}
+
 /// The key of an encoded record.
 pub(crate) fn record_key(record: &[u8]) -> RecordKey {
     let mut fields = Fields(record);

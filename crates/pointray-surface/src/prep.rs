@@ -488,6 +488,7 @@ fn gather_cold(cloud: &PointCloud, source: &[u32], paper_radii: &[f32]) -> Vec<P
     cold
 }
 
-fn gather<T: Copy + Send + Sync>(values: &[T], source: &[u32]) -> Vec<T> {
+/// `values[i]` for each `i` of `source`, on every core.
+pub(crate) fn gather<T: Copy + Send + Sync>(values: &[T], source: &[u32]) -> Vec<T> {
     source.par_iter().map(|&i| values[i as usize]).collect()
 }

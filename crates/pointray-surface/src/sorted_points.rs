@@ -12,7 +12,7 @@ use pointray_io::PointCloud;
 use rayon::prelude::*;
 
 use crate::halo_test::HaloTest;
-use crate::point_records::{RecordLayout, record_key, record_position};
+use crate::point_records::{RecordLayout, key_at, record_position};
 use crate::stream_error::StreamError;
 
 /// Records per block of the index.
@@ -42,10 +42,7 @@ impl SortedPoints {
 
     /// The Morton code of the record at sorted position `position`.
     pub(crate) fn code_at(&self, position: u64) -> Result<u64, StreamError> {
-        let size = self.layout.bytes();
-        let mut record = vec![0u8; size];
-        self.file.read_exact_at(&mut record, position * size as u64).map_err(|e| self.scratch(e))?;
-        Ok(record_key(&record).0)
+        Ok(key_at(&self.file, self.layout.bytes(), position).map_err(|e| self.scratch(e))?.0)
     }
 
     /// Bytes a record takes.

@@ -22,7 +22,7 @@ use crate::halo_test::HaloTest;
 use crate::morton::{MortonGrid, morton_order};
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
-use crate::prep::{TileContext, duplicate_distance, prep_in_context, recentre};
+use crate::prep::{TileContext, duplicate_distance, gather, prep_in_context, recentre};
 use crate::prep_error::PrepError;
 use crate::prep_progress::PrepProgress;
 use crate::prep_settings::PrepSettings;
@@ -122,29 +122,26 @@ fn halo_of(
 /// The patches of the tile's own points (the first `core` members), their colour neighbours
 /// as input indices.
 pub(crate) fn own_patches(set: PatchSet, sources: &[u32], members: &[u32], core: usize) -> TilePatches {
-    let input_of = |patch: usize| members[sources[patch] as usize];
-    let keep: Vec<usize> = (0..set.len()).into_par_iter().filter(|&j| (sources[j] as usize) < core).collect();
+    let input_of = |patch: u32| members[sources[patch as usize] as usize];
+    let keep: Vec<u32> =
+        (0..set.len() as u32).into_par_iter().filter(|&j| (sources[j as usize] as usize) < core).collect();
     let width = if set.is_empty() { 0 } else { set.color_neighbors.len() / set.len() };
     let color_neighbors: Vec<u32> = keep
         .par_iter()
-        .flat_map_iter(|&j| set.color_neighbors[j * width..(j + 1) * width].iter())
-        .map(|&n| if n == NO_NEIGHBOR { NO_NEIGHBOR } else { input_of(n as usize) })
+        .flat_map_iter(|&j| set.color_neighbors[j as usize * width..(j as usize + 1) * width].iter())
+        .map(|&n| if n == NO_NEIGHBOR { NO_NEIGHBOR } else { input_of(n) })
         .collect();
     TilePatches {
         sources: keep.par_iter().map(|&j| input_of(j)).collect(),
         patches: PatchSet {
             settings: set.settings,
             offset: set.offset,
-            aabbs: picked(&set.aabbs, &keep).into(),
-            hot: picked(&set.hot, &keep).into(),
-            cold: picked(&set.cold, &keep).into(),
+            aabbs: gather(&set.aabbs, &keep).into(),
+            hot: gather(&set.hot, &keep).into(),
+            cold: gather(&set.cold, &keep).into(),
             color_neighbors: color_neighbors.into(),
         },
     }
-}
-
-fn picked<T: Copy + Send + Sync>(records: &[T], keep: &[usize]) -> Vec<T> {
-    keep.par_iter().map(|&j| records[j]).collect()
 }
 
 /// The tiles' patches as one set, in tile order; colour neighbours whose point made no
