@@ -16,6 +16,9 @@ use std::io::IsTerminal;
 
 use clap::{Parser, Subcommand};
 
+#[global_allocator]
+static ALLOCATOR: pointray_io::HugePageAllocator = pointray_io::HugePageAllocator;
+
 #[derive(Parser)]
 #[command(name = "pointray", version, about = "Ray-traced point-set surfaces (Min & Kim's MLS patches)")]
 struct Cli {

@@ -6,6 +6,7 @@ pub mod environment_image;
 pub mod error;
 pub mod file_roles;
 pub mod formats;
+pub mod huge_page_allocator;
 pub mod image_output;
 pub mod linear_image;
 pub mod memory_budget;
@@ -21,6 +22,7 @@ pub use file_roles::{
     ensure_not_same_file, ensure_outputs_spare_inputs, ensure_readable_file, ensure_writable_output,
     folder_of,
 };
+pub use huge_page_allocator::HugePageAllocator;
 pub use linear_image::{LinearImage, read_linear_image};
 pub use memory_budget::{MemoryBudget, MemoryShortfall};
 pub use point_cloud::{AttributeBytes, PointCloud};

@@ -15,6 +15,9 @@ mod toml_values;
 
 use pyo3::prelude::*;
 
+#[global_allocator]
+static ALLOCATOR: pointray_io::HugePageAllocator = pointray_io::HugePageAllocator;
+
 #[pymodule]
 fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("PointrayError", module.py().get_type::<errors::PointrayError>())?;
