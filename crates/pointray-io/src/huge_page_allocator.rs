@@ -26,9 +26,12 @@ const HEAP_ADVICE_BLOCK: usize = 2 * HUGE_PAGE;
 /// The system allocator, with every large block mapped on its own and backed by huge pages.
 pub struct HugePageAllocator;
 
+/// The alignment every mapping has: the smallest page size of the platforms with huge pages.
+const MAPPING_ALIGN: usize = 4096;
+
 /// Whether a block of `layout` is one of this allocator's own mappings.
 fn is_mapped(size: usize, align: usize) -> bool {
-    cfg!(target_os = "linux") && size >= LARGE_BLOCK && align <= HUGE_PAGE
+    cfg!(target_os = "linux") && size >= LARGE_BLOCK && align <= MAPPING_ALIGN
 }
 
 // SAFETY: a block is mapped here exactly when `is_mapped` holds for its layout, which its
@@ -229,6 +232,20 @@ mod tests {
                     let new_layout = Layout::from_size_align(new_size, 64).unwrap();
                     HugePageAllocator.dealloc(resized, new_layout);
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn large_blocks_keep_alignments_beyond_a_page() {
+        for align in [MAPPING_ALIGN, 2 * MAPPING_ALIGN, HUGE_PAGE] {
+            let layout = Layout::from_size_align(LARGE_BLOCK + 1, align).unwrap();
+            // SAFETY: the layout has a non-zero size, and the block is freed with it.
+            unsafe {
+                let block = HugePageAllocator.alloc(layout);
+                assert!(!block.is_null());
+                assert_eq!(block as usize % align, 0, "aligned to {align}");
+                HugePageAllocator.dealloc(block, layout);
             }
         }
     }
