@@ -6,12 +6,14 @@
 //! faults, and the kernel's share of its processor time was a seventh; 2 MiB pages make the
 //! faults a hundred times fewer. The advice must come before a block's first touch, which the
 //! system allocator's growth by copying would precede, so large blocks are mapped, grown and
-//! unmapped here; the kernel places mappings of whole huge pages on huge-page boundaries.
+//! unmapped here (Linux 6.7 and later place mappings of whole huge pages on huge-page
+//! boundaries; on older kernels a block's partial huge pages at its ends stay small).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::ptr;
 
-/// The size of a transparent huge page on the platforms that have them.
+/// The size of a transparent huge page with 4 KiB base pages (x86-64, and most arm64 kernels).
+/// Elsewhere the advice covers fewer whole huge pages, and only speed differs.
 const HUGE_PAGE: usize = 2 << 20;
 
 /// Blocks at least this large get mappings of their own: a mapping is rounded up to whole
@@ -20,7 +22,10 @@ const HUGE_PAGE: usize = 2 << 20;
 const LARGE_BLOCK: usize = 16 * HUGE_PAGE;
 
 /// Blocks in the system's heaps at least this large ask for huge pages over the part of them
-/// that spans whole huge pages.
+/// that spans whole huge pages. The advice comes after the system allocator has placed the
+/// block (and, for `calloc` or a copying `realloc`, touched it), and it stays with that part
+/// of the heap after the block is freed: it never changes contents, and the blocks placed
+/// there later fault in 2 MiB at a time as well.
 const HEAP_ADVICE_BLOCK: usize = 2 * HUGE_PAGE;
 
 /// The system allocator, with every large block mapped on its own and backed by huge pages.
@@ -29,7 +34,7 @@ pub struct HugePageAllocator;
 /// The alignment every mapping has: the smallest page size of the platforms with huge pages.
 const MAPPING_ALIGN: usize = 4096;
 
-/// Whether a block of `layout` is one of this allocator's own mappings.
+/// Whether a block of this size and alignment is one of this allocator's own mappings.
 fn is_mapped(size: usize, align: usize) -> bool {
     cfg!(target_os = "linux") && size >= LARGE_BLOCK && align <= MAPPING_ALIGN
 }
@@ -155,7 +160,8 @@ unsafe fn remap(block: *mut u8, size: usize, new_size: usize) -> *mut u8 {
 #[cfg(target_os = "linux")]
 unsafe fn unmap(block: *mut u8, size: usize) {
     // SAFETY: see the function's contract.
-    unsafe { libc::munmap(block.cast(), mapping_size(size)) };
+    let result = unsafe { libc::munmap(block.cast(), mapping_size(size)) };
+    debug_assert_eq!(result, 0, "a block freed as a mapping was not one");
 }
 
 /// Asks for huge pages over `length` bytes at `start`, a range this process holds. A kernel
@@ -237,7 +243,7 @@ mod tests {
     }
 
     #[test]
-    fn large_blocks_keep_alignments_beyond_a_page() {
+    fn large_blocks_keep_their_alignment_whoever_maps_them() {
         for align in [MAPPING_ALIGN, 2 * MAPPING_ALIGN, HUGE_PAGE] {
             let layout = Layout::from_size_align(LARGE_BLOCK + 1, align).unwrap();
             // SAFETY: the layout has a non-zero size, and the block is freed with it.
