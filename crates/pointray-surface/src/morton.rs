@@ -12,13 +12,19 @@ const MAX_CELL: f32 = ((1u32 << BITS_PER_AXIS) - 1) as f32;
 /// `sorted[i] = points[perm[i]]`. Ties (points in one cell) keep input order, so the
 /// result is deterministic. Non-finite coordinates land in cell 0 of their axis.
 pub fn morton_order(points: &[Vec3]) -> Vec<u32> {
+    curve_and_order(points).1
+}
+
+/// The grid of the curve `morton_order` sorts `points` along (none when no point is finite),
+/// and that order.
+pub(crate) fn curve_and_order(points: &[Vec3]) -> (Option<MortonGrid>, Vec<u32>) {
     let Some(grid) = MortonGrid::of(points) else {
-        return (0..points.len() as u32).collect();
+        return (None, (0..points.len() as u32).collect());
     };
     let mut keyed: Vec<(u64, u32)> =
         points.par_iter().enumerate().map(|(i, &p)| (grid.code(p), i as u32)).collect();
     keyed.par_sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
+    (Some(grid), keyed.into_iter().map(|(_, i)| i).collect())
 }
 
 /// The cells of a Morton curve over a bounding box: sorting by (code, input index) is the
@@ -32,7 +38,7 @@ pub struct MortonGrid {
 impl MortonGrid {
     /// The grid `morton_order` sorts `points` along: over their finite bounding box; none
     /// when no point is finite.
-    pub fn of(points: &[Vec3]) -> Option<Self> {
+    fn of(points: &[Vec3]) -> Option<Self> {
         finite_bounds(points).map(|(min, max)| Self::over(min, max))
     }
 

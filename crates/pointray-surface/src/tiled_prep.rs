@@ -19,7 +19,7 @@ use crate::cloud_subset::subset;
 use crate::curve_span::CurveSpan;
 use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::halo_test::HaloTest;
-use crate::morton::{MortonGrid, morton_order};
+use crate::morton::{MortonGrid, curve_and_order};
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
 use crate::prep::{TileContext, duplicate_distance, gather, prep_in_context, recentre};
@@ -51,7 +51,7 @@ impl TilePlan {
     pub fn new(cloud: &PointCloud, settings: &PrepSettings, tiles: usize) -> Self {
         let (offset, recentred) = recentre(&cloud.positions);
         let frame = TileContext { offset, duplicate_distance: duplicate_distance(settings, &recentred) };
-        let (grid, order) = (MortonGrid::of(&recentred), morton_order(&recentred));
+        let (grid, order) = curve_and_order(&recentred);
         let tiles = even_ranges(order.len(), tiles.max(1));
         Self { frame, grid, order, tiles }
     }
