@@ -15,7 +15,7 @@ pub mod point_stream;
 pub mod temporaries;
 pub mod triangle_mesh;
 
-pub use atomic_write::write_atomically;
+pub use atomic_write::{AtomicFile, write_atomically};
 pub use environment_image::read_environment_image;
 pub use error::IoError;
 pub use file_roles::{

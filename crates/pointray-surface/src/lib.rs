@@ -25,6 +25,7 @@ mod patch_checks;
 pub mod patch_records;
 pub mod patch_set;
 pub mod patch_store;
+mod patch_store_in_place;
 mod patch_store_write;
 pub mod patch_tiles;
 pub mod peak_memory;

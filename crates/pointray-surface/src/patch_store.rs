@@ -1,11 +1,11 @@
 //! The patch store: the versioned binary file that caches a `PatchSet`.
 //!
-//! All numbers are little-endian. Version 6 layout:
+//! All numbers are little-endian. Version 7 layout:
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRPATCH\0"` |
-//! | 8 | 4 | format version, u32 = 6 |
+//! | 8 | 4 | format version, u32 = 7 (version 6 stores read too) |
 //! | 12 | 4 | header size in bytes, u32 = 208 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
 //! | 24 | 24 | offset, f64 x 3 (`input = local + offset`) |
@@ -14,9 +14,9 @@
 //! | 136 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
 //! | 140 | 68 | the `PrepSettings` the patches were made with (below) |
 //! | 208 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
-//! | 16-aligned | 32 n | hot: `PatchHot` (origin with c0 folded in, d_u: f32 x 4; octahedral normal and tangent angle, d_v/d_u and c1, c2..c5 as scaled halves: u32 x 4) |
-//! | 16-aligned | 12 n | cold: `PatchCold` (RGBA8 u32, intensity f32, colour reach f32) |
-//! | 16-aligned | 4 m n | neighbours: `m` patch indices per patch (u32, `NO_NEIGHBOR` = unused) |
+//! | section table | 32 n | hot: `PatchHot` (origin with c0 folded in, d_u: f32 x 4; octahedral normal and tangent angle, d_v/d_u and c1, c2..c5 as scaled halves: u32 x 4) |
+//! | section table | 12 n | cold: `PatchCold` (RGBA8 u32, intensity f32, colour reach f32) |
+//! | section table | 4 m n | neighbours: `m` patch indices per patch (u32, `NO_NEIGHBOR` = unused) |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
 //!
 //! The settings: `k`, `normal_k` (u32), recompute normals (u32, 0 or 1), radius (u32: 0 paper,
@@ -25,7 +25,11 @@
 //! (u32, 0 = none) and `N` (f32), sensor given (u32, 0 or 1), then at 184 the sensor, f64 x 3
 //! (zero when not given).
 //!
-//! Gaps between sections (to the next multiple of 16) are zero. The record layouts are
+//! Each section lies where the section table puts it: 16-aligned, in this order, at or after
+//! the end of the one before; the bytes between sections are zero. `write` leaves no room
+//! between them; prep in bounded memory leaves room for one patch per input point
+//! (`Layout::with_room`), since it writes each tile's records before the count is known. The
+//! file ends 4 bytes after the last section. The record layouts are
 //! those of `pointray_kernels::layout`, so the sections can be uploaded to the GPU as
 //! they are. `docs/PATCH_STORE.md` describes the same format.
 
@@ -46,10 +50,12 @@ use crate::patch_records::PatchRecords;
 use crate::patch_set::PatchSet;
 use crate::prep_settings::{PrepSettings, ScanMode};
 
-pub use crate::patch_store_write::{StoreSummary, write, write_section_files, write_sections, write_to};
+pub use crate::patch_store_write::{StoreSummary, write, write_sections, write_to};
 
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
-pub const FORMAT_VERSION: u32 = 6;
+pub const FORMAT_VERSION: u32 = 7;
+/// Version 6 stores are version 7's with no room between sections.
+const READABLE_VERSIONS: std::ops::RangeInclusive<u32> = 6..=FORMAT_VERSION;
 pub(crate) const SECTION_COUNT: usize = 4;
 pub(crate) const HEADER_BYTES: usize = std::mem::size_of::<Header>();
 const CHECKSUM_BYTES: usize = 4;
@@ -62,7 +68,7 @@ pub enum StoreError {
     #[error("{path}: not a pointray patch store (wrong magic)")]
     NotAPatchStore { path: PathBuf },
     #[error(
-        "{path}: patch store version {found}, this build reads version {FORMAT_VERSION}: re-run `pointray prep`"
+        "{path}: patch store version {found}, this build reads versions 6 and {FORMAT_VERSION}: re-run `pointray prep`"
     )]
     WrongVersion { path: PathBuf, found: u32 },
     #[error("{path}: truncated or wrong length: the header implies {expected} bytes, the file has {actual}")]
@@ -116,27 +122,50 @@ pub(crate) struct StoredSettings {
     sensor_given: u32,
 }
 
-/// Where each section lies for `n` patches with `neighbor_slots` colour neighbours each;
-/// the only layout this version allows.
+/// Where each section lies: in order, each at a 16-aligned offset, each holding `n` records.
 pub(crate) struct Layout {
     pub sections: [Section; SECTION_COUNT],
     pub total_bytes: u64,
 }
 
 impl Layout {
+    /// The sections of `n` patches with `neighbor_slots` colour neighbours each, back to back.
     pub(crate) fn new(n: u64, neighbor_slots: u32) -> Option<Self> {
-        let neighbors_stride = size_of::<u32>() * neighbor_slots as usize;
-        let strides = [size_of::<Aabb>(), size_of::<PatchHot>(), size_of::<PatchCold>(), neighbors_stride];
+        Self::with_room(n, n, neighbor_slots)
+    }
+
+    /// The sections of `n` patches, each placed with room for `room` patches, so that a
+    /// writer that knows only a bound on the count can write every section as it comes.
+    pub(crate) fn with_room(n: u64, room: u64, neighbor_slots: u32) -> Option<Self> {
         let mut cursor = HEADER_BYTES as u64;
         let mut sections = [Section::zeroed(); SECTION_COUNT];
-        for (section, stride) in sections.iter_mut().zip(strides) {
-            cursor = cursor.checked_next_multiple_of(SECTION_ALIGNMENT as u64)?;
-            let length = n.checked_mul(stride as u64)?;
-            *section = Section { offset: cursor, length };
-            cursor = cursor.checked_add(length)?;
+        for (section, stride) in sections.iter_mut().zip(strides(neighbor_slots)) {
+            let offset = cursor.checked_next_multiple_of(SECTION_ALIGNMENT as u64)?;
+            *section = Section { offset, length: n.checked_mul(stride)? };
+            cursor = offset.checked_add(room.max(n).checked_mul(stride)?)?;
+        }
+        Self::of_table(sections, n, neighbor_slots)
+    }
+
+    /// The layout of a header's section table, if its sections lie in order after the
+    /// header, at aligned offsets, each holding `n` records.
+    fn of_table(sections: [Section; SECTION_COUNT], n: u64, neighbor_slots: u32) -> Option<Self> {
+        let mut cursor = HEADER_BYTES as u64;
+        for (section, stride) in sections.iter().zip(strides(neighbor_slots)) {
+            let placed = section.offset >= cursor && section.offset % SECTION_ALIGNMENT as u64 == 0;
+            if !placed || section.length != n.checked_mul(stride)? {
+                return None;
+            }
+            cursor = section.offset.checked_add(section.length)?;
         }
         Some(Self { sections, total_bytes: cursor.checked_add(CHECKSUM_BYTES as u64)? })
     }
+}
+
+/// The bytes of one patch's record in each section.
+fn strides(neighbor_slots: u32) -> [u64; SECTION_COUNT] {
+    let neighbors = size_of::<u32>() * neighbor_slots as usize;
+    [size_of::<Aabb>(), size_of::<PatchHot>(), size_of::<PatchCold>(), neighbors].map(|bytes| bytes as u64)
 }
 
 impl StoredSettings {
@@ -157,7 +186,7 @@ impl StoredSettings {
         }
     }
 
-    /// The settings, or which code no version-6 store holds.
+    /// The settings, or which code no store of this format holds.
     fn decode(&self, sensor: [f64; 3]) -> Result<PrepSettings, &'static str> {
         let flag = |value: u32, what| match value {
             0 => Ok(false),
@@ -255,7 +284,7 @@ fn checked_store(
     let (header, layout) = checked_header(path, bytes)?;
     let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
     let records = records(layout.sections)?;
-    checked_patches(path, &header, &layout, (parallel_checksum::checksum(body), stored), records)
+    checked_patches(path, &header, (parallel_checksum::checksum(body), stored), records)
 }
 
 /// A store's four sections, read or mapped but not yet checked.
@@ -281,7 +310,7 @@ fn checked_header(path: &Path, bytes: &[u8]) -> Result<(Header, Layout), StoreEr
     };
     let version_bytes = bytes.get(8..12).ok_or_else(too_short)?;
     let found = u32::from_le_bytes(version_bytes.try_into().expect("four bytes"));
-    if found != FORMAT_VERSION {
+    if !READABLE_VERSIONS.contains(&found) {
         return Err(StoreError::WrongVersion { path: path_buf(), found });
     }
     let header: Header = bytemuck::pod_read_unaligned(bytes.get(..HEADER_BYTES).ok_or_else(too_short)?);
@@ -294,21 +323,29 @@ fn checked_header(path: &Path, bytes: &[u8]) -> Result<(Header, Layout), StoreEr
             ),
         });
     }
-    let layout = Layout::new(header.point_count, header.neighbor_slots);
-    let expected = layout.as_ref().map_or(u64::MAX, |layout| layout.total_bytes);
-    match layout {
-        Some(layout) if expected == length => Ok((header, layout)),
-        _ => Err(StoreError::WrongLength { path: path_buf(), expected, actual: length }),
+    let layout =
+        Layout::of_table(header.sections, header.point_count, header.neighbor_slots).ok_or_else(|| {
+            StoreError::Malformed {
+                path: path_buf(),
+                problem: "the section table does not hold the point count's records in order".into(),
+            }
+        })?;
+    if layout.total_bytes != length {
+        return Err(StoreError::WrongLength {
+            path: path_buf(),
+            expected: layout.total_bytes,
+            actual: length,
+        });
     }
+    Ok((header, layout))
 }
 
 /// The patch set of `records` with the header's settings and offset, once the checksum
-/// (`computed` against `stored`), the section table, the settings' codes and every record
+/// (`computed` against `stored`), the header's size, the settings' codes and every record
 /// have been verified.
 fn checked_patches(
     path: &Path,
     header: &Header,
-    layout: &Layout,
     (computed, stored): (u32, &[u8]),
     records: Records,
 ) -> Result<PatchSet, StoreError> {
@@ -317,8 +354,8 @@ fn checked_patches(
     }
     let malformed =
         |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
-    if header.sections != layout.sections || header.header_bytes as usize != HEADER_BYTES {
-        return Err(malformed("the section table does not match the point count"));
+    if header.header_bytes as usize != HEADER_BYTES {
+        return Err(malformed("the header size is not this version's"));
     }
     let settings = header.settings.decode(header.sensor).map_err(malformed)?;
     let Records { aabbs, hot, cold, color_neighbors } = records;
@@ -349,5 +386,18 @@ mod tests {
         assert_eq!(without.sections[3], Section { offset: 432, length: 0 });
         assert_eq!(without.total_bytes, 436);
         assert!(Layout::new(u64::MAX, 0).is_none());
+    }
+
+    #[test]
+    fn room_moves_the_sections_but_not_their_lengths() {
+        let layout = Layout::with_room(3, 5, COLOR_NEIGHBORS as u32).unwrap();
+        assert_eq!(layout.sections[0], Section { offset: 208, length: 72 });
+        assert_eq!(layout.sections[1], Section { offset: 336, length: 96 });
+        assert_eq!(layout.sections[2], Section { offset: 496, length: 36 });
+        assert_eq!(layout.sections[3], Section { offset: 560, length: 144 });
+        assert_eq!(layout.total_bytes, 708, "the last section's room is not kept");
+        assert_eq!(Layout::of_table(layout.sections, 3, COLOR_NEIGHBORS as u32).unwrap().total_bytes, 708);
+        assert!(Layout::of_table(layout.sections, 4, COLOR_NEIGHBORS as u32).is_none());
+        assert!(Layout::with_room(3, u64::MAX, 0).is_none());
     }
 }

@@ -1,20 +1,15 @@
 //! Writing the patch store (`patch_store`'s layout): whole from a `PatchSet`, or section by
 //! section from parts that never sit in memory together (the tiles of a merge).
 
-use std::fs::File;
 use std::io::Write;
-use std::os::unix::fs::FileExt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::DVec3;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS};
-use rayon::prelude::*;
 
-use crate::parallel_checksum;
 use crate::patch_set::PatchSet;
 use crate::patch_store::{
-    FORMAT_VERSION, HEADER_BYTES, Header, Layout, MAGIC, SECTION_ALIGNMENT, SECTION_COUNT, Section,
-    StoreError, StoredSettings,
+    FORMAT_VERSION, HEADER_BYTES, Header, Layout, MAGIC, SECTION_COUNT, StoreError, StoredSettings,
 };
 use crate::prep_settings::PrepSettings;
 
@@ -26,6 +21,9 @@ pub struct StoreSummary {
     /// The union of all patch boxes (`None` for no patches).
     pub bounds: Option<Aabb>,
     pub patches: u64,
+    /// The patches each section has room for (at least `patches`): a writer that knows only
+    /// a bound on the count as it starts leaves room for that many.
+    pub room: u64,
     /// Colour neighbours per patch: 0 or `COLOR_NEIGHBORS`.
     pub neighbor_slots: u32,
 }
@@ -59,75 +57,7 @@ pub fn write_sections(
         .map_err(|error| store_error(path, error))
 }
 
-/// Writes a store of `summary`'s patches to `path` atomically from the files `sections` that
-/// hold its sections (0: boxes, 1: hot, 2: cold, 3: colour neighbours), copied and
-/// checksummed a piece per thread at a time; `neighbor` turns each colour neighbour as its
-/// file holds it into the store's.
-pub fn write_section_files(
-    path: &Path,
-    summary: &StoreSummary,
-    sections: &[PathBuf; SECTION_COUNT],
-    neighbor: impl Fn(u32) -> u32 + Sync,
-) -> Result<(), StoreError> {
-    let layout = Layout::new(summary.patches, summary.neighbor_slots)
-        .ok_or_else(|| StoreError::Io { path: path.to_path_buf(), source: overflow() })?;
-    pointray_io::write_atomically(path, |writer| {
-        let header = header_for(summary, &layout);
-        writer.write_all(bytemuck::bytes_of(&header))?;
-        writer.flush()?;
-        let store = writer.get_ref();
-        let mut hasher = crc32fast::Hasher::new();
-        hasher.update(bytemuck::bytes_of(&header));
-        let mut position = HEADER_BYTES as u64;
-        for (index, (section, source)) in layout.sections.iter().zip(sections).enumerate() {
-            // The padding is never written: the file reads zeros there.
-            hasher.update(&[0u8; SECTION_ALIGNMENT][..(section.offset - position) as usize]);
-            let source = File::open(source)?;
-            let found = source.metadata()?.len();
-            if found != section.length {
-                return Err(wrong_length(index, found, section.length));
-            }
-            let words = (index == NEIGHBOR_SECTION).then_some(&neighbor as &(dyn Fn(u32) -> u32 + Sync));
-            let pieces = (0..section.length.div_ceil(COPY_PIECE_BYTES))
-                .into_par_iter()
-                .map(|piece| copy_piece(&source, (store, section), piece, words))
-                .collect::<std::io::Result<Vec<_>>>()?;
-            pieces.iter().for_each(|piece| hasher.combine(piece));
-            position = section.offset + section.length;
-        }
-        store.write_all_at(&hasher.finalize().to_le_bytes(), position)
-    })
-    .map_err(|error| store_error(path, error))
-}
-
-/// The section of colour neighbours, whose words name patches.
-const NEIGHBOR_SECTION: usize = 3;
-
-/// Bytes of a section copied at a time by one thread (a multiple of every record's size).
-const COPY_PIECE_BYTES: u64 = 1 << 20;
-
-/// Copies piece `piece` of `section` from `source` into `store`, its words mapped through
-/// `words` when given, and returns the piece's checksum.
-fn copy_piece(
-    source: &File,
-    (store, section): (&File, &Section),
-    piece: u64,
-    words: Option<&(dyn Fn(u32) -> u32 + Sync)>,
-) -> std::io::Result<crc32fast::Hasher> {
-    let start = piece * COPY_PIECE_BYTES;
-    let mut bytes = vec![0u8; (COPY_PIECE_BYTES.min(section.length - start)) as usize];
-    source.read_exact_at(&mut bytes, start)?;
-    if let Some(map) = words {
-        for word in bytes.chunks_exact_mut(4) {
-            let mapped = map(u32::from_le_bytes([word[0], word[1], word[2], word[3]]));
-            word.copy_from_slice(&mapped.to_le_bytes());
-        }
-    }
-    store.write_all_at(&bytes, section.offset + start)?;
-    Ok(parallel_checksum::piece_hasher(&bytes))
-}
-
-fn store_error(path: &Path, error: pointray_io::IoError) -> StoreError {
+pub(crate) fn store_error(path: &Path, error: pointray_io::IoError) -> StoreError {
     match error {
         pointray_io::IoError::Os { path, source } => StoreError::Io { path, source },
         other => {
@@ -152,6 +82,7 @@ fn summary_of(patches: &PatchSet, path: &Path) -> Result<StoreSummary, StoreErro
         offset: patches.offset,
         bounds: patches.bounds(),
         patches: patches.len() as u64,
+        room: patches.len() as u64,
         neighbor_slots,
     })
 }
@@ -189,12 +120,12 @@ fn write_contents(
     fill: &mut impl FnMut(usize, &mut SectionSink) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let mut writer = ChecksummedWriter::new(file);
-    let layout = Layout::new(summary.patches, summary.neighbor_slots).ok_or_else(overflow)?;
+    let layout =
+        Layout::with_room(summary.patches, summary.room, summary.neighbor_slots).ok_or_else(overflow)?;
     writer.write_all(bytemuck::bytes_of(&header_for(summary, &layout)))?;
     let mut position = HEADER_BYTES as u64;
     for (index, section) in layout.sections.iter().enumerate().take(SECTION_COUNT) {
-        let padding = [0u8; SECTION_ALIGNMENT];
-        writer.write_all(&padding[..(section.offset - position) as usize])?;
+        writer.write_zeros(section.offset - position)?;
         let mut written = 0u64;
         fill(index, &mut |bytes: &[u8]| {
             written += bytes.len() as u64;
@@ -209,7 +140,7 @@ fn write_contents(
     writer.inner.write_all(&checksum.to_le_bytes())
 }
 
-fn header_for(summary: &StoreSummary, layout: &Layout) -> Header {
+pub(crate) fn header_for(summary: &StoreSummary, layout: &Layout) -> Header {
     let bounds = summary.bounds.unwrap_or_default();
     Header {
         magic: MAGIC,
@@ -240,5 +171,17 @@ impl<W: Write> ChecksummedWriter<W> {
     fn write_all(&mut self, bytes: &[u8]) -> std::io::Result<()> {
         self.hasher.update(bytes);
         self.inner.write_all(bytes)
+    }
+
+    /// Writes the zeros of the room between sections.
+    fn write_zeros(&mut self, count: u64) -> std::io::Result<()> {
+        let zeros = [0u8; 1 << 16];
+        let mut left = count;
+        while left > 0 {
+            let piece = left.min(zeros.len() as u64) as usize;
+            self.write_all(&zeros[..piece])?;
+            left -= piece as u64;
+        }
+        Ok(())
     }
 }

@@ -32,7 +32,7 @@ pub fn prep_streamed(
     let plan = StreamPlan::new(stream, settings, (count, memory), scratch.path(), progress)?;
     progress.stage_started(Stage::PrepTiles, plan.points());
     let started = std::time::Instant::now();
-    let mut spool = TileSpool::new(scratch.path(), plan.points(), (*settings, plan.frame.offset))?;
+    let mut spool = TileSpool::new(output, plan.points(), (*settings, plan.frame.offset))?;
     let mut pending: VecDeque<Range<u64>> = plan.tile_ranges().iter().cloned().collect();
     let gather = |range: Range<u64>| plan.gather_range(settings, range.clone()).map(|g| (range, g));
     let mut next = pending.pop_front().map(gather).transpose()?;
@@ -61,7 +61,7 @@ pub fn prep_streamed(
         }
     }
     progress.stage_finished(Stage::PrepTiles, started.elapsed());
-    spool.write_store(output, progress)
+    spool.write_store(progress)
 }
 
 /// Preps tile `index` of `count` of `stream` within `memory` and writes it alone to the

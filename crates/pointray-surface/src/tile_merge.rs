@@ -132,6 +132,7 @@ fn survey_tiles(
             offset: set.offset,
             bounds: None,
             patches: 0,
+            room: header.input_points,
             neighbor_slots: header.neighbor_slots,
         });
         if set.settings != total.settings || set.offset != total.offset {

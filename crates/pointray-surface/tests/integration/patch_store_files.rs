@@ -110,18 +110,12 @@ fn a_neighbour_list_of_the_wrong_length_is_not_written() {
 
 #[test]
 fn a_neighbour_beyond_the_patches_is_malformed() {
-    let directory = tempfile::tempdir().unwrap();
-    let patches = sample_patches(BoxKind::Cube);
-    let path = written(directory.path(), &patches);
-    let mut bytes = std::fs::read(&path).unwrap();
-    // The last neighbour entry sits just before the checksum; point it past the end and
-    // re-seal the file so that only the range check can catch it.
-    let last = bytes.len() - 8;
-    bytes[last..last + 4].copy_from_slice(&3000u32.to_le_bytes());
-    let body = bytes.len() - 4;
-    let checksum = crc32fast::hash(&bytes[..body]);
-    bytes[body..].copy_from_slice(&checksum.to_le_bytes());
-    std::fs::write(&path, bytes).unwrap();
+    // The last neighbour entry sits just before the checksum; point it past the end so that
+    // only the range check can catch it.
+    let (path, _, _dir) = resealed_store(|bytes| {
+        let last = bytes.len() - 8;
+        bytes[last..last + 4].copy_from_slice(&3000u32.to_le_bytes());
+    });
     let error = patch_store::read(&path).unwrap_err();
     assert!(matches!(error, StoreError::Malformed { .. }), "{error:?}");
     assert!(
@@ -174,8 +168,58 @@ fn another_version_is_refused_by_name() {
     let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&5u32.to_le_bytes()));
     assert!(matches!(error, StoreError::WrongVersion { found: 5, .. }), "{error:?}");
     let message = error.to_string();
-    assert!(message.contains("version 5, this build reads version 6: re-run `pointray prep`"), "{message}");
+    assert!(
+        message.contains("version 5, this build reads versions 6 and 7: re-run `pointray prep`"),
+        "{message}"
+    );
     assert!(message.contains(&path.display().to_string()), "{message}");
+}
+
+/// A store of the sample patches changed by `change` and given the checksum of its new bytes,
+/// so that only the other checks can refuse it.
+fn resealed_store(change: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, PatchSet, tempfile::TempDir) {
+    let directory = tempfile::tempdir().unwrap();
+    let patches = sample_patches(BoxKind::Cube);
+    let path = written(directory.path(), &patches);
+    let mut bytes = std::fs::read(&path).unwrap();
+    change(&mut bytes);
+    resealed(&mut bytes);
+    std::fs::write(&path, bytes).unwrap();
+    (path, patches, directory)
+}
+
+/// `bytes` with their checksum recomputed.
+fn resealed(bytes: &mut [u8]) {
+    let body = bytes.len() - 4;
+    let checksum = crc32fast::hash(&bytes[..body]);
+    bytes[body..].copy_from_slice(&checksum.to_le_bytes());
+}
+
+#[test]
+fn version_6_stores_still_read() {
+    let (path, patches, _dir) = resealed_store(|bytes| bytes[8..12].copy_from_slice(&6u32.to_le_bytes()));
+    assert_eq!(patch_store::read(&path).unwrap(), patches);
+}
+
+#[test]
+fn section_tables_out_of_order_or_misaligned_are_malformed() {
+    // The table's entries: (offset, length) at 72 + 16 i.
+    let entry =
+        |bytes: &[u8], i: usize| u64::from_le_bytes(bytes[72 + 16 * i..80 + 16 * i].try_into().unwrap());
+    let damages: [fn(&mut Vec<u8>, u64, u64); 3] = [
+        |bytes, boxes, _| bytes[88..96].copy_from_slice(&boxes.to_le_bytes()), // hot over the boxes
+        |bytes, _, hot| bytes[88..96].copy_from_slice(&(hot + 4).to_le_bytes()), // misaligned
+        |bytes, _, _| bytes[80..88].copy_from_slice(&7u64.to_le_bytes()),      // boxes cut short
+    ];
+    for damage in damages {
+        let (_, error, _dir) = damaged(|bytes| {
+            let (boxes, hot) = (entry(bytes, 0), entry(bytes, 1));
+            damage(bytes, boxes, hot);
+            resealed(bytes);
+        });
+        assert!(matches!(error, StoreError::Malformed { .. }), "{error:?}");
+        assert!(error.to_string().contains("section table"), "{error}");
+    }
 }
 
 #[test]

@@ -1,6 +1,7 @@
-//! Prep from a cloud read in chunks and sorted out of core writes the store that the
-//! in-memory tiled prep writes, byte for byte, whether one process preps every tile or each
-//! tile is prepped alone and the tile files merged; budgets too small are refused.
+//! Prep from a cloud read in chunks and sorted out of core writes the patches that the
+//! in-memory tiled prep writes, and the same store, byte for byte, whether one process preps
+//! every tile or each tile is prepped alone and the tile files merged; budgets too small are
+//! refused.
 
 use std::path::{Path, PathBuf};
 
@@ -22,6 +23,22 @@ const PLENTY: MemoryBudget = MemoryBudget { bytes: 4 << 30 };
 /// The sheet as a PLY file, and its settings.
 fn sheet_file(dir: &Path) -> (PathBuf, PrepSettings) {
     let (cloud, settings) = coloured_sheet();
+    cloud_file(dir, cloud, settings)
+}
+
+/// The sheet with every 50th point given twice, so that prep merges points and the store
+/// holds fewer patches than the input's points.
+fn sheet_with_duplicates_file(dir: &Path) -> (PathBuf, PrepSettings) {
+    let (mut cloud, settings) = coloured_sheet();
+    let colors = cloud.colors.as_mut().expect("a coloured sheet");
+    for i in (0..cloud.positions.len()).step_by(50) {
+        cloud.positions.push(cloud.positions[i]);
+        colors.push(colors[i]);
+    }
+    cloud_file(dir, cloud, settings)
+}
+
+fn cloud_file(dir: &Path, cloud: pointray_io::PointCloud, settings: PrepSettings) -> (PathBuf, PrepSettings) {
     let path = dir.join("sheet.ply");
     write_point_cloud(&path, &cloud).unwrap();
     (path, settings)
@@ -54,9 +71,23 @@ fn streamed_tiles_write_the_in_memory_tiled_store() {
 }
 
 #[test]
+fn streamed_tiles_that_merge_points_write_the_in_memory_tiled_patches() {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, settings) = sheet_with_duplicates_file(dir.path());
+    let cloud = read_point_cloud(&path).unwrap();
+    let in_memory = prep_tiled(&cloud, &settings, 8, &NoProgress).unwrap();
+    assert!(in_memory.len() < cloud.len(), "duplicates merged: {} patches", in_memory.len());
+    let streamed = dir.path().join("streamed.patches");
+    prep_streamed(&mut open(&path), &settings, (TileCount::Exactly(8), PLENTY), &streamed, &NoProgress)
+        .unwrap();
+    assert_eq!(patch_store::read(&streamed).unwrap(), in_memory);
+    assert_no_scratch(dir.path(), 2);
+}
+
+#[test]
 fn tiles_prepped_alone_merge_into_the_single_process_store() {
     let dir = tempfile::tempdir().unwrap();
-    let (path, settings) = sheet_file(dir.path());
+    let (path, settings) = sheet_with_duplicates_file(dir.path());
     let whole = dir.path().join("whole.patches");
     prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(4), PLENTY), &whole, &NoProgress).unwrap();
     let tiles: Vec<PathBuf> = (0..4).rev().map(|i| dir.path().join(format!("tile{i}.tile"))).collect();
