@@ -1,5 +1,6 @@
 //! How prep in bounded memory shares its budget: the reads, the sorted runs, one tile with
-//! its halo at a time, and the map from points to patches that the store's writing keeps.
+//! its halo at a time (while the tile before it is written), and the map from points to
+//! patches that the store's writing keeps.
 
 use pointray_io::MemoryBudget;
 
@@ -28,6 +29,11 @@ const TILE_CLOUD_BYTES: u64 = 24 + 4;
 /// attributes), and while its halo is found, its points in f32 (12 bytes) with their reach
 /// (4).
 const NEXT_TILE_BYTES: u64 = TILE_CLOUD_BYTES + 12 + 4;
+
+/// While a tile is prepped, the patches of the tile before it are written to the store: for
+/// each point it owns, at most its box, hot and cold records (68 bytes), its colour
+/// neighbours (48) and its input index (4).
+const WRITTEN_PATCH_BYTES: u64 = 68 + 48 + 4;
 
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StreamBudget {
@@ -62,14 +68,16 @@ impl StreamBudget {
         (self.usable / 3).max(1 << 20) as usize
     }
 
-    /// The most points a tile's prep may hold, its halo included.
+    /// The most points a tile's prep may hold, its halo included, beside the patches of a
+    /// tile of `core_capacity` points being written.
     pub(crate) fn tile_capacity(&self, settings: &PrepSettings) -> u64 {
-        self.usable / self.tile_bytes_per_point(settings)
+        let written = self.core_capacity(settings) * WRITTEN_PATCH_BYTES;
+        self.usable.saturating_sub(written) / self.tile_bytes_per_point(settings)
     }
 
     /// The most points a tile may own.
     pub(crate) fn core_capacity(&self, settings: &PrepSettings) -> u64 {
-        self.tile_capacity(settings) / CORE_SHARE
+        self.usable / (CORE_SHARE * self.tile_bytes_per_point(settings) + WRITTEN_PATCH_BYTES)
     }
 
     /// Points near a tile tested for its halo at a time (with their tree, about 64 bytes
@@ -92,7 +100,7 @@ impl StreamBudget {
     /// The smallest memory budget whose tiles hold `MIN_TILE_POINTS` points of their own
     /// (`core_capacity`) beside the map from `points` input points to their patches.
     pub(crate) fn memory_for_smallest_tile(&self, settings: &PrepSettings, points: u64) -> u64 {
-        MIN_TILE_POINTS * CORE_SHARE * self.tile_bytes_per_point(settings)
+        MIN_TILE_POINTS * (CORE_SHARE * self.tile_bytes_per_point(settings) + WRITTEN_PATCH_BYTES)
             + points.saturating_mul(PATCH_MAP_BYTES)
             + PREP_FIXED_BYTES
     }

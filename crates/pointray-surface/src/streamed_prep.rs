@@ -18,6 +18,7 @@ use crate::streamed_tiles::{Gathered, StreamPlan, TileCount};
 use crate::tile_file::write_tile_file;
 use crate::tile_merge::MergeSummary;
 use crate::tile_spool::TileSpool;
+use crate::tiled_prep::TilePatches;
 
 /// Preps the whole of `stream` within `memory` and writes the store `output`. A tile whose
 /// halo would not fit is split in two (jobs of a fixed cut refuse instead).
@@ -36,16 +37,24 @@ pub fn prep_streamed(
     let mut pending: VecDeque<Range<u64>> = plan.tile_ranges().iter().cloned().collect();
     let gather = |range: Range<u64>| plan.gather_range(settings, range.clone()).map(|g| (range, g));
     let mut next = pending.pop_front().map(gather).transpose()?;
+    // The patches of the last tile prepped, written to the store while the next is prepped.
+    let mut written: Option<TilePatches> = None;
     while let Some((range, gathered)) = next.take() {
         match gathered {
-            // The next tile is gathered while this one is prepped: gathering waits on the
-            // scratch file and leaves cores idle that prep can use, and the reverse.
+            // Prepping one tile, gathering the next and writing the one before each wait on
+            // different things (the cores, the scratch file, the disk), so they overlap.
             Gathered::Tile(tile) => {
-                let (prepped, following) = rayon::join(
-                    || plan.prep_gathered(settings, *tile).and_then(|tile| spool.push(tile)),
+                let ((prepped, wrote), following) = rayon::join(
+                    || {
+                        rayon::join(
+                            || plan.prep_gathered(settings, *tile),
+                            || written.take().map_or(Ok(()), |tile| spool.push(tile)),
+                        )
+                    },
                     || pending.pop_front().map(gather).transpose(),
                 );
-                prepped?;
+                wrote?;
+                written = Some(prepped?);
                 progress.advanced(range.end - range.start);
                 next = following?;
             }
@@ -59,6 +68,9 @@ pub fn prep_streamed(
                 return Err(plan.over_budget(&format!("the tile of points {range:?}"), points, settings));
             }
         }
+    }
+    if let Some(tile) = written {
+        spool.push(tile)?;
     }
     progress.stage_finished(Stage::PrepTiles, started.elapsed());
     spool.write_store(progress)
