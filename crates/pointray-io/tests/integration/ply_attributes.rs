@@ -132,9 +132,14 @@ fn the_scanner_layout_reads_right() {
 /// A binary cloud of `count` points (x, y, z, intensity as floats), point `i` at (i, 0, 0)
 /// with intensity 150, but for the `changed` points.
 fn binary_cloud(count: usize, changed: &[(usize, [f32; 4])]) -> Vec<u8> {
+    binary_cloud_with(count, "intensity", changed)
+}
+
+/// A binary cloud of `count` points whose fourth float is the property `fourth`.
+fn binary_cloud_with(count: usize, fourth: &str, changed: &[(usize, [f32; 4])]) -> Vec<u8> {
     let header = format!(
         "ply\nformat binary_little_endian 1.0\nelement vertex {count}\nproperty float x\n\
-         property float y\nproperty float z\nproperty float intensity\nend_header\n"
+         property float y\nproperty float z\nproperty float {fourth}\nend_header\n"
     );
     let mut rows: Vec<[f32; 4]> = (0..count).map(|i| [i as f32, 0.0, 0.0, 150.0]).collect();
     for &(i, row) in changed {
@@ -160,4 +165,21 @@ fn a_binary_cloud_read_whole_in_chunks_is_scaled_and_checked_as_one() {
     let error = ply::read_point_cloud(&path).unwrap_err().to_string();
     assert!(error.contains(&format!("point {} has a non-finite coordinate", last - 2)), "{error}");
     assert!(error.contains("nan.ply"), "{error}");
+}
+
+#[test]
+fn a_binary_cloud_of_positions_alone_is_read_in_chunks_and_checked() {
+    // Positions are decoded alone, past a property no attribute takes.
+    let count = (1 << 20) + 5;
+    let last = count - 1;
+    let (_dir, path) = fixture("plain.ply", &binary_cloud_with(count, "unused", &[]));
+    let cloud = ply::read_point_cloud(&path).unwrap();
+    assert_eq!((cloud.len(), cloud.intensities), (count, None));
+    assert_eq!(cloud.positions[last], DVec3::new(last as f64, 0.0, 0.0));
+
+    let nan = [(last - 2, [0.0, f32::INFINITY, 0.0, 1.0])];
+    let (_dir, path) = fixture("inf.ply", &binary_cloud_with(count, "unused", &nan));
+    let error = ply::read_point_cloud(&path).unwrap_err().to_string();
+    assert!(error.contains(&format!("point {} has a non-finite coordinate", last - 2)), "{error}");
+    assert!(error.contains("inf.ply"), "{error}");
 }

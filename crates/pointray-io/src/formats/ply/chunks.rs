@@ -4,6 +4,7 @@
 //! vertices cannot be reached without parsing (ascii, a list property, an element before the
 //! vertices) are not chunked.
 
+use glam::DVec3;
 use rayon::prelude::*;
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
@@ -13,7 +14,8 @@ use ply_rs_bw::ply::{Encoding, PropertyType, ScalarType};
 
 use super::reader::{CheckedHeader, minimum_size, read_checked_header};
 use super::vertex::{
-    Field, VertexLayout, VertexRecord, intensity_divisor, into_point_cloud_from, largest_intensity,
+    Field, VertexLayout, VertexRecord, checked_positions, intensity_divisor, into_point_cloud_from,
+    largest_intensity, renumbered,
 };
 use crate::{AttributeBytes, IoError, PointCloud};
 
@@ -143,12 +145,20 @@ impl PlyChunks {
         }
         let mut bytes = vec![0u8; count * self.record_bytes];
         self.reader.read_exact(&mut bytes).map_err(|e| IoError::os(&self.path, e))?;
-        let records: Vec<VertexRecord> =
-            bytes.par_chunks_exact(self.record_bytes).map(|r| self.decode(r)).collect();
-        drop(bytes);
         let first = self.read;
         self.read += count as u64;
         let unit = self.layout.intensity_unit;
+        let malformed = |problem| IoError::malformed(&self.path, renumbered(problem, first));
+        if (survey && unit.is_none()) || self.attributes() == AttributeBytes::default() {
+            // Positions alone, without whole records that would only be dropped.
+            let positions = bytes.par_chunks_exact(self.record_bytes).map(|r| self.position(r)).collect();
+            return checked_positions(positions)
+                .map(|p| Some(PointCloud::from_positions(p)))
+                .map_err(malformed);
+        }
+        let records: Vec<VertexRecord> =
+            bytes.par_chunks_exact(self.record_bytes).map(|r| self.record(r)).collect();
+        drop(bytes);
         let mut layout = self.layout.clone();
         if survey {
             if let Some(unit) = unit {
@@ -161,16 +171,31 @@ impl PlyChunks {
             .map_err(|problem| IoError::malformed(&self.path, problem))
     }
 
-    fn decode(&self, mut bytes: &[u8]) -> VertexRecord {
+    fn record(&self, bytes: &[u8]) -> VertexRecord {
         let mut record = VertexRecord::default();
+        self.decode(bytes, |field, value| *record.slot(field) = value);
+        record
+    }
+
+    fn position(&self, bytes: &[u8]) -> DVec3 {
+        let mut position = DVec3::ZERO;
+        self.decode(bytes, |field, value| {
+            if let Field::Position(axis) = field {
+                position[axis] = value;
+            }
+        });
+        position
+    }
+
+    /// Hands each value of a record's `bytes` that fills a field to `set`.
+    fn decode(&self, mut bytes: &[u8], mut set: impl FnMut(Field, f64)) {
         for (scalar, size, field) in &self.properties {
             let (value, rest) = bytes.split_at(*size);
             bytes = rest;
             if let Some(field) = field {
-                *record.slot(*field) = scalar_from(scalar, value, self.big_endian);
+                set(*field, scalar_from(scalar, value, self.big_endian));
             }
         }
-        record
     }
 }
 

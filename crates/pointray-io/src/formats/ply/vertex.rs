@@ -297,7 +297,12 @@ fn sensor_origins(records: &[VertexRecord]) -> Result<Vec<DVec3>, String> {
 
 /// The positions in file order; an error names the first point with a NaN or infinite coordinate.
 pub(super) fn positions(records: &[VertexRecord]) -> Result<Vec<DVec3>, String> {
-    let positions: Vec<DVec3> = records.par_iter().map(|record| DVec3::from(record.position)).collect();
+    checked_positions(records.par_iter().map(|record| DVec3::from(record.position)).collect())
+}
+
+/// `positions`, unless one has a NaN or infinite coordinate: then an error that names the
+/// first such point.
+pub(super) fn checked_positions(positions: Vec<DVec3>) -> Result<Vec<DVec3>, String> {
     match positions.par_iter().position_first(|position| !position.is_finite()) {
         Some(index) => Err(format!("point {index} has a non-finite coordinate {}", positions[index])),
         None => Ok(positions),
@@ -309,7 +314,7 @@ fn to_byte(unit_channel: f64) -> u8 {
 }
 
 /// Errors name points by their index in the chunk; this makes it the file's.
-fn renumbered(problem: String, first: u64) -> String {
+pub(super) fn renumbered(problem: String, first: u64) -> String {
     match problem.strip_prefix("point ").and_then(|rest| rest.split_once(' ')) {
         Some((index, rest)) if first > 0 => match index.parse::<u64>() {
             Ok(index) => format!("point {} {rest}", first + index),
