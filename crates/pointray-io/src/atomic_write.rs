@@ -66,7 +66,10 @@ impl AtomicFile {
         #[cfg(target_os = "linux")]
         {
             use std::os::fd::AsRawFd;
-            let (Ok(offset), Ok(length)) = (i64::try_from(offset), i64::try_from(length)) else { return };
+            // A length of 0 would mean the whole rest of the file.
+            let (Ok(offset), Ok(length @ 1..)) = (i64::try_from(offset), i64::try_from(length)) else {
+                return;
+            };
             // SAFETY: the descriptor is this file's own, open for as long as `self`. The
             // result is ignored: the call only hastens what `commit`'s sync does anyway.
             unsafe {

@@ -295,8 +295,8 @@ struct Records {
     color_neighbors: PatchRecords<u32>,
 }
 
-/// The header and the layout it implies, once magic, version, colour neighbours and the
-/// length of the file's `bytes` have been verified.
+/// The header and the layout its section table gives, once magic, version, colour
+/// neighbours, the section table and the length of the file's `bytes` have been verified.
 fn checked_header(path: &Path, bytes: &[u8]) -> Result<(Header, Layout), StoreError> {
     let length = bytes.len() as u64;
     let path_buf = || path.to_path_buf();
@@ -330,6 +330,13 @@ fn checked_header(path: &Path, bytes: &[u8]) -> Result<(Header, Layout), StoreEr
                 problem: "the section table does not hold the point count's records in order".into(),
             }
         })?;
+    let back_to_back = Layout::new(header.point_count, header.neighbor_slots).map(|exact| exact.sections);
+    if found < FORMAT_VERSION && back_to_back != Some(layout.sections) {
+        return Err(StoreError::Malformed {
+            path: path_buf(),
+            problem: format!("a version {found} store leaves no room between its sections"),
+        });
+    }
     if layout.total_bytes != length {
         return Err(StoreError::WrongLength {
             path: path_buf(),

@@ -20,8 +20,9 @@ use crate::patch_store_write::{StoreSummary, header_for, store_error};
 /// The section of colour neighbours, which name input points until the store is finished.
 const NEIGHBOR_SECTION: usize = 3;
 
-/// Bytes written or mapped at a time by one thread (a multiple of every record's size).
-const PIECE_BYTES: usize = 8 << 20;
+/// Bytes written or mapped at a time by one thread: a multiple of a colour neighbour's 4, and
+/// small, since every thread maps a piece in a buffer of its own.
+const PIECE_BYTES: usize = 1 << 20;
 
 pub(crate) struct StoreInPlace {
     output: AtomicFile,
@@ -37,8 +38,10 @@ pub(crate) struct StoreInPlace {
 impl StoreInPlace {
     /// A store to become `path`, with room for `room` patches.
     pub(crate) fn create(path: &Path, room: u64) -> Result<Self, StoreError> {
-        let overflow =
-            || StoreError::Io { path: path.to_path_buf(), source: std::io::Error::other("too many patches") };
+        let overflow = || StoreError::InconsistentPatchSet {
+            path: path.to_path_buf(),
+            problem: format!("room for {room} patches overflows a file's length"),
+        };
         let layout = Layout::with_room(0, room, 0).ok_or_else(overflow)?;
         let output = AtomicFile::create(path).map_err(|e| store_error(path, e))?;
         let starts = layout.sections.map(|section| section.offset);
@@ -50,11 +53,8 @@ impl StoreInPlace {
     pub(crate) fn append(&mut self, set: &PatchSet) -> Result<(), StoreError> {
         let count = set.len() as u64;
         if self.patches + count > self.room {
-            return Err(self.io_error(std::io::Error::other(format!(
-                "{} patches overflow the room for {}",
-                self.patches + count,
-                self.room
-            ))));
+            let problem = format!("{} patches overflow the room for {}", self.patches + count, self.room);
+            return Err(self.inconsistent(problem));
         }
         let sections: [&[u8]; SECTION_COUNT] = [
             bytemuck::cast_slice(&set.aabbs),
@@ -92,9 +92,7 @@ impl StoreInPlace {
     ) -> Result<(), StoreError> {
         let layout = Layout::with_room(self.patches, self.room, summary.neighbor_slots)
             .filter(|_| summary.patches == self.patches && summary.room == self.room)
-            .ok_or_else(|| {
-                self.io_error(std::io::Error::other("the summary is not of the patches written"))
-            })?;
+            .ok_or_else(|| self.inconsistent("the summary is not of the patches written".into()))?;
         let neighbors = self.map_neighbors(layout.sections[NEIGHBOR_SECTION].length, &neighbor)?;
         let header = header_for(summary, &layout);
         let mut checksum = piece_hasher(bytemuck::bytes_of(&header));
@@ -154,5 +152,9 @@ impl StoreInPlace {
 
     fn io_error(&self, source: std::io::Error) -> StoreError {
         StoreError::Io { path: self.output.target().to_path_buf(), source }
+    }
+
+    fn inconsistent(&self, problem: String) -> StoreError {
+        StoreError::InconsistentPatchSet { path: self.output.target().to_path_buf(), problem }
     }
 }

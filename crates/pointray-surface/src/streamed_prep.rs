@@ -41,8 +41,9 @@ pub fn prep_streamed(
     let mut written: Option<TilePatches> = None;
     while let Some((range, gathered)) = next.take() {
         match gathered {
-            // Prepping one tile, gathering the next and writing the one before each wait on
-            // different things (the cores, the scratch file, the disk), so they overlap.
+            // Prepping one tile, gathering the next and writing the one before overlap: the
+            // gathering reads the scratch file and the writing hands pages to the disk, each
+            // leaving cores idle that the prep can use.
             Gathered::Tile(tile) => {
                 let ((prepped, wrote), following) = rayon::join(
                     || {

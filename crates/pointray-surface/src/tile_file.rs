@@ -97,6 +97,11 @@ pub fn read_tile_file(path: &Path) -> Result<(TileHeader, TilePatches), StreamEr
     if patches.len() != n || !patches.color_neighbors.is_empty() {
         return Err(bad(path, "its patches do not match its header's count"));
     }
+    // `read_tile_section` reads the sections where a store without room puts them.
+    let back_to_back = patch_store::Layout::new(n as u64, 0).map(|layout| layout.total_bytes);
+    if back_to_back != Some((body.len() - store_start) as u64) {
+        return Err(bad(path, "its store leaves room between its sections"));
+    }
     let table = |start: usize, len: usize| bytemuck::pod_collect_to_vec::<u8, u32>(&body[start..start + len]);
     let sources = table(HEADER_BYTES, 4 * n);
     patches.color_neighbors = table(HEADER_BYTES + 4 * n, 4 * m * n).into();

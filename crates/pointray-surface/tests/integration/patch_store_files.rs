@@ -201,6 +201,31 @@ fn version_6_stores_still_read() {
     assert_eq!(patch_store::read(&path).unwrap(), patches);
 }
 
+/// `bytes` with `room` zero bytes between the boxes and the hot records, the later
+/// sections' offsets moved by as much.
+fn with_room(bytes: &mut Vec<u8>, room: usize) {
+    let entry =
+        |bytes: &[u8], i: usize| u64::from_le_bytes(bytes[72 + 16 * i..80 + 16 * i].try_into().unwrap());
+    let hot = entry(bytes, 1) as usize;
+    bytes.splice(hot..hot, std::iter::repeat_n(0u8, room));
+    for i in 1..4 {
+        let moved = entry(bytes, i) + room as u64;
+        bytes[72 + 16 * i..80 + 16 * i].copy_from_slice(&moved.to_le_bytes());
+    }
+}
+
+#[test]
+fn room_between_sections_is_read_in_version_7_only() {
+    let (path, patches, _dir) = resealed_store(|bytes| with_room(bytes, 4096));
+    assert_eq!(patch_store::read(&path).unwrap(), patches);
+    let (_, error, _dir) = damaged(|bytes| {
+        bytes[8..12].copy_from_slice(&6u32.to_le_bytes());
+        with_room(bytes, 16);
+        resealed(bytes);
+    });
+    assert!(error.to_string().contains("a version 6 store leaves no room between its sections"), "{error}");
+}
+
 #[test]
 fn section_tables_out_of_order_or_misaligned_are_malformed() {
     // The table's entries: (offset, length) at 72 + 16 i.

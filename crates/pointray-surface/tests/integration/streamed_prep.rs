@@ -26,14 +26,17 @@ fn sheet_file(dir: &Path) -> (PathBuf, PrepSettings) {
     cloud_file(dir, cloud, settings)
 }
 
-/// The sheet with every 50th point given twice, so that prep merges points and the store
-/// holds fewer patches than the input's points.
-fn sheet_with_duplicates_file(dir: &Path) -> (PathBuf, PrepSettings) {
+/// The sheet (without its colours unless `coloured`) with every 50th point given twice, so
+/// that prep merges points and the store holds fewer patches than the input's points.
+fn sheet_with_duplicates_file(dir: &Path, coloured: bool) -> (PathBuf, PrepSettings) {
     let (mut cloud, settings) = coloured_sheet();
     let colors = cloud.colors.as_mut().expect("a coloured sheet");
     for i in (0..cloud.positions.len()).step_by(50) {
         cloud.positions.push(cloud.positions[i]);
         colors.push(colors[i]);
+    }
+    if !coloured {
+        cloud.colors = None;
     }
     cloud_file(dir, cloud, settings)
 }
@@ -72,22 +75,25 @@ fn streamed_tiles_write_the_in_memory_tiled_store() {
 
 #[test]
 fn streamed_tiles_that_merge_points_write_the_in_memory_tiled_patches() {
-    let dir = tempfile::tempdir().unwrap();
-    let (path, settings) = sheet_with_duplicates_file(dir.path());
-    let cloud = read_point_cloud(&path).unwrap();
-    let in_memory = prep_tiled(&cloud, &settings, 8, &NoProgress).unwrap();
-    assert!(in_memory.len() < cloud.len(), "duplicates merged: {} patches", in_memory.len());
-    let streamed = dir.path().join("streamed.patches");
-    prep_streamed(&mut open(&path), &settings, (TileCount::Exactly(8), PLENTY), &streamed, &NoProgress)
-        .unwrap();
-    assert_eq!(patch_store::read(&streamed).unwrap(), in_memory);
-    assert_no_scratch(dir.path(), 2);
+    for coloured in [true, false] {
+        let dir = tempfile::tempdir().unwrap();
+        let (path, settings) = sheet_with_duplicates_file(dir.path(), coloured);
+        let cloud = read_point_cloud(&path).unwrap();
+        let in_memory = prep_tiled(&cloud, &settings, 8, &NoProgress).unwrap();
+        assert!(in_memory.len() < cloud.len(), "duplicates merged: {} patches", in_memory.len());
+        assert_eq!(in_memory.color_neighbors.is_empty(), !coloured);
+        let streamed = dir.path().join("streamed.patches");
+        let cut = (TileCount::Exactly(8), PLENTY);
+        prep_streamed(&mut open(&path), &settings, cut, &streamed, &NoProgress).unwrap();
+        assert_eq!(patch_store::read(&streamed).unwrap(), in_memory);
+        assert_no_scratch(dir.path(), 2);
+    }
 }
 
 #[test]
 fn tiles_prepped_alone_merge_into_the_single_process_store() {
     let dir = tempfile::tempdir().unwrap();
-    let (path, settings) = sheet_with_duplicates_file(dir.path());
+    let (path, settings) = sheet_with_duplicates_file(dir.path(), true);
     let whole = dir.path().join("whole.patches");
     prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(4), PLENTY), &whole, &NoProgress).unwrap();
     let tiles: Vec<PathBuf> = (0..4).rev().map(|i| dir.path().join(format!("tile{i}.tile"))).collect();
