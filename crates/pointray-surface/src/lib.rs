@@ -22,6 +22,7 @@ pub mod outlier_removal;
 mod parallel_checksum;
 pub mod patch_bounds;
 mod patch_checks;
+mod patch_map;
 pub mod patch_records;
 pub mod patch_set;
 pub mod patch_store;

@@ -28,6 +28,17 @@ pub struct StoreSummary {
     pub neighbor_slots: u32,
 }
 
+impl StoreSummary {
+    /// Counts `set`'s patches after those counted so far, and takes in their boxes.
+    pub(crate) fn add(&mut self, set: &PatchSet) {
+        self.patches += set.len() as u64;
+        self.bounds = match (self.bounds, set.bounds()) {
+            (Some(a), Some(b)) => Some(a.union(&b)),
+            (a, b) => a.or(b),
+        };
+    }
+}
+
 /// Receives a section's bytes, in as many pieces as its writer likes.
 pub type SectionSink<'a> = dyn FnMut(&[u8]) -> std::io::Result<()> + 'a;
 

@@ -5,8 +5,8 @@
 use std::path::{Path, PathBuf};
 
 use pointray_io::MemoryBudget;
-use pointray_kernels::NO_NEIGHBOR;
 
+use crate::patch_map::PatchMap;
 use crate::patch_store::{self, StoreSummary};
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::stream_budget::StreamBudget;
@@ -51,7 +51,7 @@ pub(crate) fn merge_ordered_tile_files(
     }
     progress.stage_started(Stage::MergeTiles, first.input_points);
     let started = std::time::Instant::now();
-    let (summary, patch_of, headers) = survey_tiles(ordered, progress)?;
+    let (summary, patch_of, headers) = survey_tiles(ordered, first.input_points, progress)?;
     patch_store::write_sections(output, &summary, |section, sink| {
         for (path, header) in ordered.iter().zip(&headers) {
             let bytes =
@@ -62,7 +62,7 @@ pub(crate) fn merge_ordered_tile_files(
             }
             let patches: Vec<u32> = bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)
                 .into_par_iter()
-                .map(|input| patch_of.get(input as usize).copied().unwrap_or(NO_NEIGHBOR))
+                .map(|input| patch_of.patch(input))
                 .collect();
             sink(bytemuck::cast_slice(&patches))?
         }
@@ -113,19 +113,20 @@ fn in_tile_order(tiles: &[PathBuf]) -> Result<Vec<PathBuf>, StreamError> {
     Ok(slots.into_iter().flatten().collect())
 }
 
-/// The store's header from every tile, each input point's patch, and each tile's header,
-/// with every tile file checked whole; tiles must agree on the settings and the offset.
+/// The store's header from every tile, each of the `input_points` input points' patch, and
+/// each tile's header, with every tile file checked whole; tiles must agree on the settings
+/// and the offset.
 fn survey_tiles(
     ordered: &[PathBuf],
+    input_points: u64,
     progress: &dyn PrepProgress,
-) -> Result<(StoreSummary, Vec<u32>, Vec<TileHeader>), StreamError> {
+) -> Result<(StoreSummary, PatchMap, Vec<TileHeader>), StreamError> {
     let mut summary: Option<StoreSummary> = None;
-    let mut patch_of: Vec<u32> = Vec::new();
+    let mut patch_of = PatchMap::new(input_points as usize);
     let mut headers = Vec::with_capacity(ordered.len());
     for path in ordered {
         let (header, tile): (TileHeader, _) = read_tile_file(path)?;
         headers.push(header);
-        patch_of.resize(header.input_points as usize, NO_NEIGHBOR);
         let set = &tile.patches;
         let total = summary.get_or_insert(StoreSummary {
             settings: set.settings,
@@ -142,14 +143,8 @@ fn survey_tiles(
             );
             return Err(StreamError::BadTile { path: path.clone(), problem });
         }
-        for (patch, &input) in tile.sources.iter().enumerate() {
-            patch_of[input as usize] = (total.patches + patch as u64) as u32;
-        }
-        total.patches += set.len() as u64;
-        total.bounds = match (total.bounds, set.bounds()) {
-            (Some(a), Some(b)) => Some(a.union(&b)),
-            (a, b) => a.or(b),
-        };
+        patch_of.note(&tile.sources, total.patches);
+        total.add(set);
         progress.advanced(tile.sources.len() as u64);
     }
     Ok((summary.expect("at least one tile"), patch_of, headers))

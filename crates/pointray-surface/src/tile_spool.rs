@@ -6,9 +6,7 @@
 
 use std::path::Path;
 
-use glam::DVec3;
-use pointray_kernels::NO_NEIGHBOR;
-
+use crate::patch_map::PatchMap;
 use crate::patch_store::StoreSummary;
 use crate::patch_store_in_place::StoreInPlace;
 use crate::prep_progress::{PrepProgress, Stage};
@@ -16,11 +14,11 @@ use crate::prep_settings::PrepSettings;
 use crate::stream_error::StreamError;
 use crate::tile_merge::MergeSummary;
 use crate::tiled_prep::TilePatches;
+use glam::DVec3;
 
 pub(crate) struct TileSpool {
     store: StoreInPlace,
-    /// Each input point's patch, `NO_NEIGHBOR` for points merged away.
-    patch_of: Vec<u32>,
+    patch_of: PatchMap,
     summary: StoreSummary,
     tiles: usize,
     input_points: u64,
@@ -35,7 +33,7 @@ impl TileSpool {
         (settings, offset): (PrepSettings, DVec3),
     ) -> Result<Self, StreamError> {
         let store = StoreInPlace::create(output, input_points)?;
-        let patch_of = vec![NO_NEIGHBOR; input_points as usize];
+        let patch_of = PatchMap::new(input_points as usize);
         let summary = StoreSummary {
             settings,
             offset,
@@ -55,22 +53,11 @@ impl TileSpool {
             total.neighbor_slots = (set.color_neighbors.len() / sources.len()) as u32;
         }
         let first_patch = total.patches;
-        total.patches += set.len() as u64;
-        total.bounds = match (total.bounds, set.bounds()) {
-            (Some(a), Some(b)) => Some(a.union(&b)),
-            (a, b) => a.or(b),
-        };
+        total.add(&set);
         let patch_of = &mut self.patch_of;
         let store = &mut self.store;
         // The records go to disk while the map is filled.
-        let (_, written) = rayon::join(
-            || {
-                for (patch, &input) in sources.iter().enumerate() {
-                    patch_of[input as usize] = (first_patch + patch as u64) as u32;
-                }
-            },
-            || store.append(&set),
-        );
+        let (_, written) = rayon::join(|| patch_of.note(&sources, first_patch), || store.append(&set));
         written?;
         self.tiles += 1;
         Ok(())
@@ -82,7 +69,7 @@ impl TileSpool {
         let Self { store, patch_of, summary, tiles, input_points } = self;
         progress.stage_started(Stage::MergeTiles, summary.patches);
         let started = std::time::Instant::now();
-        store.finish(&summary, |input| patch_of.get(input as usize).copied().unwrap_or(NO_NEIGHBOR))?;
+        store.finish(&summary, |input| patch_of.patch(input))?;
         progress.advanced(summary.patches);
         progress.stage_finished(Stage::MergeTiles, started.elapsed());
         Ok(MergeSummary { tiles, input_points, patches: summary.patches })

@@ -20,6 +20,7 @@ use crate::curve_span::CurveSpan;
 use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::halo_test::HaloTest;
 use crate::morton::{MortonGrid, curve_and_order};
+use crate::patch_map::PatchMap;
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
 use crate::prep::{TileContext, duplicate_distance, gather, prep_in_context, recentre};
@@ -149,9 +150,11 @@ pub(crate) fn own_patches(set: PatchSet, sources: &[u32], members: &[u32], core:
 pub fn merge_tiles(tiles: Vec<TilePatches>) -> PatchSet {
     let inputs =
         tiles.iter().flat_map(|tile| tile.sources.iter()).map(|&i| i as usize + 1).max().unwrap_or(0);
-    let mut patch_of = vec![NO_NEIGHBOR; inputs];
-    for (patch, &input) in tiles.iter().flat_map(|tile| tile.sources.iter()).enumerate() {
-        patch_of[input as usize] = patch as u32;
+    let mut patch_of = PatchMap::new(inputs);
+    let mut first = 0;
+    for tile in &tiles {
+        patch_of.note(&tile.sources, first);
+        first += tile.sources.len() as u64;
     }
     let mut merged = PatchSet::default();
     for tile in tiles {
@@ -161,11 +164,10 @@ pub fn merge_tiles(tiles: Vec<TilePatches>) -> PatchSet {
         merged.aabbs.to_mut().extend_from_slice(&set.aabbs);
         merged.hot.to_mut().extend_from_slice(&set.hot);
         merged.cold.to_mut().extend_from_slice(&set.cold);
-        merged.color_neighbors.to_mut().extend(
-            set.color_neighbors
-                .iter()
-                .map(|input| patch_of.get(*input as usize).copied().unwrap_or(NO_NEIGHBOR)),
-        );
+        merged
+            .color_neighbors
+            .to_mut()
+            .extend(set.color_neighbors.iter().map(|&input| patch_of.patch(input)));
     }
     merged
 }
