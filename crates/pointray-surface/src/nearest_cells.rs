@@ -3,10 +3,10 @@
 //! neighbours, mostly spent walking the tree); here each query scans the points of the
 //! 3 x 3 x 3 cells around its own, a block that consecutive queries in one cell share. The
 //! answer is exact when its farthest neighbour lies nearer than the block's faces, beyond
-//! which every other point lies. Queries where it is not (sparse points, crowded blocks) are
-//! left to the tree.
-
-use std::ops::Range;
+//! which every other point lies. Queries where it is not get a block of 5 x 5 x 5 cells; when
+//! few are left after that, wider blocks still, since building the tree for them would cost
+//! more than all the grid's queries. The rest (sparse points, crowded blocks) are left to the
+//! tree.
 
 use glam::{IVec3, UVec3, Vec3};
 use rayon::prelude::*;
@@ -17,6 +17,14 @@ use crate::neighbors::{neighbour_key, neighbour_of};
 /// A block holding more candidates than this leaves its queries to the tree: scanning them
 /// would cost more than the tree's walk.
 const MOST_CANDIDATES: usize = 768;
+
+/// The most candidates of the wider blocks, which only a few queries scan.
+const MOST_FAR_CANDIDATES: usize = 8192;
+
+/// The cells on each side of a query's own that the blocks take in, in turn: `NEAR_REACHES`
+/// for every query, `FAR_REACHES` for the few that those leave.
+const NEAR_REACHES: [i32; 2] = [1, 2];
+const FAR_REACHES: [i32; 2] = [4, 8];
 
 /// Points sampled, evenly along the input, to size the cells.
 const SIZE_SAMPLES: usize = 4096;
@@ -79,14 +87,13 @@ impl<'a> CellGrid<'a> {
         Some(grid)
     }
 
-    /// The positions `range` of the points, cell by cell: queries of one cell share its
-    /// block, so each block is gathered about once.
-    pub(crate) fn cell_by_cell(&self, range: Range<usize>) -> Vec<usize> {
-        let start = range.start;
-        let mut order: Vec<(CellKey, u32)> =
-            range.map(|i| (key(self.cell_of(self.points[i])), (i - start) as u32)).collect();
+    /// The points `queries` (positions in the cloud), cell by cell: queries of one cell share
+    /// its block, so each block is gathered about once.
+    pub(crate) fn cell_by_cell(&self, queries: &[usize]) -> Vec<usize> {
+        let mut order: Vec<(CellKey, usize)> =
+            queries.iter().map(|&i| (key(self.cell_of(self.points[i])), i)).collect();
         order.sort_unstable();
-        order.into_iter().map(|(_, j)| j as usize).collect()
+        order.into_iter().map(|(_, i)| i).collect()
     }
 
     fn cell_of(&self, p: Vec3) -> UVec3 {
@@ -94,22 +101,23 @@ impl<'a> CellGrid<'a> {
         ((p - self.origin) / self.width).floor().clamp(Vec3::ZERO, most).as_uvec3()
     }
 
-    /// Gathers into `block` the points of the cells around `cell` (itself included).
+    /// Gathers into `block` the points of the cells within its reach of `cell` (itself
+    /// included).
     fn gather_block(&self, cell: UVec3, block: &mut Block) {
         block.clear(cell);
-        let cell = cell.as_ivec3();
+        let (cell, reach) = (cell.as_ivec3(), block.reach);
         let last = (1 << AXIS_BITS) - 1;
-        for (dx, dy) in (-1..=1).flat_map(|dx| (-1..=1).map(move |dy| (dx, dy))) {
+        for (dx, dy) in (-reach..=reach).flat_map(|dx| (-reach..=reach).map(move |dy| (dx, dy))) {
             let column = cell + IVec3::new(dx, dy, 0);
             if column.x < 0 || column.y < 0 || column.x > last || column.y > last {
                 continue;
             }
-            let low = key(column.with_z((cell.z - 1).max(0)).as_uvec3());
-            let high = key(column.with_z((cell.z + 1).min(last)).as_uvec3());
+            let low = key(column.with_z((cell.z - reach).max(0)).as_uvec3());
+            let high = key(column.with_z((cell.z + reach).min(last)).as_uvec3());
             let first = self.keys.partition_point(|&k| k < low);
             let cells = self.keys[first..].iter().take_while(|&&k| k <= high).count();
             let members = self.starts[first] as usize..self.starts[first + cells] as usize;
-            if block.len() + members.len() > MOST_CANDIDATES {
+            if block.len() + members.len() > block.most {
                 block.crowded = true;
                 return;
             }
@@ -121,8 +129,28 @@ impl<'a> CellGrid<'a> {
     /// nearest first, ties by index, in `nearest`; false when the grid cannot tell them for
     /// sure, and the tree must. `within`, when given, is a squared distance within which
     /// `wanted` points are known to lie: only the block's points within it are sorted.
-    /// `block` keeps the last query's block.
+    /// `blocks` keep the last queries' blocks.
     pub(crate) fn nearest(
+        &self,
+        query: (usize, usize),
+        within: Option<f32>,
+        blocks: &mut Blocks,
+        nearest: &mut Vec<u64>,
+    ) -> bool {
+        for block in &mut blocks.0 {
+            if self.nearest_in_block(query, within, block, nearest) {
+                return true;
+            }
+            // A wider block would be more crowded still.
+            if block.crowded {
+                return false;
+            }
+        }
+        false
+    }
+
+    /// As `nearest`, from `block` alone.
+    fn nearest_in_block(
         &self,
         (query, wanted): (usize, usize),
         within: Option<f32>,
@@ -148,14 +176,15 @@ impl<'a> CellGrid<'a> {
             nearest.truncate(wanted);
         }
         nearest.sort_unstable();
-        let depth = self.depth_in_block(p, cell);
+        let depth = self.depth_in_block(p, cell, block.reach);
         depth > 0.0 && neighbour_of(nearest[wanted - 1]).0 < depth * depth
     }
 
-    /// How far `p` (in `cell`) lies inside its block: every point outside it is farther.
-    fn depth_in_block(&self, p: Vec3, cell: UVec3) -> f32 {
-        let low = self.origin + (cell.as_vec3() - Vec3::ONE) * self.width;
-        let high = self.origin + (cell.as_vec3() + Vec3::splat(2.0)) * self.width;
+    /// How far `p` (in `cell`) lies inside the block of cells within `reach` of it: every
+    /// point outside the block is farther.
+    fn depth_in_block(&self, p: Vec3, cell: UVec3, reach: i32) -> f32 {
+        let low = self.origin + (cell.as_vec3() - Vec3::splat(reach as f32)) * self.width;
+        let high = self.origin + (cell.as_vec3() + Vec3::splat((reach + 1) as f32)) * self.width;
         (p - low).min(high - p).min_element() - self.slack
     }
 }
@@ -187,11 +216,29 @@ fn typical_radius(points: &[Vec3], wanted: usize) -> Option<f32> {
     Some(radii.select_nth_unstable_by(middle, f32::total_cmp).1.sqrt())
 }
 
+/// The blocks a query tries in turn, each kept for the next query.
+pub(crate) struct Blocks(Vec<Block>);
+
+impl Blocks {
+    /// The blocks every query tries: its 3 x 3 x 3 cells, then its 5 x 5 x 5.
+    pub(crate) fn near() -> Self {
+        Self(NEAR_REACHES.iter().map(|&reach| Block::reaching(reach, MOST_CANDIDATES)).collect())
+    }
+
+    /// The wider blocks for the few queries that the near ones leave.
+    pub(crate) fn far() -> Self {
+        Self(FAR_REACHES.iter().map(|&reach| Block::reaching(reach, MOST_FAR_CANDIDATES)).collect())
+    }
+}
+
 /// The points of one block, coordinate by coordinate so that distances to all of them are
 /// computed side by side.
-#[derive(Default)]
-pub(crate) struct Block {
+struct Block {
     cell: Option<UVec3>,
+    /// The cells on each side of the block's own that it takes in.
+    reach: i32,
+    /// The most candidates it scans.
+    most: usize,
     crowded: bool,
     x: Vec<f32>,
     y: Vec<f32>,
@@ -202,6 +249,22 @@ pub(crate) struct Block {
 }
 
 impl Block {
+    /// An empty block of the cells within `reach` of its own (1: 3 x 3 x 3 cells), holding
+    /// at most `most` points.
+    fn reaching(reach: i32, most: usize) -> Self {
+        Self {
+            cell: None,
+            reach,
+            most,
+            crowded: false,
+            x: Vec::new(),
+            y: Vec::new(),
+            z: Vec::new(),
+            index: Vec::new(),
+            squared: Vec::new(),
+        }
+    }
+
     fn clear(&mut self, cell: UVec3) {
         self.cell = Some(cell);
         self.crowded = false;
@@ -311,14 +374,36 @@ mod tests {
     fn the_grid_settles_most_queries_of_an_even_surface_and_declines_the_rest() {
         let points = awkward_cloud(7);
         let grid = CellGrid::new(&points, 17).expect("a finite size");
-        let (mut block, mut nearest) = (Block::default(), Vec::new());
-        let settled =
-            (0..points.len()).filter(|&i| grid.nearest((i, 17), None, &mut block, &mut nearest)).count();
+        let (mut block, mut nearest) = (Block::reaching(1, MOST_CANDIDATES), Vec::new());
+        let settled = (0..points.len())
+            .filter(|&i| grid.nearest_in_block((i, 17), None, &mut block, &mut nearest))
+            .count();
         assert!(settled * 10 > points.len() * 8, "{settled} of {} settled", points.len());
         let outlier = points.iter().position(|p| p.x == 40.0).expect("the outlier");
         assert!(
-            !grid.nearest((outlier, 17), None, &mut block, &mut nearest),
+            !grid.nearest((outlier, 17), None, &mut Blocks::far(), &mut nearest),
             "an isolated point goes to the tree"
         );
+    }
+
+    #[test]
+    fn wider_blocks_settle_all_but_the_far_outliers() {
+        let points = awkward_cloud(7);
+        let grid = CellGrid::new(&points, 17).expect("a finite size");
+        let (mut narrow, mut nearest) = (Block::reaching(1, MOST_CANDIDATES), Vec::new());
+        let left: Vec<usize> = (0..points.len())
+            .filter(|&i| !grid.nearest_in_block((i, 17), None, &mut narrow, &mut nearest))
+            .collect();
+        let (mut near, mut far) = (Blocks::near(), Blocks::far());
+        let unsettled: Vec<Vec3> = left
+            .iter()
+            .filter(|&&i| {
+                !grid.nearest((i, 17), None, &mut near, &mut nearest)
+                    && !grid.nearest((i, 17), None, &mut far, &mut nearest)
+            })
+            .map(|&i| points[i])
+            .collect();
+        assert!(left.len() > unsettled.len() + 10, "{} left by the narrow blocks", left.len());
+        assert!(unsettled.iter().all(|p| p.length() > 4.0), "only the far outliers are left: {unsettled:?}");
     }
 }

@@ -6,7 +6,7 @@ use glam::Vec3;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 
-use crate::nearest_cells::{Block, CellGrid};
+use crate::nearest_cells::{Blocks, CellGrid};
 
 /// `k` neighbours per point in one flat table. Row `i` lists point `i`'s neighbours by
 /// increasing Euclidean distance and never contains `i` itself.
@@ -56,6 +56,9 @@ impl Neighbors {
 /// Points per rayon task: large enough to amortise scheduling, small enough to balance.
 const CHUNK: usize = 4096;
 
+/// The wider blocks are tried when at most one query in this many is left by the near ones.
+const FEW_LEFT: usize = 64;
+
 /// The `k` nearest neighbours of every point, in parallel: from a grid of cells where it can
 /// tell them for sure (`nearest_cells`), else from a k-d tree.
 ///
@@ -70,41 +73,60 @@ pub fn k_nearest(points: &[Vec3], k: usize) -> Neighbors {
     let grid = CellGrid::new(points, k + 1);
     let mut indices = vec![0u32; points.len() * k];
     let mut distances = vec![0f32; points.len() * k];
-    let unsettled: Vec<Vec<usize>> = match &grid {
-        Some(grid) => indices
-            .par_chunks_mut(CHUNK * k)
-            .zip(distances.par_chunks_mut(CHUNK * k))
-            .enumerate()
-            .map(|(chunk, rows)| settle_from_grid(grid, (points, k), chunk * CHUNK, rows))
-            .collect(),
-        None => (0..points.len())
-            .step_by(CHUNK)
-            .map(|first| (first..(first + CHUNK).min(points.len())).collect())
-            .collect(),
-    };
+    let mut unsettled: Vec<Vec<usize>> = (0..points.len())
+        .step_by(CHUNK)
+        .map(|first| (first..(first + CHUNK).min(points.len())).collect())
+        .collect();
+    if let Some(grid) = &grid {
+        let mut rows = (&mut indices, &mut distances);
+        unsettled = settle_from_grid(grid, (points, k), &mut rows, (unsettled, Blocks::near));
+        let left: usize = unsettled.iter().map(Vec::len).sum();
+        if left > 0 && left * FEW_LEFT <= points.len() {
+            unsettled = settle_from_grid(grid, (points, k), &mut rows, (unsettled, Blocks::far));
+        }
+    }
     if unsettled.iter().any(|left| !left.is_empty()) {
         fill_from_tree(points, k, (&mut indices, &mut distances), &unsettled);
     }
     Neighbors { k, indices, distances }
 }
 
-/// Fills the rows (`index_rows`, `distance_rows`) of the points from `first` on that the
-/// grid settles, and returns the others, ascending.
+/// Fills the rows of the points `queries[c]` of each chunk `c` that the grid settles with
+/// `blocks`, and returns the others of each chunk, ascending.
 fn settle_from_grid(
+    grid: &CellGrid,
+    (points, k): (&[Vec3], usize),
+    (indices, distances): &mut (&mut Vec<u32>, &mut Vec<f32>),
+    (queries, blocks): (Vec<Vec<usize>>, fn() -> Blocks),
+) -> Vec<Vec<usize>> {
+    indices
+        .par_chunks_mut(CHUNK * k)
+        .zip(distances.par_chunks_mut(CHUNK * k))
+        .zip(queries)
+        .enumerate()
+        .map(|(chunk, (rows, queries))| {
+            settle_chunk(grid, (points, k), chunk * CHUNK, rows, (queries, blocks()))
+        })
+        .collect()
+}
+
+/// Fills the rows (`index_rows`, `distance_rows`) of the points from `first` on that the
+/// grid settles among `queries`, and returns the others, ascending.
+fn settle_chunk(
     grid: &CellGrid,
     (points, k): (&[Vec3], usize),
     first: usize,
     (index_rows, distance_rows): (&mut [u32], &mut [f32]),
+    (queries, mut blocks): (Vec<usize>, Blocks),
 ) -> Vec<usize> {
-    let (mut block, mut nearest, mut left) = (Block::default(), Vec::new(), Vec::new());
+    let (mut nearest, mut left) = (Vec::new(), Vec::new());
     let mut previous: Option<(Vec3, f32)> = None;
-    for offset in grid.cell_by_cell(first..first + index_rows.len() / k) {
-        let i = first + offset;
-        let rows = offset * k..(offset + 1) * k;
+    for i in grid.cell_by_cell(&queries) {
+        let rows = (i - first) * k..(i - first + 1) * k;
         let within =
             previous.map(|(point, reach)| ((reach + point.distance(points[i])) * BOUND_SLACK).powi(2));
         previous = None;
-        if grid.nearest((i, k + 1), within, &mut block, &mut nearest) {
+        if grid.nearest((i, k + 1), within, &mut blocks, &mut nearest) {
             write_row(&nearest, i as u32, &mut index_rows[rows.clone()], &mut distance_rows[rows.clone()]);
             previous = Some((points[i], distance_rows[rows.end - 1]));
         } else {

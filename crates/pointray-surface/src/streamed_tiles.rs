@@ -197,7 +197,9 @@ impl StreamPlan {
         let GatheredTile { range, cloud, members, core } = tile;
         let (patches, report) = prep_in_context(&cloud, settings, &self.frame, &NoProgress)
             .map_err(|source| StreamError::Prep { path: self.input.clone(), source })?;
-        tracing::debug!("tile {range:?} prepped in {:.2?}", started.elapsed());
+        let stages: Vec<String> =
+            report.stage_times.iter().map(|(stage, time)| format!("{} {time:.2?}", stage.name())).collect();
+        tracing::debug!("tile {range:?} prepped in {:.2?}: {}", started.elapsed(), stages.join(", "));
         Ok(own_patches(patches, &report.patch_sources, &members, core))
     }
 
