@@ -50,8 +50,14 @@ impl<'a> HaloTest<'a> {
             .iter()
             .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (_, (a, b))| (lo.min(*a), hi.max(*b)));
         let finite = bounds.0.is_finite() && bounds.1.is_finite();
+        // Each point's own box: a run's box may span a jump of the curve.
         let cells = finite.then(|| {
-            let boxes: Vec<(Vec3, Vec3)> = runs.iter().map(|(_, bounds)| *bounds).collect();
+            let boxes: Vec<(Vec3, Vec3)> = runs
+                .iter()
+                .flat_map(|(run, _)| run.clone())
+                .filter(|&i| reaches[i] != 0.0)
+                .map(|i| reach_box(&core_points[i..=i], &reaches[i..=i]))
+                .collect();
             ReachCells::new(bounds, &boxes)
         });
         Self { core_points, reaches, bounds, runs, cells }
@@ -112,11 +118,12 @@ impl<'a> HaloTest<'a> {
 }
 
 /// The box that holds every point within `reaches[i]` of `points[i]`, for any `i`, widened
-/// against rounding.
+/// against rounding. Points of reach zero reach no other point, and are left out.
 pub(crate) fn reach_box(points: &[Vec3], reaches: &[f32]) -> (Vec3, Vec3) {
     let (lo, hi, widest) = points
         .iter()
         .zip(reaches)
+        .filter(|(_, reach)| **reach != 0.0)
         .fold((Vec3::INFINITY, Vec3::NEG_INFINITY, 0.0f32), |(lo, hi, widest), (&p, &r)| {
             (lo.min(p - r), hi.max(p + r), widest.max(r))
         });

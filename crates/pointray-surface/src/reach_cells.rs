@@ -2,6 +2,9 @@
 //! run of the tile's points meets. A tile along the Morton curve is a few compact pieces of
 //! space, so these cells hug its shape where its bounding box, which may span much of the
 //! cloud, does not. Points and blocks of points outside them are skipped before any search.
+//! Each marked cell is cut again into 8 x 8 x 8 fine cells, marked the same way, for the
+//! points: a tile's halo is a thin shell, and the coarse cells it meets hold many times its
+//! points.
 
 use glam::{UVec3, Vec3};
 
@@ -12,6 +15,15 @@ const MAX_CELLS_PER_AXIS: u32 = 64;
 /// small tile's grid stays small beside its memory budget.
 const CELLS_PER_CUBE_ROOT: f32 = 2.0;
 
+/// Fine cells along each axis of a cell.
+const FINE: u32 = 8;
+
+/// One bit per fine cell of a cell: x fastest, then y, one word per z.
+type FineCells = [u64; FINE as usize];
+
+/// A cell that no box meets has no fine cells.
+const NO_FINE_CELLS: u32 = u32::MAX;
+
 pub(crate) struct ReachCells {
     /// Cells along each axis.
     side: u32,
@@ -20,6 +32,9 @@ pub(crate) struct ReachCells {
     scale: Vec3,
     /// Per cell (x fastest), whether some reach box meets it.
     marked: Vec<bool>,
+    /// Per cell, the index of its fine cells in `fine`, if marked.
+    fine_index: Vec<u32>,
+    fine: Vec<FineCells>,
     /// The marked cells in the box from the origin cell to each cell, inclusive, at index
     /// `cell + 1` along each axis (a summed-volume table), so any box of cells is counted
     /// in constant time.
@@ -34,24 +49,65 @@ impl ReachCells {
             .clamp(1.0, MAX_CELLS_PER_AXIS as f32) as u32;
         let extent = (max - min).max(Vec3::splat(f32::MIN_POSITIVE));
         let scale = Vec3::splat(side as f32) / extent;
-        let marked = vec![false; (side as usize).pow(3)];
-        let mut cells = Self { side, min, scale, marked, counts: Vec::new() };
+        let count = (side as usize).pow(3);
+        let mut cells = Self {
+            side,
+            min,
+            scale,
+            marked: vec![false; count],
+            fine_index: vec![NO_FINE_CELLS; count],
+            fine: Vec::new(),
+            counts: Vec::new(),
+        };
         for &(lo, hi) in boxes {
-            let (first, last) = (cells.cell_of(lo), cells.cell_of(hi));
-            for z in first.z..=last.z {
-                for y in first.y..=last.y {
-                    let row = cells.index(UVec3::new(0, y, z));
-                    cells.marked[row + first.x as usize..=row + last.x as usize].fill(true);
-                }
-            }
+            cells.mark(cells.fine_cell_of(lo), cells.fine_cell_of(hi));
         }
         cells.counts = cells.summed_volume();
         cells
     }
 
-    /// Whether `point` lies in a marked cell (points beyond the grid lie in its edge cells).
+    /// Marks the fine cells from `first` to `last`, and the cells that hold them.
+    fn mark(&mut self, first: UVec3, last: UVec3) {
+        let (coarse_first, coarse_last) = (first / FINE, last / FINE);
+        for z in coarse_first.z..=coarse_last.z {
+            for y in coarse_first.y..=coarse_last.y {
+                for x in coarse_first.x..=coarse_last.x {
+                    let cell = UVec3::new(x, y, z);
+                    let corner = cell * FINE;
+                    let (from, to) = (first.max(corner) - corner, last.min(corner + FINE - 1) - corner);
+                    let fine = self.fine_cells_of(cell);
+                    let row = (u64::MAX >> (63 - (to.x - from.x))) << from.x;
+                    for fine_z in from.z..=to.z {
+                        for fine_y in from.y..=to.y {
+                            fine[fine_z as usize] |= row << (fine_y * FINE);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The fine cells of `cell`, which is marked from now on.
+    fn fine_cells_of(&mut self, cell: UVec3) -> &mut FineCells {
+        let index = self.index(cell);
+        self.marked[index] = true;
+        if self.fine_index[index] == NO_FINE_CELLS {
+            self.fine_index[index] = self.fine.len() as u32;
+            self.fine.push([0; FINE as usize]);
+        }
+        &mut self.fine[self.fine_index[index] as usize]
+    }
+
+    /// Whether `point` lies in a marked fine cell (points beyond the grid lie in its edge
+    /// cells).
     pub(crate) fn contains(&self, point: Vec3) -> bool {
-        self.marked[self.index(self.cell_of(point))]
+        let fine_cell = self.fine_cell_of(point);
+        let index = self.fine_index[self.index(fine_cell / FINE)];
+        if index == NO_FINE_CELLS {
+            return false;
+        }
+        let within = fine_cell % FINE;
+        self.fine[index as usize][within.z as usize] & (1 << (within.y * FINE + within.x)) != 0
     }
 
     /// Whether the box from `lo` to `hi` meets a marked cell.
@@ -70,8 +126,13 @@ impl ReachCells {
     /// The cell holding `point`, clamped to the grid. Monotonic in each coordinate, so every
     /// point of a box lies in the cells from its corners' cells.
     fn cell_of(&self, point: Vec3) -> UVec3 {
-        let cell = ((point - self.min) * self.scale).floor().max(Vec3::ZERO);
-        cell.as_uvec3().min(UVec3::splat(self.side - 1))
+        self.fine_cell_of(point) / FINE
+    }
+
+    /// The fine cell holding `point`, clamped to the grid; monotonic as `cell_of`.
+    fn fine_cell_of(&self, point: Vec3) -> UVec3 {
+        let cell = ((point - self.min) * self.scale * FINE as f32).floor().max(Vec3::ZERO);
+        cell.as_uvec3().min(UVec3::splat(self.side * FINE - 1))
     }
 
     fn index(&self, cell: UVec3) -> usize {
@@ -127,6 +188,17 @@ mod tests {
         assert!(cells.contains(Vec3::new(1.5, -1.0, 0.55)), "beyond the grid, in an edge cell");
         assert!(!cells.contains(Vec3::splat(0.5)));
         assert!(!cells.contains(Vec3::new(0.15, 0.15, 0.9)));
+    }
+
+    #[test]
+    fn only_the_fine_cells_a_box_meets_keep_points() {
+        let cells = grid();
+        assert!(cells.marked[cells.index(cells.cell_of(Vec3::splat(0.3)))], "the cell of the first box");
+        assert!(!cells.contains(Vec3::splat(0.3)), "in that cell, away from the box");
+        assert!(!cells.contains(Vec3::new(0.15, 0.15, 0.28)));
+        for corner in [Vec3::splat(0.1), Vec3::splat(0.2), Vec3::new(0.1, 0.2, 0.15)] {
+            assert!(cells.contains(corner), "{corner} is in the box");
+        }
     }
 
     #[test]
