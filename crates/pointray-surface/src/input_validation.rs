@@ -95,35 +95,97 @@ fn invalid(setting: &'static str, problem: String) -> Result<(), PrepError> {
 /// Checks, in order: finite coordinates, enough points, not all identical, not all on
 /// one line.
 pub fn validate_positions(positions: &[DVec3], k: usize) -> Result<(), PrepError> {
+    validate_finite_count(positions, k)?;
+    let count = positions.len();
+    let line = LineThrough::points(positions);
+    if line.extent == 0.0 {
+        return Err(PrepError::AllPointsIdentical { count });
+    }
+    // Measured from one point, the extent is at least half the bounding box's diagonal.
+    if let Some(problem) = extent_problem("the cloud", line.extent, &CLOUD_EXTENTS) {
+        return Err(PrepError::ExtentOutOfRange { problem });
+    }
+    if line.holds_all(positions) {
+        return Err(PrepError::AllPointsCollinear { count });
+    }
+    Ok(())
+}
+
+/// The checks a part of a cloud (a tile) can make for the whole of it, the cloud having
+/// `points` points within the box `bounds`: finite coordinates and enough points, and not on
+/// one line through opposite corners of the box, as every part of a collinear cloud is. A
+/// part on another line (a pole, a wire) is no fault of the cloud.
+pub fn validate_part(
+    positions: &[DVec3],
+    k: usize,
+    (bounds, points): ((DVec3, DVec3), usize),
+) -> Result<(), PrepError> {
+    validate_finite_count(positions, k)?;
+    let line = LineThrough::points(positions);
+    let (min, max) = bounds;
+    let diagonal = (max - min).length();
+    let tolerance = COLLINEAR_TOLERANCE * diagonal;
+    let on_diagonal = (0..4).any(|corner| {
+        let flip = DVec3::new(f64::from(corner & 1), f64::from((corner >> 1) & 1), 0.0);
+        let start = min + (max - min) * flip;
+        let end = max - (max - min) * flip;
+        line.distance_to(start) <= tolerance && line.distance_to(end) <= tolerance
+    });
+    if line.extent > 0.0 && on_diagonal && line.holds_all(positions) {
+        return Err(PrepError::AllPointsCollinear { count: points });
+    }
+    Ok(())
+}
+
+/// The checks of the whole cloud's box (`min`, `max`) that a prep in parts makes first.
+pub fn validate_bounds(min: DVec3, max: DVec3, points: usize) -> Result<(), PrepError> {
+    let diagonal = (max - min).length();
+    if diagonal == 0.0 {
+        return Err(PrepError::AllPointsIdentical { count: points });
+    }
+    match extent_problem("the cloud", diagonal / 2.0, &CLOUD_EXTENTS) {
+        Some(problem) => Err(PrepError::ExtentOutOfRange { problem }),
+        None => Ok(()),
+    }
+}
+
+fn validate_finite_count(positions: &[DVec3], k: usize) -> Result<(), PrepError> {
     if let Some(index) = positions.par_iter().position_first(|p| !p.is_finite()) {
         return Err(PrepError::NonFiniteCoordinate { index });
     }
     if positions.len() < k + 1 {
         return Err(PrepError::TooFewPoints { found: positions.len(), k });
     }
-    let count = positions.len();
-    let anchor = positions[0];
-    let farthest = farthest_from(positions, anchor);
-    let extent = (farthest - anchor).length();
-    if extent == 0.0 {
-        return Err(PrepError::AllPointsIdentical { count });
-    }
-    // Measured from one point, the extent is at least half the bounding box's diagonal.
-    if let Some(problem) = extent_problem("the cloud", extent, &CLOUD_EXTENTS) {
-        return Err(PrepError::ExtentOutOfRange { problem });
-    }
-    let direction = (farthest - anchor) / extent;
-    let off_line = positions
-        .par_iter()
-        .map(|p| {
-            let offset = *p - anchor;
-            (offset - offset.dot(direction) * direction).length()
-        })
-        .reduce(|| 0.0, f64::max);
-    if off_line <= COLLINEAR_TOLERANCE * extent {
-        return Err(PrepError::AllPointsCollinear { count });
-    }
     Ok(())
+}
+
+/// The line from a set's first point to the point farthest from it.
+struct LineThrough {
+    anchor: DVec3,
+    /// Unit length; zero when every point is the anchor.
+    direction: DVec3,
+    extent: f64,
+}
+
+impl LineThrough {
+    fn points(positions: &[DVec3]) -> Self {
+        let anchor = positions[0];
+        let farthest = farthest_from(positions, anchor);
+        let extent = (farthest - anchor).length();
+        let direction = if extent > 0.0 { (farthest - anchor) / extent } else { DVec3::ZERO };
+        Self { anchor, direction, extent }
+    }
+
+    fn distance_to(&self, point: DVec3) -> f64 {
+        let offset = point - self.anchor;
+        (offset - offset.dot(self.direction) * self.direction).length()
+    }
+
+    /// Whether every point lies within `COLLINEAR_TOLERANCE` of the extent of the line.
+    fn holds_all(&self, positions: &[DVec3]) -> bool {
+        let off_line = positions.par_iter().map(|&p| self.distance_to(p)).reduce(|| 0.0, f64::max);
+        off_line <= COLLINEAR_TOLERANCE * self.extent
+    }
 }
 
 fn farthest_from(positions: &[DVec3], anchor: DVec3) -> DVec3 {

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use crate::cold_records::{cold_records, color_neighbor_table};
 use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii, cell_radii};
 use crate::duplicates::merge_duplicates;
-use crate::input_validation::{validate_positions, validate_settings, validate_size};
+use crate::input_validation::{validate_part, validate_positions, validate_settings, validate_size};
 use crate::morton::morton_order;
 use crate::neighbors::{Neighbors, k_nearest};
 use crate::normals::pca_normals;
@@ -88,6 +88,9 @@ pub struct TileContext {
     pub offset: DVec3,
     /// Points closer than this (local units) merge as duplicates.
     pub duplicate_distance: f32,
+    /// The whole cloud's box (input units) and its points, for the checks a tile makes.
+    pub bounds: (DVec3, DVec3),
+    pub points: usize,
 }
 
 fn prep_cloud(
@@ -110,7 +113,7 @@ fn prep_with_context(
     let (k, normal_k) = (settings.k as usize, settings.normal_k as usize);
     let mut clock = StageClock { progress, times: Vec::new() };
     let count = cloud.len();
-    clock.run(Stage::Validate, count, || validate(&cloud, settings))?;
+    clock.run(Stage::Validate, count, || validate(&cloud, settings, context))?;
     let (offset, recentred) = clock.run(Stage::Recentre, count, || match context {
         Some(context) => (context.offset, recentre_on(&cloud.positions, context.offset)),
         None => recentre(&cloud.positions),
@@ -257,7 +260,11 @@ fn color_table_width(colors: bool, k: usize) -> usize {
     if colors { k.max(COLOR_NEIGHBORS) } else { k }
 }
 
-fn validate(cloud: &PointCloud, settings: &PrepSettings) -> Result<(), PrepError> {
+fn validate(
+    cloud: &PointCloud,
+    settings: &PrepSettings,
+    context: Option<&TileContext>,
+) -> Result<(), PrepError> {
     validate_settings(settings)?;
     validate_size(
         cloud.len(),
@@ -276,18 +283,27 @@ fn validate(cloud: &PointCloud, settings: &PrepSettings) -> Result<(), PrepError
             return Err(PrepError::AttributeLength { attribute, found, expected });
         }
     }
-    validate_positions(&cloud.positions, settings.k as usize)
+    let k = settings.k as usize;
+    match context {
+        Some(context) => validate_part(&cloud.positions, k, (context.bounds, context.points)),
+        None => validate_positions(&cloud.positions, k),
+    }
 }
 
 /// Recentres on the bounding-box centre in f64, then drops to f32: geo-referenced
 /// coordinates (~10^6) would otherwise lose their centimetres.
 pub(crate) fn recentre(positions: &[DVec3]) -> (DVec3, Vec<Vec3>) {
-    let (min, max) = positions
-        .par_iter()
-        .fold(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
-        .reduce(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)));
+    let (min, max) = bounds_of(positions);
     let centre = (min + max) * 0.5;
     (centre, recentre_on(positions, centre))
+}
+
+/// The box of `positions` (min, max).
+pub(crate) fn bounds_of(positions: &[DVec3]) -> (DVec3, DVec3) {
+    positions
+        .par_iter()
+        .fold(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
+        .reduce(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)))
 }
 
 fn recentre_on(positions: &[DVec3], centre: DVec3) -> Vec<Vec3> {

@@ -17,6 +17,7 @@ use crate::cloud_subset::subset;
 use crate::curve_span::CurveSpan;
 use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::halo_test::HaloTest;
+use crate::input_validation::validate_bounds;
 use crate::morton::MortonGrid;
 use crate::out_of_core_sort::{SortPlan, sort_points};
 use crate::patch_tiles::even_ranges;
@@ -68,6 +69,7 @@ impl StreamPlan {
         if points <= k as u64 {
             return Err(prep_error(PrepError::TooFewPoints { found: points as usize, k }));
         }
+        validate_bounds(min, max, points as usize).map_err(prep_error)?;
         if points > u64::from(u32::MAX) {
             let problem = format!("{points} points: prep numbers points with 32 bits, at most {}", u32::MAX);
             return Err(prep_error(PrepError::TooLarge { problem }));
@@ -76,8 +78,12 @@ impl StreamPlan {
         let budget = budget.with_patch_map(points);
         let offset = (min + max) * 0.5;
         let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
-        let frame =
-            TileContext { offset, duplicate_distance: settings.duplicate_tolerance * (high - low).length() };
+        let frame = TileContext {
+            offset,
+            duplicate_distance: settings.duplicate_tolerance * (high - low).length(),
+            bounds: (min, max),
+            points: points as usize,
+        };
         let grid = MortonGrid::over(low, high);
         let plan = SortPlan {
             grid,

@@ -19,11 +19,12 @@ use crate::cloud_subset::subset;
 use crate::curve_span::CurveSpan;
 use crate::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::halo_test::HaloTest;
+use crate::input_validation::validate_positions;
 use crate::morton::{MortonGrid, curve_and_order};
 use crate::patch_map::PatchMap;
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
-use crate::prep::{TileContext, duplicate_distance, gather, prep_in_context, recentre};
+use crate::prep::{TileContext, bounds_of, duplicate_distance, gather, prep_in_context, recentre};
 use crate::prep_error::PrepError;
 use crate::prep_progress::PrepProgress;
 use crate::prep_settings::PrepSettings;
@@ -51,7 +52,12 @@ impl TilePlan {
     /// `tiles` tiles (at least 1) of `cloud` prepped with `settings`.
     pub fn new(cloud: &PointCloud, settings: &PrepSettings, tiles: usize) -> Self {
         let (offset, recentred) = recentre(&cloud.positions);
-        let frame = TileContext { offset, duplicate_distance: duplicate_distance(settings, &recentred) };
+        let frame = TileContext {
+            offset,
+            duplicate_distance: duplicate_distance(settings, &recentred),
+            bounds: bounds_of(&cloud.positions),
+            points: cloud.len(),
+        };
         let (grid, order) = curve_and_order(&recentred);
         let tiles = even_ranges(order.len(), tiles.max(1));
         Self { frame, grid, order, tiles }
@@ -179,6 +185,7 @@ pub fn prep_tiled(
     tiles: usize,
     progress: &dyn PrepProgress,
 ) -> Result<PatchSet, PrepError> {
+    validate_positions(&cloud.positions, settings.k as usize)?;
     let plan = TilePlan::new(cloud, settings, tiles);
     let prepped = (0..plan.tile_count())
         .map(|index| prep_tile(cloud, settings, &plan, index, progress))

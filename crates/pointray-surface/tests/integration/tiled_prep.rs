@@ -116,3 +116,28 @@ fn tiles_of_a_cloud_with_duplicates_make_the_single_pass_patches() {
     let extra = tiled.len() - whole.len();
     assert!(extra < 8, "{extra} patches more than a single pass");
 }
+
+/// A plane beside a long straight row of points (a wire, say), the row last along the curve.
+fn plane_and_row() -> Vec<DVec3> {
+    let plane = (0..90_000).map(|i| DVec3::new((i % 300) as f64, (i / 300) as f64, 0.0) * 0.01);
+    let row = (0..90_000).map(|i| DVec3::new(10.0 + i as f64 * 1e-4, 5.0, 5.0));
+    plane.chain(row).collect()
+}
+
+#[test]
+fn a_tile_on_one_line_is_no_fault_of_a_cloud_that_is_not() {
+    let cloud = PointCloud::from_positions(plane_and_row());
+    let tiled = prep_tiled(&cloud, &PrepSettings::default(), 2, &NoProgress).expect("two tiles prep");
+    assert_eq!(tiled.hot.len(), cloud.len());
+}
+
+#[test]
+fn every_tile_of_a_cloud_on_one_line_refuses_it_whole() {
+    let line: Vec<DVec3> = (0..20_000).map(|i| DVec3::new(1.0, 0.5, 0.25) * i as f64).collect();
+    let cloud = PointCloud::from_positions(line);
+    let plan = TilePlan::new(&cloud, &PrepSettings::default(), 3);
+    for index in 0..3 {
+        let error = prep_tile(&cloud, &PrepSettings::default(), &plan, index, &NoProgress).unwrap_err();
+        assert_eq!(error, PrepError::AllPointsCollinear { count: 20_000 }, "tile {index}");
+    }
+}
