@@ -2,10 +2,11 @@
 //! `i`. The test is the same for every point, however the candidates are gathered (all at
 //! once from a cloud in memory, or batch by batch from the blocks of a sorted file).
 //!
-//! Most of a tile's points lie deep inside it, where they reach no point outside. So the
-//! core points are taken in runs along the curve, each with the box its reaches span: a
-//! candidate outside every run's box is dropped before any search (`ReachCells`), and only
-//! the runs whose box holds a candidate are searched around.
+//! Most of a tile's points lie deep inside it, where they reach no point outside (a reach of
+//! zero). A candidate outside the cells that the reaching points' boxes meet is dropped
+//! before any search (`ReachCells`); the core points are taken in runs along the curve, each
+//! with the box its reaches span, and only the runs whose box holds a candidate are searched
+//! around.
 
 use std::ops::Range;
 
@@ -16,7 +17,7 @@ use rayon::prelude::*;
 use crate::reach_cells::ReachCells;
 
 /// Consecutive core points whose reaches share one box.
-pub(crate) const HALO_RUN_POINTS: usize = 256;
+const HALO_RUN_POINTS: usize = 256;
 
 /// Widens each box against rounding: by this share of its reaches, and of its coordinates.
 const BOX_SLACK: f32 = 1e-3;
@@ -29,7 +30,7 @@ pub(crate) struct HaloTest<'a> {
     bounds: (Vec3, Vec3),
     /// Runs of core points, with the box that holds every point they reach.
     runs: Vec<(Range<usize>, (Vec3, Vec3))>,
-    /// The cells the runs' boxes meet; none when some reach is unbounded.
+    /// The cells the reaching points' boxes meet; none when some reach is unbounded.
     cells: Option<ReachCells>,
 }
 
@@ -101,6 +102,7 @@ impl<'a> HaloTest<'a> {
             .par_iter()
             .filter(|(_, bounds)| near_candidates(*bounds))
             .flat_map_iter(|(run, _)| run.clone())
+            .filter(|&i| self.reaches[i] != 0.0)
             .flat_map_iter(|i| {
                 let (p, r) = (self.core_points[i], self.reaches[i]);
                 let search = r * r * (1.0 + 1e-4);
@@ -118,7 +120,8 @@ impl<'a> HaloTest<'a> {
 }
 
 /// The box that holds every point within `reaches[i]` of `points[i]`, for any `i`, widened
-/// against rounding. Points of reach zero reach no other point, and are left out.
+/// against rounding. Points of reach zero reach no other point, and are left out: when all
+/// are, the box is empty (infinite `lo`, negative infinite `hi`).
 pub(crate) fn reach_box(points: &[Vec3], reaches: &[f32]) -> (Vec3, Vec3) {
     let (lo, hi, widest) = points
         .iter()
@@ -127,6 +130,9 @@ pub(crate) fn reach_box(points: &[Vec3], reaches: &[f32]) -> (Vec3, Vec3) {
         .fold((Vec3::INFINITY, Vec3::NEG_INFINITY, 0.0f32), |(lo, hi, widest), (&p, &r)| {
             (lo.min(p - r), hi.max(p + r), widest.max(r))
         });
+    if lo.cmpgt(hi).any() {
+        return (lo, hi);
+    }
     let margin = Vec3::splat(widest * BOX_SLACK) + lo.abs().max(hi.abs()) * COORDINATE_SLACK;
     (lo - margin, hi + margin)
 }

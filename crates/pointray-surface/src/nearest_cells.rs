@@ -14,8 +14,9 @@ use rayon::prelude::*;
 use crate::morton::finite_bounds;
 use crate::neighbors::{neighbour_key, neighbour_of};
 
-/// A block holding more candidates than this leaves its queries to the tree: scanning them
-/// would cost more than the tree's walk.
+/// A block of 3 x 3 x 3 or 5 x 5 x 5 cells holding more candidates than this leaves its
+/// queries to the wider blocks, if any, and the tree: scanning them would cost more than the
+/// tree's walk.
 const MOST_CANDIDATES: usize = 768;
 
 /// The most candidates of the wider blocks, which only a few queries scan.
@@ -170,6 +171,10 @@ impl<'a> CellGrid<'a> {
         block.keys_within(within.unwrap_or(f32::INFINITY), nearest);
         if nearest.len() < wanted {
             block.keys_within(f32::INFINITY, nearest);
+        }
+        // Only points at no finite distance (not a number) are missing.
+        if nearest.len() < wanted {
+            return false;
         }
         if nearest.len() > wanted {
             nearest.select_nth_unstable(wanted - 1);

@@ -73,18 +73,23 @@ pub fn k_nearest(points: &[Vec3], k: usize) -> Neighbors {
     let grid = CellGrid::new(points, k + 1);
     let mut indices = vec![0u32; points.len() * k];
     let mut distances = vec![0f32; points.len() * k];
-    let mut unsettled: Vec<Vec<usize>> = (0..points.len())
-        .step_by(CHUNK)
-        .map(|first| (first..(first + CHUNK).min(points.len())).collect())
-        .collect();
-    if let Some(grid) = &grid {
-        let mut rows = (&mut indices, &mut distances);
-        unsettled = settle_from_grid(grid, (points, k), &mut rows, (unsettled, Blocks::near));
-        let left: usize = unsettled.iter().map(Vec::len).sum();
-        if left > 0 && left * FEW_LEFT <= points.len() {
-            unsettled = settle_from_grid(grid, (points, k), &mut rows, (unsettled, Blocks::far));
+    // Each chunk's queries are listed only as its turn comes: 8 bytes a point otherwise.
+    let every_chunk = |chunk: usize| (chunk * CHUNK..((chunk + 1) * CHUNK).min(points.len())).collect();
+    let chunks = points.len().div_ceil(CHUNK);
+    let unsettled: Vec<Vec<usize>> = match &grid {
+        Some(grid) => {
+            let mut rows = (&mut indices, &mut distances);
+            let near = (0..chunks).into_par_iter().map(every_chunk);
+            let left = settle_from_grid(grid, (points, k), &mut rows, (near, Blocks::near));
+            let count: usize = left.iter().map(Vec::len).sum();
+            if count > 0 && count * FEW_LEFT <= points.len() {
+                settle_from_grid(grid, (points, k), &mut rows, (left.into_par_iter(), Blocks::far))
+            } else {
+                left
+            }
         }
-    }
+        None => (0..chunks).map(every_chunk).collect(),
+    };
     if unsettled.iter().any(|left| !left.is_empty()) {
         fill_from_tree(points, k, (&mut indices, &mut distances), &unsettled);
     }
@@ -97,7 +102,7 @@ fn settle_from_grid(
     grid: &CellGrid,
     (points, k): (&[Vec3], usize),
     (indices, distances): &mut (&mut Vec<u32>, &mut Vec<f32>),
-    (queries, blocks): (Vec<Vec<usize>>, fn() -> Blocks),
+    (queries, blocks): (impl IndexedParallelIterator<Item = Vec<usize>>, fn() -> Blocks),
 ) -> Vec<Vec<usize>> {
     indices
         .par_chunks_mut(CHUNK * k)

@@ -1,5 +1,5 @@
 //! A coarse grid of the space a tile's halo may occupy: the cells that the reach box of some
-//! run of the tile's points meets. A tile along the Morton curve is a few compact pieces of
+//! reaching point of the tile meets. A tile along the Morton curve is a few compact pieces of
 //! space, so these cells hug its shape where its bounding box, which may span much of the
 //! cloud, does not. Points and blocks of points outside them are skipped before any search.
 //! Each marked cell is cut again into 8 x 8 x 8 fine cells, marked the same way, for the
@@ -11,8 +11,8 @@ use glam::{UVec3, Vec3};
 /// The most cells along each axis of the grid.
 const MAX_CELLS_PER_AXIS: u32 = 64;
 
-/// Cells along each axis per cube root of the boxes: eight cells a box, so that a
-/// small tile's grid stays small beside its memory budget.
+/// Cells along each axis per cube root of the boxes (one a reaching point): eight cells a
+/// box, so that a small tile's grid stays small beside its memory budget.
 const CELLS_PER_CUBE_ROOT: f32 = 2.0;
 
 /// Fine cells along each axis of a cell.
@@ -30,9 +30,8 @@ pub(crate) struct ReachCells {
     min: Vec3,
     /// The inverse of a cell's size along each axis.
     scale: Vec3,
-    /// Per cell (x fastest), whether some reach box meets it.
-    marked: Vec<bool>,
-    /// Per cell, the index of its fine cells in `fine`, if marked.
+    /// Per cell (x fastest), the index of its fine cells in `fine`, if some reach box meets
+    /// it (the cell is marked).
     fine_index: Vec<u32>,
     fine: Vec<FineCells>,
     /// The marked cells in the box from the origin cell to each cell, inclusive, at index
@@ -54,7 +53,6 @@ impl ReachCells {
             side,
             min,
             scale,
-            marked: vec![false; count],
             fine_index: vec![NO_FINE_CELLS; count],
             fine: Vec::new(),
             counts: Vec::new(),
@@ -66,8 +64,12 @@ impl ReachCells {
         cells
     }
 
-    /// Marks the fine cells from `first` to `last`, and the cells that hold them.
+    /// Marks the fine cells from `first` to `last`, and the cells that hold them; nothing
+    /// when the box is empty.
     fn mark(&mut self, first: UVec3, last: UVec3) {
+        if first.cmpgt(last).any() {
+            return;
+        }
         let (coarse_first, coarse_last) = (first / FINE, last / FINE);
         for z in coarse_first.z..=coarse_last.z {
             for y in coarse_first.y..=coarse_last.y {
@@ -90,7 +92,6 @@ impl ReachCells {
     /// The fine cells of `cell`, which is marked from now on.
     fn fine_cells_of(&mut self, cell: UVec3) -> &mut FineCells {
         let index = self.index(cell);
-        self.marked[index] = true;
         if self.fine_index[index] == NO_FINE_CELLS {
             self.fine_index[index] = self.fine.len() as u32;
             self.fine.push([0; FINE as usize]);
@@ -135,6 +136,10 @@ impl ReachCells {
         cell.as_uvec3().min(UVec3::splat(self.side * FINE - 1))
     }
 
+    fn is_marked(&self, cell: UVec3) -> bool {
+        self.fine_index[self.index(cell)] != NO_FINE_CELLS
+    }
+
     fn index(&self, cell: UVec3) -> usize {
         let n = self.side as usize;
         (cell.z as usize * n + cell.y as usize) * n + cell.x as usize
@@ -153,7 +158,7 @@ impl ReachCells {
         for z in 1..=n {
             for y in 1..=n {
                 for x in 1..=n {
-                    let here = u32::from(self.marked[self.index(UVec3::new(x - 1, y - 1, z - 1))]);
+                    let here = u32::from(self.is_marked(UVec3::new(x - 1, y - 1, z - 1)));
                     let at = |dx: u32, dy: u32, dz: u32| {
                         table[self.summed_index(UVec3::new(x - dx, y - dy, z - dz))]
                     };
@@ -193,7 +198,7 @@ mod tests {
     #[test]
     fn only_the_fine_cells_a_box_meets_keep_points() {
         let cells = grid();
-        assert!(cells.marked[cells.index(cells.cell_of(Vec3::splat(0.3)))], "the cell of the first box");
+        assert!(cells.is_marked(cells.cell_of(Vec3::splat(0.3))), "the cell of the first box");
         assert!(!cells.contains(Vec3::splat(0.3)), "in that cell, away from the box");
         assert!(!cells.contains(Vec3::new(0.15, 0.15, 0.28)));
         for corner in [Vec3::splat(0.1), Vec3::splat(0.2), Vec3::new(0.1, 0.2, 0.15)] {
@@ -216,7 +221,7 @@ mod tests {
                 let (first, last) = (cells.cell_of(lo), cells.cell_of(hi));
                 let brute = (first.z..=last.z).any(|z| {
                     (first.y..=last.y)
-                        .any(|y| (first.x..=last.x).any(|x| cells.marked[cells.index(UVec3::new(x, y, z))]))
+                        .any(|y| (first.x..=last.x).any(|x| cells.is_marked(UVec3::new(x, y, z))))
                 });
                 assert_eq!(cells.meets((lo, hi)), brute, "box {lo} to {hi}");
             }

@@ -150,3 +150,17 @@ fn budgets_too_small_are_refused_with_what_would_fit() {
     assert!(!output.exists());
     assert_no_scratch(dir.path(), 1);
 }
+
+#[test]
+fn a_streamed_prep_called_from_a_thread_pool_writes_the_same_store() {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, settings) = sheet_file(dir.path());
+    let (alone, within) = (dir.path().join("alone.patches"), dir.path().join("within.patches"));
+    let prep = |output: &Path| {
+        prep_streamed(&mut open(&path), &settings, (TileCount::Exactly(4), PLENTY), output, &NoProgress)
+    };
+    prep(&alone).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    pool.install(|| prep(&within)).unwrap();
+    assert!(std::fs::read(&alone).unwrap() == std::fs::read(&within).unwrap(), "same bytes");
+}
