@@ -306,7 +306,7 @@ pub(crate) fn bounds_of(positions: &[DVec3]) -> (DVec3, DVec3) {
         .reduce(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)))
 }
 
-fn recentre_on(positions: &[DVec3], centre: DVec3) -> Vec<Vec3> {
+pub(crate) fn recentre_on(positions: &[DVec3], centre: DVec3) -> Vec<Vec3> {
     positions.par_iter().map(|&p| (p - centre).as_vec3()).collect()
 }
 

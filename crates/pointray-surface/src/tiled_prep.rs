@@ -24,7 +24,7 @@ use crate::morton::{MortonGrid, curve_and_order};
 use crate::patch_map::PatchMap;
 use crate::patch_set::PatchSet;
 use crate::patch_tiles::even_ranges;
-use crate::prep::{TileContext, bounds_of, duplicate_distance, gather, prep_in_context, recentre};
+use crate::prep::{TileContext, bounds_of, duplicate_distance, gather, prep_in_context, recentre_on};
 use crate::prep_error::PrepError;
 use crate::prep_progress::PrepProgress;
 use crate::prep_settings::PrepSettings;
@@ -51,11 +51,13 @@ pub struct TilePatches {
 impl TilePlan {
     /// `tiles` tiles (at least 1) of `cloud` prepped with `settings`.
     pub fn new(cloud: &PointCloud, settings: &PrepSettings, tiles: usize) -> Self {
-        let (offset, recentred) = recentre(&cloud.positions);
+        let bounds = bounds_of(&cloud.positions);
+        let offset = (bounds.0 + bounds.1) * 0.5;
+        let recentred = recentre_on(&cloud.positions, offset);
         let frame = TileContext {
             offset,
             duplicate_distance: duplicate_distance(settings, &recentred),
-            bounds: bounds_of(&cloud.positions),
+            bounds,
             points: cloud.len(),
         };
         let (grid, order) = curve_and_order(&recentred);
