@@ -25,9 +25,9 @@ pub enum BenchError {
     #[error("{case}: prep failed: {source}")]
     Prep { case: String, source: pointray_surface::PrepError },
     #[error("{case}: prep in tiles failed: {source}")]
-    StreamedPrep { case: String, source: pointray_surface::stream_error::StreamError },
+    StreamedPrep { case: String, source: pointray_surface::tiles::stream_error::StreamError },
     #[error("{case}: {source}")]
-    Store { case: String, source: pointray_surface::patch_store::StoreError },
+    Store { case: String, source: pointray_patches::patch_store::StoreError },
     #[error("{case}: {source}")]
     Vulkan { case: String, source: pointray_vulkan::VulkanError },
     #[error("{path}: cannot write the report: {message}")]

@@ -4,9 +4,10 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use pointray_patches::{BoxKind, PrepSettings, RadiusMode};
 use pointray_scene::load::{LoadOptions, load_scene};
 use pointray_scene::{BufferLayout, Geometry, Integrator, PatchAcceptance, RenderSettings, Scene};
-use pointray_surface::{BoxKind, NoProgress, PrepSettings, RadiusMode};
+use pointray_surface::NoProgress;
 use pointray_vulkan::{BlasLayout, PixelOutput, VulkanError, VulkanRenderer};
 
 use crate::case_result::{CaseLabel, CaseResult, Variant};

@@ -7,13 +7,14 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use pointray_io::{MemoryBudget, PointStream};
+use pointray_patches::PrepSettings;
+use pointray_patches::patch_store;
 use pointray_scene::{RenderSettings, RenderedImage};
-use pointray_surface::patch_store;
 use pointray_surface::peak_memory::StagePeaks;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
-use pointray_surface::streamed_prep::prep_streamed;
-use pointray_surface::streamed_tiles::TileCount;
-use pointray_surface::{PrepProgress, PrepSettings, prep_owned};
+use pointray_surface::tiles::streamed_prep::prep_streamed;
+use pointray_surface::tiles::streamed_tiles::TileCount;
+use pointray_surface::{PrepProgress, prep_owned};
 
 use crate::data::ensure_cache_dir;
 use crate::error::BenchError;

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use pointray_io::MemoryBudget;
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
-use pointray_surface::PrepSettings;
+use pointray_patches::PrepSettings;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
 use pointray_vulkan::DeviceInfo;
 

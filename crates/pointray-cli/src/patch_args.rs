@@ -5,8 +5,9 @@ use std::path::Path;
 use clap::Args;
 use glam::DVec3;
 use pointray_io::PointCloud;
+use pointray_patches::{PatchSet, PrepSettings};
 use pointray_scene::PatchAcceptance;
-use pointray_surface::{PatchSet, PrepReport, PrepSettings, prep};
+use pointray_surface::{PrepReport, prep};
 
 use crate::columns_arg::ColumnsArg;
 use crate::prep_settings_args::PrepSettingsArgs;

@@ -4,8 +4,9 @@
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use glam::DVec3;
+use pointray_patches::{BoxKind, OutlierFilter, PrepSettings, RadiusMode, ScanMode};
+use pointray_surface::PrepError;
 use pointray_surface::input_validation::validate_settings;
-use pointray_surface::{BoxKind, OutlierFilter, PrepError, PrepSettings, RadiusMode, ScanMode};
 use serde::de::DeserializeOwned;
 use serde::de::value::{Error as ValueError, StrDeserializer};
 

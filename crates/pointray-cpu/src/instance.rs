@@ -2,8 +2,8 @@
 
 use glam::{Affine3A, Mat3A, Vec3};
 use pointray_kernels::{Aabb, PatchAcceptance, Ray};
+use pointray_patches::geometry_range::box_in_range;
 use pointray_scene::SceneObject;
-use pointray_surface::geometry_range::box_in_range;
 
 use crate::object_bvh::{ObjectBvh, ObjectHit};
 

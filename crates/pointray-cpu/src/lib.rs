@@ -10,7 +10,6 @@ mod direct_light;
 mod first_hit;
 mod instance;
 mod object_bvh;
-mod path;
 mod path_tracer;
 mod ray_counts;
 mod renderer;
@@ -18,6 +17,7 @@ mod scene_updates;
 mod shading;
 mod top_level;
 mod triangle;
+mod whitted;
 
 pub use first_hit::RayHit;
 pub use ray_counts::RayCounts;

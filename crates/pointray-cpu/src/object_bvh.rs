@@ -9,10 +9,10 @@ use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::builder::build_cwbvh;
 use pointray_io::TriangleMesh;
 use pointray_kernels::{Aabb, PatchAcceptance, Ray, intersect_patch};
+use pointray_patches::PatchSet;
+use pointray_patches::geometry_range::{box_in_range, first_vertex_out_of_range};
+use pointray_patches::patch_tiles::tile_ranges;
 use pointray_scene::Geometry;
-use pointray_surface::PatchSet;
-use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
-use pointray_surface::patch_tiles::tile_ranges;
 use rayon::prelude::*;
 
 use crate::triangle::intersect_triangle;
@@ -40,7 +40,7 @@ pub struct ObjectBvh {
 }
 
 impl ObjectBvh {
-    /// The BVHs of an object's tiles (`pointray_surface::patch_tiles`): a point set's
+    /// The BVHs of an object's tiles (`pointray_patches::patch_tiles`): a point set's
     /// patches in runs of at most `max_tile_patches`, a mesh whole. Empty for an object
     /// with nothing to hit, or whose records are inconsistent (a triangle naming a missing
     /// vertex, fewer boxes than patches): it is left out, with a warning, rather than crash

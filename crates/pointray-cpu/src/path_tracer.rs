@@ -22,9 +22,9 @@ use pointray_kernels::{
 use pointray_scene::RenderSettings;
 
 use crate::direct_light::{EmitterHit, SurfacePoint};
-use crate::path::PrimaryAov;
 use crate::ray_counts::RayCounts;
 use crate::renderer::CpuRenderer;
+use crate::whitted::PrimaryAov;
 
 /// The numbers each bounce draws: light choice (1), light position (2), BSDF lobe and
 /// direction (3), Russian roulette (1).

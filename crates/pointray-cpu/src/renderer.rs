@@ -6,9 +6,9 @@ use pointray_kernels::{Camera, EmissiveTriangles, Ray, camera_ray, random_sequen
 use pointray_scene::{Integrator, RenderSettings, RenderedImage, Scene};
 use rayon::prelude::*;
 
-use crate::path::PrimaryAov;
 use crate::ray_counts::RayCounts;
 use crate::top_level::{SceneHit, TopLevel};
+use crate::whitted::PrimaryAov;
 
 /// Tiles are squares of this many pixels a side: small enough to balance two to many
 /// cores, large enough that neighbouring rays share BVH nodes in cache.
@@ -39,7 +39,7 @@ impl CpuRenderer {
     }
 
     /// As `new`, with each point set split into tiles of at most `max_tile_patches` patches
-    /// (`pointray_surface::patch_tiles`), one BVH each under the top level: the same hits,
+    /// (`pointray_patches::patch_tiles`), one BVH each under the top level: the same hits,
     /// and a large set's BVHs build in parallel.
     pub fn with_max_tile_patches(scene: &Scene, max_tile_patches: usize) -> Self {
         Self {
@@ -116,7 +116,7 @@ impl CpuRenderer {
         let mut sample = |s| {
             let ray = camera_ray(camera, size, pixel, sample_jitter(s));
             match settings.integrator {
-                Integrator::Whitted => self.trace_path(ray, settings, counts),
+                Integrator::Whitted => self.trace_whitted(ray, settings, counts),
                 Integrator::Path => {
                     self.path_trace(ray, random_sequence(settings.seed, pixel, s), settings, counts)
                 }

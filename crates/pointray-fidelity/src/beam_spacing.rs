@@ -5,8 +5,8 @@ use std::collections::BTreeMap;
 
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
-use pointray_surface::PatchSet;
-use pointray_surface::scan_patches::MIN_INCIDENCE_COSINE;
+use pointray_patches::PatchSet;
+use pointray_surface::scan::patches::MIN_INCIDENCE_COSINE;
 use serde::Serialize;
 
 use crate::percentile::percentile;

@@ -6,9 +6,9 @@ use std::sync::Arc;
 use glam::{Affine3A, Vec3};
 use pointray_io::TriangleMesh;
 use pointray_kernels::Aabb;
+use pointray_patches::PatchSet;
 use pointray_scene::bounds::{bounds_of_points, center, diagonal};
 use pointray_scene::{Background, Camera, Geometry, Light, Material, Scene, SceneObject};
-use pointray_surface::PatchSet;
 
 use crate::FidelityError;
 

@@ -3,7 +3,7 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use pointray_surface::PatchSet;
+use pointray_patches::PatchSet;
 use serde::Serialize;
 
 use crate::FidelityError;

@@ -6,8 +6,8 @@ use std::time::Instant;
 
 use glam::Vec3;
 use pointray_io::TriangleMesh;
+use pointray_patches::PatchSet;
 use pointray_scene::{PatchAcceptance, RenderSettings};
-use pointray_surface::PatchSet;
 
 use crate::vertex_normals::VertexNormals;
 use crate::view_images::write_view_images;

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use pointray_io::TriangleMesh;
-use pointray_surface::PatchSet;
+use pointray_patches::PatchSet;
 use serde::Serialize;
 
 use crate::view_placement::View;

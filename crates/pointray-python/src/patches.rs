@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use numpy::{IntoPyArray, PyArrayMethods};
-use pointray_surface::{PatchSet, patch_store};
+use pointray_patches::{PatchSet, patch_store};
 use pyo3::prelude::*;
 
 use crate::errors::to_python;

@@ -4,8 +4,9 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
+use pointray_patches::PrepSettings;
+use pointray_surface::NoProgress;
 use pointray_surface::input_validation::validate_settings;
-use pointray_surface::{NoProgress, PrepSettings};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::Deserialize;

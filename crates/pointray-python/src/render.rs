@@ -7,6 +7,7 @@ use std::sync::Arc;
 use numpy::{IntoPyArray, PyArrayMethods};
 use pointray_denoise::{DenoiseSettings, denoise};
 use pointray_io::MemoryBudget;
+use pointray_patches::PatchSet;
 use pointray_render::{
     Backend, BackendChoice, DeviceOptions, DeviceSelector, device_options_from_environment, error_line,
     missing_tiles,
@@ -14,7 +15,6 @@ use pointray_render::{
 use pointray_scene::load::{LoadOptions, load_scene_file};
 use pointray_scene::scene_file::CameraSpec;
 use pointray_scene::{PointsScene, RenderSetting, RenderSettings, RenderedImage, SceneFile, UpAxis};
-use pointray_surface::PatchSet;
 use pointray_vulkan::TileResidency;
 use pyo3::exceptions::{PyUserWarning, PyValueError};
 use pyo3::prelude::*;

@@ -19,7 +19,7 @@ pub(crate) fn finite_dvec3(key: &str, value: [f64; 3]) -> Result<DVec3, InvalidV
 /// A position in the render space, as f32: refused when it lies so far out (a camera 1e120
 /// units away, say) that f32 cannot hold it.
 pub(crate) fn placeable(key: &str, position: DVec3) -> Result<Vec3, InvalidValue> {
-    let limit = f64::from(pointray_surface::geometry_range::MAX_COORDINATE);
+    let limit = f64::from(pointray_patches::geometry_range::MAX_COORDINATE);
     if position.abs().max_element() <= limit {
         Ok(position.as_vec3())
     } else {

@@ -15,10 +15,11 @@ pub enum SceneError {
     Invalid { path: PathBuf, key: String, problem: String },
     #[error("{scene}: {key}: {source}")]
     Input { scene: PathBuf, key: String, source: pointray_io::IoError },
+    #[cfg(feature = "load")]
     #[error("{scene}: {key}: preparing patches from {file} failed: {source}")]
     Prep { scene: PathBuf, key: String, file: PathBuf, source: pointray_surface::PrepError },
     #[error("{scene}: {key}: {source}")]
-    PatchStore { scene: PathBuf, key: String, source: pointray_surface::patch_store::StoreError },
+    PatchStore { scene: PathBuf, key: String, source: pointray_patches::patch_store::StoreError },
     #[error("{path}: cannot create the patch cache folder: {source}")]
     CacheDir { path: PathBuf, source: std::io::Error },
     #[error("{path}: cannot write the image: {source}")]
@@ -29,12 +30,14 @@ pub enum SceneError {
 
 /// A value that parsed but makes no sense, found before the scene file's path is known to the
 /// check; `SceneError::Invalid` adds the path.
+#[cfg(feature = "load")]
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct InvalidValue {
     pub key: String,
     pub problem: String,
 }
 
+#[cfg(feature = "load")]
 impl InvalidValue {
     pub fn new(key: impl Into<String>, problem: impl Into<String>) -> Self {
         Self { key: key.into(), problem: problem.into() }

@@ -6,9 +6,9 @@ use std::sync::Arc;
 
 use glam::{DAffine3, DVec3, Vec3};
 use pointray_kernels::{Aabb, PatchCold};
-use pointray_surface::PatchSet;
-use pointray_surface::geometry_range::{self, SCENE_EXTENTS, extent_problem};
-use pointray_surface::prep_progress::{NoProgress, PrepProgress};
+use pointray_patches::PatchSet;
+use pointray_patches::geometry_range::{self, SCENE_EXTENTS, extent_problem};
+use pointray_surface::{NoProgress, PrepProgress};
 
 use crate::checks;
 use crate::error::{InvalidValue, SceneError};

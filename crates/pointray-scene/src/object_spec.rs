@@ -41,8 +41,9 @@ use pointray_io::formats::ColumnSpec;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
+use pointray_patches::PrepSettings;
+use pointray_surface::PrepError;
 use pointray_surface::input_validation::validate_settings;
-use pointray_surface::{PrepError, PrepSettings};
 
 use crate::checks;
 use crate::error::InvalidValue;

@@ -13,8 +13,9 @@ use std::path::{Path, PathBuf};
 
 use pointray_io::PointCloud;
 use pointray_io::formats::ColumnSpec;
-use pointray_surface::patch_store::{self, StoreError};
-use pointray_surface::{PatchSet, PrepError, PrepSettings, prep, prep_owned};
+use pointray_patches::patch_store::{self, StoreError};
+use pointray_patches::{PatchSet, PrepSettings};
+use pointray_surface::{PrepError, prep, prep_owned};
 
 use crate::classification_palette::classification_color;
 use crate::error::SceneError;

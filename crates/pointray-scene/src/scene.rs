@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use glam::Affine3A;
 use pointray_io::TriangleMesh;
-use pointray_surface::PatchSet;
+use pointray_patches::PatchSet;
 
 use crate::{Background, Camera, Light, Material};
 

@@ -13,8 +13,9 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use pointray_io::formats::ply;
+use pointray_patches::{PrepSettings, patch_store};
 use pointray_surface::peak_memory::{StagePeaks, current_rss};
-use pointray_surface::{NoProgress, PrepSettings, patch_store, prep_owned, sample_mesh};
+use pointray_surface::{NoProgress, prep_owned, sample_mesh};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);

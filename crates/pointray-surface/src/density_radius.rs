@@ -29,47 +29,6 @@ use rayon::prelude::*;
 use crate::neighbors::Neighbors;
 use pointray_kernels::TangentFrame;
 
-/// How `prep` chooses each patch's support radius `d_i`.
-///
-/// The default is the cell radius: against the paper's on the bunny and horse scans it halves
-/// the false surface at silhouettes and the normal error, and shortens the GPU frame by 8–26%.
-/// It leaves no pinholes: the few pixels in 100,000 that the mesh covers and it does not all
-/// lie on the mesh's silhouette, where the paper's larger disks bulge past it instead
-/// (bench/FIDELITY.md, "Cell margin").
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum RadiusMode {
-    /// METHOD.md §2.3: the tangential distance to the farthest of the `k` neighbours.
-    Paper,
-    /// The paper's radius widened to cover the point's Voronoi cell and held to a band
-    /// around the neighbourhood's median.
-    Adaptive,
-    /// Just what covers the point's Voronoi cell, `CELL_MARGIN` times its farthest corner,
-    /// and never more than the paper's radius.
-    #[default]
-    Cell,
-}
-
-impl RadiusMode {
-    /// The code stored in the patch store's header.
-    pub fn code(self) -> u32 {
-        match self {
-            Self::Paper => 0,
-            Self::Adaptive => 1,
-            Self::Cell => 2,
-        }
-    }
-
-    pub fn from_code(code: u32) -> Option<Self> {
-        match code {
-            0 => Some(Self::Paper),
-            1 => Some(Self::Adaptive),
-            2 => Some(Self::Cell),
-            _ => None,
-        }
-    }
-}
-
 /// The cell radius is this multiple of the cell's farthest corner: neighbouring patches lie
 /// in slightly different tangent planes, and a ray meets a curved patch away from where its
 /// hit projects into the tangent plane, so each disk must reach past its cell. On random

@@ -5,72 +5,22 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use pointray_io::MemoryBudget;
+use pointray_patches::geometry_range::{CLOUD_EXTENTS, extent_problem};
+use pointray_patches::{InvalidSetting, PrepSettings};
 
-use crate::geometry_range::{CLOUD_EXTENTS, extent_problem};
-
-use crate::outlier_removal::OutlierFilter;
 use crate::prep_error::PrepError;
 use crate::prep_memory::{PREP_FIXED_BYTES, prep_bytes_per_point};
-use crate::prep_settings::PrepSettings;
-
-/// Fewer neighbours than this cannot give a PCA normal or a plane fit.
-const MIN_NEIGHBOURS: u32 = 3;
-
-/// More neighbours than this no longer describe a local surface, and the neighbour search
-/// grows with k squared.
-pub const MAX_NEIGHBOURS: u32 = 1024;
 
 /// Points within this fraction of the cloud's extent of one line are judged collinear:
 /// after recentring to f32 (24-bit mantissa) their offsets from the line are noise.
 const COLLINEAR_TOLERANCE: f64 = 1e-6;
 
-/// Beyond this, patches reach past twice their farthest neighbour: no longer local.
-const MAX_DISK_SCALE: f32 = 2.0;
-
-/// Every prep setting, whichever route it came by (flags, a scene file, code): the one place
-/// they are checked.
+/// Every prep setting, whichever route it came by (flags, a scene file, code), checked by
+/// `PrepSettings::check`.
 pub fn validate_settings(settings: &PrepSettings) -> Result<(), PrepError> {
-    for (name, value) in [("k", settings.k), ("normal_k", settings.normal_k)] {
-        if !(MIN_NEIGHBOURS..=MAX_NEIGHBOURS).contains(&value) {
-            return invalid(
-                name,
-                format!("must be between {MIN_NEIGHBOURS} and {MAX_NEIGHBOURS}, got {value}"),
-            );
-        }
-    }
-    if !(settings.duplicate_tolerance >= 0.0 && settings.duplicate_tolerance.is_finite()) {
-        return invalid(
-            "duplicate_tolerance",
-            format!("must be finite and >= 0, got {}", settings.duplicate_tolerance),
-        );
-    }
-    if !(settings.disk_scale > 0.0 && settings.disk_scale <= MAX_DISK_SCALE) {
-        return invalid(
-            "disk_scale",
-            format!("must be in (0, {MAX_DISK_SCALE}], got {}", settings.disk_scale),
-        );
-    }
-    if let Some(sensor) = settings.sensor.filter(|sensor| !sensor.is_finite()) {
-        return invalid("sensor", format!("must be a finite position, got {sensor}"));
-    }
-    if let Some(filter) = &settings.remove_outliers {
-        validate_outlier_filter(filter)?;
-    }
-    Ok(())
-}
-
-fn validate_outlier_filter(filter: &OutlierFilter) -> Result<(), PrepError> {
-    let OutlierFilter { neighbors, sigmas } = *filter;
-    if !(1..=MAX_NEIGHBOURS).contains(&neighbors) {
-        return invalid(
-            "remove_outliers.neighbors",
-            format!("must be between 1 and {MAX_NEIGHBOURS}, got {neighbors}"),
-        );
-    }
-    if !(sigmas.is_finite() && sigmas >= 0.0) {
-        return invalid("remove_outliers.sigmas", format!("must be a finite number >= 0, got {sigmas}"));
-    }
-    Ok(())
+    settings
+        .check()
+        .map_err(|InvalidSetting { setting, problem }| PrepError::InvalidSetting { setting, problem })
 }
 
 /// Whether prepping `points` points with `params` (and attributes of `attribute_bytes` a
@@ -86,10 +36,6 @@ pub fn validate_size(
     budget
         .check(points as u64, bytes_each, "points to prep")
         .map_err(|shortfall| PrepError::TooLarge { problem: shortfall.to_string() })
-}
-
-fn invalid(setting: &'static str, problem: String) -> Result<(), PrepError> {
-    Err(PrepError::InvalidSetting { setting, problem })
 }
 
 /// Checks, in order: finite coordinates, enough points, not all identical, not all on
@@ -197,6 +143,8 @@ fn farthest_from(positions: &[DVec3], anchor: DVec3) -> DVec3 {
 
 #[cfg(test)]
 mod tests {
+    use pointray_patches::OutlierFilter;
+
     use super::*;
 
     fn grid(n: usize) -> Vec<DVec3> {

@@ -1,15 +1,19 @@
 //! From a point set to MLS quadratic patches (METHOD.md §2): the offline half of pointray.
+//!
+//! Three rooms:
+//! - the crate root holds the core prep pipeline (`prep`): input checks, neighbours,
+//!   normals and their orientation, support radii, the quadratic fit and the boxes;
+//! - `scan` shapes patches by a LiDAR scan's line structure;
+//! - `tiles` preps a cloud in tiles: halos, the out-of-core sort, streamed prep, tile jobs
+//!   and their merge.
+//!
+//! The patches it makes, and the store it writes them to, are `pointray-patches`'.
 
-mod cloud_subset;
-pub mod cold_records;
+mod cold_records;
 mod component_signs;
-mod curve_span;
 pub mod density_radius;
 mod duplicate_clusters;
 pub mod duplicates;
-pub mod geometry_range;
-mod halo_reach;
-mod halo_test;
 pub mod input_validation;
 pub mod morton;
 mod nearest_cells;
@@ -17,63 +21,27 @@ pub mod neighbors;
 pub mod normals;
 pub mod orientation;
 mod orientation_tree;
-mod out_of_core_sort;
-pub mod outlier_removal;
-mod parallel_checksum;
-pub mod patch_bounds;
-mod patch_checks;
-mod patch_map;
-pub mod patch_records;
-pub mod patch_set;
-pub mod patch_store;
-mod patch_store_in_place;
-mod patch_store_write;
-pub mod patch_tiles;
+mod outlier_removal;
+mod patch_bounds;
 pub mod peak_memory;
-mod point_records;
-pub mod prep;
-pub mod prep_error;
+mod prep;
+mod prep_error;
 pub mod prep_memory;
-pub mod prep_progress;
-pub mod prep_report;
-pub mod prep_settings;
-pub mod quadratic_fit;
-mod reach_cells;
+mod prep_progress;
+mod prep_report;
+mod quadratic_fit;
 pub mod sampling;
-pub mod scan_edges;
-mod scan_free_space;
-mod scan_levels;
-pub mod scan_lines;
-pub mod scan_neighborhood;
-mod scan_noise;
-mod scan_normal_smoothing;
-pub mod scan_patches;
-mod scan_plane_vote;
-mod scan_prep;
+pub mod scan;
 mod shaped_patches;
-mod sorted_points;
 mod stage_clock;
-mod stream_budget;
-pub mod stream_error;
-pub mod streamed_prep;
-pub mod streamed_tiles;
-pub mod support_radius;
-pub mod tile_file;
-pub mod tile_merge;
-mod tile_spool;
-pub mod tiled_prep;
+mod support_radius;
+pub mod tiles;
 pub mod uneven_sampling;
-pub mod wendland;
+mod wendland;
 
-pub use density_radius::RadiusMode;
-pub use outlier_removal::OutlierFilter;
-pub use patch_bounds::BoxKind;
-pub use patch_records::PatchRecords;
-pub use patch_set::PatchSet;
 pub use prep::{PREP_REVISION, TileContext, prep, prep_in_context, prep_owned};
 pub use prep_error::PrepError;
 pub use prep_progress::{NoProgress, PrepProgress, Stage};
 pub use prep_report::{FitCounts, PrepReport, RadiusFallbacks, ScanSummary};
-pub use prep_settings::{PrepSettings, ScanMode};
 pub use quadratic_fit::{FitKind, PatchFit};
 pub use sampling::sample_mesh;

@@ -4,36 +4,25 @@
 //! more than `sigmas` standard deviations above the cloud's mean of those means.
 
 use glam::Vec3;
+use pointray_patches::OutlierFilter;
 use rayon::prelude::*;
 
 use crate::neighbors::k_nearest;
 
-/// The settings of the filter (PCL's `StatisticalOutlierRemoval`, with the same meaning).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct OutlierFilter {
-    /// `K`: how many nearest neighbours each point's mean distance is taken over.
-    pub neighbors: u32,
-    /// `N`: how many standard deviations above the mean a point's mean distance may be.
-    pub sigmas: f32,
-}
-
-impl OutlierFilter {
-    /// `true` for every point to keep. Needs more than `neighbors` points (prep has
-    /// checked that there are more than its own `k`); with fewer, it keeps them all.
-    pub fn inliers(&self, points: &[Vec3]) -> Vec<bool> {
-        let k = self.neighbors as usize;
-        if points.len() <= k {
-            return vec![true; points.len()];
-        }
-        let table = k_nearest(points, k);
-        let means: Vec<f64> = (0..points.len())
-            .into_par_iter()
-            .map(|i| table.distances_of(i).iter().map(|&d| f64::from(d)).sum::<f64>() / k as f64)
-            .collect();
-        let limit = mean_plus_sigmas(&means, f64::from(self.sigmas));
-        means.par_iter().map(|&mean| mean <= limit).collect()
+/// `true` for every point to keep. Needs more than `filter.neighbors` points (prep has
+/// checked that there are more than its own `k`); with fewer, it keeps them all.
+pub fn inliers(filter: &OutlierFilter, points: &[Vec3]) -> Vec<bool> {
+    let k = filter.neighbors as usize;
+    if points.len() <= k {
+        return vec![true; points.len()];
     }
+    let table = k_nearest(points, k);
+    let means: Vec<f64> = (0..points.len())
+        .into_par_iter()
+        .map(|i| table.distances_of(i).iter().map(|&d| f64::from(d)).sum::<f64>() / k as f64)
+        .collect();
+    let limit = mean_plus_sigmas(&means, f64::from(filter.sigmas));
+    means.par_iter().map(|&mean| mean <= limit).collect()
 }
 
 /// `mean + sigmas * standard deviation` of `values` (population deviation, as PCL).
@@ -59,7 +48,7 @@ mod tests {
         let mut points: Vec<Vec3> =
             (0..400).map(|i| Vec3::new((i % 20) as f32, (i / 20) as f32, 0.0)).collect();
         points.push(Vec3::new(10.0, 10.0, 50.0));
-        let keep = OutlierFilter { neighbors: 8, sigmas: 3.0 }.inliers(&points);
+        let keep = inliers(&OutlierFilter { neighbors: 8, sigmas: 3.0 }, &points);
         assert_eq!(keep.iter().filter(|&&k| !k).count(), 1);
         assert!(!keep[400]);
     }

@@ -5,39 +5,9 @@ use std::sync::LazyLock;
 
 use glam::{Vec2, Vec3};
 use pointray_kernels::{Aabb, Patch, PatchHot};
+use pointray_patches::BoxKind;
 
 use crate::quadratic_fit::evaluate;
-
-/// Which box each patch gets.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum BoxKind {
-    /// The cube of half-size `d_i` around the patch's origin, as in the paper.
-    Cube,
-    /// The box around the patch surface `w = f(u, v)` over its support ellipse: the
-    /// default, since every hit the disk test accepts lies inside it (the same hits as the
-    /// cube's, bench/FIDELITY.md) and rays test fewer boxes (bench/RESULTS.md).
-    #[default]
-    Tight,
-}
-
-impl BoxKind {
-    /// The code stored in the patch store's header.
-    pub fn code(self) -> u32 {
-        match self {
-            BoxKind::Cube => 0,
-            BoxKind::Tight => 1,
-        }
-    }
-
-    pub fn from_code(code: u32) -> Option<Self> {
-        match code {
-            0 => Some(BoxKind::Cube),
-            1 => Some(BoxKind::Tight),
-            _ => None,
-        }
-    }
-}
 
 /// Rim samples of the tight box.
 const RIM_SAMPLES: usize = 24;

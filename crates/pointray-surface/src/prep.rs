@@ -7,25 +7,24 @@ use pointray_io::{MemoryBudget, PointCloud};
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
 use pointray_kernels::tangent_frame::normal_basis;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PackedTangentFrame, PatchCold, PatchHot, TangentFrame};
+use pointray_patches::{OutlierFilter, PatchSet, PrepSettings, RadiusMode};
 use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
-use crate::density_radius::{RadiusAdjustments, RadiusMode, adaptive_radii, cell_radii};
+use crate::density_radius::{RadiusAdjustments, adaptive_radii, cell_radii};
 use crate::duplicates::merge_duplicates;
 use crate::input_validation::{validate_part, validate_positions, validate_settings, validate_size};
 use crate::morton::morton_order;
 use crate::neighbors::{Neighbors, k_nearest};
 use crate::normals::pca_normals;
 use crate::orientation::{orient_consistently, orient_toward};
-use crate::outlier_removal::OutlierFilter;
+use crate::outlier_removal::inliers;
 use crate::patch_bounds::patch_box;
-use crate::patch_set::PatchSet;
 use crate::prep_error::PrepError;
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::prep_report::{FitCounts, PrepReport, RadiusFallbacks};
-use crate::prep_settings::PrepSettings;
 use crate::quadratic_fit::{FitKind, PatchFit, fit_patch};
-use crate::scan_prep::{scan_shaped, scan_structure};
+use crate::scan::prep::{scan_shaped, scan_structure};
 use crate::shaped_patches::{ShapedPatches, count_fits};
 use crate::stage_clock::StageClock;
 use crate::support_radius::{RadiusSource, support_radius};
@@ -69,7 +68,7 @@ pub fn prep_owned(
     prep_cloud(Cow::Owned(cloud), settings, progress)
 }
 
-/// As `prep`, for a tile of a larger cloud (`tiled_prep`): recentred on the whole cloud's
+/// As `prep`, for a tile of a larger cloud (`tiles::tiled_prep`): recentred on the whole cloud's
 /// offset and merging duplicates within its distance, so that the tile's patches are the
 /// ones a single pass over the whole cloud makes.
 pub fn prep_in_context(
@@ -376,7 +375,7 @@ fn keep_inliers(
     kept: &[u32],
     k: usize,
 ) -> Result<Vec<u32>, PrepError> {
-    let inliers = filter.inliers(&gather(sorted, kept));
+    let inliers = inliers(filter, &gather(sorted, kept));
     let survivors: Vec<u32> =
         kept.iter().zip(inliers).filter(|(_, inlier)| *inlier).map(|(&i, _)| i).collect();
     if survivors.len() < k + 1 {

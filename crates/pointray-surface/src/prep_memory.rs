@@ -19,8 +19,7 @@
 //! patches themselves (68 bytes) come after the peak, once the neighbours are narrowed.
 
 use pointray_io::MemoryBudget;
-
-use crate::prep_settings::PrepSettings;
+use pointray_patches::PrepSettings;
 
 /// A u32 neighbour index and its f32 distance.
 const NEIGHBOUR_BYTES: u64 = 8;

@@ -8,7 +8,7 @@ use std::borrow::Cow;
 use std::ops::Range;
 
 use pointray_kernels::{COLOR_NEIGHBORS, COLOR_WALK_SCANS, NO_NEIGHBOR};
-use pointray_surface::PatchSet;
+use pointray_patches::PatchSet;
 use rayon::prelude::*;
 
 /// The halo's patches, in order; a tile's buffers hold halo patch `k` at index

@@ -4,11 +4,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use pointray_kernels::{PatchCold, PatchHot};
 use pointray_scene::light::WhittedLight;
-use pointray_scene::{Background, BufferLayout, Light, Material, RenderSettings};
-
-use crate::light_table::LightTable;
-use crate::prepared_scene::PreparedScene;
-use crate::trace_target::PixelOutput;
+use pointray_scene::{BufferLayout, Light, Material, RenderSettings};
 
 /// Hot and cold data of one patch interleaved (`BufferLayout::Combined`): 44 bytes.
 #[repr(C)]
@@ -111,71 +107,29 @@ impl From<&Light> for LightRecord {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub(crate) struct FrameUniforms {
-    camera_position_fov: [f32; 4],
-    camera_look_at: [f32; 4],
-    camera_up: [f32; 4],
-    background_top: [f32; 4],
-    background_bottom: [f32; 4],
-    light_count: u32,
-    ray_epsilon: f32,
-    sky_lit: u32,
-    sky_is_map: u32,
-    sky_texels: u64,
-    sky_distribution: u64,
-    sky_width: u32,
-    sky_height: u32,
-    sky_rotation: f32,
-    emissive_count: u32,
-    emissive_records: u64,
-    emissive_distribution: u64,
-    emissive_total_area: f32,
-    pad: [u32; 3],
+    pub(crate) camera_position_fov: [f32; 4],
+    pub(crate) camera_look_at: [f32; 4],
+    pub(crate) camera_up: [f32; 4],
+    pub(crate) background_top: [f32; 4],
+    pub(crate) background_bottom: [f32; 4],
+    pub(crate) light_count: u32,
+    pub(crate) ray_epsilon: f32,
+    pub(crate) sky_lit: u32,
+    pub(crate) sky_is_map: u32,
+    pub(crate) sky_texels: u64,
+    pub(crate) sky_distribution: u64,
+    pub(crate) sky_width: u32,
+    pub(crate) sky_height: u32,
+    pub(crate) sky_rotation: f32,
+    pub(crate) emissive_count: u32,
+    pub(crate) emissive_records: u64,
+    pub(crate) emissive_distribution: u64,
+    pub(crate) emissive_total_area: f32,
+    pub(crate) pad: [u32; 3],
 }
 
-fn vec4(v: Vec3, w: f32) -> [f32; 4] {
+pub(crate) fn vec4(v: Vec3, w: f32) -> [f32; 4] {
     [v.x, v.y, v.z, w]
-}
-
-impl FrameUniforms {
-    /// The uniforms a trace of `scene` reads: its camera, its background (with the addresses
-    /// of its map's table, where it is a map) and its emissive triangles' table.
-    pub(crate) fn new(scene: &PreparedScene) -> Self {
-        let (camera, background) = (&scene.camera, &scene.background);
-        // A solid background is the gradient between two equal colours.
-        let (top, bottom) = match background {
-            Background::Solid(color) => (*color, *color),
-            Background::Gradient { top, bottom } => (*top, *bottom),
-            Background::Map(_) => (Vec3::ZERO, Vec3::ZERO),
-        };
-        let (width, height, rotation) = match background {
-            Background::Map(map) => (map.width(), map.height(), map.rotation()),
-            _ => (0, 0, 0.0),
-        };
-        let records = |table: &Option<LightTable>| table.as_ref().map_or(0, |t| t.records.device_address());
-        let distribution =
-            |table: &Option<LightTable>| table.as_ref().map_or(0, |t| t.distribution.device_address());
-        Self {
-            camera_position_fov: vec4(camera.position, camera.vertical_fov_degrees),
-            camera_look_at: vec4(camera.look_at, 0.0),
-            camera_up: vec4(camera.up, 0.0),
-            background_top: vec4(top, 0.0),
-            background_bottom: vec4(bottom, 0.0),
-            light_count: scene.light_count,
-            ray_epsilon: scene.ray_epsilon,
-            sky_lit: background.is_lit().into(),
-            sky_is_map: scene.environment.is_some().into(),
-            sky_texels: records(&scene.environment),
-            sky_distribution: distribution(&scene.environment),
-            sky_width: width,
-            sky_height: height,
-            sky_rotation: rotation,
-            emissive_count: scene.emissive_count,
-            emissive_records: records(&scene.emissive),
-            emissive_distribution: distribution(&scene.emissive),
-            emissive_total_area: scene.emissive_area,
-            pad: [0; 3],
-        }
-    }
 }
 
 /// The push-constant block `TraceSettings`.
@@ -195,7 +149,9 @@ pub(crate) struct TraceSettings {
 }
 
 impl TraceSettings {
-    pub(crate) fn new(settings: &RenderSettings, output: PixelOutput) -> Self {
+    /// The push constants of a trace with `settings`, writing pixels of the kind
+    /// `output_kind` (`PixelOutput::code`).
+    pub(crate) fn new(settings: &RenderSettings, output_kind: u32) -> Self {
         Self {
             width: settings.width,
             height: settings.height,
@@ -204,7 +160,7 @@ impl TraceSettings {
             shadows: settings.shadows.into(),
             acceptance: settings.acceptance.code(),
             buffer_layout: layout_code(settings.buffer_layout),
-            output_kind: output_code(output),
+            output_kind,
             seed: settings.seed,
             first_sample: settings.first_sample,
         }
@@ -216,15 +172,6 @@ fn layout_code(layout: BufferLayout) -> u32 {
     match layout {
         BufferLayout::Split => 0,
         BufferLayout::Combined => 1,
-    }
-}
-
-/// The value the shaders receive for `output` (`OUTPUT_*` in bindings.glsl).
-fn output_code(output: PixelOutput) -> u32 {
-    match output {
-        PixelOutput::Aovs => 0,
-        PixelOutput::Display => 1,
-        PixelOutput::DisplayBgra => 2,
     }
 }
 
@@ -248,6 +195,7 @@ mod tests {
 
     use super::*;
     use crate::spirv_reflection::Reflection;
+    use crate::trace_target::PixelOutput;
 
     fn probe() -> Reflection {
         Reflection::of(crate::shaders::INTERFACE_PROBE_RGEN)
@@ -407,9 +355,9 @@ mod tests {
     fn every_shared_code_has_the_compiled_shaders_value() {
         // In the order interface_probe.rgen stores them.
         let host = [
-            ("OUTPUT_AOVS", output_code(PixelOutput::Aovs)),
-            ("OUTPUT_DISPLAY", output_code(PixelOutput::Display)),
-            ("OUTPUT_DISPLAY_BGRA", output_code(PixelOutput::DisplayBgra)),
+            ("OUTPUT_AOVS", PixelOutput::Aovs.code()),
+            ("OUTPUT_DISPLAY", PixelOutput::Display.code()),
+            ("OUTPUT_DISPLAY_BGRA", PixelOutput::DisplayBgra.code()),
             ("LAYOUT_SPLIT", layout_code(BufferLayout::Split)),
             ("LAYOUT_COMBINED", layout_code(BufferLayout::Combined)),
             ("ACCEPTANCE_BOX", PatchAcceptance::Box.code()),

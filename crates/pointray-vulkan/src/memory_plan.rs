@@ -253,8 +253,8 @@ mod tests {
     use bytemuck::Zeroable;
     use glam::{Affine3A, Vec3};
     use pointray_kernels::{Aabb, PatchCold, PatchHot};
+    use pointray_patches::PatchSet;
     use pointray_scene::{Background, Camera, Material, SceneObject};
-    use pointray_surface::PatchSet;
 
     use super::*;
 

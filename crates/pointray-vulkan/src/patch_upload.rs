@@ -1,4 +1,4 @@
-//! A point set onto the GPU: one BLAS per tile (`pointray_surface::patch_tiles`), then the
+//! A point set onto the GPU: one BLAS per tile (`pointray_patches::patch_tiles`), then the
 //! per-patch records its traces read, all tiles sharing the set's buffers.
 
 use std::ops::Range;
@@ -6,9 +6,9 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot};
+use pointray_patches::PatchSet;
+use pointray_patches::patch_tiles::tile_ranges;
 use pointray_scene::{BufferLayout, Material};
-use pointray_surface::PatchSet;
-use pointray_surface::patch_tiles::tile_ranges;
 use rayon::prelude::*;
 
 use crate::acceleration::{AccelerationStructure, BlasLayout, aabb_input, build, build_peak, build_sizes};

@@ -5,10 +5,10 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use ash::vk;
-use glam::{Affine3A, Vec4};
+use glam::{Affine3A, Vec3, Vec4};
 use pointray_io::TriangleMesh;
+use pointray_patches::geometry_range::{box_in_range, first_vertex_out_of_range};
 use pointray_scene::{Background, BufferLayout, Camera, Geometry, Light, RenderSettings, Scene};
-use pointray_surface::geometry_range::{box_in_range, first_vertex_out_of_range};
 use rayon::prelude::*;
 
 use crate::acceleration::{
@@ -17,7 +17,7 @@ use crate::acceleration::{
 use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
-use crate::gpu_records::{LightRecord, ObjectRecord};
+use crate::gpu_records::{FrameUniforms, LightRecord, ObjectRecord, vec4};
 use crate::light_table::LightTable;
 use crate::memory_plan::{self, GpuBudget, GpuLedger, INSTANCE_BYTES, mib};
 use crate::patch_upload::prepare_patches;
@@ -91,7 +91,7 @@ impl Streaming {
 pub struct SceneLayout {
     pub blas: BlasLayout,
     pub buffers: BufferLayout,
-    /// At most this many patches in one BLAS (`pointray_surface::patch_tiles`); the device's
+    /// At most this many patches in one BLAS (`pointray_patches::patch_tiles`); the device's
     /// `maxPrimitiveCount` caps it whatever is asked, and so does 2^24 - 1 for sets of more
     /// than 2^27 patches (`patch_upload::patch_tiles`). `None` asks for no other limit.
     pub max_tile_patches: Option<u32>,
@@ -525,4 +525,47 @@ fn top_level(
     };
     let objects = Buffer::device_with_data(context, "object records", &record_bytes, storage_usage())?;
     Ok((tlas, objects))
+}
+
+impl PreparedScene {
+    /// The uniforms (`FrameUniforms`) a trace of this scene reads: its camera, its background
+    /// (with the addresses of its map's table, where it is a map) and its emissive triangles'
+    /// table.
+    pub(crate) fn frame_uniforms(&self) -> FrameUniforms {
+        let (camera, background) = (&self.camera, &self.background);
+        // A solid background is the gradient between two equal colours.
+        let (top, bottom) = match background {
+            Background::Solid(color) => (*color, *color),
+            Background::Gradient { top, bottom } => (*top, *bottom),
+            Background::Map(_) => (Vec3::ZERO, Vec3::ZERO),
+        };
+        let (width, height, rotation) = match background {
+            Background::Map(map) => (map.width(), map.height(), map.rotation()),
+            _ => (0, 0, 0.0),
+        };
+        let records = |table: &Option<LightTable>| table.as_ref().map_or(0, |t| t.records.device_address());
+        let distribution =
+            |table: &Option<LightTable>| table.as_ref().map_or(0, |t| t.distribution.device_address());
+        FrameUniforms {
+            camera_position_fov: vec4(camera.position, camera.vertical_fov_degrees),
+            camera_look_at: vec4(camera.look_at, 0.0),
+            camera_up: vec4(camera.up, 0.0),
+            background_top: vec4(top, 0.0),
+            background_bottom: vec4(bottom, 0.0),
+            light_count: self.light_count,
+            ray_epsilon: self.ray_epsilon,
+            sky_lit: background.is_lit().into(),
+            sky_is_map: self.environment.is_some().into(),
+            sky_texels: records(&self.environment),
+            sky_distribution: distribution(&self.environment),
+            sky_width: width,
+            sky_height: height,
+            sky_rotation: rotation,
+            emissive_count: self.emissive_count,
+            emissive_records: records(&self.emissive),
+            emissive_distribution: distribution(&self.emissive),
+            emissive_total_area: self.emissive_area,
+            pad: [0; 3],
+        }
+    }
 }

@@ -11,9 +11,9 @@ use std::time::{Duration, Instant};
 
 use glam::{Affine3A, Vec3};
 use pointray_kernels::Aabb;
+use pointray_patches::PatchSet;
+use pointray_patches::patch_tiles::tile_ranges;
 use pointray_scene::{Camera, Geometry, Scene};
-use pointray_surface::PatchSet;
-use pointray_surface::patch_tiles::tile_ranges;
 use rayon::prelude::*;
 
 use crate::acceleration::{AccelerationStructure, aabb_input, build_peak, build_sizes};

@@ -87,7 +87,7 @@ pub(crate) unsafe fn record_trace_rays(
 ) {
     let device = &context.device;
     let bind_point = vk::PipelineBindPoint::RAY_TRACING_KHR;
-    let push = TraceSettings::new(settings, target.output);
+    let push = TraceSettings::new(settings, target.output.code());
     // SAFETY: the caller's contract.
     unsafe {
         device.cmd_bind_pipeline(command, bind_point, pipeline.pipeline);

@@ -39,6 +39,15 @@ impl PixelOutput {
             PixelOutput::Display | PixelOutput::DisplayBgra => 4,
         }
     }
+
+    /// The value the shaders receive for this output (`OUTPUT_*` in bindings.glsl).
+    pub(crate) fn code(self) -> u32 {
+        match self {
+            PixelOutput::Aovs => 0,
+            PixelOutput::Display => 1,
+            PixelOutput::DisplayBgra => 2,
+        }
+    }
 }
 
 /// Reusable output of traces at one size; see `VulkanRenderer::trace_into`.
@@ -204,7 +213,7 @@ impl TargetBuffers {
 
     /// Points the descriptors at `scene` and writes its camera to the uniforms.
     fn bind(&mut self, scene: &PreparedScene) {
-        let uniforms = FrameUniforms::new(scene);
+        let uniforms = scene.frame_uniforms();
         self.uniforms.write(bytemuck::bytes_of(&uniforms));
         let (pixels, display) = match self.output {
             PixelOutput::Aovs => (&self.written, &self.unused),

@@ -7,12 +7,13 @@ use std::time::Instant;
 
 use clap::Args;
 use pointray_io::MemoryBudget;
+use pointray_patches::PrepSettings;
 use pointray_surface::peak_memory::peak_rss;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
-use pointray_surface::streamed_prep::{prep_one_tile, prep_streamed};
-use pointray_surface::streamed_tiles::TileCount;
-use pointray_surface::tile_merge::{MergeSummary, merge_tile_files};
-use pointray_surface::{PrepError, PrepSettings, prep_owned};
+use pointray_surface::tiles::merge::{MergeSummary, merge_tile_files};
+use pointray_surface::tiles::streamed_prep::{prep_one_tile, prep_streamed};
+use pointray_surface::tiles::streamed_tiles::TileCount;
+use pointray_surface::{PrepError, prep_owned};
 
 use crate::columns_arg::ColumnsArg;
 use crate::prep_settings_args::PrepSettingsArgs;
@@ -108,7 +109,7 @@ fn prep_in_memory(
     let (patches, report) = prep_owned(cloud, settings, bar).map_err(in_file)?;
     println!("{report}");
     let started = Instant::now();
-    pointray_surface::patch_store::write(&args.output, &patches)?;
+    pointray_patches::patch_store::write(&args.output, &patches)?;
     println!(
         "wrote {} patches to {} (offset stored in its header) in {:.3} s",
         patches.len(),

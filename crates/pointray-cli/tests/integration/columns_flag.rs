@@ -37,7 +37,7 @@ fn prep_reads_a_sweep_with_columns_and_refuses_it_without() {
 
     let read = pointray(&[&args[..], &["--columns", "x,y,z,intensity,ring"]].concat());
     assert!(read.status.success(), "{}", output_text(&read));
-    assert_eq!(pointray_surface::patch_store::read(&store).unwrap().len(), 900);
+    assert_eq!(pointray_patches::patch_store::read(&store).unwrap().len(), 900);
 }
 
 #[test]

@@ -42,7 +42,7 @@ fn the_printed_offset_is_the_stored_offset_and_positions_survive() {
     assert!(output.status.success(), "{stdout}{}", String::from_utf8_lossy(&output.stderr));
 
     let offset = printed_offset(&stdout);
-    let patches = pointray_surface::patch_store::read(&store).unwrap();
+    let patches = pointray_patches::patch_store::read(&store).unwrap();
     assert_eq!(patches.offset, offset, "the store holds exactly the printed offset");
     assert!(
         offset.distance(ORIGIN + DVec3::new(4.875, 4.875, 0.0)).abs() < 1.0,

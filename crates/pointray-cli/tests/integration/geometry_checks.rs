@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use pointray_surface::{PatchSet, patch_store};
+use pointray_patches::{PatchSet, patch_store};
 
 use crate::common::{pointray_in, write_grid_ply, write_points_scene};
 

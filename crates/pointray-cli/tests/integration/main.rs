@@ -2,6 +2,7 @@
 
 mod common;
 
+mod architecture_table;
 mod autzen_scene;
 mod bad_input;
 mod bare_points_render;

@@ -27,7 +27,7 @@ fn outliers_are_removed_and_reported() {
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(output.status.success(), "{stdout}{}", String::from_utf8_lossy(&output.stderr));
     assert!(stdout.contains("5 outliers removed"), "{stdout}");
-    assert_eq!(pointray_surface::patch_store::read(&store).unwrap().len(), 900);
+    assert_eq!(pointray_patches::patch_store::read(&store).unwrap().len(), 900);
 }
 
 #[test]

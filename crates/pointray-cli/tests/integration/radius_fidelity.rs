@@ -18,9 +18,10 @@ use std::sync::Arc;
 
 use pointray_fidelity::{CpuImageRenderer, FidelityMetrics, FidelityOptions, measure_fidelity};
 use pointray_io::PointCloud;
+use pointray_patches::{PrepSettings, RadiusMode};
 use pointray_scene::PatchAcceptance;
 use pointray_surface::uneven_sampling::{Unevenness, sample_mesh_unevenly};
-use pointray_surface::{NoProgress, PrepSettings, RadiusMode, prep};
+use pointray_surface::{NoProgress, prep};
 
 const MODELS: [&str; 3] = ["bunny", "horse", "dragon_res2"];
 const SAMPLES: usize = 40_000;

@@ -9,8 +9,9 @@ use std::time::Duration;
 
 use glam::DVec3;
 use pointray_io::PointCloud;
+use pointray_patches::PrepSettings;
 use pointray_scene::{LoadOptions, RenderSettings, load_scene};
-use pointray_surface::{NoProgress, PrepSettings, prep};
+use pointray_surface::{NoProgress, prep};
 use proptest::prelude::*;
 
 /// Far above what a case takes on a 2-core machine; only a hang reaches it.

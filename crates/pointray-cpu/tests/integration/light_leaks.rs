@@ -10,9 +10,10 @@ use glam::{Affine3A, Vec3};
 use pointray_cpu::CpuRenderer;
 use pointray_io::PointCloud;
 use pointray_io::TriangleMesh;
+use pointray_patches::{PatchSet, PrepSettings};
 use pointray_scene::procedural::sphere_points;
 use pointray_scene::{Background, Camera, Integrator, Material, RenderSettings, RenderedImage, SurfaceKind};
-use pointray_surface::{NoProgress, PatchSet, PrepSettings, prep, sample_mesh};
+use pointray_surface::{NoProgress, prep, sample_mesh};
 
 /// A unit cube's six faces, wound to face out.
 fn cube_mesh() -> TriangleMesh {

@@ -11,11 +11,12 @@ use common::*;
 use glam::{Affine3A, Quat, Vec3};
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::EnvironmentMap;
+use pointray_patches::{PatchSet, PrepSettings};
 use pointray_scene::procedural::sphere_points;
 use pointray_scene::{
     Background, Integrator, Material, RenderSettings, RenderedImage, Scene, SunSky, SurfaceKind,
 };
-use pointray_surface::{NoProgress, PatchSet, PrepSettings, prep};
+use pointray_surface::{NoProgress, prep};
 use pointray_test_support::estimate;
 
 /// Standard errors a mean may stray: a false failure once in 1.7 million runs.

@@ -7,8 +7,9 @@ use common::*;
 use glam::{Affine3A, DVec3, Vec3};
 use pointray_cpu::render;
 use pointray_io::PointCloud;
+use pointray_patches::{PatchSet, PrepSettings, RadiusMode};
 use pointray_scene::{Camera, Light, Material, RenderSettings, RenderedImage};
-use pointray_surface::{NoProgress, PatchSet, PrepSettings, RadiusMode, prep};
+use pointray_surface::{NoProgress, prep};
 
 /// A deterministic value in [-0.5, 0.5).
 fn jitter(i: u64) -> f64 {

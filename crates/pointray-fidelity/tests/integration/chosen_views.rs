@@ -8,8 +8,9 @@ use pointray_fidelity::{
     CpuImageRenderer, FidelityOptions, FidelityReport, SensorPose, ViewSpec, measure_fidelity,
 };
 use pointray_io::{PointCloud, TriangleMesh};
+use pointray_patches::PrepSettings;
 use pointray_scene::PatchAcceptance;
-use pointray_surface::{NoProgress, PrepSettings, prep};
+use pointray_surface::{NoProgress, prep};
 
 use crate::ring_scan::{HIGHEST_BEAM, LOWEST_BEAM, SENSOR, ground_scan};
 

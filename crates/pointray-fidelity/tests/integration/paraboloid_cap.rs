@@ -7,8 +7,9 @@ use std::sync::Arc;
 use glam::{DVec3, Vec3};
 use pointray_fidelity::{CpuImageRenderer, FidelityOptions, FidelityReport, ViewSpec, measure_fidelity};
 use pointray_io::{PointCloud, TriangleMesh};
+use pointray_patches::PrepSettings;
 use pointray_scene::PatchAcceptance;
-use pointray_surface::{NoProgress, PrepSettings, prep};
+use pointray_surface::{NoProgress, prep};
 
 /// z = CURVATURE * (x² + y²) over the unit disc.
 const CURVATURE: f64 = 0.5;

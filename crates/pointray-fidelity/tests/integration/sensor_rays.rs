@@ -9,7 +9,8 @@ use pointray_fidelity::{
     support_against_beam_spacing,
 };
 use pointray_io::PointCloud;
-use pointray_surface::{NoProgress, PatchSet, PrepReport, PrepSettings, prep};
+use pointray_patches::{PatchSet, PrepSettings};
+use pointray_surface::{NoProgress, PrepReport, prep};
 
 use crate::ring_scan::{SENSOR, ground_scan, without};
 

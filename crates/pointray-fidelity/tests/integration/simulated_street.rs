@@ -14,9 +14,10 @@ use pointray_lidar::street::street;
 use pointray_lidar::{
     LidarScene, NoProgress, Sensor, SensorPreset, UpAxis, merged_mesh, scan, to_point_cloud,
 };
+use pointray_patches::{PatchSet, PrepSettings};
 use pointray_scene::PatchAcceptance;
-use pointray_surface::prep_progress::NoProgress as NoPrepProgress;
-use pointray_surface::{PatchSet, PrepReport, PrepSettings, prep};
+use pointray_surface::NoProgress as NoPrepProgress;
+use pointray_surface::{PrepReport, prep};
 
 /// Sensor views this many pixels wide; the view from above is this square.
 const SIZE: u32 = 256;

@@ -6,10 +6,10 @@ use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
+use pointray_patches::PatchSet;
 use pointray_scene::classification_palette::classification_color;
 use pointray_scene::color_ramp::ColorRamp;
 use pointray_scene::{Geometry, LoadOptions, SceneFile, SceneObject, load_scene, load_scene_file};
-use pointray_surface::PatchSet;
 
 /// A 40x40 grid over [-1, 1]² in z = 0.5 x (a slope), ground (2) left of x = 0 and
 /// buildings (6) right of it.
@@ -171,14 +171,10 @@ fn colour_sources_an_object_cannot_give_are_refused() {
 #[test]
 fn a_patch_store_has_no_classifications_to_colour_by() {
     let dir = tempfile::tempdir().unwrap();
-    let (patches, _) = pointray_surface::prep(
-        &slope(true),
-        &Default::default(),
-        &pointray_surface::prep_progress::NoProgress,
-    )
-    .unwrap();
+    let (patches, _) =
+        pointray_surface::prep(&slope(true), &Default::default(), &pointray_surface::NoProgress).unwrap();
     let store = dir.path().join("slope.patches");
-    pointray_surface::patch_store::write(&store, &patches).unwrap();
+    pointray_patches::patch_store::write(&store, &patches).unwrap();
     let scene = write_scene(dir.path(), &store, "[objects.material]\ncolor_source = \"classification\"");
     let error = load_error(&scene);
     assert!(error.contains("is a patch store") && error.contains("classification"), "{error}");
@@ -217,7 +213,7 @@ fn a_ramp_over_a_mapped_store_copies_its_colours_alone_and_leaves_the_file_as_it
     let (store, _) =
         pointray_surface::prep(&slope(false), &Default::default(), &pointray_surface::NoProgress).unwrap();
     let store_path = dir.path().join("slope.patches");
-    pointray_surface::patch_store::write(&store_path, &store).unwrap();
+    pointray_patches::patch_store::write(&store_path, &store).unwrap();
     let before = std::fs::read(&store_path).unwrap();
     let scene = write_scene(dir.path(), &store_path, "[objects.material]\ncolor_source = \"height\"");
     let loaded = load_scene(&scene, &LoadOptions::default()).unwrap();

@@ -114,7 +114,7 @@ fn a_corrupt_cache_is_regenerated() {
         }
         other => panic!("expected a regenerated cache, got {other:?}"),
     }
-    pointray_surface::patch_store::read(&cache).expect("the regenerated cache is valid");
+    pointray_patches::patch_store::read(&cache).expect("the regenerated cache is valid");
     assert_eq!(patch_count(&reloaded), 1500);
 
     std::fs::write(&cache, &bytes[..100]).unwrap();

@@ -3,10 +3,10 @@
 
 use std::path::{Path, PathBuf};
 
+use pointray_patches::PrepSettings;
 use pointray_scene::object_spec::ShapeSpec;
 use pointray_scene::scene_file::{BackgroundSpec, LightSpec};
 use pointray_scene::{Integrator, SceneError, SceneFile};
-use pointray_surface::PrepSettings;
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")

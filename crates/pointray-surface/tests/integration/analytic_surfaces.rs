@@ -3,7 +3,8 @@
 use crate::common;
 
 use glam::{DVec3, Vec3};
-use pointray_surface::{NoProgress, PatchSet, PrepReport, PrepSettings, prep};
+use pointray_patches::{PatchSet, PrepSettings};
+use pointray_surface::{NoProgress, PrepReport, prep};
 
 fn prep_default(cloud: &pointray_io::PointCloud) -> (PatchSet, PrepReport) {
     prep(cloud, &PrepSettings::default(), &NoProgress).expect("a clean analytic surface preps")

@@ -5,7 +5,8 @@ use crate::normals_support::area_weighted_vertex_normals;
 use pointray_test_support::data_dir;
 
 use pointray_io::formats::ply;
-use pointray_surface::{NoProgress, PrepSettings, prep};
+use pointray_patches::PrepSettings;
+use pointray_surface::{NoProgress, prep};
 
 #[test]
 fn bunny_patches_are_finite_and_normals_agree_with_the_mesh() {

@@ -7,7 +7,8 @@ use crate::common;
 use glam::{DVec3, Vec3};
 use pointray_kernels::interpolate_color::{COLOR_SUPPORT_SCALE, color_from_rgba8};
 use pointray_kernels::{COLOR_NEIGHBORS, PatchAcceptance, Ray, interpolate_color, intersect_patch};
-use pointray_surface::{NoProgress, PatchSet, PrepSettings, RadiusMode, prep};
+use pointray_patches::{PatchSet, PrepSettings, RadiusMode};
+use pointray_surface::{NoProgress, prep};
 
 /// A jittered height field with a smooth colour field (sRGB in the file, as scans carry it).
 fn coloured_scan() -> PatchSet {

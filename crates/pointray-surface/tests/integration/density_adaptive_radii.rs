@@ -4,9 +4,10 @@
 use crate::common;
 
 use glam::{DVec3, Vec2};
+use pointray_patches::{PatchSet, PrepSettings, RadiusMode};
 use pointray_surface::density_radius::BAND;
 use pointray_surface::neighbors::k_nearest;
-use pointray_surface::{NoProgress, PatchSet, PrepSettings, RadiusMode, prep};
+use pointray_surface::{NoProgress, prep};
 
 /// Dense cell edge; the sparse half's cells are sqrt(10) times wider: 10x fewer points per area.
 const DENSE_CELL: f64 = 0.02;

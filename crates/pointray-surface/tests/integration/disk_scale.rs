@@ -4,7 +4,8 @@
 use crate::common;
 
 use glam::DVec3;
-use pointray_surface::{NoProgress, PatchSet, PrepError, PrepSettings, prep};
+use pointray_patches::{PatchSet, PrepSettings};
+use pointray_surface::{NoProgress, PrepError, prep};
 
 fn prepped(cloud: &pointray_io::PointCloud, disk_scale: f32) -> Result<PatchSet, PrepError> {
     let options = PrepSettings { disk_scale, ..PrepSettings::default() };

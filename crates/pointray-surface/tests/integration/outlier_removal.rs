@@ -3,7 +3,8 @@
 use crate::common;
 
 use glam::DVec3;
-use pointray_surface::{NoProgress, OutlierFilter, PrepSettings, prep};
+use pointray_patches::{OutlierFilter, PrepSettings};
+use pointray_surface::{NoProgress, prep};
 
 const PLANE_SIDE: usize = 60;
 const OUTLIERS: usize = 20;

@@ -7,10 +7,9 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use pointray_kernels::COLOR_NEIGHBORS;
-use pointray_surface::patch_store::{self, StoreError};
-use pointray_surface::{
-    BoxKind, NoProgress, OutlierFilter, PatchSet, PrepSettings, RadiusMode, ScanMode, prep,
-};
+use pointray_patches::patch_store::{self, StoreError};
+use pointray_patches::{BoxKind, OutlierFilter, PatchSet, PrepSettings, RadiusMode, ScanMode};
+use pointray_surface::{NoProgress, prep};
 
 fn sample_patches(box_kind: BoxKind) -> PatchSet {
     let mut cloud = common::sphere(3000, 1.5, DVec3::new(1e5, 2e5, -3.0));

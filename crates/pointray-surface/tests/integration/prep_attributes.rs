@@ -5,7 +5,8 @@ use crate::common;
 
 use glam::{DVec3, Vec3};
 use pointray_io::PointCloud;
-use pointray_surface::{NoProgress, PatchSet, PrepReport, PrepSettings, prep};
+use pointray_patches::{PatchSet, PrepSettings};
+use pointray_surface::{NoProgress, PrepReport, prep};
 
 const CENTRE: DVec3 = DVec3::new(10.0, 20.0, -5.0);
 

@@ -4,7 +4,8 @@ use crate::common;
 
 use glam::DVec3;
 use pointray_io::PointCloud;
-use pointray_surface::{NoProgress, PrepError, PrepSettings, prep};
+use pointray_patches::PrepSettings;
+use pointray_surface::{NoProgress, PrepError, prep};
 
 fn prep_error(positions: Vec<DVec3>) -> PrepError {
     let cloud = PointCloud::from_positions(positions);

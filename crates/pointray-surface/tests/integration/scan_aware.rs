@@ -4,7 +4,8 @@
 use glam::{DVec3, Vec2};
 use pointray_io::PointCloud;
 use pointray_kernels::Patch;
-use pointray_surface::{NoProgress, PatchSet, PrepSettings, ScanMode, prep};
+use pointray_patches::{PatchSet, PrepSettings, ScanMode};
+use pointray_surface::{NoProgress, prep};
 
 const SENSOR: DVec3 = DVec3::new(0.0, 0.0, 1.8);
 const WALL_X: f64 = 12.0;

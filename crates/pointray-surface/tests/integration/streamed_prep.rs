@@ -8,13 +8,14 @@ use std::path::{Path, PathBuf};
 use pointray_io::formats::ply::write_point_cloud;
 use pointray_io::formats::read_point_cloud;
 use pointray_io::{MemoryBudget, PointStream};
-use pointray_surface::patch_store;
-use pointray_surface::stream_error::StreamError;
-use pointray_surface::streamed_prep::{prep_one_tile, prep_streamed};
-use pointray_surface::streamed_tiles::TileCount;
-use pointray_surface::tile_merge::merge_tile_files;
-use pointray_surface::tiled_prep::prep_tiled;
-use pointray_surface::{NoProgress, PrepSettings};
+use pointray_patches::PrepSettings;
+use pointray_patches::patch_store;
+use pointray_surface::NoProgress;
+use pointray_surface::tiles::merge::merge_tile_files;
+use pointray_surface::tiles::stream_error::StreamError;
+use pointray_surface::tiles::streamed_prep::{prep_one_tile, prep_streamed};
+use pointray_surface::tiles::streamed_tiles::TileCount;
+use pointray_surface::tiles::tiled_prep::prep_tiled;
 
 use crate::tiled_prep::coloured_sheet;
 

@@ -7,8 +7,9 @@ use std::collections::HashMap;
 use glam::DVec3;
 use pointray_io::PointCloud;
 use pointray_kernels::interpolate_color::COLOR_NEIGHBORS;
-use pointray_surface::tiled_prep::{TilePlan, prep_tile, prep_tiled};
-use pointray_surface::{NoProgress, PatchSet, PrepError, PrepSettings, ScanMode, prep};
+use pointray_patches::{PatchSet, PrepSettings, ScanMode};
+use pointray_surface::tiles::tiled_prep::{TilePlan, prep_tile, prep_tiled};
+use pointray_surface::{NoProgress, PrepError, prep};
 
 use crate::common::{height_field, jitter};
 

@@ -8,8 +8,8 @@ use common::{
     assert_no_validation_messages, model_on_floor, prepped_points_with_boxes, renderer, settings,
     sphere_on_floor,
 };
+use pointray_patches::BoxKind;
 use pointray_scene::{Geometry, Material, PatchAcceptance, RenderSettings, RenderedImage, Scene, demo_scene};
-use pointray_surface::BoxKind;
 
 struct Agreement {
     mask: f64,

@@ -12,10 +12,11 @@ use common::{
 };
 use glam::{Affine3A, DVec3, Quat, Vec3};
 use pointray_io::PointCloud;
+use pointray_patches::{PatchSet, PrepSettings};
 use pointray_scene::{
     Background, Camera, Geometry, Material, RenderSettings, RenderedImage, Scene, SceneObject,
 };
-use pointray_surface::{NoProgress, PatchSet, PrepSettings, prep};
+use pointray_surface::{NoProgress, prep};
 
 /// The linear colour each point carries, from its input position: ramps along x and y.
 fn color_field(input: DVec3) -> Vec3 {

@@ -13,9 +13,9 @@ use glam::Vec3;
 use std::sync::Arc;
 
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_patches::PatchSet;
 use pointray_scene::{Background, Geometry, Material};
 use pointray_scene::{Camera, RenderSettings, RenderedImage, Scene};
-use pointray_surface::PatchSet;
 use pointray_vulkan::{PreparedScene, SceneLayout, TileResidency, VulkanError, VulkanRenderer};
 
 const SIZE: u32 = 96;

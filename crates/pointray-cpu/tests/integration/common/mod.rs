@@ -6,8 +6,8 @@ use std::sync::Arc;
 use glam::{Affine3A, Vec3};
 use pointray_io::TriangleMesh;
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
+use pointray_patches::PatchSet;
 use pointray_scene::{Background, Camera, Geometry, Light, Material, Scene, SceneObject};
-use pointray_surface::PatchSet;
 pub use pointray_test_support::sphere_mesh;
 
 pub const BACKGROUND: Vec3 = Vec3::new(0.1, 0.2, 0.3);

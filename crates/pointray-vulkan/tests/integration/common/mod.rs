@@ -7,10 +7,11 @@ use glam::{Affine3A, UVec2, Vec3};
 use pointray_io::TriangleMesh;
 use pointray_io::formats::ply::read_point_cloud;
 use pointray_kernels::{Aabb, PatchCold, PatchHot, camera_ray};
+use pointray_patches::{BoxKind, PatchSet, PrepSettings};
 use pointray_scene::{
     Background, Camera, Geometry, Light, Material, RenderSettings, RenderedImage, Scene, SceneObject,
 };
-use pointray_surface::{BoxKind, NoProgress, PatchSet, PrepSettings, prep};
+use pointray_surface::{NoProgress, prep};
 use pointray_vulkan::VulkanRenderer;
 
 pub use pointray_test_support::vulkan_renderer as renderer;

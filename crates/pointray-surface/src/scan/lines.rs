@@ -1,0 +1,322 @@
+//! The structure of a LiDAR scan: each point lies on a scan line, one beam (ring) of a
+//! spinning sensor or one row of a terrestrial scanner's angular grid, seen from one station.
+//!
+//! Along a line, returns lie a few centimetres apart; between lines the gap grows with range
+//! to metres. The nearest neighbours of a point are then all on its own line, so `prep`
+//! builds scan-aware neighbourhoods from the lines instead (`scan::neighborhood`).
+
+use std::collections::HashMap;
+
+use glam::{DVec3, Vec3};
+
+use crate::scan::noise::range_noise;
+
+/// More distinct sensor positions than this is a moving sensor, not a set of stations: the
+/// lines of one station would hold a handful of points, so the structure is not used.
+const MAX_STATIONS: usize = 1024;
+
+/// Sorted elevations further apart than this (degrees) start a new beam when the beams are
+/// recovered from the geometry: spinning sensors space their beams 0.1° or more apart, while
+/// one beam's returns share its elevation to within hundredths of a degree.
+const BEAM_GAP_DEGREES: f64 = 0.05;
+
+/// Recovered beams are trusted only in this number: fewer is not a multi-beam scan, more is a
+/// dense grid whose rows the gap cannot separate.
+const PLAUSIBLE_BEAMS: std::ops::RangeInclusive<usize> = 4..=4096;
+
+/// One scan line: its station, its mean elevation and its points in azimuth order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScanLine {
+    pub station: u32,
+    /// Mean elevation above the station's horizon, radians.
+    pub elevation: f32,
+    /// Point indices sorted by azimuth.
+    pub members: Vec<u32>,
+    /// The median azimuth step between consecutive members, radians: the sensor's angular
+    /// spacing along the line.
+    pub azimuth_step: f32,
+    /// The lines next below and above in elevation at the same station.
+    pub below: Option<u32>,
+    pub above: Option<u32>,
+}
+
+/// The scan structure of a set of points (local coordinates).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScanLines {
+    pub lines: Vec<ScanLine>,
+    /// Per point: its line.
+    pub line_of: Vec<u32>,
+    /// Per point: its azimuth around its station's vertical (+z) axis, radians.
+    pub azimuth: Vec<f32>,
+    /// Per point: its station's position.
+    pub sensor: Vec<Vec3>,
+    /// The standard deviation of the range noise, in scene units, measured along the lines
+    /// (`scan::noise`), and never below `MIN_RANGE_NOISE`.
+    pub range_noise: f32,
+}
+
+/// Near the poles of a station's sphere an angle spans ever more azimuth; beyond this cosine
+/// of the elevation (about 87°) it is taken to span no more.
+const MIN_AZIMUTH_COSINE: f32 = 0.05;
+
+/// The least range noise assumed: returns are quantised (a millimetre for most sensors) and
+/// a perfect simulated scan must still tolerate rounding.
+const MIN_RANGE_NOISE: f32 = 0.001;
+
+impl ScanLines {
+    /// The structure of `points` seen from `sensors` (one per point, local coordinates), on
+    /// the given `rings` or, without them, on beams recovered from each point's elevation.
+    /// `None` when the structure cannot be trusted (a moving sensor, or no separable beams).
+    pub fn new(points: &[Vec3], sensors: &[DVec3], rings: Option<&[u16]>) -> Option<Self> {
+        let (station_of, stations) = stations(sensors)?;
+        let sensor: Vec<Vec3> = station_of.iter().map(|&s| stations[s as usize]).collect();
+        let offsets: Vec<Vec3> = points.iter().zip(&sensor).map(|(&p, &s)| p - s).collect();
+        let rings = match rings {
+            Some(rings) => rings.to_vec(),
+            None => recovered_beams(&offsets, &station_of, stations.len())?,
+        };
+        let azimuth: Vec<f32> = offsets.iter().map(|d| d.y.atan2(d.x)).collect();
+        let (lines, line_of) = group_lines(&offsets, &station_of, &rings, &azimuth);
+        let range_noise = range_noise(&lines, &offsets, &azimuth).max(MIN_RANGE_NOISE);
+        Some(Self { lines, line_of, azimuth, sensor, range_noise })
+    }
+
+    /// The lines above and below point `i`'s, and theirs above and below: up to four.
+    pub fn nearby_lines(&self, i: usize) -> impl Iterator<Item = &ScanLine> {
+        let line = &self.lines[self.line_of[i] as usize];
+        let step = |index: Option<u32>, up: bool| {
+            index.map(|l| &self.lines[l as usize]).and_then(|l| if up { l.above } else { l.below })
+        };
+        [line.below, line.above, step(line.below, false), step(line.above, true)]
+            .into_iter()
+            .flatten()
+            .map(|l| &self.lines[l as usize])
+    }
+
+    /// The returns of point `i`'s station seen within `angle` (radians) of it in elevation and
+    /// in azimuth: those whose rays may pass through a support of that angular size around it.
+    pub fn returns_near_ray(&self, i: usize, angle: f32) -> Vec<u32> {
+        let own = self.line_of[i];
+        let elevation = self.lines[own as usize].elevation;
+        let azimuth_reach = angle / elevation.cos().max(MIN_AZIMUTH_COSINE);
+        let within = |l: &u32| (self.lines[*l as usize].elevation - elevation).abs() <= angle;
+        let walk = |up: bool| {
+            std::iter::successors(Some(own), move |&l| {
+                let line = &self.lines[l as usize];
+                if up { line.above } else { line.below }
+            })
+            .skip(1)
+            .take_while(within)
+        };
+        let lines = std::iter::once(own).chain(walk(true)).chain(walk(false));
+        let azimuth = self.azimuth[i];
+        lines
+            .flat_map(|l| {
+                let members = &self.lines[l as usize].members;
+                let first = members.partition_point(|&m| self.azimuth[m as usize] < azimuth - azimuth_reach);
+                members[first..]
+                    .iter()
+                    .copied()
+                    .take_while(move |&m| self.azimuth[m as usize] <= azimuth + azimuth_reach)
+            })
+            .collect()
+    }
+
+    /// The azimuth step along point `i`'s line, radians, when the line has one.
+    pub fn azimuth_step(&self, i: usize) -> Option<f32> {
+        Some(self.lines[self.line_of[i] as usize].azimuth_step).filter(|&step| step > 0.0)
+    }
+
+    /// The elevation step between point `i`'s line and the nearest line beside it, radians:
+    /// the sensor's angular beam spacing there.
+    pub fn beam_spacing(&self, i: usize) -> Option<f32> {
+        let line = &self.lines[self.line_of[i] as usize];
+        [line.below, line.above]
+            .into_iter()
+            .flatten()
+            .map(|l| (self.lines[l as usize].elevation - line.elevation).abs())
+            .reduce(f32::min)
+    }
+}
+
+/// Per point its station index, and the stations; `None` for a moving sensor.
+fn stations(sensors: &[DVec3]) -> Option<(Vec<u32>, Vec<Vec3>)> {
+    let mut index: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut stations = Vec::new();
+    let mut station_of = Vec::with_capacity(sensors.len());
+    for sensor in sensors {
+        let key = sensor.to_array().map(f64::to_bits);
+        let next = index.len() as u32;
+        let station = *index.entry(key).or_insert_with(|| {
+            stations.push(sensor.as_vec3());
+            next
+        });
+        if stations.len() > MAX_STATIONS {
+            return None;
+        }
+        station_of.push(station);
+    }
+    Some((station_of, stations))
+}
+
+fn elevation(offset: Vec3) -> f64 {
+    let horizontal = f64::from(offset.x).hypot(f64::from(offset.y));
+    f64::from(offset.z).atan2(horizontal)
+}
+
+/// Beams recovered per station by splitting its sorted elevations at gaps wider than
+/// `BEAM_GAP_DEGREES`; `None` when a station's beam count is implausible.
+fn recovered_beams(offsets: &[Vec3], station_of: &[u32], station_count: usize) -> Option<Vec<u16>> {
+    let mut by_station: Vec<Vec<(f64, u32)>> = vec![Vec::new(); station_count];
+    for (i, (&offset, &station)) in offsets.iter().zip(station_of).enumerate() {
+        by_station[station as usize].push((elevation(offset), i as u32));
+    }
+    let mut rings = vec![0u16; offsets.len()];
+    for mut members in by_station {
+        members.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let gap = BEAM_GAP_DEGREES.to_radians();
+        let mut beam = 0usize;
+        for pair in members.windows(2) {
+            if pair[1].0 - pair[0].0 > gap {
+                beam += 1;
+            }
+            rings[pair[1].1 as usize] = u16::try_from(beam).ok()?;
+        }
+        if !members.is_empty() && !PLAUSIBLE_BEAMS.contains(&(beam + 1)) {
+            return None;
+        }
+    }
+    Some(rings)
+}
+
+/// Lines keyed by (station, ring), members sorted by azimuth, linked to their elevation
+/// neighbours at the same station.
+fn group_lines(
+    offsets: &[Vec3],
+    station_of: &[u32],
+    rings: &[u16],
+    azimuth: &[f32],
+) -> (Vec<ScanLine>, Vec<u32>) {
+    let mut index: HashMap<(u32, u16), u32> = HashMap::new();
+    let mut lines: Vec<ScanLine> = Vec::new();
+    let mut elevation_sums: Vec<f64> = Vec::new();
+    let mut line_of = Vec::with_capacity(offsets.len());
+    for (i, (&station, &ring)) in station_of.iter().zip(rings).enumerate() {
+        let next = lines.len() as u32;
+        let line = *index.entry((station, ring)).or_insert_with(|| {
+            lines.push(ScanLine {
+                station,
+                elevation: 0.0,
+                members: Vec::new(),
+                azimuth_step: 0.0,
+                below: None,
+                above: None,
+            });
+            elevation_sums.push(0.0);
+            next
+        });
+        lines[line as usize].members.push(i as u32);
+        elevation_sums[line as usize] += elevation(offsets[i]);
+        line_of.push(line);
+    }
+    for (line, sum) in lines.iter_mut().zip(elevation_sums) {
+        line.elevation = (sum / line.members.len() as f64) as f32;
+        line.members.sort_by(|&a, &b| azimuth[a as usize].total_cmp(&azimuth[b as usize]));
+        line.azimuth_step = median_step(&line.members, azimuth);
+    }
+    link_by_elevation(&mut lines);
+    (lines, line_of)
+}
+
+/// The median of the positive azimuth steps between consecutive `members` (sorted by
+/// azimuth); 0 when there are none.
+fn median_step(members: &[u32], azimuth: &[f32]) -> f32 {
+    let mut steps: Vec<f32> = members
+        .windows(2)
+        .map(|pair| azimuth[pair[1] as usize] - azimuth[pair[0] as usize])
+        .filter(|&step| step > 0.0)
+        .collect();
+    if steps.is_empty() {
+        return 0.0;
+    }
+    let middle = steps.len() / 2;
+    *steps.select_nth_unstable_by(middle, f32::total_cmp).1
+}
+
+fn link_by_elevation(lines: &mut [ScanLine]) {
+    let mut order: Vec<u32> = (0..lines.len() as u32).collect();
+    order.sort_by(|&a, &b| {
+        let (a, b) = (&lines[a as usize], &lines[b as usize]);
+        a.station.cmp(&b.station).then(a.elevation.total_cmp(&b.elevation))
+    });
+    for pair in order.windows(2) {
+        let (low, high) = (pair[0] as usize, pair[1] as usize);
+        if lines[low].station == lines[high].station {
+            lines[low].above = Some(pair[1]);
+            lines[high].below = Some(pair[0]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Three beams at -2°, 0° and 2°, 90 returns each on a cylinder of radius 10 around the
+    /// origin.
+    fn three_beams() -> Vec<Vec3> {
+        [-2.0f32, 0.0, 2.0]
+            .iter()
+            .flat_map(|&elevation| {
+                (0..90).map(move |step| {
+                    let azimuth = (step as f32 * 4.0).to_radians();
+                    let e = elevation.to_radians();
+                    Vec3::new(azimuth.cos() * e.cos(), azimuth.sin() * e.cos(), e.sin()) * 10.0
+                })
+            })
+            .collect()
+    }
+
+    #[test]
+    fn beams_are_recovered_from_elevations_and_linked_in_order() {
+        let points = [three_beams(), three_beams()].concat();
+        let mut too_few = ScanLines::new(&points, &vec![DVec3::ZERO; points.len()], None);
+        assert!(too_few.take().is_none(), "three beams are not a plausible multi-beam scan");
+        let rings: Vec<u16> = (0..points.len()).map(|i| ((i % 270) / 90) as u16).collect();
+        let scan = ScanLines::new(&points, &vec![DVec3::ZERO; points.len()], Some(&rings)).unwrap();
+        assert_eq!(scan.lines.len(), 3);
+        let middle = &scan.lines[scan.line_of[100] as usize];
+        assert_eq!(middle.members.len(), 180);
+        assert_eq!(scan.nearby_lines(100).count(), 2);
+        assert!((scan.beam_spacing(100).unwrap() - 2f32.to_radians()).abs() < 1e-4);
+        let sorted =
+            middle.members.windows(2).all(|w| scan.azimuth[w[0] as usize] <= scan.azimuth[w[1] as usize]);
+        assert!(sorted);
+    }
+
+    #[test]
+    fn recovered_beams_match_the_elevations() {
+        let points: Vec<Vec3> = (0..8)
+            .flat_map(|beam| {
+                (0..50).map(move |step| {
+                    let (azimuth, e) =
+                        ((step as f32 * 7.0).to_radians(), (beam as f32 * 0.4 - 1.4).to_radians());
+                    Vec3::new(azimuth.cos() * e.cos(), azimuth.sin() * e.cos(), e.sin())
+                        * (5.0 + step as f32 * 0.1)
+                })
+            })
+            .collect();
+        let scan = ScanLines::new(&points, &vec![DVec3::new(0.0, 0.0, 0.0); points.len()], None).unwrap();
+        assert_eq!(scan.lines.len(), 8);
+        for (i, &line) in scan.line_of.iter().enumerate() {
+            assert_eq!(scan.lines[line as usize].members.len(), 50, "point {i}");
+        }
+    }
+
+    #[test]
+    fn a_moving_sensor_has_no_structure() {
+        let points = vec![Vec3::X; MAX_STATIONS + 2];
+        let sensors: Vec<DVec3> = (0..points.len()).map(|i| DVec3::new(i as f64, 0.0, 0.0)).collect();
+        assert!(ScanLines::new(&points, &sensors, None).is_none());
+    }
+}

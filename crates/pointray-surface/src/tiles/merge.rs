@@ -1,0 +1,151 @@
+//! Tile files merged into one patch store, section by section, so that no more than one
+//! tile's patches and a map from input points to patches are in memory at once: the store a
+//! single process prepping the same tiles writes, byte for byte.
+
+use std::path::{Path, PathBuf};
+
+use pointray_io::MemoryBudget;
+use pointray_patches::patch_store::{self, StoreSummary};
+
+use crate::prep_progress::{PrepProgress, Stage};
+use crate::tiles::patch_map::PatchMap;
+use crate::tiles::stream_budget::StreamBudget;
+use crate::tiles::stream_error::StreamError;
+use crate::tiles::tile_file::{TileHeader, read_tile_file, read_tile_header, read_tile_section};
+use rayon::prelude::*;
+
+/// What a merge wrote.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MergeSummary {
+    pub tiles: usize,
+    pub input_points: u64,
+    pub patches: u64,
+}
+
+/// Merges the tile files `tiles` (every tile of one cut, in any order) into the store
+/// `output`, written atomically.
+pub fn merge_tile_files(
+    tiles: &[PathBuf],
+    output: &Path,
+    memory: MemoryBudget,
+    progress: &dyn PrepProgress,
+) -> Result<MergeSummary, StreamError> {
+    merge_ordered_tile_files(&in_tile_order(tiles)?, output, memory, progress)
+}
+
+/// Merges tile files already in order (at least one) into the store `output`.
+pub(crate) fn merge_ordered_tile_files(
+    ordered: &[PathBuf],
+    output: &Path,
+    memory: MemoryBudget,
+    progress: &dyn PrepProgress,
+) -> Result<MergeSummary, StreamError> {
+    let first = read_tile_header(&ordered[0])?;
+    if !StreamBudget::new(memory, 0).holds_patch_map(first.input_points) {
+        let problem = format!(
+            "merging tiles of {} points maps each to its patch (4 bytes a point), which the memory \
+             budget cannot hold",
+            first.input_points
+        );
+        return Err(StreamError::OverBudget { path: output.to_path_buf(), problem });
+    }
+    progress.stage_started(Stage::MergeTiles, first.input_points);
+    let started = std::time::Instant::now();
+    let (summary, patch_of, headers) = survey_tiles(ordered, first.input_points, progress)?;
+    patch_store::write_sections(output, &summary, |section, sink| {
+        for (path, header) in ordered.iter().zip(&headers) {
+            let bytes =
+                read_tile_section(path, header, section).map_err(|e| std::io::Error::other(e.to_string()))?;
+            if section < 3 {
+                sink(&bytes)?;
+                continue;
+            }
+            let patches: Vec<u32> = bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)
+                .into_par_iter()
+                .map(|input| patch_of.patch(input))
+                .collect();
+            sink(bytemuck::cast_slice(&patches))?
+        }
+        Ok(())
+    })?;
+    progress.stage_finished(Stage::MergeTiles, started.elapsed());
+    Ok(MergeSummary { tiles: ordered.len(), input_points: first.input_points, patches: summary.patches })
+}
+
+/// The files by tile index, once they are seen to be every tile of one cut exactly once.
+fn in_tile_order(tiles: &[PathBuf]) -> Result<Vec<PathBuf>, StreamError> {
+    let Some(first_path) = tiles.first() else {
+        return Err(StreamError::BadTile {
+            path: PathBuf::from("(no tile files)"),
+            problem: "nothing to merge".into(),
+        });
+    };
+    let first = read_tile_header(first_path)?;
+    let mut slots: Vec<Option<PathBuf>> = vec![None; first.count as usize];
+    for path in tiles {
+        let header = read_tile_header(path)?;
+        let mismatch = |what: &str| StreamError::BadTile {
+            path: path.clone(),
+            problem: format!(
+                "{what} differs from {}'s: the tiles come from different preps",
+                first_path.display()
+            ),
+        };
+        if header.count != first.count {
+            return Err(mismatch("the tile count"));
+        }
+        if header.input_points != first.input_points {
+            return Err(mismatch("the input's point count"));
+        }
+        if header.neighbor_slots != first.neighbor_slots {
+            return Err(mismatch("the colour neighbour count"));
+        }
+        let slot = &mut slots[header.index as usize];
+        if let Some(earlier) = slot.replace(path.clone()) {
+            let problem = format!("tile {} of {} is also {}", header.index, header.count, earlier.display());
+            return Err(StreamError::BadTile { path: path.clone(), problem });
+        }
+    }
+    if let Some(missing) = slots.iter().position(Option::is_none) {
+        let problem = format!("tile {missing} of {} is missing from the merge", first.count);
+        return Err(StreamError::BadTile { path: first_path.clone(), problem });
+    }
+    Ok(slots.into_iter().flatten().collect())
+}
+
+/// The store's header from every tile, each of the `input_points` input points' patch, and
+/// each tile's header, with every tile file checked whole; tiles must agree on the settings
+/// and the offset.
+fn survey_tiles(
+    ordered: &[PathBuf],
+    input_points: u64,
+    progress: &dyn PrepProgress,
+) -> Result<(StoreSummary, PatchMap, Vec<TileHeader>), StreamError> {
+    let mut summary: Option<StoreSummary> = None;
+    let mut patch_of = PatchMap::new(input_points as usize);
+    let mut headers = Vec::with_capacity(ordered.len());
+    for path in ordered {
+        let (header, tile): (TileHeader, _) = read_tile_file(path)?;
+        headers.push(header);
+        let set = &tile.patches;
+        let total = summary.get_or_insert(StoreSummary {
+            settings: set.settings,
+            offset: set.offset,
+            bounds: None,
+            patches: 0,
+            room: header.input_points,
+            neighbor_slots: header.neighbor_slots,
+        });
+        if set.settings != total.settings || set.offset != total.offset {
+            let problem = format!(
+                "its prep settings or offset differ from {}'s: the tiles come from different preps",
+                ordered[0].display()
+            );
+            return Err(StreamError::BadTile { path: path.clone(), problem });
+        }
+        patch_of.note(&tile.sources, total.patches);
+        total.add(set);
+        progress.advanced(tile.sources.len() as u64);
+    }
+    Ok((summary.expect("at least one tile"), patch_of, headers))
+}
