@@ -11,6 +11,7 @@ use crate::beam_spacing::{SUPPORT_LIMIT, SupportReport};
 use crate::percentile::percentile;
 use crate::range_tolerance::{RangeTolerance, SPACING_NEIGHBOR};
 use crate::report_json::write_json;
+use crate::sensor_pixel_consistency::PixelConsistency;
 use crate::sensor_ray_consistency::{ConsistencyOptions, RayOutcome};
 
 /// The outcomes of the rays cast.
@@ -79,6 +80,8 @@ pub struct ConsistencyReport {
     pub consistent_fraction: Option<f64>,
     pub occluded_in_front_fraction: Option<f64>,
     pub passed_through_fraction: Option<f64>,
+    /// The dense check: each return's pixel on an angular grid around its sensor.
+    pub pixels: PixelConsistency,
     /// The patches' support against the beam spacing, when the points carry rings.
     pub support: Option<SupportReport>,
     /// Wall-clock time of the neighbour search and the rays.
@@ -91,6 +94,7 @@ impl ConsistencyReport {
         patches: &PatchSet,
         options: &ConsistencyOptions,
         counts: ConsistencyCounts,
+        pixels: PixelConsistency,
         seconds: f64,
     ) -> Self {
         Self {
@@ -104,6 +108,7 @@ impl ConsistencyReport {
             occluded_in_front_fraction: counts.fraction(counts.occluded_in_front),
             passed_through_fraction: counts.fraction(counts.passed_through),
             counts,
+            pixels,
             support: None,
             seconds,
         }
@@ -145,6 +150,17 @@ impl fmt::Display for ConsistencyReport {
             "passed through:      {} (holes; {} rays met nothing)",
             percent(self.passed_through_fraction),
             counts.missed
+        )?;
+        let pixels = &self.pixels;
+        writeln!(
+            f,
+            "from the sensor's pixels ({}°, tolerance max({} m, {} x range)): {} consistent, {} holes, {} floaters",
+            pixels.pixel_degrees,
+            pixels.absolute_tolerance,
+            pixels.range_tolerance,
+            percent(pixels.consistent_fraction),
+            percent(pixels.hole_fraction),
+            percent(pixels.floater_fraction)
         )?;
         match &self.support {
             Some(s) => write!(

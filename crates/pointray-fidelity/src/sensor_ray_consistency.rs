@@ -19,6 +19,7 @@ use rayon::prelude::*;
 use crate::consistency_report::{ConsistencyCounts, ConsistencyReport};
 use crate::local_spacing::nth_neighbor_distances;
 use crate::range_tolerance::{RangeTolerance, SPACING_NEIGHBOR};
+use crate::sensor_pixel_consistency::sensor_pixel_consistency;
 use crate::{FidelityError, ReturnOrigins};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -132,7 +133,10 @@ pub fn sensor_ray_consistency(
         })
         .collect();
     let counts = ConsistencyCounts::of(&checked);
-    Ok(ConsistencyReport::new(cloud.len(), &patches, options, counts, started.elapsed().as_secs_f64()))
+    let sensor_of = |i: usize| origins.of(i) - offset;
+    let pixels = sensor_pixel_consistency(&renderer, &local, sensor_of, &chosen, options.acceptance);
+    let seconds = started.elapsed().as_secs_f64();
+    Ok(ConsistencyReport::new(cloud.len(), &patches, options, counts, pixels, seconds))
 }
 
 /// `budget` return indices drawn at random without repeats, in increasing order; every

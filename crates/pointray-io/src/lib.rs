@@ -12,6 +12,8 @@ pub mod linear_image;
 pub mod memory_budget;
 pub mod point_cloud;
 pub mod point_stream;
+pub mod sweep_map;
+pub mod sweep_poses;
 pub mod temporaries;
 pub mod triangle_mesh;
 
@@ -27,4 +29,6 @@ pub use linear_image::{LinearImage, read_linear_image};
 pub use memory_budget::{MemoryBudget, MemoryShortfall};
 pub use point_cloud::{AttributeBytes, PointCloud};
 pub use point_stream::PointStream;
+pub use sweep_map::sweep_map;
+pub use sweep_poses::SweepPoses;
 pub use triangle_mesh::TriangleMesh;

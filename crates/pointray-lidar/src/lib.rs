@@ -12,6 +12,8 @@
 //! - `street.rs`: a procedural street, the ground truth for `pointray fidelity`.
 //! - `scan.rs`: the casting, deterministic for a seed; `returns.rs`: what it records;
 //!   `ply_output.rs`: the points file.
+//! - `resimulation.rs`, `range_agreement.rs`: a real sweep's rays cast from a pose into a
+//!   prepped map, and the ranges met scored against those the sensor measured.
 //!
 //! Positions are in the scene's coordinates: Z up for the street (as KITTI and nuScenes frames are),
 //! Y up for pointray scene files.
@@ -22,6 +24,8 @@ pub mod lidar_scene;
 pub mod ply_output;
 pub mod pose;
 pub mod presets;
+pub mod range_agreement;
+pub mod resimulation;
 pub mod returns;
 pub mod scan;
 pub mod sensor;
@@ -33,6 +37,8 @@ pub use error::LidarError;
 pub use lidar_scene::LidarScene;
 pub use pose::{SensorPose, UpAxis};
 pub use presets::SensorPreset;
+pub use range_agreement::RangeAgreement;
+pub use resimulation::{SweepRays, resimulate};
 pub use returns::{Return, ScanStats, to_point_cloud};
 pub use scan::{NoProgress, Scan, ScanProgress, scan};
 pub use sensor::{Elevations, Sensor};

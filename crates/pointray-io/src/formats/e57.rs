@@ -16,8 +16,9 @@ const HEADER_BYTES: usize = 48;
 
 /// Reads an `.e57` file. Every scan is moved into the file's frame by its pose and the
 /// scans are merged into one cloud. The sensor position is the **first** scan's pose
-/// translation; it is absent when that scan has no pose. When several scans are merged and
-/// each has a pose, every point also gets its own scan's position (`sensor_origins`).
+/// translation; a scan without a pose stands at the file's origin, as the E57 standard takes
+/// an absent pose for the identity. When several scans are merged, every point also gets its
+/// own scan's position (`sensor_origins`).
 /// Points without a valid Cartesian position are dropped. Colours, intensities (normalised
 /// by the file's own limits) and row indices (the scan lines of a scanner's angular grid,
 /// kept as rings when all fit 16 bits) are kept only when every scan has them; a point whose
@@ -40,11 +41,16 @@ pub fn read_e57_from<R: Read + Seek>(mut read: R, origin: &Path) -> Result<Point
         let points = read_scan(&mut reader, scan, stream_bytes).map_err(|error| e57_error(origin, error))?;
         merged.add(scan, points);
     }
-    let sensor_position = scans[0].transform.as_ref().map(|pose| {
+    let sensor_position = Some(station_of(&scans[0]));
+    Ok(PointCloud { sensor_position, ..merged.into_point_cloud() })
+}
+
+/// Where a scan's scanner stood: its pose's translation, or the file's origin without one.
+fn station_of(scan: &e57::PointCloud) -> DVec3 {
+    scan.transform.as_ref().map_or(DVec3::ZERO, |pose| {
         let t = &pose.translation;
         DVec3::new(t.x, t.y, t.z)
-    });
-    Ok(PointCloud { sensor_position, ..merged.into_point_cloud() })
+    })
 }
 
 /// The E57 crate trusts the header's lengths for its first allocations; a header whose
@@ -129,13 +135,8 @@ impl MergedScans {
         let has_rows = scan.prototype.iter().any(|record| record.name == RecordName::RowIndex)
             && valid.iter().all(|(_, p)| u16::try_from(p.row).is_ok());
         keep_if_all(&mut self.rings, first, has_rows, || valid.iter().map(|(_, p)| p.row as u16));
-        let station = scan.transform.as_ref().map(|pose| {
-            let t = &pose.translation;
-            DVec3::new(t.x, t.y, t.z)
-        });
-        keep_if_all(&mut self.sensor_origins, first, station.is_some(), || {
-            std::iter::repeat_n(station.unwrap_or_default(), valid.len())
-        });
+        let station = station_of(scan);
+        keep_if_all(&mut self.sensor_origins, first, true, || std::iter::repeat_n(station, valid.len()));
     }
 
     fn into_point_cloud(self) -> PointCloud {

@@ -8,11 +8,14 @@ pub mod e57;
 pub(crate) mod intensity;
 pub mod las;
 pub(crate) mod las_chunks;
+pub mod laser_origins;
 pub mod obj;
+pub mod ouster_metadata;
 pub mod pcd;
 pub mod ply;
 pub mod raw_bin;
 pub(crate) mod raw_bin_chunks;
+pub mod sweep_order;
 pub mod xyz;
 
 pub use columns::ColumnSpec;

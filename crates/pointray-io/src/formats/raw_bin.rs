@@ -13,6 +13,9 @@ use std::path::Path;
 
 use super::column_rows::ColumnRows;
 use super::columns::{Column, ColumnSpec};
+use super::laser_origins::block_origins;
+use super::ouster_metadata::OusterMetadata;
+use super::sweep_order::lines_from_sweep_order;
 use crate::{IoError, PointCloud};
 
 const FLOAT_BYTES: usize = 4;
@@ -93,7 +96,23 @@ pub fn read_raw_bin_from(
     };
     let rows = column_rows(bytes, &spec, 0).map_err(|problem| IoError::malformed(origin, problem))?;
     let cloud = rows.into_point_cloud().map_err(|problem| IoError::malformed(origin, problem))?;
-    Ok(PointCloud { sensor_position: Some(glam::DVec3::ZERO), ..cloud })
+    with_scan_lines(PointCloud { sensor_position: Some(glam::DVec3::ZERO), ..cloud }, origin)
+}
+
+/// A sweep without a ring column takes its lines from the Ouster metadata beside it, which
+/// also places the sensor at the lidar origin, or else from the order of its returns, with
+/// each return seen from its laser block's origin.
+fn with_scan_lines(cloud: PointCloud, origin: &Path) -> Result<PointCloud, IoError> {
+    if cloud.rings.is_some() {
+        return Ok(cloud);
+    }
+    if let Some(metadata) = OusterMetadata::beside(origin)? {
+        let rings = metadata.beams(&cloud.positions, origin)?;
+        return Ok(PointCloud { rings: Some(rings), sensor_position: Some(metadata.lidar_origin), ..cloud });
+    }
+    let Some(rings) = lines_from_sweep_order(&cloud.positions) else { return Ok(cloud) };
+    let sensor_origins = block_origins(&cloud.positions, &rings);
+    Ok(PointCloud { rings: Some(rings), sensor_origins, ..cloud })
 }
 
 /// The records of `bytes` (whole records of `spec`, the first numbered `first`) gathered.
