@@ -7,6 +7,7 @@ use std::sync::Arc;
 use glam::{Affine3A, DVec3, Vec3};
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::Ray;
+use pointray_patches::PatchSet;
 use pointray_scene::{Background, Geometry, LoadOptions, Material, PatchAcceptance, Scene, SceneObject};
 
 use crate::surface::{Surface, reflectance_of};
@@ -33,6 +34,9 @@ pub struct LidarScene {
     renderer: CpuRenderer,
     responses: Vec<Response>,
     up: UpAxis,
+    /// Where the renderer's origin lies in the scene's coordinates: a prepped map keeps its
+    /// patches recentred, and rays are moved there instead.
+    offset: DVec3,
 }
 
 impl LidarScene {
@@ -67,7 +71,20 @@ impl LidarScene {
                 class: Classification::of_object_named(&object.name),
             })
             .collect();
-        Ok(Self { renderer: CpuRenderer::new(scene), responses, up })
+        Ok(Self { renderer: CpuRenderer::new(scene), responses, up, offset: DVec3::ZERO })
+    }
+
+    /// A prepped map (Z up, as LiDAR frames are) in the coordinates of the points it was
+    /// prepped from.
+    pub fn from_patches(patches: Arc<PatchSet>) -> Result<Self, LidarError> {
+        let offset = patches.offset;
+        let object = SceneObject {
+            name: "map".to_owned(),
+            transform: Affine3A::IDENTITY,
+            material: Material::default(),
+            geometry: Geometry::Patches(patches),
+        };
+        Ok(Self { offset, ..Self::from_scene(&scene_of(vec![object]), UpAxis::Z)? })
     }
 
     /// A pointray scene file, Y up as all of them are. Point sets in it are prepped in memory.
@@ -82,7 +99,7 @@ impl LidarScene {
 
     /// The first surface along a unit `direction` from `origin` within `max_range`.
     pub fn first_hit(&self, origin: DVec3, direction: DVec3, max_range: f64) -> Option<SurfaceHit> {
-        let ray = Ray::new(origin.as_vec3(), direction.as_vec3());
+        let ray = Ray::new((origin - self.offset).as_vec3(), direction.as_vec3());
         let hit = self.renderer.first_hit(&ray, 0.0, max_range as f32, PatchAcceptance::Disk)?;
         let response = self.responses[hit.object as usize];
         Some(SurfaceHit {

@@ -8,6 +8,7 @@ pub mod devices;
 pub mod fidelity;
 pub mod prep;
 pub mod render;
+pub mod resimulation;
 pub mod sample;
 pub mod scan;
 pub mod view;

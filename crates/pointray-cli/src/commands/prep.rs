@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
-use pointray_io::MemoryBudget;
+use pointray_io::{MemoryBudget, SweepPoses};
 use pointray_patches::PrepSettings;
 use pointray_surface::peak_memory::peak_rss;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
@@ -23,9 +23,14 @@ use std::str::FromStr;
 /// Fit an MLS quadratic patch to every point and write the patch store.
 #[derive(Args)]
 pub struct PrepArgs {
-    /// The points file (PLY, LAS/LAZ, PCD, E57, XYZ/CSV, KITTI .bin).
+    /// The points file (PLY, LAS/LAZ, PCD, E57, XYZ/CSV, KITTI .bin), or several sweeps with
+    /// `--poses`, merged into one map.
     #[arg(required_unless_present = "merge")]
-    points: Option<PathBuf>,
+    points: Vec<PathBuf>,
+    /// The sweeps' sensor poses in the map: one pose a line (KITTI's 3x4 row-major, or 4x4),
+    /// one per sweep in order, or else the line each sweep's file name numbers.
+    #[arg(long, conflicts_with_all = ["tiles", "tile", "merge"])]
+    poses: Option<PathBuf>,
     /// The patch store to write (with `--tile`, the tile file).
     #[arg(short, long)]
     output: PathBuf,
@@ -54,11 +59,15 @@ pub struct PrepArgs {
 }
 
 pub fn run(args: PrepArgs) -> anyhow::Result<()> {
-    let inputs: Vec<PathBuf> = args.points.iter().chain(&args.merge).cloned().collect();
+    let inputs: Vec<PathBuf> = args.points.iter().chain(&args.merge).chain(&args.poses).cloned().collect();
     pointray_io::ensure_outputs_spare_inputs(&inputs, std::slice::from_ref(&args.output))?;
     let memory = args.memory.unwrap_or_else(MemoryBudget::half_of_this_machine);
     let bar = PrepBar::default();
-    let Some(points) = &args.points else {
+    if let Some(poses) = &args.poses {
+        return prep_sweep_map(&args.points, poses, &args, &bar);
+    }
+    anyhow::ensure!(args.points.len() <= 1, "several points files are sweeps of one map: give their --poses");
+    let Some(points) = args.points.first() else {
         let merged = merge_tile_files(&args.merge, &args.output, memory, &bar)?;
         report_store(&merged, &args.output);
         return Ok(());
@@ -105,7 +114,37 @@ fn prep_in_memory(
     let started = Instant::now();
     let cloud = args.columns.read_point_cloud(points)?;
     println!("read {} points in {:.3} s", cloud.len(), started.elapsed().as_secs_f64());
-    let in_file = |e: PrepError| anyhow::anyhow!("{}: {e}", points.display());
+    prep_and_write(cloud, &points.display().to_string(), args, settings, bar)
+}
+
+/// Several sweeps placed by their poses and prepped as one map: each sweep is a station of
+/// the scan's structure, so its patches follow its own lines.
+fn prep_sweep_map(sweeps: &[PathBuf], poses: &Path, args: &PrepArgs, bar: &PrepBar) -> anyhow::Result<()> {
+    let started = Instant::now();
+    let placed = SweepPoses::read(poses)?.for_sweeps(sweeps, poses)?;
+    let clouds =
+        sweeps.iter().map(|sweep| args.columns.read_point_cloud(sweep)).collect::<Result<Vec<_>, _>>()?;
+    let names: Vec<&Path> = sweeps.iter().map(PathBuf::as_path).collect();
+    let map = pointray_io::sweep_map(clouds, &placed, &names)?;
+    println!(
+        "read {} sweeps, {} points, in {:.3} s",
+        sweeps.len(),
+        map.len(),
+        started.elapsed().as_secs_f64()
+    );
+    let settings = args.settings.settings()?;
+    prep_and_write(map, &format!("the map of {}", poses.display()), args, &settings, bar)
+}
+
+/// Preps `cloud` (named `source` in errors) in memory and writes the store.
+fn prep_and_write(
+    cloud: pointray_io::PointCloud,
+    source: &str,
+    args: &PrepArgs,
+    settings: &PrepSettings,
+    bar: &PrepBar,
+) -> anyhow::Result<()> {
+    let in_file = |e: PrepError| anyhow::anyhow!("{source}: {e}");
     let (patches, report) = prep_owned(cloud, settings, bar).map_err(in_file)?;
     println!("{report}");
     let started = Instant::now();

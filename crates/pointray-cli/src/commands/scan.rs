@@ -8,6 +8,7 @@ use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
 use pointray_lidar::{LidarScene, Scan, ScanProgress, Sensor, SensorPose, SensorPreset, Surface, UpAxis};
 
+use super::resimulation::{self, ResimulationArgs};
 use crate::point_arg::parse_point;
 
 /// Scans past this many rays show a progress bar.
@@ -25,8 +26,8 @@ pub struct ScanArgs {
     #[arg(long)]
     street: bool,
     /// hdl64, hdl32, vlp16, os128 (spinning, at 10 Hz) or terrestrial (a tripod scanner).
-    #[arg(long)]
-    sensor: SensorPreset,
+    #[arg(long, required_unless_present = "rays_from", conflicts_with = "rays_from")]
+    sensor: Option<SensorPreset>,
     /// The sensor's position, x,y,z. On the street it defaults to the middle of the road at
     /// the sensor's mount height; a scene file needs one.
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true, conflicts_with = "stations")]
@@ -62,14 +63,25 @@ pub struct ScanArgs {
     /// Also write the street as a mesh (PLY), the ground truth for `pointray fidelity`.
     #[arg(long)]
     mesh_out: Option<PathBuf>,
+    #[command(flatten)]
+    resimulation: ResimulationArgs,
 }
 
 pub fn run(args: ScanArgs) -> anyhow::Result<()> {
+    if let Some(sweep) = &args.resimulation.rays_from {
+        let Some(map) = &args.scene else {
+            anyhow::bail!("--rays-from casts into a prepped map: give its patch store")
+        };
+        return resimulation::run(&args.resimulation, sweep, map, &args.output, args.max_range);
+    }
     anyhow::ensure!(
         args.mesh_out.is_none() || args.street,
         "--mesh-out writes the built-in street's mesh, so it needs --street (a scene file's meshes are already files)"
     );
-    let sensor = configured_sensor(&args);
+    let Some(preset) = args.sensor else {
+        anyhow::bail!("give --sensor, or --rays-from to cast a real sweep's rays")
+    };
+    let sensor = configured_sensor(&args, preset);
     sensor.validate()?;
     let world = World::open(&args)?;
     check_outputs(&args, &world.inputs)?;
@@ -113,8 +125,8 @@ fn write_outputs(
 }
 
 /// The preset with the command line's overrides.
-fn configured_sensor(args: &ScanArgs) -> Sensor {
-    let preset = args.sensor.sensor();
+fn configured_sensor(args: &ScanArgs, preset: SensorPreset) -> Sensor {
+    let preset = preset.sensor();
     Sensor {
         range_noise: args.noise.unwrap_or(preset.range_noise),
         dropout: args.dropout.unwrap_or(preset.dropout),
