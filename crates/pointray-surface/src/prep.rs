@@ -154,7 +154,8 @@ fn prep_with_context(
     // Past the shaping only the colour table reads the neighbours; the scan route never
     // reads them, and the unstructured route narrows them before its fit's peak.
     let kept_neighbors = color_table_width(colors, k);
-    let shaped = match scan {
+    let unstructured_because = scan.as_ref().and_then(|found| found.as_ref().err().copied());
+    let shaped = match scan.and_then(Result::ok) {
         Some(scan) => {
             neighbors.narrow(kept_neighbors);
             scan_shaped(&points, scan, settings.disk_scale, &mut clock)
@@ -181,6 +182,7 @@ fn prep_with_context(
         radius_fallbacks: shaped.radius_fallbacks,
         radius_adjustments: shaped.radius_adjustments,
         scan: shaped.scan,
+        unstructured_because,
         offset,
         patch_sources: source,
         stage_times: clock.times,

@@ -7,6 +7,7 @@ use glam::DVec3;
 
 use crate::density_radius::RadiusAdjustments;
 use crate::prep_progress::Stage;
+use crate::scan::lines::{MIN_LINE_RETURNS, Unstructured};
 
 /// How many patches ended with each fit model (METHOD.md §2.6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -40,6 +41,8 @@ pub struct PrepReport {
     pub radius_adjustments: RadiusAdjustments,
     /// The scan structure the patches followed, when one was used.
     pub scan: Option<ScanSummary>,
+    /// Why a scan with a known sensor was prepped as unstructured points.
+    pub unstructured_because: Option<Unstructured>,
     /// The recentring offset (`input = local + offset`), also stored in the patch store.
     pub offset: DVec3,
     /// For each patch, the index of the input point it was made from (patches are in
@@ -54,6 +57,8 @@ pub struct PrepReport {
 pub struct ScanSummary {
     /// Scan lines found (beams or grid rows, over all stations).
     pub lines: usize,
+    /// Returns on lines of `MIN_LINE_RETURNS` or more.
+    pub returns_on_lines: usize,
     /// Patches over a surface their neighbours agree on; the rest are small disks facing the
     /// sensor.
     pub surface_patches: usize,
@@ -84,12 +89,17 @@ impl fmt::Display for PrepReport {
         if widened + capped + raised > 0 {
             writeln!(f, "adaptive radii: {widened} widened to their cell, {capped} capped, {raised} raised")?;
         }
-        if let Some(ScanSummary { lines, surface_patches }) = self.scan {
+        if let Some(ScanSummary { lines, returns_on_lines, surface_patches }) = self.scan {
             let disks = self.patches - surface_patches;
+            let share = 100.0 * returns_on_lines as f64 / self.patches.max(1) as f64;
             writeln!(
                 f,
-                "scan-aware: {lines} scan lines, {surface_patches} surface patches, {disks} footprint disks"
+                "scan-aware: {lines} scan lines ({share:.1} % of returns on lines of {MIN_LINE_RETURNS} or more), \
+                 {surface_patches} surface patches, {disks} footprint disks"
             )?;
+        }
+        if let Some(reason) = self.unstructured_because {
+            writeln!(f, "scan structure not used, so the patches are unstructured: {reason}")?;
         }
         if self.replaced_input_normals > 0 {
             writeln!(f, "input normals replaced: {}", self.replaced_input_normals)?;

@@ -24,6 +24,40 @@ const BEAM_GAP_DEGREES: f64 = 0.05;
 /// dense grid whose rows the gap cannot separate.
 const PLAUSIBLE_BEAMS: std::ops::RangeInclusive<usize> = 4..=4096;
 
+/// A line holding fewer returns than this is a fragment, not one beam's turn or one row.
+pub const MIN_LINE_RETURNS: usize = 16;
+
+/// The structure is trusted when at least this share of returns lie on lines that are not
+/// fragments: where lines are found wrongly, returns scatter over many small ones.
+const MIN_SHARE_ON_LINES: f32 = 0.9;
+
+/// Why a scan's structure was not used, for the one line `prep` prints.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Unstructured {
+    /// More distinct sensor positions than stations can be.
+    MovingSensor { positions: usize },
+    /// The elevations do not separate into a plausible number of beams at some station.
+    NoSeparableBeams,
+    /// Too few returns lie on lines that are more than fragments.
+    FewReturnsOnLines { lines: usize, share: f32 },
+}
+
+impl std::fmt::Display for Unstructured {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::MovingSensor { positions } => {
+                write!(f, "more than {positions} sensor positions, a moving sensor")
+            }
+            Self::NoSeparableBeams => write!(f, "the elevations separate into no plausible set of beams"),
+            Self::FewReturnsOnLines { lines, share } => write!(
+                f,
+                "only {:.1} % of returns lie on lines of {MIN_LINE_RETURNS} or more ({lines} lines found)",
+                share * 100.0
+            ),
+        }
+    }
+}
+
 /// One scan line: its station, its mean elevation and its points in azimuth order.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScanLine {
@@ -65,20 +99,31 @@ const MIN_RANGE_NOISE: f32 = 0.001;
 
 impl ScanLines {
     /// The structure of `points` seen from `sensors` (one per point, local coordinates), on
-    /// the given `rings` or, without them, on beams recovered from each point's elevation.
-    /// `None` when the structure cannot be trusted (a moving sensor, or no separable beams).
-    pub fn new(points: &[Vec3], sensors: &[DVec3], rings: Option<&[u16]>) -> Option<Self> {
-        let (station_of, stations) = stations(sensors)?;
+    /// the given `rings` or, without them, on beams recovered from each point's elevation;
+    /// why not, when the structure cannot be trusted.
+    pub fn new(points: &[Vec3], sensors: &[DVec3], rings: Option<&[u16]>) -> Result<Self, Unstructured> {
+        let (station_of, stations) =
+            stations(sensors).ok_or(Unstructured::MovingSensor { positions: MAX_STATIONS })?;
         let sensor: Vec<Vec3> = station_of.iter().map(|&s| stations[s as usize]).collect();
         let offsets: Vec<Vec3> = points.iter().zip(&sensor).map(|(&p, &s)| p - s).collect();
         let rings = match rings {
             Some(rings) => rings.to_vec(),
-            None => recovered_beams(&offsets, &station_of, stations.len())?,
+            None => recovered_beams(&offsets, &station_of, stations.len())
+                .ok_or(Unstructured::NoSeparableBeams)?,
         };
         let azimuth: Vec<f32> = offsets.iter().map(|d| d.y.atan2(d.x)).collect();
         let (lines, line_of) = group_lines(&offsets, &station_of, &rings, &azimuth);
+        let share = share_on_lines(&lines, points.len());
+        if share < MIN_SHARE_ON_LINES {
+            return Err(Unstructured::FewReturnsOnLines { lines: lines.len(), share });
+        }
         let range_noise = range_noise(&lines, &offsets, &azimuth).max(MIN_RANGE_NOISE);
-        Some(Self { lines, line_of, azimuth, sensor, range_noise })
+        Ok(Self { lines, line_of, azimuth, sensor, range_noise })
+    }
+
+    /// The returns on lines of `MIN_LINE_RETURNS` or more.
+    pub fn returns_on_lines(&self) -> usize {
+        self.lines.iter().map(|line| line.members.len()).filter(|&n| n >= MIN_LINE_RETURNS).sum()
     }
 
     /// The lines above and below point `i`'s, and theirs above and below: up to four.
@@ -139,6 +184,13 @@ impl ScanLines {
     }
 }
 
+/// The share of `returns` on lines of `MIN_LINE_RETURNS` or more.
+fn share_on_lines(lines: &[ScanLine], returns: usize) -> f32 {
+    let on_lines: usize =
+        lines.iter().map(|line| line.members.len()).filter(|&n| n >= MIN_LINE_RETURNS).sum();
+    on_lines as f32 / returns.max(1) as f32
+}
+
 /// Per point its station index, and the stations; `None` for a moving sensor.
 fn stations(sensors: &[DVec3]) -> Option<(Vec<u32>, Vec<Vec3>)> {
     let mut index: HashMap<[u64; 3], u32> = HashMap::new();
@@ -165,7 +217,8 @@ fn elevation(offset: Vec3) -> f64 {
 }
 
 /// Beams recovered per station by splitting its sorted elevations at gaps wider than
-/// `BEAM_GAP_DEGREES`; `None` when a station's beam count is implausible.
+/// `BEAM_GAP_DEGREES`; `None` when a station's beams are implausible in number, or too thick
+/// for their spacing (`beams_are_thin`).
 fn recovered_beams(offsets: &[Vec3], station_of: &[u32], station_count: usize) -> Option<Vec<u16>> {
     let mut by_station: Vec<Vec<(f64, u32)>> = vec![Vec::new(); station_count];
     for (i, (&offset, &station)) in offsets.iter().zip(station_of).enumerate() {
@@ -176,17 +229,34 @@ fn recovered_beams(offsets: &[Vec3], station_of: &[u32], station_count: usize) -
         members.sort_by(|a, b| a.0.total_cmp(&b.0));
         let gap = BEAM_GAP_DEGREES.to_radians();
         let mut beam = 0usize;
+        let mut spans = vec![(members.first().map_or(0.0, |m| m.0), members.first().map_or(0.0, |m| m.0))];
         for pair in members.windows(2) {
             if pair[1].0 - pair[0].0 > gap {
                 beam += 1;
+                spans.push((pair[1].0, pair[1].0));
             }
+            spans[beam].1 = pair[1].0;
             rings[pair[1].1 as usize] = u16::try_from(beam).ok()?;
         }
-        if !members.is_empty() && !PLAUSIBLE_BEAMS.contains(&(beam + 1)) {
+        if !members.is_empty() && !(PLAUSIBLE_BEAMS.contains(&(beam + 1)) && beams_are_thin(&spans)) {
             return None;
         }
     }
     Some(rings)
+}
+
+/// One beam's returns share its elevation to hundredths of a degree, and beams lie tenths
+/// apart: recovered beams whose median elevation span reaches half their median spacing are
+/// bands of many beams run together (a sweep whose beams overlap in elevation), not beams.
+fn beams_are_thin(spans: &[(f64, f64)]) -> bool {
+    let median = |mut values: Vec<f64>| {
+        let middle = values.len() / 2;
+        values.select_nth_unstable_by(middle, f64::total_cmp).1.to_owned()
+    };
+    let thickness = median(spans.iter().map(|(low, high)| high - low).collect());
+    let spacing =
+        median(spans.windows(2).map(|pair| (pair[1].0 + pair[1].1 - pair[0].0 - pair[0].1) / 2.0).collect());
+    thickness < 0.5 * spacing
 }
 
 /// Lines keyed by (station, ring), members sorted by azimuth, linked to their elevation
@@ -280,8 +350,12 @@ mod tests {
     #[test]
     fn beams_are_recovered_from_elevations_and_linked_in_order() {
         let points = [three_beams(), three_beams()].concat();
-        let mut too_few = ScanLines::new(&points, &vec![DVec3::ZERO; points.len()], None);
-        assert!(too_few.take().is_none(), "three beams are not a plausible multi-beam scan");
+        let too_few = ScanLines::new(&points, &vec![DVec3::ZERO; points.len()], None);
+        assert_eq!(
+            too_few,
+            Err(Unstructured::NoSeparableBeams),
+            "three beams are not a plausible multi-beam scan"
+        );
         let rings: Vec<u16> = (0..points.len()).map(|i| ((i % 270) / 90) as u16).collect();
         let scan = ScanLines::new(&points, &vec![DVec3::ZERO; points.len()], Some(&rings)).unwrap();
         assert_eq!(scan.lines.len(), 3);
@@ -314,9 +388,30 @@ mod tests {
     }
 
     #[test]
+    fn bands_of_beams_run_together_are_not_beams() {
+        let spread: Vec<Vec3> = (0..4000)
+            .map(|i| {
+                let (azimuth, e) = ((i as f32 * 0.37).to_radians(), (i as f32 * 0.005 - 10.0).to_radians());
+                let e = if (i / 800) % 2 == 0 { e } else { e + 0.2f32.to_radians() };
+                Vec3::new(azimuth.cos() * e.cos(), azimuth.sin() * e.cos(), e.sin()) * 10.0
+            })
+            .collect();
+        let found = ScanLines::new(&spread, &vec![DVec3::ZERO; spread.len()], None);
+        assert_eq!(found, Err(Unstructured::NoSeparableBeams));
+    }
+
+    #[test]
     fn a_moving_sensor_has_no_structure() {
         let points = vec![Vec3::X; MAX_STATIONS + 2];
         let sensors: Vec<DVec3> = (0..points.len()).map(|i| DVec3::new(i as f64, 0.0, 0.0)).collect();
-        assert!(ScanLines::new(&points, &sensors, None).is_none());
+        assert!(matches!(ScanLines::new(&points, &sensors, None), Err(Unstructured::MovingSensor { .. })));
+    }
+
+    #[test]
+    fn returns_scattered_over_fragments_are_not_a_structure() {
+        let points = three_beams();
+        let rings: Vec<u16> = (0..points.len()).map(|i| (i / 4) as u16).collect();
+        let scattered = ScanLines::new(&points, &vec![DVec3::ZERO; points.len()], Some(&rings));
+        assert!(matches!(scattered, Err(Unstructured::FewReturnsOnLines { share, .. }) if share == 0.0));
     }
 }

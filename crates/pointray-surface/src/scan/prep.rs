@@ -10,20 +10,20 @@ use rayon::prelude::*;
 use crate::density_radius::RadiusAdjustments;
 use crate::prep_progress::Stage;
 use crate::prep_report::{RadiusFallbacks, ScanSummary};
-use crate::scan::lines::ScanLines;
+use crate::scan::lines::{ScanLines, Unstructured};
 use crate::scan::patches::scan_patches;
 use crate::shaped_patches::{ShapedPatches, count_fits};
 use crate::stage_clock::StageClock;
 
-/// The scan lines of the prepped points, when the mode allows, the sensor is known and its
-/// lines can be found.
+/// The scan lines of the prepped points, when the mode allows and the sensor is known: `Ok`
+/// when the lines can be found, else why not. `None` where no scan was to be found.
 pub(crate) fn scan_structure(
     points: &[Vec3],
     cloud: &PointCloud,
     source: &[u32],
     settings: &PrepSettings,
     offset: DVec3,
-) -> Option<ScanLines> {
+) -> Option<Result<ScanLines, Unstructured>> {
     if settings.scan == ScanMode::Off {
         return None;
     }
@@ -32,7 +32,7 @@ pub(crate) fn scan_structure(
         source.iter().map(|&i| sensor_of(i).map(|s| s - offset)).collect::<Option<_>>()?;
     let rings =
         cloud.rings.as_deref().map(|rings| source.iter().map(|&i| rings[i as usize]).collect::<Vec<u16>>());
-    ScanLines::new(points, &sensors, rings.as_deref())
+    Some(ScanLines::new(points, &sensors, rings.as_deref()))
 }
 
 /// Patches that follow a LiDAR scan's lines (`scan::patches`).
@@ -45,6 +45,7 @@ pub(crate) fn scan_shaped(
     let scanned = clock.run(Stage::ScanPatches, points.len(), || scan_patches(points, &scan));
     let summary = ScanSummary {
         lines: scan.lines.len(),
+        returns_on_lines: scan.returns_on_lines(),
         surface_patches: scanned.iter().filter(|p| p.on_surface).count(),
     };
     let hot = scanned
