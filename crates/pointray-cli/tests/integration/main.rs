@@ -23,3 +23,4 @@ mod scan_measures;
 mod scene_prep_keys;
 mod size_limits;
 mod streamed_prep;
+mod sweep_map;

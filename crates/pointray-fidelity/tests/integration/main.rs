@@ -3,6 +3,7 @@
 mod chosen_views;
 mod hand_made_images;
 mod paraboloid_cap;
+mod real_sweeps;
 mod ring_scan;
 mod sensor_rays;
 mod simulated_street;

@@ -20,3 +20,4 @@ mod ply_round_trip;
 mod ply_shared_data;
 mod ply_throughput;
 mod point_stream;
+mod real_sweeps;
