@@ -238,7 +238,8 @@ fn recovered_beams(offsets: &[Vec3], station_of: &[u32], station_count: usize) -
             spans[beam].1 = pair[1].0;
             rings[pair[1].1 as usize] = u16::try_from(beam).ok()?;
         }
-        if !members.is_empty() && !(PLAUSIBLE_BEAMS.contains(&(beam + 1)) && beams_are_thin(&spans)) {
+        let plausible = PLAUSIBLE_BEAMS.contains(&(beam + 1)) && beams_are_thin(&spans);
+        if !members.is_empty() && !plausible {
             return None;
         }
     }
