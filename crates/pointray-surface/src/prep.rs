@@ -45,9 +45,10 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// gap to the next line leaves out returns that the range noise may have moved across it; in
 /// revision 8 a scan's planes take normals smoothed over their neighbours'; in revision 9
 /// the hot record is 32 bytes, its frame and `c0` packed anew; in revision 10 equally distant
-/// neighbours come in index order), so that caches keyed on the settings also key on this and
-/// never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 10;
+/// neighbours come in index order; in revision 11 raw sweeps arrive with their scan lines and
+/// laser origins), so that caches keyed on the settings also key on this and never serve
+/// patches of an older rule.
+pub const PREP_REVISION: u32 = 11;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(
