@@ -23,6 +23,7 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("PointrayError", module.py().get_type::<errors::PointrayError>())?;
     module.add_class::<patches::Patches>()?;
     module.add_function(wrap_pyfunction!(read::read, module)?)?;
+    module.add_function(wrap_pyfunction!(read::read_sweeps, module)?)?;
     module.add_function(wrap_pyfunction!(prep::prep, module)?)?;
     module.add_function(wrap_pyfunction!(render::render, module)?)?;
     module.add_function(wrap_pyfunction!(scene_text::scene_to_toml, module)?)?;

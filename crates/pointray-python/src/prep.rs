@@ -17,7 +17,7 @@ use crate::patches::Patches;
 use crate::toml_values::to_toml;
 
 /// Preps `positions` (N, 3) with optional per-point `attributes` (`colors`, `intensity`,
-/// `classification`, `normals`, `ring`, `sensor_position`) and `settings` (the flags of
+/// `classification`, `normals`, `ring`, `sensor_position`, `sensor_origins`) and `settings` (the flags of
 /// `pointray prep`, by their names: `k`, `radius`, `sensor`, ...).
 #[pyfunction]
 #[pyo3(signature = (positions, attributes, settings))]
@@ -84,7 +84,12 @@ fn point_cloud(positions: &Bound<'_, PyAny>, attributes: &Bound<'_, PyDict>) -> 
         }
         cloud.sensor_position = Some(DVec3::from_array(position));
     }
+    if let Some(origins) = per_point("sensor_origins")? {
+        let rows = float_rows::<3>("sensor_origins", &origins)?;
+        cloud.sensor_origins = Some(rows.into_iter().map(DVec3::from_array).collect());
+    }
     for (name, length) in [
+        ("sensor_origins", cloud.sensor_origins.as_ref().map(Vec::len)),
         ("colors", cloud.colors.as_ref().map(Vec::len)),
         ("normals", cloud.normals.as_ref().map(Vec::len)),
         ("intensity", cloud.intensities.as_ref().map(Vec::len)),

@@ -1,15 +1,42 @@
 //! `read(path)`: a points file to numpy arrays.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use numpy::{IntoPyArray, PyArrayMethods};
-use pointray_io::PointCloud;
 use pointray_io::formats::{ColumnSpec, read_point_cloud_with};
+use pointray_io::{PointCloud, SweepPoses, sweep_map};
 use pointray_scene::UpAxis;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::to_python;
+
+/// Reads several sweeps and places them by their sensor poses (`poses`: a KITTI poses file,
+/// or one 4x4 a line) into one map; each point keeps its sweep's sensor origin and line.
+#[pyfunction]
+#[pyo3(signature = (paths, poses, columns=None))]
+pub fn read_sweeps<'py>(
+    py: Python<'py>,
+    paths: Vec<PathBuf>,
+    poses: PathBuf,
+    columns: Option<&str>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let columns = columns.map(|text| text.parse::<ColumnSpec>().map_err(|e| to_python(&e))).transpose()?;
+    let map = py
+        .detach(|| {
+            let placed = SweepPoses::read(&poses)?.for_sweeps(&paths, &poses)?;
+            let sweeps = paths
+                .iter()
+                .map(|path| read_point_cloud_with(path, columns.as_ref()))
+                .collect::<Result<Vec<_>, _>>()?;
+            let names: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
+            sweep_map(sweeps, &placed, &names)
+        })
+        .map_err(|error| to_python(&error))?;
+    let fields = cloud_to_dict(py, map)?;
+    fields.set_item("up_axis", "z")?;
+    Ok(fields)
+}
 
 /// Reads a points file; returns a dict of numpy arrays (absent fields are `None`).
 #[pyfunction]

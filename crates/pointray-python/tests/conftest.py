@@ -37,3 +37,9 @@ def pointray_cli(*args: str, cwd: Path) -> str:
     done = subprocess.run([binary, *map(str, args)], cwd=cwd, capture_output=True, text=True)
     assert done.returncode == 0, f"pointray {' '.join(map(str, args))} failed:\n{done.stdout}{done.stderr}"
     return done.stdout
+
+
+@pytest.fixture
+def ouster_sequence() -> Path:
+    """Three consecutive Ouster OS-1-128 sweeps with their poses and sensor metadata."""
+    return data_file("scans/real/ouster_os1_128_seq/poses_kitti.txt").parent

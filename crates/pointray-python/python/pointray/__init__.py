@@ -12,10 +12,10 @@ or kind.
 """
 
 from ._native import Patches, PointrayError, devices
-from ._point_cloud import PointCloud, read
+from ._point_cloud import PointCloud, read, read_sweeps
 from ._prep import prep
 from ._render import RenderedImage, png_bytes, render
 from ._scene import Scene
 
 __all__ = ["Patches", "PointCloud", "PointrayError", "RenderedImage", "Scene", "devices", "png_bytes",
-           "prep", "read", "render"]
+           "prep", "read", "read_sweeps", "render"]

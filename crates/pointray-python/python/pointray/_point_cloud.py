@@ -64,3 +64,15 @@ def read(path: str | os.PathLike, columns: Optional[str] = None) -> PointCloud:
     points and raw ``.bin`` sweeps), as the command line's ``--columns``, e.g. ``"x,y,z,intensity,ring"``.
     """
     return PointCloud(**_native.read(os.fspath(path), columns))
+
+
+def read_sweeps(paths: list, poses: str | os.PathLike, columns: Optional[str] = None) -> PointCloud:
+    """Reads several sweeps and places them into one map by their sensor poses.
+
+    ``poses`` is a poses file: one pose a line, KITTI's 3x4 row-major matrix or a 4x4 one. With
+    one pose per sweep the sweeps take them in order; otherwise each sweep takes the line its
+    file name numbers (``scan02.bin`` takes line 2). Each point keeps its sweep's sensor origin
+    (``sensor_origins``) and its scan line, so ``prep`` shapes every sweep's patches along its
+    own lines.
+    """
+    return PointCloud(**_native.read_sweeps([os.fspath(p) for p in paths], os.fspath(poses), columns))

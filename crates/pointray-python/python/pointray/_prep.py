@@ -10,7 +10,7 @@ from . import _native
 from ._native import Patches
 from ._point_cloud import PointCloud
 
-_ATTRIBUTES = ("colors", "normals", "intensity", "classification", "ring", "sensor_position")
+_ATTRIBUTES = ("colors", "normals", "intensity", "classification", "ring", "sensor_position", "sensor_origins")
 
 
 def prep(points: PointCloud | np.ndarray, *, colors: Optional[np.ndarray] = None,
