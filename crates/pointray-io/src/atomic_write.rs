@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use tempfile::TempPath;
 
-use crate::{IoError, temporaries};
+use crate::{IoError, owner_lock, temporaries};
 
 /// Writes `path` through `write`, atomically: the data goes to a temporary file in the same
 /// directory (so the final rename cannot cross file systems), is synced to disk, and only then
@@ -27,7 +27,8 @@ pub fn write_atomically(
 
 /// An output written in place, at any offsets and for as long as its writer likes, that
 /// replaces its target only when committed: a temporary file beside the target, removed if
-/// dropped uncommitted.
+/// dropped uncommitted, and locked while open so that no other process's sweep removes it
+/// (`temporaries`).
 pub struct AtomicFile {
     file: File,
     /// `None` once committed.
@@ -42,8 +43,10 @@ impl AtomicFile {
         let directory = crate::folder_of(path);
         temporaries::sweep_stale(directory);
         let prefix = temporaries::prefix();
+        let make = || temp_builder(&prefix).tempfile_in(directory);
+        let claim = |made: &tempfile::NamedTempFile| owner_lock::claim(made.as_file(), made.path());
         let (file, temporary) =
-            temp_builder(&prefix).tempfile_in(directory).map_err(|e| IoError::os(path, e))?.into_parts();
+            temporaries::claimed(make, claim).map_err(|e| IoError::os(path, e))?.into_parts();
         let temporary_name = temporary.to_path_buf();
         temporaries::started(&temporary_name);
         Ok(Self { file, temporary: Some(temporary), temporary_name, target: path.to_path_buf() })

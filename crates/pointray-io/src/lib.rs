@@ -10,6 +10,7 @@ pub mod huge_page_allocator;
 pub mod image_output;
 pub mod linear_image;
 pub mod memory_budget;
+mod owner_lock;
 pub mod point_cloud;
 pub mod point_stream;
 pub mod sweep_map;

@@ -1,7 +1,8 @@
 //! What runs leave behind: SIGTERM and SIGINT end a command through its handler, which removes
 //! any temporary file of a write in progress (`pointray_io::temporaries`), and stale ones of
-//! killed runs go with the next write into their folder; warnings piped to a file carry no
-//! colour codes; `pointray cache clean` empties the point-set cache.
+//! killed runs go with the next write into their folder, never those of a run in another PID
+//! namespace; warnings piped to a file carry no colour codes; `pointray cache clean` empties
+//! the point-set cache.
 
 use crate::common::{pointray_in, write_grid_ply};
 
@@ -43,6 +44,67 @@ fn sigterm_ends_prep_through_the_cleanup_handler() {
     assert_eq!(status.code(), Some(130), "the handler ends the process: {status}");
     let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().flatten().map(|e| e.file_name()).collect();
     assert_eq!(left, vec![std::ffi::OsString::from("big.ply")], "nothing but the input is left");
+}
+
+/// A wavy sheet of `count` points as an ASCII PLY, large enough that prep is still running a
+/// moment after it starts.
+fn write_big_ply(path: &std::path::Path, count: usize) {
+    let mut text = format!(
+        "ply\nformat ascii 1.0\nelement vertex {count}\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+    );
+    for i in 0..count {
+        let (x, z) = ((i % 500) as f32 * 0.01, (i / 500) as f32 * 0.01);
+        text += &format!("{x} {} {z}\n", (x * 3.0).sin() * 0.1);
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+/// Two preps in one folder from two PID namespaces (two containers, or the README's Slurm
+/// jobs): to the second, the first's process id names no running process, yet it does not
+/// remove the first's temporaries, which the first holds locked.
+#[cfg(target_os = "linux")]
+#[test]
+fn preps_in_two_pid_namespaces_share_one_folder() {
+    use std::process::{Command, Stdio};
+
+    let pointray = || Command::new(env!("CARGO_BIN_EXE_pointray"));
+    // In a PID namespace of its own, where only it runs: every other process id is free.
+    let in_namespace = |args: &[&str]| {
+        let mut command = Command::new("unshare");
+        command.args(["--user", "--map-root-user", "--pid", "--fork", "--mount-proc"]);
+        command.arg(env!("CARGO_BIN_EXE_pointray")).args(args);
+        command
+    };
+    let probe = in_namespace(&["--version"]).stdout(Stdio::null()).stderr(Stdio::null()).status();
+    if !probe.is_ok_and(|status| status.success()) {
+        eprintln!("skipped: this machine gives no user and PID namespaces (unshare failed)");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    write_big_ply(&dir.path().join("big.ply"), 100_000);
+    write_grid_ply(&dir.path().join("grid.ply"));
+    let mut first = pointray()
+        .args(["prep", "big.ply", "-o", "a.patches", "--tiles", "4"])
+        .current_dir(dir.path())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let temporary_exists = || {
+        let names = std::fs::read_dir(dir.path()).unwrap().flatten().map(|e| e.file_name());
+        names.map(|name| name.to_string_lossy().into_owned()).any(|name| name.ends_with(".tmp"))
+    };
+    while !temporary_exists() {
+        assert!(first.try_wait().unwrap().is_none(), "the first prep ended before its temporaries were seen");
+        std::thread::yield_now();
+    }
+    let second =
+        in_namespace(&["prep", "grid.ply", "-o", "b.patches"]).current_dir(dir.path()).output().unwrap();
+    assert!(second.status.success(), "{}", String::from_utf8_lossy(&second.stderr));
+    assert!(first.try_wait().unwrap().is_none(), "the first prep still ran while the second swept");
+    let first = first.wait_with_output().unwrap();
+    assert!(first.status.success(), "{}", String::from_utf8_lossy(&first.stderr));
+    assert!(dir.path().join("a.patches").is_file() && dir.path().join("b.patches").is_file());
 }
 
 /// A reader that stops reading (`| head`) ends the command by SIGPIPE, as it ends other Unix

@@ -82,16 +82,27 @@ fn links_to_the_input_are_recognised() {
 
 #[cfg(target_os = "linux")]
 #[test]
-fn temporaries_of_dead_processes_are_removed_and_live_ones_kept() {
+fn temporaries_whose_writers_are_gone_are_removed_and_live_ones_kept() {
     let dir = tempfile::tempdir().unwrap();
-    // Above Linux's largest process id (2^22), so no process can have it.
-    let dead = dir.path().join(".pointray-4194305-AbCdEf.tmp");
-    let live = dir.path().join(format!(".pointray-{}-GhIjKl.tmp", std::process::id()));
+    // Above Linux's largest process id (2^22), so no process here can have it. These names carry
+    // no kernel tag, so their writers might run on another host: only their locks and ages tell.
+    let gone = dir.path().join(".pointray-4194305-AbCdEf.tmp");
+    let locked = dir.path().join(".pointray-4194305-MnOpQr.tmp");
+    let fresh = dir.path().join(".pointray-4194305-StUvWx.tmp");
     let foreign = dir.path().join(".tmpXyZ123");
-    for path in [&dead, &live, &foreign] {
+    for path in [&gone, &locked, &fresh, &foreign] {
         std::fs::write(path, b"partial").unwrap();
     }
+    for path in [&gone, &locked, &foreign] {
+        let two_days = std::time::Duration::from_secs(2 * 24 * 60 * 60);
+        let file = std::fs::File::options().write(true).open(path).unwrap();
+        file.set_modified(std::time::SystemTime::now() - two_days).unwrap();
+    }
+    // A live writer in another PID namespace or on another host holds its temporary's lock.
+    let writer = std::fs::File::open(&locked).unwrap();
+    writer.lock_shared().unwrap();
     write_atomically(&dir.path().join("out.txt"), |out| out.write_all(b"x")).unwrap();
-    assert!(!dead.exists(), "a dead writer's temporary is removed");
-    assert!(live.exists() && foreign.exists(), "a running writer's and other programs' files stay");
+    assert!(!gone.exists(), "a temporary whose lock is free and which lay untouched for a day goes");
+    assert!(locked.exists() && fresh.exists(), "a held lock, or a recent write, keeps a temporary");
+    assert!(foreign.exists(), "other programs' files stay");
 }
