@@ -21,7 +21,7 @@
 //!
 //! The settings: `k`, `normal_k` (u32), recompute normals (u32, 0 or 1), radius (u32: 0 paper,
 //! 1 adaptive, 2 cell), disk scale (f32), boxes (u32: 0 cube, 1 tight), scan (u32: 0 auto,
-//! 1 off), duplicate tolerance (f32, a fraction of the bbox diagonal), outlier filter `K`
+//! 1 off), duplicate tolerance (f32, in f32 ulps at each point's coordinates), outlier filter `K`
 //! (u32, 0 = none) and `N` (f32), sensor given (u32, 0 or 1), then at 184 the sensor, f64 x 3
 //! (zero when not given).
 //!

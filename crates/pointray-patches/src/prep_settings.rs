@@ -32,9 +32,10 @@ pub struct PrepSettings {
     pub boxes: BoxKind,
     /// Whether a LiDAR scan's line structure shapes the patches.
     pub scan: ScanMode,
-    /// Points closer than this fraction of the bounding-box diagonal are merged as
-    /// duplicates; 1e-6 is about ten f32 ulps of the recentred coordinates. Not a flag: the
-    /// tolerance follows from f32, not from the data.
+    /// Points closer than this many f32 ulps at their own recentred coordinates are merged as
+    /// duplicates (`pointray_surface::duplicates`): what f32 barely tells apart there. Not the
+    /// cloud's extent, which one stray point far off would blow up. Not a flag: the tolerance
+    /// follows from f32, not from the data.
     #[serde(skip)]
     pub duplicate_tolerance: f32,
 }
@@ -51,7 +52,7 @@ impl Default for PrepSettings {
             disk_scale: 1.0,
             boxes: BoxKind::Tight,
             scan: ScanMode::Auto,
-            duplicate_tolerance: 1e-6,
+            duplicate_tolerance: 1.0,
         }
     }
 }

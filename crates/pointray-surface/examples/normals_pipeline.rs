@@ -32,6 +32,7 @@ use glam::{DVec3, Vec3};
 use normals_support::{FIT_K, NORMAL_K, sign_agreement};
 use pointray_io::TriangleMesh;
 use pointray_io::formats::ply::read_triangle_mesh;
+use pointray_patches::PrepSettings;
 use pointray_surface::duplicates::merge_duplicates;
 use pointray_surface::morton::morton_order;
 use pointray_surface::neighbors::k_nearest;
@@ -39,9 +40,6 @@ use pointray_surface::normals::pca_normals;
 use pointray_surface::orientation::orient_consistently;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-
-/// `prep`'s duplicate tolerance: this fraction of the bounding-box diagonal.
-const RELATIVE_DUPLICATE_TOLERANCE: f32 = 1e-6;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
@@ -67,14 +65,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let sorted_triangles: Vec<u32> = order.iter().map(|&i| triangles[i as usize]).collect();
         (sorted, sorted_triangles)
     });
-    let tolerance = diagonal(&points) * RELATIVE_DUPLICATE_TOLERANCE;
+    // `prep`'s duplicate tolerance, in f32 ulps at each point's coordinates.
+    let tolerance = PrepSettings::default().duplicate_tolerance;
     let merge = stages.time("merge duplicates", || merge_duplicates(&points, tolerance));
     let (points, triangles) = stages.time("apply merge", || {
         let kept_points: Vec<Vec3> = merge.kept.iter().map(|&i| points[i as usize]).collect();
         let kept_triangles: Vec<u32> = merge.kept.iter().map(|&i| triangles[i as usize]).collect();
         (kept_points, kept_triangles)
     });
-    println!("merged {} duplicates (tolerance {tolerance:e})", merge.merged_count);
+    println!("merged {} duplicates (tolerance {tolerance} ulps)", merge.merged_count);
     let neighbors = stages.time("k nearest (k = 16)", || k_nearest(&points, FIT_K.max(NORMAL_K)));
     let mut normals = stages.time("pca normals", || pca_normals(&points, &neighbors, NORMAL_K));
     let face_normals: Vec<Vec3> = triangles.iter().map(|&t| mesh.face_normal(t as usize)).collect();
@@ -118,12 +117,6 @@ impl Stages {
         let total: f64 = self.0.iter().map(|(_, s)| s).sum();
         println!("{:>20}: {:8.1} ms", "total", total * 1e3);
     }
-}
-
-fn diagonal(points: &[Vec3]) -> f32 {
-    let min = points.iter().copied().fold(Vec3::INFINITY, Vec3::min);
-    let max = points.iter().copied().fold(Vec3::NEG_INFINITY, Vec3::max);
-    min.distance(max)
 }
 
 /// Uniform area-weighted samples, each with the index of the triangle it lies on.

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use crate::cold_records::{cold_records, color_neighbor_table};
 use crate::density_radius::{RadiusAdjustments, adaptive_radii, cell_radii};
-use crate::duplicates::merge_duplicates;
+use crate::duplicates::{largest_merge_distance, merge_duplicates};
 use crate::input_validation::{validate_part, validate_positions, validate_settings, validate_size};
 use crate::morton::morton_order;
 use crate::neighbors::{Neighbors, k_nearest};
@@ -70,8 +70,7 @@ pub fn prep_owned(
 }
 
 /// As `prep`, for a tile of a larger cloud (`tiles::tiled_prep`): recentred on the whole cloud's
-/// offset and merging duplicates within its distance, so that the tile's patches are the
-/// ones a single pass over the whole cloud makes.
+/// offset, so that the tile's patches are the ones a single pass over the whole cloud makes.
 pub fn prep_in_context(
     cloud: &PointCloud,
     settings: &PrepSettings,
@@ -86,7 +85,9 @@ pub fn prep_in_context(
 pub struct TileContext {
     /// The recentring offset: `input = local + offset`.
     pub offset: DVec3,
-    /// Points closer than this (local units) merge as duplicates.
+    /// The farthest apart (local units) two points of the cloud may lie and merge as
+    /// duplicates: a bound for halos. Whether a pair merges follows from its own coordinates
+    /// (`duplicates::merge_as_duplicates`).
     pub duplicate_distance: f32,
     /// The whole cloud's box (input units) and its points, for the checks a tile makes.
     pub bounds: (DVec3, DVec3),
@@ -126,11 +127,10 @@ fn prep_with_context(
     let order = clock.run(Stage::MortonSort, count, || morton_order(&recentred));
     let sorted = gather(&recentred, &order);
     drop(recentred);
-    let merge = clock.run(Stage::MergeDuplicates, count, || {
-        let distance =
-            context.map_or_else(|| duplicate_distance(settings, &sorted), |f| f.duplicate_distance);
-        merge_duplicates(&sorted, distance)
-    });
+    // Each pair's tolerance follows from its own coordinates in the shared frame, so that a
+    // tile merges what a single pass over the whole cloud merges.
+    let merge =
+        clock.run(Stage::MergeDuplicates, count, || merge_duplicates(&sorted, settings.duplicate_tolerance));
     if merge.kept.len() < k + 1 {
         return Err(PrepError::TooFewDistinctPoints { found: merge.kept.len(), k });
     }
@@ -312,17 +312,11 @@ pub(crate) fn recentre_on(positions: &[DVec3], centre: DVec3) -> Vec<Vec3> {
     positions.par_iter().map(|&p| (p - centre).as_vec3()).collect()
 }
 
-/// Points closer than this merge as duplicates: the tolerance's fraction of the diagonal.
-pub(crate) fn duplicate_distance(settings: &PrepSettings, points: &[Vec3]) -> f32 {
-    settings.duplicate_tolerance * diagonal(points)
-}
-
-fn diagonal(points: &[Vec3]) -> f32 {
-    let (min, max) = points
-        .par_iter()
-        .fold(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
-        .reduce(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)));
-    (max - min).length()
+/// The farthest apart two of `points` can lie and still merge as duplicates: a bound for
+/// halos, taken at the frame's largest coordinate.
+pub(crate) fn largest_duplicate_distance(settings: &PrepSettings, points: &[Vec3]) -> f32 {
+    let magnitude = points.par_iter().map(|p| p.abs().max_element()).reduce(|| 0.0, f32::max);
+    largest_merge_distance(magnitude, settings.duplicate_tolerance)
 }
 
 /// The input's normals (normalised) unless asked to recompute or absent, else PCA

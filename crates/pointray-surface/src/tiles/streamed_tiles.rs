@@ -15,6 +15,7 @@ use pointray_patches::PrepSettings;
 use pointray_patches::patch_tiles::even_ranges;
 use rayon::prelude::*;
 
+use crate::duplicates::largest_merge_distance;
 use crate::input_validation::validate_bounds;
 use crate::morton::MortonGrid;
 use crate::prep::{TileContext, prep_in_context};
@@ -80,7 +81,10 @@ impl StreamPlan {
         let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
         let frame = TileContext {
             offset,
-            duplicate_distance: settings.duplicate_tolerance * (high - low).length(),
+            duplicate_distance: largest_merge_distance(
+                low.abs().max(high.abs()).max_element(),
+                settings.duplicate_tolerance,
+            ),
             bounds: (min, max),
             points: points as usize,
         };

@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 use crate::input_validation::validate_positions;
 use crate::morton::{MortonGrid, curve_and_order};
-use crate::prep::{TileContext, bounds_of, duplicate_distance, gather, prep_in_context, recentre_on};
+use crate::prep::{TileContext, bounds_of, gather, largest_duplicate_distance, prep_in_context, recentre_on};
 use crate::prep_error::PrepError;
 use crate::prep_progress::PrepProgress;
 use crate::tiles::cloud_subset::subset;
@@ -55,7 +55,7 @@ impl TilePlan {
         let recentred = recentre_on(&cloud.positions, offset);
         let frame = TileContext {
             offset,
-            duplicate_distance: duplicate_distance(settings, &recentred),
+            duplicate_distance: largest_duplicate_distance(settings, &recentred),
             bounds,
             points: cloud.len(),
         };

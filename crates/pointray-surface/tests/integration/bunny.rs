@@ -36,3 +36,18 @@ fn bunny_patches_are_finite_and_normals_agree_with_the_mesh() {
     assert!(compared > 34_000, "only {compared} patches have a mesh normal");
     assert!(best >= 0.99, "only {:.3}% agree", 100.0 * best);
 }
+
+/// One junk point far off (a stray return) must not make the bunny's own points duplicates:
+/// the tolerance follows the f32 spacing at each point, not the box the stray point stretches.
+#[test]
+fn a_far_stray_point_merges_none_of_the_bunny_but_exact_copies_still_merge() {
+    let mut cloud = ply::read_point_cloud(&data_dir().join("points/bunny.ply")).expect("the bunny reads");
+    let bunny = cloud.len();
+    let copies: Vec<_> = cloud.positions[..500].to_vec();
+    cloud.positions.extend(copies);
+    cloud.positions.push(glam::DVec3::new(1e4, 0.0, 0.0));
+    let (patches, report) = prep(&cloud, &PrepSettings::default(), &NoProgress).expect("the cloud preps");
+    let (kept, merged) = (patches.hot.len(), report.merged_duplicates);
+    assert!(merged >= 500, "the exact copies merge: {merged} merged");
+    assert!(kept >= 35_000, "{kept} patches for {bunny} bunny points: {merged} merged");
+}

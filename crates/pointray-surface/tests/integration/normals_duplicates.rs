@@ -15,13 +15,14 @@ fn grid() -> Vec<Vec3> {
     (0..1600).map(|i| Vec3::new((i % 40) as f32, (i / 40) as f32, 0.1 * ((i % 7) as f32))).collect()
 }
 
-/// `grid()` followed by 50 exact copies and 30 copies moved by 1e-4 (each of a
-/// different grid point), and 20 points moved by 0.3 (not duplicates).
+/// `grid()` followed by 50 exact copies and 30 copies moved one f32 step (each of a different
+/// grid point), and 20 points moved by 0.3 (not duplicates).
 fn cloud_with_duplicates() -> (Vec<Vec3>, usize) {
     let originals = grid();
     let mut points = originals.clone();
     points.extend((0..50).map(|i| originals[i * 7]));
-    points.extend((0..30).map(|i| originals[i * 11 + 3] + Vec3::new(1e-4, -1e-4, 5e-5)));
+    let step = |p: Vec3| Vec3::new(p.x, p.y.next_up(), p.z);
+    points.extend((0..30).map(|i| step(originals[i * 11 + 3])));
     points.extend((0..20).map(|i| originals[i * 13 + 5] + Vec3::new(0.3, 0.0, 0.0)));
     (points, 80)
 }
@@ -29,7 +30,7 @@ fn cloud_with_duplicates() -> (Vec<Vec3>, usize) {
 #[test]
 fn merge_counts_exact_and_near_duplicates_and_keeps_the_first() {
     let (points, duplicates) = cloud_with_duplicates();
-    let merge = merge_duplicates(&points, 1e-3);
+    let merge = merge_duplicates(&points, 1.0);
     assert_eq!(merge.merged_count, duplicates);
     assert_eq!(merge.kept.len(), points.len() - duplicates);
     assert!(merge.kept.windows(2).all(|w| w[0] < w[1]), "input order preserved");
@@ -46,7 +47,7 @@ fn zero_tolerance_merges_exact_duplicates_only() {
 #[test]
 fn all_identical_points_merge_to_one() {
     let points = vec![Vec3::new(1.0, 2.0, 3.0); 10_000];
-    let merge = merge_duplicates(&points, 1e-6);
+    let merge = merge_duplicates(&points, 1.0);
     assert_eq!(merge.kept, vec![0]);
     assert_eq!(merge.merged_count, 9_999);
 }
