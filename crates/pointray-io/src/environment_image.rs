@@ -3,11 +3,23 @@
 
 use std::path::Path;
 
-use crate::IoError;
-use crate::linear_image::{LinearImage, read_linear_image};
+use crate::linear_image::{LinearImage, check_texels, read_linear_image};
+use crate::{IoError, MemoryBudget};
 
+/// What a map takes a texel at its peak, while the scene builds it (after the decode's
+/// `DECODE_BYTES_PER_TEXEL`): the texels read (12 bytes), their scaled copy (12), the map's
+/// RGBA texels (16), its f64 weights (8) and the f32 distribution over them, which may hold
+/// twice its 4 bytes while it grows (8): 56, rounded up.
+pub const ENVIRONMENT_BYTES_PER_TEXEL: u64 = 64;
+
+/// The map at `path`, refused before decoding when it is not twice as wide as tall or does not
+/// fit in the memory available now.
 pub fn read_environment_image(path: &Path) -> Result<LinearImage, IoError> {
-    let image = read_linear_image(path, |width, height| check_shape(path, width, height))?;
+    let check = |width, height| {
+        check_shape(path, width, height)?;
+        check_texels(path, (width, height), ENVIRONMENT_BYTES_PER_TEXEL, MemoryBudget::of_this_machine())
+    };
+    let image = read_linear_image(path, check)?;
     if let Some(index) = image.pixels.iter().position(|t| !t.is_finite() || t.min_element() < 0.0) {
         let (x, y) = (index as u32 % image.width, index as u32 / image.width);
         return Err(IoError::malformed(

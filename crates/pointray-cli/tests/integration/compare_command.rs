@@ -89,3 +89,15 @@ fn images_that_cannot_be_compared_are_refused_with_their_names() {
     refused(&["compare", "shown.png", "narrow.exr"], &["shown.png", ".exr"]);
     refused(&["compare", "missing.exr", "narrow.exr"], &["missing.exr"]);
 }
+
+/// A 100-byte Radiance file whose header claims 16384 x 1e9 texels is refused before decoding,
+/// naming the file, where the decoder's allocation used to abort the process.
+#[test]
+fn an_image_header_claiming_more_than_memory_is_refused_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let header = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1000000000 +X 16384\n";
+    std::fs::write(dir.path().join("huge.hdr"), [&header[..], &[0x80; 16]].concat()).unwrap();
+    let (ok, _, stderr) = pointray_in(dir.path(), &["compare", "huge.hdr", "huge.hdr"]);
+    assert!(!ok && stderr.contains("huge.hdr") && stderr.contains("16384 x 1000000000"), "{stderr}");
+    assert!(stderr.contains("of memory") && !stderr.contains("panicked"), "{stderr}");
+}
