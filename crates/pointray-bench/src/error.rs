@@ -30,6 +30,8 @@ pub enum BenchError {
     Store { case: String, source: pointray_patches::patch_store::StoreError },
     #[error("{case}: {source}")]
     Vulkan { case: String, source: pointray_vulkan::VulkanError },
+    #[error("{case}: {source}")]
+    Backend { case: String, source: pointray_render::BackendError },
     #[error("{path}: cannot write the report: {message}")]
     WriteReport { path: PathBuf, message: String },
 }

@@ -4,7 +4,7 @@
 use std::time::{Duration, Instant};
 
 use pointray_cpu::CpuRenderer;
-use pointray_render::{Backend, ReadyScene, Tracer};
+use pointray_render::{Backend, BackendError, ReadyScene, Tracer};
 use pointray_scene::{RenderSettings, RenderedImage, Scene};
 use pointray_vulkan::{PixelOutput, VulkanError};
 
@@ -67,7 +67,7 @@ impl ScaleBackend<'_> {
         case: &str,
     ) -> Result<(ReadyScene, BuildCosts), BenchError> {
         let started = Instant::now();
-        let ready = self.0.prepare(scene, settings).map_err(|source| vulkan_error(case, source))?;
+        let ready = self.0.prepare(scene, settings).map_err(|source| backend_error(case, source))?;
         let costs = match &ready {
             ReadyScene::Vulkan(prepared) => {
                 let report = prepared.build_report();
@@ -96,7 +96,7 @@ impl ScaleBackend<'_> {
         settings: &RenderSettings,
         case: &str,
     ) -> Result<(), BenchError> {
-        if let Some(tiles) = ready.stream_tiles(settings).map_err(|source| vulkan_error(case, source))? {
+        if let Some(tiles) = ready.stream_tiles(settings).map_err(|source| backend_error(case, source))? {
             println!(
                 "{case}: {} of {} tiles on the GPU ({:.2} GB), {} of the {} in view",
                 tiles.resident,
@@ -118,7 +118,7 @@ impl ScaleBackend<'_> {
         frames: FrameCounts,
         case: &str,
     ) -> Result<Duration, BenchError> {
-        match self.0.tracer(ready).map_err(|source| vulkan_error(case, source))? {
+        match self.0.tracer(ready).map_err(|source| backend_error(case, source))? {
             Tracer::Vulkan(renderer, prepared) => {
                 measure_prepared(renderer, prepared, settings, PixelOutput::Display, frames)
                     .map(|measured| measured.frame_median)
@@ -135,12 +135,16 @@ impl ScaleBackend<'_> {
         settings: &RenderSettings,
         case: &str,
     ) -> Result<RenderedImage, BenchError> {
-        self.0.trace(ready, settings).map_err(|source| vulkan_error(case, source))
+        self.0.trace(ready, settings).map_err(|source| backend_error(case, source))
     }
 }
 
 fn vulkan_error(case: &str, source: VulkanError) -> BenchError {
     BenchError::Vulkan { case: case.to_string(), source }
+}
+
+fn backend_error(case: &str, source: BackendError) -> BenchError {
+    BenchError::Backend { case: case.to_string(), source }
 }
 
 fn cpu_frame_time(renderer: &CpuRenderer, settings: &RenderSettings, frames: FrameCounts) -> Duration {

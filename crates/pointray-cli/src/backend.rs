@@ -1,6 +1,5 @@
 //! Choosing the renderer: a ray-tracing GPU when there is one, else the CPU backend.
 
-use anyhow::Context;
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use pointray_io::MemoryBudget;
@@ -46,8 +45,7 @@ pub fn open_backend(
     device: &DeviceSelector,
     gpu_memory: Option<MemoryBudget>,
 ) -> anyhow::Result<Backend> {
-    let backend =
-        Backend::open(choice, device, device_options(gpu_memory)).context("opening the Vulkan backend")?;
+    let backend = Backend::open(choice, device, device_options(gpu_memory))?;
     if gpu_memory.is_some() && matches!(backend, Backend::Cpu) {
         eprintln!("note: --gpu-memory budgets the Vulkan backend; the CPU backend renders, without it");
     }

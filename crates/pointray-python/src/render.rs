@@ -57,8 +57,7 @@ pub fn render<'py>(
             let load_options = LoadOptions { in_memory: &in_memory, ..LoadOptions::default() };
             let loaded = load_scene_file(&file, &load_options).map_err(|e| error_line(&e))?;
             let device_options = DeviceOptions { gpu_memory, ..device_options_from_environment() };
-            let backend = Backend::open(backend, &device, device_options)
-                .map_err(|e| format!("opening the Vulkan backend: {e}"))?;
+            let backend = Backend::open(backend, &device, device_options).map_err(|e| error_line(&e))?;
             let (mut image, residency) =
                 backend.render(&loaded.scene, &settings).map_err(|e| error_line(&e))?;
             if denoised {

@@ -6,7 +6,9 @@
 
 use pointray_cpu::CpuRenderer;
 use pointray_scene::{Camera, RenderSettings};
-use pointray_vulkan::{PreparedScene, TileResidency, VulkanError, VulkanRenderer};
+use pointray_vulkan::{PreparedScene, TileResidency, VulkanRenderer};
+
+use crate::error::BackendError;
 
 pub enum ReadyScene {
     Vulkan(Box<PreparedScene>),
@@ -24,9 +26,9 @@ impl ReadyScene {
 
     /// Loads every tile the camera needs that the budget holds, evicting those it no longer
     /// does, for frames of `settings`' size; `None` where nothing streams.
-    pub fn stream_tiles(&mut self, settings: &RenderSettings) -> Result<Option<TileResidency>, VulkanError> {
+    pub fn stream_tiles(&mut self, settings: &RenderSettings) -> Result<Option<TileResidency>, BackendError> {
         match self {
-            ReadyScene::Vulkan(prepared) => prepared.stream_tiles(settings.aspect(), None),
+            ReadyScene::Vulkan(prepared) => Ok(prepared.stream_tiles(settings.aspect(), None)?),
             ReadyScene::Cpu(_) => Ok(None),
         }
     }

@@ -14,6 +14,8 @@ pub enum ViewerError {
     PresentSetup(String),
     #[error("the Vulkan renderer: {0}")]
     Renderer(#[from] pointray_vulkan::VulkanError),
+    #[error("{0}")]
+    Backend(#[from] pointray_render::BackendError),
     #[error("writing the screenshot {path}: {source}")]
     Screenshot { path: PathBuf, source: Box<pointray_scene::SceneError> },
     #[error("creating the sequence folder {path}: {source}")]

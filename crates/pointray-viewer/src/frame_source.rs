@@ -5,10 +5,11 @@
 //! the lights.
 
 use pointray_cpu::CpuRenderer;
+use pointray_render::{Backend, BackendChoice};
 use pointray_scene::{Light, RenderSettings, RenderedImage, Scene};
 use pointray_vulkan::{
-    BackendChoice, DeviceOptions, DeviceSelector, MessageCounter, PreparedScene, ReadBack, SceneLayout,
-    TileResidency, VulkanRenderer, WindowTarget,
+    DeviceOptions, DeviceSelector, MessageCounter, PreparedScene, ReadBack, SceneLayout, TileResidency,
+    VulkanRenderer, WindowTarget,
 };
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use std::sync::Arc;
@@ -56,7 +57,8 @@ pub(crate) enum FrameSource {
 }
 
 impl FrameSource {
-    /// With `display`, a Vulkan renderer can present to that window system's windows.
+    /// With `display`, a Vulkan renderer can present to that window system's windows. The
+    /// backend is chosen by `pointray_render::Backend`'s rule, as every command's is.
     pub(crate) fn open(
         choice: BackendChoice,
         device: &DeviceSelector,
@@ -65,19 +67,18 @@ impl FrameSource {
         view_size: (u32, u32),
         display: Option<RawDisplayHandle>,
     ) -> Result<Self, ViewerError> {
-        let open = || match display {
-            Some(display) => VulkanRenderer::for_window(device.clone(), options, display),
-            None => VulkanRenderer::new(device.clone(), options),
+        let backend = match display {
+            Some(display) => Backend::open_for_window(choice, device, options, display)?,
+            None => Backend::open(choice, device, options)?,
         };
-        let renderer = choice.vulkan_renderer(open)?;
-        match renderer {
-            Some(renderer) => Ok(Self::Vulkan {
+        match backend {
+            Backend::Vulkan(renderer) => Ok(Self::Vulkan {
                 window: None,
                 prepared: Box::new(renderer.prepare_with_layout(scene, streaming_layout(view_size))?),
                 lights: scene.lights.clone(),
-                renderer: Box::new(renderer),
+                renderer,
             }),
-            None => Ok(Self::Cpu {
+            Backend::Cpu => Ok(Self::Cpu {
                 presenter: None,
                 renderer: Box::new(CpuRenderer::new(scene)),
                 accumulated: None,
@@ -267,6 +268,7 @@ mod tests {
     use pointray_scene::{LoadOptions, load_demo};
 
     use super::*;
+    use pointray_render::BackendError;
     use pointray_scene::orbit_camera;
 
     /// The demo seen from a quarter turn round, lit by two lights from the other side.
@@ -319,7 +321,7 @@ mod tests {
                 None,
             ) {
                 Ok(source) => source,
-                Err(ViewerError::Renderer(error)) if error.is_no_device() => {
+                Err(ViewerError::Backend(BackendError::VulkanUnavailable(error))) if error.is_no_device() => {
                     pointray_test_support::skip_without_device(&error);
                     continue;
                 }

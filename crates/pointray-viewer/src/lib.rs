@@ -32,8 +32,9 @@ mod view_state;
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use pointray_render::BackendChoice;
 use pointray_scene::{Camera, RenderSettings, Scene};
-use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector, MessageCounter};
+use pointray_vulkan::{DeviceOptions, DeviceSelector, MessageCounter};
 use winit::event_loop::EventLoop;
 use winit::raw_window_handle::HasDisplayHandle;
 

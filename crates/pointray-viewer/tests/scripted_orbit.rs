@@ -7,9 +7,9 @@
 mod common;
 
 use common::{Orbit, missing, psnr, read_png, scripted_run};
+use pointray_render::{BackendChoice, BackendError};
 use pointray_scene::{AovSelection, RenderedImage, write_image};
 use pointray_viewer::{Presentation, ViewerError, orbit_camera, run_viewer};
-use pointray_vulkan::BackendChoice;
 
 const FRAMES: u32 = 30;
 const ARC_DEGREES: f32 = 360.0;
@@ -31,7 +31,7 @@ fn scripted_orbit_screenshot_matches_the_renderer() {
     let sequence = run.sequence.as_deref().expect("the run keeps its sequence");
     let summary = match run_viewer(loaded.scene.clone(), settings, run.options) {
         Ok(summary) => summary,
-        Err(ViewerError::Renderer(error)) if error.is_no_device() => {
+        Err(ViewerError::Backend(BackendError::VulkanUnavailable(error))) if error.is_no_device() => {
             return missing(&format!("no usable Vulkan device: {error}"));
         }
         Err(error) => panic!("the viewer failed: {error}"),

@@ -7,9 +7,9 @@
 mod common;
 
 use common::{Orbit, missing, psnr, read_png, scripted_run};
+use pointray_render::BackendChoice;
 use pointray_scene::{AovSelection, write_image};
 use pointray_viewer::{Presentation, ViewerError, orbit_camera, run_viewer};
-use pointray_vulkan::BackendChoice;
 
 const FRAMES: u32 = 30;
 const ARC_DEGREES: f32 = 270.0;

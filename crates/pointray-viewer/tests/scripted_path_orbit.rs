@@ -9,9 +9,9 @@
 mod common;
 
 use common::{Orbit, missing, psnr, read_png, scripted_run};
+use pointray_render::{BackendChoice, BackendError};
 use pointray_scene::{AovSelection, Integrator, RenderSettings, write_image};
 use pointray_viewer::{ViewerError, run_viewer};
-use pointray_vulkan::BackendChoice;
 
 const MIN_PSNR_DB: f64 = 35.0;
 
@@ -22,7 +22,7 @@ fn a_path_traced_scripted_orbit_matches_the_renderer() {
     let settings = RenderSettings { integrator: Integrator::Path, max_depth: 3, seed: 5, ..run.settings };
     let summary = match run_viewer(run.demo.loaded.scene.clone(), settings, run.options) {
         Ok(summary) => summary,
-        Err(ViewerError::Renderer(error)) if error.is_no_device() => {
+        Err(ViewerError::Backend(BackendError::VulkanUnavailable(error))) if error.is_no_device() => {
             return missing(&format!("no usable Vulkan device: {error}"));
         }
         Err(error) => panic!("the viewer failed: {error}"),

@@ -5,8 +5,9 @@
 mod common;
 
 use common::{Orbit, missing, psnr, read_png, scripted_run};
+use pointray_render::{BackendChoice, BackendError};
 use pointray_viewer::{ViewerError, run_viewer};
-use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector, SceneLayout, VulkanRenderer};
+use pointray_vulkan::{DeviceOptions, DeviceSelector, SceneLayout, VulkanRenderer};
 
 const FRAMES: u32 = 6;
 const MIN_PSNR_DB: f64 = 35.0;
@@ -24,7 +25,7 @@ fn a_scripted_orbit_over_the_gpu_budget_streams_tiles_and_ends_on_the_streamed_i
     run.options.device_options = DeviceOptions { gpu_memory: Some(budget), ..DeviceOptions::VALIDATED };
     let summary = match run_viewer(scene.clone(), run.settings, run.options.clone()) {
         Ok(summary) => summary,
-        Err(ViewerError::Renderer(error)) if error.is_no_device() => {
+        Err(ViewerError::Backend(BackendError::VulkanUnavailable(error))) if error.is_no_device() => {
             return missing(&format!("no usable Vulkan device: {error}"));
         }
         Err(error) => panic!("the viewer failed: {error}"),

@@ -12,7 +12,6 @@
 //! ```
 
 mod acceleration;
-mod backend_choice;
 mod barrier;
 mod binding_table;
 mod buffer;
@@ -51,7 +50,6 @@ pub mod validation;
 mod window_target;
 
 pub use acceleration::BlasLayout;
-pub use backend_choice::BackendChoice;
 pub use device::{DeviceInfo, DeviceOptions, DeviceSelector, list_devices};
 pub use device_type::DeviceType;
 pub use error::VulkanError;

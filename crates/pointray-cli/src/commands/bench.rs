@@ -10,8 +10,9 @@ use pointray_bench::{
     run_scale, run_scene_file, run_suite,
 };
 use pointray_io::MemoryBudget;
+use pointray_render::{Backend, BackendChoice, DeviceSelector};
 use pointray_scene::{Integrator, RenderSetting, RenderSettings, SceneFile};
-use pointray_vulkan::{BackendChoice, DeviceSelector, VulkanRenderer};
+use pointray_vulkan::VulkanRenderer;
 
 use crate::backend::{GpuMemoryArg, backend_choice, device_options, open_backend};
 use crate::environment::data_dir;
@@ -139,8 +140,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         size.check_memory(&MemoryBudget::of_this_machine()).map_err(anyhow::Error::msg)?;
     }
     let device_options = device_options(args.gpu_memory.budget);
-    let renderer =
-        VulkanRenderer::new(args.device.clone(), device_options).context("opening the Vulkan backend")?;
+    let renderer = Backend::open_vulkan(&args.device, device_options)?;
     println!("device: {}", renderer.device_info());
     let reordering = (args.ablations && renderer.device_info().hit_reordering)
         .then(|| VulkanRenderer::with_hit_reordering(args.device.clone(), device_options))

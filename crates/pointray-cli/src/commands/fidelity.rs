@@ -11,13 +11,12 @@ use pointray_fidelity::view_placement::validate_setting;
 use pointray_fidelity::{FidelityOptions, ImageRenderer, RenderError, SensorPose, measure_fidelity};
 use pointray_io::MemoryBudget;
 use pointray_scene::{RenderSetting, RenderSettings, RenderedImage, Scene};
-use pointray_vulkan::{BackendChoice, DeviceSelector};
 
 use crate::backend::{backend_choice, open_backend};
 use crate::patch_args::PatchArgs;
 use crate::setting_flag::setting_flag;
 use crate::view_args::ViewArgs;
-use pointray_render::{Backend, missing_tiles};
+use pointray_render::{Backend, BackendChoice, DeviceSelector, missing_tiles};
 
 /// Render the points' patches and the mesh from the same cameras and report holes, false
 /// surfaces, depth and normal error (against the mesh's interpolated vertex normals) and

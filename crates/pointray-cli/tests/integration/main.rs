@@ -17,7 +17,6 @@ mod leftovers;
 mod outputs_spare_inputs;
 mod path_integrator_flags;
 mod prep_robustness_flags;
-mod radius_fidelity;
 mod scan_command;
 mod scan_measures;
 mod scene_prep_keys;

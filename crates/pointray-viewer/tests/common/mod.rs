@@ -8,9 +8,10 @@ use std::process::{Child, ChildStdout, Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
+use pointray_render::BackendChoice;
 use pointray_scene::{LoadOptions, LoadedScene, RenderSettings, load_demo};
 use pointray_viewer::{Script, ViewerOptions};
-use pointray_vulkan::{BackendChoice, DeviceOptions, DeviceSelector};
+use pointray_vulkan::{DeviceOptions, DeviceSelector};
 
 pub use pointray_test_support::in_ci;
 

@@ -3,12 +3,11 @@
 //! on mesh samples thinned by a tenfold density gradient and into scan lines, compared with
 //! the mesh by `pointray-fidelity`.
 //!
-//! `pointray fidelity` preps with the default radius and has no radius flag (its file belongs
-//! to another engineer), so this drives the same library calls. It takes minutes, so it is
-//! ignored by default:
+//! `pointray fidelity` preps with the default radius and has no radius flag, so this drives
+//! the same library calls. It prints a markdown table and takes minutes:
 //!
 //! ```sh
-//! cargo test --release -p pointray-cli --test integration radius_fidelity -- --ignored --nocapture
+//! cargo run --release -p pointray-cli --example radius_fidelity
 //! ```
 //! `POINTRAY_FIDELITY_SIZE` sets the image size (default 512, as `pointray fidelity`).
 
@@ -68,9 +67,7 @@ fn row(
     )
 }
 
-#[test]
-#[ignore = "a measurement of several minutes; see the module comment"]
-fn radius_modes_on_uneven_density() {
+fn main() {
     let size = std::env::var("POINTRAY_FIDELITY_SIZE").ok().and_then(|s| s.parse().ok()).unwrap_or(512);
     println!(
         "| model | sampling | points | radius | disk scale | hole px | pinhole px | hole % | false surface % | depth mean | depth p99 | normal mean ° | normal p95 ° | PSNR dB |"
