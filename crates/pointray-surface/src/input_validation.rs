@@ -38,6 +38,16 @@ pub fn validate_size(
         .map_err(|shortfall| PrepError::TooLarge { problem: shortfall.to_string() })
 }
 
+/// Refuses a NaN or infinite intensity, naming its point: prepped, it would reach the
+/// store's cold records, and a store holding one is refused by every renderer that loads it.
+pub fn validate_intensities(intensities: Option<&[f32]>) -> Result<(), PrepError> {
+    let Some(values) = intensities else { return Ok(()) };
+    match values.par_iter().position_first(|value| !value.is_finite()) {
+        Some(index) => Err(PrepError::NonFiniteIntensity { index }),
+        None => Ok(()),
+    }
+}
+
 /// Checks, in order: finite coordinates, enough points, not all identical, not all on
 /// one line.
 pub fn validate_positions(positions: &[DVec3], k: usize) -> Result<(), PrepError> {

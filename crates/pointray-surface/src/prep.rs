@@ -13,7 +13,9 @@ use rayon::prelude::*;
 use crate::cold_records::{cold_records, color_neighbor_table};
 use crate::density_radius::{RadiusAdjustments, adaptive_radii, cell_radii};
 use crate::duplicates::{largest_merge_distance, merge_duplicates};
-use crate::input_validation::{validate_part, validate_positions, validate_settings, validate_size};
+use crate::input_validation::{
+    validate_intensities, validate_part, validate_positions, validate_settings, validate_size,
+};
 use crate::morton::morton_order;
 use crate::neighbors::{Neighbors, k_nearest};
 use crate::normals::pca_normals;
@@ -285,6 +287,7 @@ fn validate(
             return Err(PrepError::AttributeLength { attribute, found, expected });
         }
     }
+    validate_intensities(cloud.intensities.as_deref())?;
     let k = settings.k as usize;
     match context {
         Some(context) => validate_part(&cloud.positions, k, (context.bounds, context.points)),

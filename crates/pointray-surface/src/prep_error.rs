@@ -6,6 +6,8 @@ pub enum PrepError {
     NoSuchTile { index: usize, count: usize },
     #[error("point {index} has a coordinate that is NaN or infinite")]
     NonFiniteCoordinate { index: usize },
+    #[error("point {index} has an intensity that is NaN or infinite")]
+    NonFiniteIntensity { index: usize },
     #[error("{found} points, but k = {k} needs at least {} distinct points", k + 1)]
     TooFewPoints { found: usize, k: usize },
     #[error("{found} distinct points after merging duplicates, but k = {k} needs at least {}", k + 1)]
@@ -22,4 +24,17 @@ pub enum PrepError {
     InvalidSetting { setting: &'static str, problem: String },
     #[error("too large: {problem}")]
     TooLarge { problem: String },
+}
+
+impl PrepError {
+    /// This error of a tile made of the cloud's points `members` (tile point `i` is the
+    /// cloud's `members[i]`), naming the cloud's point instead of the tile's.
+    pub(crate) fn of_tile(self, members: &[u32]) -> Self {
+        let in_cloud = |index: usize| members.get(index).map_or(index, |&member| member as usize);
+        match self {
+            Self::NonFiniteCoordinate { index } => Self::NonFiniteCoordinate { index: in_cloud(index) },
+            Self::NonFiniteIntensity { index } => Self::NonFiniteIntensity { index: in_cloud(index) },
+            other => other,
+        }
+    }
 }

@@ -189,3 +189,24 @@ fn folders_and_devices_are_named_as_such() {
         assert!(!ok && stderr.contains("is a device, not a file"), "{stderr}");
     }
 }
+
+/// A NaN intensity used to prep into a store that no renderer would load; now prep refuses it,
+/// naming the file and the point, whole and in tiles (streamed).
+#[test]
+fn a_nan_intensity_is_refused_at_prep_naming_the_point() {
+    let header = "ply\nformat binary_little_endian 1.0\nelement vertex 400\nproperty float x\nproperty float y\n\
+                  property float z\nproperty float intensity\nend_header\n";
+    let mut bytes = header.as_bytes().to_vec();
+    for (i, [x, y, z]) in grid(400).into_iter().enumerate() {
+        let intensity = if i == 123 { f32::NAN } else { 0.5 };
+        bytes.extend([x, y, z, intensity].iter().flat_map(|v| v.to_le_bytes()));
+    }
+    assert_prep_refuses("nan_intensity.ply", &bytes, "point 123 has an intensity that is nan");
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(dir.path(), "nan_intensity.ply", &bytes);
+    let output = dir.path().join("out.patches");
+    let args = ["prep", input.to_str().unwrap(), "-o", output.to_str().unwrap(), "--tiles", "2"];
+    let (ok, stderr) = pointray(&args);
+    assert!(!ok && stderr.contains("nan_intensity.ply") && stderr.contains("point 123 has"), "{stderr}");
+    assert!(!output.exists());
+}

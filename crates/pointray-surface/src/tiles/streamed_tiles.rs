@@ -205,8 +205,10 @@ impl StreamPlan {
     ) -> Result<TilePatches, StreamError> {
         let started = Instant::now();
         let GatheredTile { range, cloud, members, core } = tile;
-        let (patches, report) = prep_in_context(&cloud, settings, &self.frame, &NoProgress)
-            .map_err(|source| StreamError::Prep { path: self.input.clone(), source })?;
+        let (patches, report) =
+            prep_in_context(&cloud, settings, &self.frame, &NoProgress).map_err(|source| {
+                StreamError::Prep { path: self.input.clone(), source: source.of_tile(&members) }
+            })?;
         let stages: Vec<String> =
             report.stage_times.iter().map(|(stage, time)| format!("{} {time:.2?}", stage.name())).collect();
         tracing::debug!("tile {range:?} prepped in {:.2?}: {}", started.elapsed(), stages.join(", "));

@@ -102,7 +102,8 @@ pub fn prep_tile(
     let core_points = &curve[core_in_curve];
     let halo = halo_of(cloud.len(), core, core_points, &reaches, local);
     let members: Vec<u32> = core.iter().chain(&halo).copied().collect();
-    let (patches, report) = prep_in_context(&subset(cloud, &members), settings, &plan.frame, progress)?;
+    let (patches, report) = prep_in_context(&subset(cloud, &members), settings, &plan.frame, progress)
+        .map_err(|error| error.of_tile(&members))?;
     Ok(own_patches(patches, &report.patch_sources, &members, core.len()))
 }
 

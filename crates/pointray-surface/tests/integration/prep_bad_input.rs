@@ -5,6 +5,7 @@ use crate::common;
 use glam::DVec3;
 use pointray_io::PointCloud;
 use pointray_patches::PrepSettings;
+use pointray_surface::tiles::tiled_prep::prep_tiled;
 use pointray_surface::{NoProgress, PrepError, prep};
 
 fn prep_error(positions: Vec<DVec3>) -> PrepError {
@@ -79,4 +80,19 @@ fn exact_and_near_duplicates_are_merged_without_nans_or_zero_radii() {
         assert!(values.into_iter().all(|v| v.is_finite()), "{patch:?}");
         assert!(patch.radius() > 0.0, "{patch:?}");
     }
+}
+
+/// A NaN intensity would reach the store's cold records, which every renderer refuses to
+/// load: prep refuses it first, naming the point, whether it preps whole or in tiles.
+#[test]
+fn a_nan_intensity_is_refused_naming_its_point() {
+    let mut cloud = PointCloud::from_positions(plane(20));
+    let mut intensities = vec![0.5; cloud.len()];
+    intensities[317] = f32::NAN;
+    cloud.intensities = Some(intensities);
+    let whole = prep(&cloud, &PrepSettings::default(), &NoProgress).unwrap_err();
+    assert_eq!(whole, PrepError::NonFiniteIntensity { index: 317 });
+    assert!(whole.to_string().contains("point 317 has an intensity"), "{whole}");
+    let tiled = prep_tiled(&cloud, &PrepSettings::default(), 4, &NoProgress).unwrap_err();
+    assert_eq!(tiled, PrepError::NonFiniteIntensity { index: 317 }, "the cloud's point, not the tile's");
 }
