@@ -1,17 +1,18 @@
-//! Read throughput of each reader on generated 1M-point files. A measurement, not a test:
-//! it asserts only that every file reads back whole, and prints points/s. Run it in
+//! Read throughput of each reader on generated 1M-point files. A measurement: it checks only
+//! that every file reads back whole, and prints a markdown table of points/s. Run it in
 //! release (numbers go to bench/READERS.md):
 //!
-//! `cargo test --release -p pointray-io --test integration formats_throughput -- --ignored --nocapture`
+//! ```sh
+//! cargo run --release -p pointray-io --example formats_throughput
+//! ```
 
 use std::path::Path;
 use std::time::Instant;
 
-use crate::common::write_pcd_f32;
 use e57::{E57Writer, Record, RecordDataType, RecordName, RecordValue};
 use las::point::Format;
 use las::{Builder, Color, Transform, Vector};
-use pcd_rs::{DataKind, DynRecord, Field};
+use pcd_rs::{DataKind, DynRecord, DynWriter, Field, Schema, ValueKind, WriterInit};
 use pointray_io::PointCloud;
 use pointray_io::formats::{
     e57::read_e57, las::read_las, pcd::read_pcd, raw_bin::read_raw_bin, xyz::read_xyz,
@@ -57,7 +58,20 @@ fn write_pcd(path: &Path, data_kind: DataKind) {
         let fields = [x - 500_000.0, y - 4_000_000.0, z].map(|c| Field::F32(vec![c as f32]));
         DynRecord(fields.into_iter().chain([Field::F32(vec![rgb])]).collect())
     });
-    write_pcd_f32(path, data_kind, &["x", "y", "z", "rgb"], records);
+    let schema = Schema::from_iter(["x", "y", "z", "rgb"].map(|name| (name, ValueKind::F32, 1)));
+    let init = WriterInit {
+        width: POINTS as u64,
+        height: 1,
+        viewpoint: Default::default(),
+        data_kind,
+        schema: Some(schema),
+        version: None,
+    };
+    let mut writer: DynWriter<_> = init.create(path).unwrap();
+    for record in records {
+        writer.push(&record).unwrap();
+    }
+    writer.finish().unwrap();
 }
 
 fn write_e57(path: &Path) {
@@ -121,9 +135,7 @@ fn measure(name: &str, path: &Path, read: impl Fn(&Path) -> PointCloud) {
     println!("| {name} | {megabytes:.1} MB | {:.3} s | {:.2} M points/s |", best, POINTS as f64 / best / 1e6);
 }
 
-#[test]
-#[ignore = "a measurement; run in release with --ignored --nocapture"]
-fn read_throughput_of_every_reader() {
+fn main() {
     let dir = tempfile::tempdir().unwrap();
     let file = |name: &str| dir.path().join(name);
     write_las(&file("cloud.las"), false);
