@@ -3,9 +3,10 @@
 //! input, which may be read-only or shared).
 //!
 //! A cache file is `<cache_dir>/<stem>-<key>.patches`, where the key hashes the input's
-//! canonical path, size and modification time, how it is read (column spec, classification
-//! colours), the prep options, prep's revision and this crate's version, so that a changed
-//! input or setting never reuses a stale result. A cache file that cannot be
+//! canonical path, size, modification time and contents, how it is read (column spec,
+//! classification colours), the prep options, prep's revision and this crate's version, so
+//! that a changed input or setting never reuses a stale result, even a different input given
+//! the old one's size and time (`cp -p`, `rsync -t`, `touch -r`). A cache file that cannot be
 //! read (truncated, corrupted, from another format version) is regenerated.
 
 use std::io::Read;
@@ -182,6 +183,7 @@ fn cache_file_name(
     key.write(canonical.as_os_str().as_encoded_bytes());
     key.write(&metadata.len().to_le_bytes());
     key.write(&modified.to_le_bytes());
+    key.write(&content_checksum(&canonical).map_err(os_error)?.to_le_bytes());
     // Debug covers every setting, including ones added later, without listing them here.
     key.write(format!("{settings:?}").as_bytes());
     // Left out when default, so that caches of files read the plain way stay valid.
@@ -192,6 +194,24 @@ fn cache_file_name(
     key.write(env!("CARGO_PKG_VERSION").as_bytes());
     let stem = input.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     Ok(format!("{stem}-{:016x}.patches", key.0))
+}
+
+/// The CRC-32 of every byte of the file at `path`. It reads the whole input on every load,
+/// at the speed of the disk or page cache: on a 2-core machine, 0.2 s for 1 GB from the page
+/// cache, where prepping a PLY of that size (83M points) takes about 5 minutes (3.4 s for 1M
+/// points), and a cache hit reads the store, which is larger.
+fn content_checksum(path: &Path) -> std::io::Result<u32> {
+    let mut file = std::fs::File::open(path)?;
+    let mut hasher = crc32fast::Hasher::new();
+    let mut buffer = vec![0; 1 << 20];
+    loop {
+        match file.read(&mut buffer) {
+            Ok(0) => return Ok(hasher.finalize()),
+            Ok(read) => hasher.update(&buffer[..read]),
+            Err(error) if error.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(error) => return Err(error),
+        }
+    }
 }
 
 /// Removes the cache files in `cache_dir` (named as `cache_file_name` names them; nothing else

@@ -202,3 +202,24 @@ fn set_read_only(dir: &Path, read_only: bool) {
     let mode = if read_only { 0o555 } else { 0o755 };
     std::fs::set_permissions(dir, std::fs::Permissions::from_mode(mode)).unwrap();
 }
+
+/// `cp -p`, `rsync -t` and `touch -r` give a different cloud the size and time of the one
+/// cached: the key follows the contents, so it gets its own entry, not the old cloud.
+#[test]
+fn a_different_cloud_of_the_same_size_and_time_gets_its_own_cache_file() {
+    let fixture = fixture("");
+    let runs = PrepRuns::default();
+    let input = fixture.input_dir.path().join("ball.ply");
+    let first = cache_file(&load(&fixture, &runs));
+    let (size, time) = std::fs::metadata(&input).map(|m| (m.len(), m.modified().unwrap())).unwrap();
+    common::write_sphere_ply(&input, DVec3::new(-4.0, 5.0, 0.0), 1500);
+    std::fs::File::options().write(true).open(&input).unwrap().set_modified(time).unwrap();
+    let metadata = std::fs::metadata(&input).unwrap();
+    assert_eq!((metadata.len(), metadata.modified().unwrap()), (size, time), "the same size and time");
+
+    let second = load(&fixture, &runs);
+    assert_eq!(runs.count(), 2, "prep ran for the new cloud");
+    assert_ne!(cache_file(&second), first);
+    let center = pointray_scene::bounds::center(&second.scene.objects[0].world_bounds().unwrap());
+    assert!((center - glam::Vec3::new(-4.0, 5.0, 0.0)).length() < 1e-3, "the new cloud: {center}");
+}
