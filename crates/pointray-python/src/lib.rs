@@ -10,6 +10,7 @@ mod patches;
 mod prep;
 mod read;
 mod render;
+mod render_options;
 mod scene_text;
 mod toml_values;
 
@@ -22,6 +23,7 @@ static ALLOCATOR: pointray_io::HugePageAllocator = pointray_io::HugePageAllocato
 fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("PointrayError", module.py().get_type::<errors::PointrayError>())?;
     module.add_class::<patches::Patches>()?;
+    module.add_class::<render_options::RenderOptions>()?;
     module.add_function(wrap_pyfunction!(read::read, module)?)?;
     module.add_function(wrap_pyfunction!(read::read_sweeps, module)?)?;
     module.add_function(wrap_pyfunction!(prep::prep, module)?)?;

@@ -8,50 +8,34 @@ use numpy::{IntoPyArray, PyArrayMethods};
 use pointray_denoise::{DenoiseSettings, denoise};
 use pointray_io::MemoryBudget;
 use pointray_patches::PatchSet;
-use pointray_render::{
-    Backend, BackendChoice, DeviceOptions, DeviceSelector, device_options_from_environment, error_line,
-    missing_tiles,
-};
+use pointray_render::{Backend, DeviceOptions, device_options_from_environment, error_line, missing_tiles};
 use pointray_scene::load::{LoadOptions, load_scene_file};
-use pointray_scene::scene_file::CameraSpec;
-use pointray_scene::{PointsScene, RenderSetting, RenderSettings, RenderedImage, SceneFile, UpAxis};
+use pointray_scene::{PointsScene, RenderedImage, SceneFile, UpAxis};
 use pointray_vulkan::TileResidency;
 use pyo3::exceptions::{PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use serde::Deserialize;
 
 use crate::errors::{PointrayError, to_python};
 use crate::patches::Patches;
-use crate::toml_values::to_toml;
+use crate::render_options::RenderOptions;
 
 /// Renders `source` with `options`; returns the image and, on request, its AOVs.
 #[pyfunction]
 pub fn render<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyDict>,
-    options: &Bound<'py, PyDict>,
+    options: &RenderOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
     let SceneSource { mut file, in_memory, up } = scene_source(source)?;
-    if let Some(camera) = option(options, "camera")? {
-        let spec = CameraSpec::deserialize(to_toml(&camera)?)
-            .map_err(|e| PointrayError::new_err(format!("camera: {}", e.message())))?;
+    if let Some(spec) = options.camera.clone() {
         file.camera = Some(up.camera_to_scene(spec));
     }
-    let settings = render_settings(&file, options)?;
+    let mut settings = file.render_settings().map_err(|e| to_python(&e))?;
+    options.apply(&mut settings);
     settings.check_memory(&MemoryBudget::of_this_machine()).map_err(PointrayError::new_err)?;
-    let backend: BackendChoice = text_option(options, "backend")?
-        .as_deref()
-        .unwrap_or("auto")
-        .parse()
-        .map_err(PyValueError::new_err)?;
-    let device: DeviceSelector = text_option(options, "device")?
-        .as_deref()
-        .unwrap_or("auto")
-        .parse()
-        .map_err(|e| PyValueError::new_err(format!("device: {e}")))?;
-    let gpu_memory = memory_option(options, "gpu_memory")?;
-    let denoised = flag_option(options, "denoise")?.unwrap_or(false);
+    let (backend, device, gpu_memory, denoised) =
+        (options.backend, options.device.clone(), options.gpu_memory, options.denoise);
     let (image, residency) = py
         .detach(|| -> Result<(RenderedImage, Option<TileResidency>), String> {
             let load_options = LoadOptions { in_memory: &in_memory, ..LoadOptions::default() };
@@ -119,35 +103,6 @@ fn scene_source(source: &Bound<'_, PyDict>) -> PyResult<SceneSource> {
     Ok(SceneSource { file: look.scene_file(&name), in_memory, up: look.up })
 }
 
-/// The file's `[render]` settings with the call's on top, each checked as the flag is.
-fn render_settings(file: &SceneFile, options: &Bound<'_, PyDict>) -> PyResult<RenderSettings> {
-    let mut settings = file.render_settings().map_err(|e| to_python(&e))?;
-    let set = |setting: RenderSetting, key: &str, target: &mut u32| -> PyResult<()> {
-        if let Some(value) = option(options, key)?.map(|value| value.extract::<u32>()).transpose()? {
-            *target =
-                setting.check(value).map_err(|problem| PyValueError::new_err(format!("{key}: {problem}")))?;
-        }
-        Ok(())
-    };
-    set(RenderSetting::Width, "width", &mut settings.width)?;
-    set(RenderSetting::Height, "height", &mut settings.height)?;
-    set(RenderSetting::SamplesPerPixel, "spp", &mut settings.samples_per_pixel)?;
-    set(RenderSetting::MaxDepth, "max_depth", &mut settings.max_depth)?;
-    if let Some(shadows) = flag_option(options, "shadows")? {
-        settings.shadows = shadows;
-    }
-    if let Some(integrator) = text_option(options, "integrator")? {
-        settings.integrator =
-            integrator.parse().map_err(|e| PyValueError::new_err(format!("integrator: {e}")))?;
-    }
-    if let Some(seed) = option(options, "seed")? {
-        settings.seed = seed
-            .extract::<u32>()
-            .map_err(|_| PyValueError::new_err("seed: a whole number from 0 to 2^32 - 1"))?;
-    }
-    Ok(settings)
-}
-
 /// `dict[key]` unless absent or `None`.
 fn option<'py>(dict: &Bound<'py, PyDict>, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
     Ok(dict.get_item(key)?.filter(|value| !value.is_none()))
@@ -163,21 +118,6 @@ fn path_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<PathBuf>>
 
 fn flag_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<bool>> {
     option(dict, key)?.map(|value| value.extract::<bool>()).transpose()
-}
-
-/// Bytes given as an int or as a size such as `"40G"`.
-fn memory_option(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Option<u64>> {
-    let Some(value) = option(dict, key)? else { return Ok(None) };
-    let bytes = match value.extract::<u64>() {
-        Ok(bytes) => bytes,
-        Err(_) => value.extract::<String>()?.parse::<MemoryBudget>().map_err(PyValueError::new_err)?.bytes,
-    };
-    if bytes == 0 {
-        return Err(PyValueError::new_err(format!(
-            "{key}: 0 bytes is no budget; leave it out for the device's"
-        )));
-    }
-    Ok(Some(bytes))
 }
 
 /// The image as (H, W, 4) float32, linear RGB with alpha 1 where a primary ray hit the scene,

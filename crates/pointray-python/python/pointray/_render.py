@@ -73,9 +73,10 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
     noise out of a preview of few samples, as ``pointray render --denoise`` does (the AOVs stay
     unfiltered). The GIL is released while the scene loads and renders.
     """
-    options = dict(width=width, height=height, spp=spp, max_depth=max_depth, shadows=shadows,
-                   integrator=integrator, seed=seed, backend=backend, device=device,
-                   gpu_memory=gpu_memory, camera=camera, denoise=denoise)
+    options = _native.RenderOptions(width=width, height=height, spp=spp, max_depth=max_depth,
+                                    shadows=shadows, integrator=integrator, seed=seed,
+                                    backend=backend, device=device, gpu_memory=gpu_memory,
+                                    camera=camera, denoise=denoise)
     result = _native.render(_source(source, up, floor, color), options)
     image = result.pop("image").view(RenderedImage)
     image.aovs = result if aovs else None
