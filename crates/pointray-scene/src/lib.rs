@@ -11,6 +11,8 @@ pub mod background;
 pub mod background_spec;
 pub mod bounds;
 #[cfg(feature = "load")]
+mod cache_folder;
+#[cfg(feature = "load")]
 mod checks;
 pub mod classification_palette;
 #[cfg(feature = "load")]
@@ -50,6 +52,8 @@ pub mod transform_spec;
 
 pub use background::Background;
 #[cfg(feature = "load")]
+pub use cache_folder::clean_cache;
+#[cfg(feature = "load")]
 pub use demo::{demo_scene, load_demo};
 pub use error::SceneError;
 pub use image_output::{AovSelection, write_image};
@@ -60,7 +64,7 @@ pub use load::{LoadOptions, LoadedScene, load_scene, load_scene_file};
 pub use material::{Material, SurfaceKind};
 pub use orbit::orbit_camera;
 #[cfg(feature = "load")]
-pub use point_sets::{PointSetOrigin, ReadRequest, clean_cache};
+pub use point_sets::{PointSetOrigin, ReadRequest};
 pub use pointray_kernels::Camera;
 pub use pointray_kernels::PatchAcceptance;
 #[cfg(feature = "load")]

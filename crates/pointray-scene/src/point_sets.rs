@@ -18,6 +18,7 @@ use pointray_patches::patch_store::{self, StoreError};
 use pointray_patches::{PatchSet, PrepSettings};
 use pointray_surface::{PrepError, prep, prep_owned};
 
+use crate::cache_folder;
 use crate::classification_palette::classification_color;
 use crate::error::SceneError;
 use crate::load::LoadOptions;
@@ -120,9 +121,12 @@ pub(crate) fn load_points_file(
     };
     let patches = prep_file(path, &settings, read, options)?;
     // Made only now, so that a failed load leaves no empty cache folder behind.
-    std::fs::create_dir_all(cache_dir)
+    cache_folder::make(cache_dir)
         .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
     patch_store::write(&cache, &patches).map_err(PointSetError::Store)?;
+    let name = cache.file_name().map(|name| name.to_string_lossy().into_owned()).unwrap_or_default();
+    cache_folder::record(cache_dir, &name)
+        .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
     let origin = match regenerated_because {
         Some(problem) => PointSetOrigin::CacheRegenerated { cache, problem },
         None => PointSetOrigin::Prepped { cache: Some(cache) },
@@ -212,32 +216,6 @@ fn content_checksum(path: &Path) -> std::io::Result<u32> {
             Err(error) => return Err(error),
         }
     }
-}
-
-/// Removes the cache files in `cache_dir` (named as `cache_file_name` names them; nothing else
-/// is touched), and the folder itself once empty. Returns the files removed and their bytes.
-pub fn clean_cache(cache_dir: &Path) -> Result<(usize, u64), pointray_io::IoError> {
-    let os_error = |source| pointray_io::IoError::os(cache_dir, source);
-    let mut removed = (0, 0);
-    for entry in std::fs::read_dir(cache_dir).map_err(os_error)?.flatten() {
-        let path = entry.path();
-        let is_cache_file = path.file_name().and_then(|n| n.to_str()).is_some_and(is_cache_file_name);
-        if is_cache_file && entry.file_type().is_ok_and(|kind| kind.is_file()) {
-            let bytes = entry.metadata().map_or(0, |m| m.len());
-            std::fs::remove_file(&path).map_err(|e| pointray_io::IoError::os(&path, e))?;
-            removed = (removed.0 + 1, removed.1 + bytes);
-        }
-    }
-    // Only an empty folder goes; `remove_dir` refuses any other.
-    let _ = std::fs::remove_dir(cache_dir);
-    Ok(removed)
-}
-
-/// `STEM-0123456789abcdef.patches`.
-fn is_cache_file_name(name: &str) -> bool {
-    let Some(rest) = name.strip_suffix(".patches") else { return false };
-    let key = rest.rsplit_once('-').map_or("", |(_, key)| key);
-    key.len() == 16 && key.chars().all(|c| c.is_ascii_hexdigit())
 }
 
 /// 64-bit FNV-1a: a hash that stays the same across builds and platforms (std's

@@ -13,7 +13,8 @@ pub struct CacheArgs {
 
 #[derive(Subcommand)]
 enum CacheAction {
-    /// Remove every cached point set in the folder (stale entries are never pruned on their own).
+    /// Remove the point sets the cache wrote in the folder (stale entries are never pruned on
+    /// their own); a folder the cache did not make is refused, and the user's files are kept.
     Clean {
         /// The cache folder: `.pointray-cache` beside the images `render` wrote.
         #[arg(default_value = ".pointray-cache")]

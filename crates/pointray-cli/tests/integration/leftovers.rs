@@ -160,10 +160,32 @@ fn cache_clean_removes_cached_point_sets_and_nothing_else() {
     std::fs::write(cache.join("notes.txt"), b"mine").unwrap();
     let (ok, stdout, stderr) = pointray_in(dir.path(), &["cache", "clean"]);
     assert!(ok && stdout.contains("removed 1 cached point sets"), "{stdout}{stderr}");
-    let left: Vec<_> = std::fs::read_dir(&cache).unwrap().flatten().map(|e| e.file_name()).collect();
-    assert_eq!(left, vec![std::ffi::OsString::from("notes.txt")]);
+    let mut left: Vec<_> = std::fs::read_dir(&cache).unwrap().flatten().map(|e| e.file_name()).collect();
+    left.sort();
+    assert_eq!(
+        left,
+        ["CACHEDIR.TAG", "notes.txt"].map(std::ffi::OsString::from),
+        "the tag stays with notes.txt"
+    );
     std::fs::remove_file(cache.join("notes.txt")).unwrap();
     assert!(pointray_in(dir.path(), &args).0);
     assert!(pointray_in(dir.path(), &["cache", "clean"]).0);
     assert!(!cache.exists(), "an emptied cache folder goes too");
+}
+
+/// `cache clean DIR` on a folder the cache never made removes nothing, not even files named
+/// as cache entries are (`survey-2024010112304500.patches`), and keeps the folder.
+#[test]
+fn cache_clean_leaves_a_folder_the_cache_did_not_make() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().join("surveys");
+    std::fs::create_dir(&folder).unwrap();
+    let survey = folder.join("survey-2024010112304500.patches");
+    std::fs::write(&survey, b"PRPATCH\0 the user's own store").unwrap();
+    let (ok, _, stderr) = pointray_in(dir.path(), &["cache", "clean", "surveys"]);
+    assert!(!ok && stderr.contains("surveys") && stderr.contains("not a pointray cache"), "{stderr}");
+    assert!(survey.exists(), "the user's file stays");
+    std::fs::remove_file(&survey).unwrap();
+    assert!(!pointray_in(dir.path(), &["cache", "clean", "surveys"]).0);
+    assert!(folder.is_dir(), "an empty folder the cache did not make stays too");
 }
