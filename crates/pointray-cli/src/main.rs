@@ -48,6 +48,7 @@ fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     init_logging(cli.verbose);
     end_quietly_on_a_closed_pipe();
+    report_unwritable_output();
     remove_temporaries_on_interrupt();
     let result = match cli.command {
         Command::Sample(args) => commands::sample::run(args),
@@ -90,6 +91,22 @@ fn remove_temporaries_on_interrupt() {
 fn end_quietly_on_a_closed_pipe() {
     // SAFETY: restores a signal's default action; no handler of ours is involved.
     unsafe { libc::signal(libc::SIGPIPE, libc::SIG_DFL) };
+}
+
+/// Output that cannot be written (`> /dev/full`, a full disk) makes `println!` panic; that
+/// panic ends the process as any other error does, with one line and status 1, after removing
+/// the temporary file of any write in progress. Every other panic is reported as before.
+fn report_unwritable_output() {
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info.payload().downcast_ref::<String>().map(String::as_str).unwrap_or_default();
+        let Some(problem) = message.strip_prefix("failed printing to stdout: ") else {
+            return default_hook(info);
+        };
+        pointray_io::temporaries::remove_live();
+        eprintln!("error: cannot write to stdout: {problem}");
+        std::process::exit(1);
+    }));
 }
 
 /// The exit status of a process ended by SIGINT, as shells report it.

@@ -189,3 +189,27 @@ fn cache_clean_leaves_a_folder_the_cache_did_not_make() {
     assert!(!pointray_in(dir.path(), &["cache", "clean", "surveys"]).0);
     assert!(folder.is_dir(), "an empty folder the cache did not make stays too");
 }
+
+/// Output that cannot be written (a full disk; `> /dev/full`) is an error like any other, not
+/// a panic: exit status 1 and one line saying so.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_stdout_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    let render = ["render", "grid.ply", "-o", "out.exr", "--backend", "cpu", "--width", "8", "--height", "8"];
+    assert!(pointray_in(dir.path(), &render).0, "the image compare reads");
+    let commands: [&[&str]; 3] =
+        [&["prep", "grid.ply", "-o", "grid.patches"], &render, &["compare", "out.exr", "out.exr"]];
+    for args in commands {
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_pointray"))
+            .current_dir(dir.path())
+            .args(args)
+            .stdout(std::fs::File::options().write(true).open("/dev/full").unwrap())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains("stdout") && !stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+}
