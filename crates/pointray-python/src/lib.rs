@@ -24,6 +24,7 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("PointrayError", module.py().get_type::<errors::PointrayError>())?;
     module.add_class::<patches::Patches>()?;
     module.add_class::<render_options::RenderOptions>()?;
+    module.add_class::<prep::PrepOptions>()?;
     module.add_function(wrap_pyfunction!(read::read, module)?)?;
     module.add_function(wrap_pyfunction!(read::read_sweeps, module)?)?;
     module.add_function(wrap_pyfunction!(prep::prep, module)?)?;

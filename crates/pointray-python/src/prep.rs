@@ -16,32 +16,46 @@ use crate::errors::{PointrayError, to_python};
 use crate::patches::Patches;
 use crate::toml_values::to_toml;
 
+/// `pointray prep`'s settings, parsed and checked when made: the keywords are the flags' names
+/// (`k`, `radius`, `sensor`, ...) and go through the parser of a scene file's `prep` table, so
+/// a bad one raises `PointrayError` with the words a scene file gets.
+#[pyclass(module = "pointray._native", frozen)]
+pub struct PrepOptions {
+    pub settings: PrepSettings,
+}
+
+#[pymethods]
+impl PrepOptions {
+    #[new]
+    #[pyo3(signature = (**settings))]
+    fn new(settings: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let table = match settings {
+            Some(settings) => to_toml(settings.as_any())?,
+            None => toml::Value::Table(toml::Table::new()),
+        };
+        let settings = PrepSettings::deserialize(table)
+            .map_err(|e| PointrayError::new_err(format!("prep settings: {}", e.message())))?;
+        validate_settings(&settings).map_err(|e| to_python(&e))?;
+        Ok(Self { settings })
+    }
+}
+
 /// Preps `positions` (N, 3) with optional per-point `attributes` (`colors`, `intensity`,
-/// `classification`, `normals`, `ring`, `sensor_position`, `sensor_origins`) and `settings` (the flags of
-/// `pointray prep`, by their names: `k`, `radius`, `sensor`, ...).
+/// `classification`, `normals`, `ring`, `sensor_position`, `sensor_origins`) and `options`.
 #[pyfunction]
-#[pyo3(signature = (positions, attributes, settings))]
+#[pyo3(signature = (positions, attributes, options))]
 pub fn prep(
     py: Python<'_>,
     positions: &Bound<'_, PyAny>,
     attributes: &Bound<'_, PyDict>,
-    settings: &Bound<'_, PyDict>,
+    options: &PrepOptions,
 ) -> PyResult<Patches> {
-    let settings = prep_settings(settings)?;
+    let settings = options.settings;
     let cloud = point_cloud(positions, attributes)?;
     let (set, _report) = py
         .detach(|| pointray_surface::prep_owned(cloud, &settings, &NoProgress))
         .map_err(|e| to_python(&e))?;
     Ok(Patches { set: Arc::new(set) })
-}
-
-/// The settings as a scene file's `prep` table takes them, checked as the flags are.
-pub fn prep_settings(settings: &Bound<'_, PyDict>) -> PyResult<PrepSettings> {
-    let table = to_toml(settings.as_any())?;
-    let settings = PrepSettings::deserialize(table)
-        .map_err(|e| PointrayError::new_err(format!("prep settings: {}", e.message())))?;
-    validate_settings(&settings).map_err(|e| to_python(&e))?;
-    Ok(settings)
 }
 
 fn point_cloud(positions: &Bound<'_, PyAny>, attributes: &Bound<'_, PyDict>) -> PyResult<PointCloud> {
