@@ -3,6 +3,7 @@
 //! an ascii line with more or fewer values than its element's properties, bytes left over
 //! after the last element, and elements that would loop forever without consuming input.
 
+use std::collections::HashSet;
 use std::fs::File;
 use std::io::{BufRead, BufReader, Read, Seek};
 use std::path::Path;
@@ -115,26 +116,26 @@ fn header_text(path: &Path, length: u64) -> std::io::Result<String> {
 /// ply-rs-bw stores elements and properties by name, so a name declared twice replaces the
 /// first while the body still holds both: every value after it would land in the wrong
 /// property. Refused here, before it can shift a column.
+///
+/// Names are kept in hash sets, so that a header of 100k properties is checked in
+/// milliseconds, not the seconds a search of every earlier name per name took.
 fn check_unique_names(header: &str) -> Result<(), String> {
-    let (mut elements, mut properties) = (Vec::new(), Vec::new());
+    let (mut elements, mut properties) = (HashSet::new(), HashSet::new());
+    let mut element = "(none)";
     for line in header.lines() {
         match line.split_whitespace().collect::<Vec<_>>()[..] {
+            ["element", name, ..] if !elements.insert(name) => {
+                return Err(format!("the header declares element '{name}' twice"));
+            }
             ["element", name, ..] => {
-                if elements.contains(&name) {
-                    return Err(format!("the header declares element '{name}' twice"));
-                }
-                elements.push(name);
+                element = name;
                 properties.clear();
             }
-            ["property", .., name] => {
-                if properties.contains(&name) {
-                    let element = elements.last().unwrap_or(&"(none)");
-                    return Err(format!(
-                        "element '{element}' declares property '{name}' twice, so its values \
-                         cannot be told apart"
-                    ));
-                }
-                properties.push(name);
+            ["property", .., name] if !properties.insert(name) => {
+                return Err(format!(
+                    "element '{element}' declares property '{name}' twice, so its values cannot be \
+                     told apart"
+                ));
             }
             _ => {}
         }
