@@ -95,6 +95,7 @@ fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError>
     read.seek(SeekFrom::Start(0)).map_err(|source| IoError::os(origin, source))?;
     let header = las::Header::new(&mut *read).map_err(|error| las_error(origin, error))?;
     check_version(&header, origin)?;
+    check_transforms(&header, origin)?;
     if header.point_format().is_compressed {
         check_laszip_items(&header, origin)?;
         let stream_bytes = read.seek(SeekFrom::End(0)).map_err(|source| IoError::os(origin, source))?;
@@ -237,6 +238,39 @@ fn check_version(header: &las::Header, origin: &Path) -> Result<(), IoError> {
         what: format!("LAS version {}.{}", version.major, version.minor),
         supported: SUPPORTED.into(),
     })
+}
+
+/// The smallest scale factor taken for a real one: a picometre in metres. Smaller ones (0,
+/// 1e-300) put every point at one coordinate, and the cloud would be prepped as a plane.
+const MIN_SCALE: f64 = 1e-12;
+
+/// Refuses a scale or offset that cannot place the points, naming the header field: a scale
+/// that is not finite or below `MIN_SCALE` in size, or an offset so large (1e300) that f64
+/// cannot tell apart coordinates a scale step apart there.
+fn check_transforms(header: &las::Header, origin: &Path) -> Result<(), IoError> {
+    let transforms = header.transforms();
+    for (axis, transform) in [("x", transforms.x), ("y", transforms.y), ("z", transforms.z)] {
+        let (scale, offset) = (transform.scale.abs(), transform.offset);
+        if !(scale.is_finite() && scale >= MIN_SCALE) {
+            let problem = format!(
+                "the header's {axis} scale factor is {}, which puts every point at one {axis}; \
+                 scale factors are steps of at least {MIN_SCALE} (0.01 or 0.001 are usual)",
+                transform.scale
+            );
+            return Err(IoError::malformed(origin, problem));
+        }
+        // The largest coordinate the field can hold, and f64's step there.
+        let largest = offset.abs() + scale * f64::from(u32::MAX);
+        if !(largest.is_finite() && largest.next_up() - largest <= scale) {
+            let problem = format!(
+                "the header's {axis} offset is {offset}, too large for its scale factor {}: \
+                 f64 cannot tell apart points a step apart there",
+                transform.scale
+            );
+            return Err(IoError::malformed(origin, problem));
+        }
+    }
+    Ok(())
 }
 
 /// Sorts the `las` crate's errors into "we cannot read this variant" and "this file is broken".

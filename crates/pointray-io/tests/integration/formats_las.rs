@@ -274,3 +274,23 @@ fn evlr_longer_than_the_file_is_refused_before_allocating() {
     let (_dir, path, error) = read_bytes("evlr.las", &bytes);
     assert_names_file(&path, &error, "declares 3000000000 bytes");
 }
+
+/// A header whose scale or offset cannot place the points (a scale of 0 or 1e-300, an offset
+/// of 1e300) used to collapse the cloud onto a plane; it is refused, naming the field.
+#[test]
+fn degenerate_scales_and_offsets_are_refused_by_field() {
+    // The header's x, y and z scale factors start at byte 131, their offsets at 155.
+    let cases: [(usize, f64, &str); 5] = [
+        (131, 0.0, "x scale factor"),
+        (131, 1e-300, "x scale factor"),
+        (147, f64::NAN, "z scale factor"),
+        (155, 1e300, "x offset"),
+        (163, f64::INFINITY, "y offset"),
+    ];
+    for (at, value, field) in cases {
+        let mut bytes = valid_las_bytes();
+        bytes[at..at + 8].copy_from_slice(&value.to_le_bytes());
+        let (_dir, path, error) = read_bytes("scaled.las", &bytes);
+        assert_names_file(&path, &error, field);
+    }
+}
