@@ -22,8 +22,12 @@ pub fn ensure_readable_file(path: &Path) -> Result<(), IoError> {
 }
 
 /// An output path that a write may replace: not a folder, device, pipe or socket, in a
-/// folder that exists.
+/// folder that exists, and not ending in a separator (`out.png/` names a folder).
 pub fn ensure_writable_output(path: &Path) -> Result<(), IoError> {
+    let last = path.as_os_str().as_encoded_bytes().last();
+    if last.is_some_and(|&byte| std::path::is_separator(char::from(byte))) {
+        return Err(IoError::unusable(path, "ends with a path separator; an output must be a file"));
+    }
     if let Ok(metadata) = std::fs::metadata(path)
         && !metadata.is_file()
     {
@@ -51,16 +55,32 @@ pub fn ensure_not_same_file(input: &Path, output: &Path) -> Result<(), IoError> 
     Ok(())
 }
 
-/// `ensure_writable_output` for each of `outputs`, and `ensure_not_same_file` against each
-/// of `inputs` that exists (one that does not cannot be lost).
+/// `ensure_writable_output` for each of `outputs`, `ensure_not_same_file` against each of
+/// `inputs` that exists (one that does not cannot be lost), and no two outputs one file (the
+/// second would replace the first).
 pub fn ensure_outputs_spare_inputs(inputs: &[PathBuf], outputs: &[PathBuf]) -> Result<(), IoError> {
-    for output in outputs {
+    for (index, output) in outputs.iter().enumerate() {
         ensure_writable_output(output)?;
         for input in inputs.iter().filter(|input| input.exists()) {
             ensure_not_same_file(input, output)?;
         }
+        if let Some(earlier) = outputs[..index].iter().find(|earlier| one_target(earlier, output)) {
+            let problem =
+                format!("is also the output {}; each output needs a file of its own", earlier.display());
+            return Err(IoError::unusable(output, problem));
+        }
     }
     Ok(())
+}
+
+/// Whether writing `a` and `b` writes one file: links to one existing file, or one name in one
+/// folder (the folders compared with their links resolved).
+fn one_target(a: &Path, b: &Path) -> bool {
+    if let (Ok(a_metadata), Ok(b_metadata)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+        return same_file(a, b, &a_metadata, &b_metadata);
+    }
+    let resolved = |path: &Path| Some(folder_of(path).canonicalize().ok()?.join(path.file_name()?));
+    matches!((resolved(a), resolved(b)), (Some(a), Some(b)) if a == b)
 }
 
 /// The folder a file goes in; `.` for a bare file name.

@@ -109,6 +109,9 @@ fn bench_refuses_reports_over_its_scene() {
             );
         }
     }
+    let (ok, _, stderr) =
+        pointray_in(dir.path(), &["bench", "scene.toml", "--json", "r.json", "--markdown", "r.json"]);
+    assert!(!ok && stderr.contains("is also the output"), "one report would replace the other: {stderr}");
 }
 
 #[test]
@@ -120,6 +123,7 @@ fn bad_output_paths_fail_before_anything_is_loaded() {
         ("out.jpg", "unsupported image type"),
         ("typo/out.png", "the folder typo does not exist"),
         (".", "unsupported image type"),
+        ("out.png/", "ends with a path separator"),
     ] {
         let (ok, _, stderr) = pointray_in(dir.path(), &["render", "scene.toml", "-o", output]);
         assert!(!ok && stderr.contains(expected), "-o {output}: {stderr}");

@@ -54,3 +54,26 @@ fn every_output_is_checked_against_every_existing_input() {
     assert!(error.to_string().contains("refusing to write over the input"), "{error}");
     assert_eq!(std::fs::read(&points).unwrap(), b"points");
 }
+
+/// Two outputs that name one file (`bench --json r.json --markdown r.json`, or through a link)
+/// would overwrite each other; an output ending in a separator (`-o out.png/`) can only fail
+/// after the work. Both are refused before it.
+#[test]
+fn outputs_must_differ_and_not_end_in_a_separator() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = dir.path().join("r.json");
+    let same = dir.path().join(".").join("r.json");
+    let error = ensure_outputs_spare_inputs(&[], &[report.clone(), same]).unwrap_err().to_string();
+    assert!(error.contains("r.json") && error.contains("is also the output"), "{error}");
+    #[cfg(unix)]
+    {
+        std::fs::write(&report, b"{}").unwrap();
+        let link = dir.path().join("link.json");
+        std::os::unix::fs::symlink(&report, &link).unwrap();
+        assert!(ensure_outputs_spare_inputs(&[], &[report.clone(), link]).is_err());
+    }
+    ensure_outputs_spare_inputs(&[], &[report, dir.path().join("r.md")]).unwrap();
+    let slash = PathBuf::from(format!("{}/out.png/", dir.path().display()));
+    let error = ensure_writable_output(&slash).unwrap_err().to_string();
+    assert!(error.contains("out.png/") && error.contains("separator"), "{error}");
+}
