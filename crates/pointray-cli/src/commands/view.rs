@@ -37,7 +37,7 @@ pub struct ViewArgs {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     frames: Option<u32>,
     /// Degrees the scripted orbit turns over all its frames.
-    #[arg(long, default_value_t = 360.0, requires = "frames")]
+    #[arg(long, default_value_t = 360.0, requires = "frames", value_parser = finite_degrees)]
     arc: f32,
     /// Save the last scripted frame here (`.png` or `.exr`).
     #[arg(long, requires = "frames")]
@@ -47,6 +47,14 @@ pub struct ViewArgs {
     sequence: Option<PathBuf>,
     #[command(flatten)]
     input: SceneInputArgs,
+}
+
+/// A finite angle: NaN or infinity would put the orbit's camera nowhere and save a black frame.
+fn finite_degrees(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(degrees) if degrees.is_finite() => Ok(degrees),
+        _ => Err(format!("'{text}' is not a finite number of degrees")),
+    }
 }
 
 pub fn run(args: ViewArgs) -> anyhow::Result<()> {

@@ -210,3 +210,16 @@ fn a_nan_intensity_is_refused_at_prep_naming_the_point() {
     assert!(!ok && stderr.contains("nan_intensity.ply") && stderr.contains("point 123 has"), "{stderr}");
     assert!(!output.exists());
 }
+
+/// `view --arc nan` (or `inf`) saved a black screenshot with exit 0; the flag is refused as
+/// it is parsed, before a window opens.
+#[test]
+fn a_view_arc_that_is_not_finite_is_refused() {
+    for arc in ["nan", "inf", "ninety"] {
+        let (ok, stderr) = pointray(&["view", "scene.toml", "--frames", "2", "--arc", arc]);
+        assert!(
+            !ok && stderr.contains("--arc") && stderr.contains("finite number of degrees"),
+            "{arc}: {stderr}"
+        );
+    }
+}
