@@ -26,6 +26,12 @@ pub struct SampleArgs {
 
 pub fn run(args: SampleArgs) -> anyhow::Result<()> {
     anyhow::ensure!(args.count > 0, "--count must be at least 1");
+    // Another extension would name PLY bytes as a format they are not.
+    anyhow::ensure!(
+        args.output.extension().is_some_and(|extension| extension.eq_ignore_ascii_case("ply")),
+        "{}: sample writes binary PLY; name the output *.ply",
+        args.output.display()
+    );
     pointray_io::ensure_outputs_spare_inputs(
         std::slice::from_ref(&args.mesh),
         std::slice::from_ref(&args.output),
@@ -41,6 +47,11 @@ pub fn run(args: SampleArgs) -> anyhow::Result<()> {
         args.mesh.display()
     );
     let cloud = pointray_surface::sample_mesh(&mesh, args.count as usize, args.seed, args.blue_noise);
+    anyhow::ensure!(
+        !cloud.is_empty(),
+        "{}: the mesh has no area to sample (every triangle is degenerate or names missing vertices)",
+        args.mesh.display()
+    );
     pointray_io::formats::ply::write_point_cloud(&args.output, &cloud)?;
     println!("wrote {} points to {}", cloud.len(), args.output.display());
     Ok(())

@@ -223,3 +223,22 @@ fn a_view_arc_that_is_not_finite_is_refused() {
         );
     }
 }
+
+/// `sample` on a mesh without area wrote a file of no points with exit 0, and `-o x.las` wrote
+/// PLY bytes under a LAS name; both are refused, and nothing is written.
+#[test]
+fn sample_refuses_a_mesh_without_area_and_an_output_it_cannot_write() {
+    let dir = tempfile::tempdir().unwrap();
+    let flat = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+                element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 1 1\n2 2 2\n3 0 1 2\n";
+    let mesh = write(dir.path(), "line.ply", flat.as_bytes());
+    let mesh = mesh.to_str().unwrap();
+    let output = dir.path().join("out.ply");
+    let (ok, stderr) = pointray(&["sample", mesh, "-o", output.to_str().unwrap(), "--count", "100"]);
+    assert!(!ok && stderr.contains("line.ply") && stderr.contains("no area"), "{stderr}");
+    assert!(!output.exists());
+    let las = dir.path().join("out.las");
+    let (ok, stderr) = pointray(&["sample", mesh, "-o", las.to_str().unwrap(), "--count", "100"]);
+    assert!(!ok && stderr.contains("out.las") && stderr.contains("*.ply"), "{stderr}");
+    assert!(!las.exists());
+}
