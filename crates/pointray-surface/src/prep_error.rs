@@ -4,6 +4,10 @@
 pub enum PrepError {
     #[error("tile {index} asked for, but the cloud is cut into {count} tiles (0 to {})", count.saturating_sub(1))]
     NoSuchTile { index: usize, count: usize },
+    #[error(
+        "{tiles} tiles asked for, but the cloud has only {points} points: a tile needs points of its own"
+    )]
+    TooManyTiles { tiles: usize, points: u64 },
     #[error("point {index} has a coordinate that is NaN or infinite")]
     NonFiniteCoordinate { index: usize },
     #[error("point {index} has an intensity that is NaN or infinite")]

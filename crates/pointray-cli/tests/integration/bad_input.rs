@@ -242,3 +242,25 @@ fn sample_refuses_a_mesh_without_area_and_an_output_it_cannot_write() {
     assert!(!ok && stderr.contains("out.las") && stderr.contains("*.ply"), "{stderr}");
     assert!(!las.exists());
 }
+
+/// More tiles than points left tiles with no points of their own, which ended in an overflow
+/// (debug) or "Invalid argument" on a temporary path (release); now a clear refusal.
+#[test]
+fn more_tiles_than_points_are_refused_clearly() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(dir.path(), "grid.ply", &ascii_ply(&grid(100)));
+    let output = dir.path().join("out.patches");
+    for tiles in [["--tiles", "101"], ["--tile", "3"]] {
+        let mut args = vec!["prep", input.to_str().unwrap(), "-o", output.to_str().unwrap()];
+        args.extend(tiles);
+        if tiles[0] == "--tile" {
+            args.extend(["--of", "101"]);
+        }
+        let (ok, stderr) = pointray(&args);
+        assert!(
+            !ok && stderr.contains("grid.ply") && stderr.contains("101 tiles asked for"),
+            "{args:?}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked") && !stderr.contains("os error"), "{stderr}");
+    }
+}

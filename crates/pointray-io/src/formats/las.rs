@@ -92,6 +92,7 @@ where
 /// before reading (a corrupt one asks for gigabytes). Leaves the stream at its start.
 fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError> {
     check_evlr_lengths(read, origin)?;
+    check_declared_points(read, origin)?;
     read.seek(SeekFrom::Start(0)).map_err(|source| IoError::os(origin, source))?;
     let header = las::Header::new(&mut *read).map_err(|error| las_error(origin, error))?;
     check_version(&header, origin)?;
@@ -110,6 +111,49 @@ fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError>
         check_laz_chunks_cover_points(read, &header, origin)?;
     }
     read.seek(SeekFrom::Start(0)).map(drop).map_err(|source| IoError::os(origin, source))
+}
+
+/// Refuses a point count that the file cannot hold, from the header's raw fields: the `las`
+/// crate multiplies it by the record length unchecked (2^60 points overflow), and a streamed
+/// read sizes its scratch files by it. An uncompressed file must hold every record it
+/// declares. Headers too short for the fields are left to the `las` crate, which reports them.
+fn check_declared_points<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError> {
+    let Ok(fields) = RawCount::read(read) else { return Ok(()) };
+    let stream_bytes = read.seek(SeekFrom::End(0)).map_err(|source| IoError::os(origin, source))?;
+    let available = if fields.compressed { u64::MAX } else { stream_bytes.saturating_sub(fields.data_start) };
+    match fields.points.checked_mul(fields.record) {
+        Some(needed) if needed <= available => Ok(()),
+        _ => Err(IoError::malformed(
+            origin,
+            format!(
+                "the header declares {} points of {} bytes, more than the file's {stream_bytes} bytes hold",
+                fields.points, fields.record
+            ),
+        )),
+    }
+}
+
+/// The header fields that say how many bytes of points follow.
+struct RawCount {
+    points: u64,
+    record: u64,
+    data_start: u64,
+    compressed: bool,
+}
+
+impl RawCount {
+    fn read<R: Read + Seek>(read: &mut R) -> std::io::Result<Self> {
+        let [_, minor] = read_array_at(read, 24)?;
+        let data_start = u64::from(u32::from_le_bytes(read_array_at(read, 96)?));
+        let [format] = read_array_at(read, 104)?;
+        let record = u64::from(u16::from_le_bytes(read_array_at(read, 105)?));
+        let legacy = u64::from(u32::from_le_bytes(read_array_at(read, 107)?));
+        // LAS 1.4 keeps a 64-bit count, which readers take when the legacy one is 0.
+        let points =
+            if minor >= 4 && legacy == 0 { u64::from_le_bytes(read_array_at(read, 247)?) } else { legacy };
+        // LASzip marks compressed point formats with bit 7 (or bit 6).
+        Ok(Self { points, record, data_start, compressed: format & 0xc0 != 0 })
+    }
 }
 
 /// Size of an extended VLR's header; its u64 data length sits 20 bytes in.

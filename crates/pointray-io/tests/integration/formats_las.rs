@@ -294,3 +294,20 @@ fn degenerate_scales_and_offsets_are_refused_by_field() {
         assert_names_file(&path, &error, field);
     }
 }
+
+/// A LAS 1.4 count of 2^60 points in a small file was trusted by the streamed reader, which
+/// sized a scratch file by it ("Invalid argument" on a temporary path); the count is checked
+/// against the bytes the file holds when it is opened.
+#[test]
+fn a_count_beyond_the_files_bytes_is_refused_when_opened_to_stream() {
+    let mut bytes = valid_las_bytes();
+    // The legacy 32-bit count (offset 107) is 0 when the count needs more bits.
+    bytes[107..111].copy_from_slice(&0u32.to_le_bytes());
+    bytes[247..255].copy_from_slice(&(1u64 << 60).to_le_bytes());
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("count.las");
+    std::fs::write(&path, &bytes).unwrap();
+    let budget = pointray_io::MemoryBudget { bytes: 1 << 30 };
+    let error = pointray_io::PointStream::open(&path, None, budget).err().expect("refused").to_string();
+    assert!(error.contains("count.las") && error.contains("1152921504606846976 points"), "{error}");
+}

@@ -313,6 +313,13 @@ fn tile_count(
         )));
     }
     let needed = points.div_ceil(core) as usize;
+    let (TileCount::AtLeast(wanted) | TileCount::Exactly(wanted)) = count;
+    if wanted as u64 > points {
+        return Err(StreamError::Prep {
+            path: input.to_path_buf(),
+            source: PrepError::TooManyTiles { tiles: wanted, points },
+        });
+    }
     match count {
         TileCount::AtLeast(wanted) => Ok(wanted.max(needed).max(1)),
         TileCount::Exactly(wanted) if wanted >= needed => Ok(wanted.max(1)),
