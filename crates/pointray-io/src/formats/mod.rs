@@ -22,3 +22,9 @@ pub use columns::ColumnSpec;
 pub use dispatch::{
     FileFormat, detect_file_format, read_point_cloud, read_point_cloud_with, read_triangle_mesh,
 };
+
+/// A parser library's message with the standard library's words for text that is not UTF-8
+/// replaced by ours.
+pub(crate) fn in_plain_words(message: &str) -> String {
+    message.replace("stream did not contain valid UTF-8", "it is not UTF-8 text")
+}

@@ -12,6 +12,7 @@ use std::path::Path;
 use glam::{DVec3, Vec3};
 use pcd_rs::{DataKind, DynReader, Field, PcdMeta, ValueKind, ViewPoint};
 
+use super::in_plain_words;
 use super::intensity::normalise_intensities;
 use crate::{IoError, PointCloud};
 
@@ -64,7 +65,10 @@ fn pcd_error(origin: &Path, error: pcd_rs::Error) -> IoError {
         {
             IoError::Unsupported { path: origin.into(), what: desc, supported: SUPPORTED.into() }
         }
-        other => IoError::malformed(origin, format!("not a readable PCD file: {other}")),
+        other => IoError::malformed(
+            origin,
+            format!("not a readable PCD file: {}", in_plain_words(&other.to_string())),
+        ),
     }
 }
 

@@ -233,3 +233,14 @@ fn binary_data_beyond_the_declared_points_is_refused() {
     bytes.extend([0u8; 28]);
     assert_refused("extra.pcd", &bytes, "28 bytes follow the 40 points the header declares");
 }
+
+/// A header that is not text is said to be so, not in the standard library's words.
+#[test]
+fn a_header_that_is_not_text_is_said_to_be_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("latin1.pcd");
+    std::fs::write(&path, b"VERSION .7\nFIELDS x y z\n\xff\xfe\n").unwrap();
+    let error = pointray_io::formats::pcd::read_pcd(&path).unwrap_err().to_string();
+    assert!(error.contains("latin1.pcd") && error.contains("not UTF-8 text"), "{error}");
+    assert!(!error.contains("stream did not"), "{error}");
+}

@@ -261,3 +261,19 @@ fn huge_headers_are_read_in_linear_time() {
         assert!(elapsed.as_secs_f64() < 10.0, "{name}: {elapsed:?}");
     }
 }
+
+/// Parser text (`ParseIntError { kind: PosOverflow }`, "stream did not contain valid UTF-8")
+/// and the values it quotes never reach users; the problem is said in words.
+#[test]
+fn parser_errors_are_said_in_words_without_quoting_the_file() {
+    let header = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n\
+                  property float z\nproperty uchar red\nend_header\n";
+    let error = cloud_error("overflow.ply", format!("{header}1 2 3 999\n").as_bytes());
+    assert!(error.contains("entry 0") && error.contains("does not fit"), "{error}");
+    assert!(!error.contains("ParseIntError") && !error.contains("999"), "{error}");
+    let error = cloud_error(
+        "latin1.ply",
+        b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\xff\nend_header\n",
+    );
+    assert!(error.contains("not UTF-8 text") && !error.contains("stream did not"), "{error}");
+}

@@ -14,6 +14,7 @@ use ply_rs_bw::ply::{ElementDef, Encoding, Header, PropertyAccess, PropertyType,
 use super::face::{FaceRecord, index_property_name};
 use super::vertex::{VertexLayout, VertexRecord};
 use crate::IoError;
+use crate::formats::in_plain_words;
 
 /// What pointray takes from a PLY file: the vertices and, for meshes, the faces.
 pub(super) struct PlyContents {
@@ -98,11 +99,15 @@ fn open_checked(path: &Path) -> Result<FileReader, IoError> {
     Ok(Reader::new(buffered))
 }
 
-/// ply-rs-bw messages span several lines; ours stay on one.
-/// The parser's message on one line, without the text it quotes (`String: '...'`): a file named
-/// by mistake must not have its contents printed.
+/// The parser's message (which spans several lines) on one line and in words: without the
+/// text it quotes (`String: '...'`, `Value: '...'`), since a file named by mistake must not
+/// have its contents printed, nor the Rust error it formats for debugging
+/// (`ParseIntError { kind: PosOverflow }`).
 fn one_line(message: &str) -> String {
-    let message = message.split("String: ").next().unwrap_or_default();
+    if message.contains("Value: '") {
+        return "a value is not a number, or does not fit its property's type".into();
+    }
+    let message = in_plain_words(message.split("String: ").next().unwrap_or_default());
     message.split(['\n', '\t']).map(str::trim).filter(|part| !part.is_empty()).collect::<Vec<_>>().join("; ")
 }
 
