@@ -6,7 +6,6 @@ use std::path::Path;
 use clap::Args;
 use glam::DVec3;
 use pointray_scene::material_spec::ColorSource;
-use pointray_scene::scene_file::CameraSpec;
 use pointray_scene::{PointsScene, SceneFile, UpAxis};
 
 use crate::columns_arg::ColumnsArg;
@@ -36,6 +35,10 @@ pub struct SceneInputArgs {
     /// The camera's vertical field of view in degrees (with `--look-from`).
     #[arg(long, requires = "look_from")]
     fov: Option<f32>,
+    /// Which way is the top of the image, `x,y,z`, in the file's coordinates (with
+    /// `--look-from`; default: the file's up axis, or its north for a view from straight above).
+    #[arg(long, value_parser = parse_finite, allow_hyphen_values = true, requires = "look_from")]
+    up: Option<DVec3>,
 }
 
 impl SceneInputArgs {
@@ -54,8 +57,10 @@ impl SceneInputArgs {
         };
         let mut file = self.columns.apply_to(file);
         if let (Some(from), Some(at)) = (self.look_from, self.look_at) {
-            file.camera =
-                Some(up.camera_to_scene(CameraSpec::looking(from.to_array(), at.to_array(), self.fov)));
+            let image_up = self.up.map(|up| up.to_array());
+            file.camera = Some(up.camera_from_file((from.to_array(), at.to_array()), image_up, self.fov));
+            // A camera that cannot be is refused now, not after the points are prepped.
+            file.recheck()?;
         }
         Ok(file)
     }

@@ -5,6 +5,8 @@
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
+use glam::DVec3;
+
 use pointray_io::formats::detect::PointFormat;
 use pointray_io::formats::{FileFormat, detect_file_format};
 
@@ -40,12 +42,45 @@ impl UpAxis {
     /// A camera placed in the file's coordinates, stood upright as the default scene stands
     /// the cloud (its `up` is the scene's).
     pub fn camera_to_scene(self, camera: CameraSpec) -> CameraSpec {
-        let upright = |file: [f64; 3]| match self {
+        CameraSpec {
+            position: self.upright_vector(camera.position),
+            look_at: self.upright_vector(camera.look_at),
+            ..camera
+        }
+    }
+
+    /// A camera placed in the file's coordinates, `up` included, in the scene's. Without `up`
+    /// it is the file's up axis, unless the view runs along that axis (from straight above or
+    /// below): then the top of the image is the file's north (+Y of a Z-up file, -Z of a
+    /// Y-up one, the scene's -Z either way).
+    pub fn camera_from_file(
+        self,
+        (position, look_at): ([f64; 3], [f64; 3]),
+        up: Option<[f64; 3]>,
+        vfov_degrees: Option<f32>,
+    ) -> CameraSpec {
+        let up = up.unwrap_or_else(|| self.up_for_view(position, look_at));
+        let camera = self.camera_to_scene(CameraSpec::looking(position, look_at, vfov_degrees));
+        CameraSpec { up: self.upright_vector(up).map(|c| c as f32), ..camera }
+    }
+
+    fn up_for_view(self, position: [f64; 3], look_at: [f64; 3]) -> [f64; 3] {
+        let (axis, north) = match self {
+            UpAxis::Y => ([0.0, 1.0, 0.0], [0.0, 0.0, -1.0]),
+            UpAxis::Z => ([0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
+        };
+        let forward = (DVec3::from(look_at) - DVec3::from(position)).normalize_or_zero();
+        // Nearly along the axis, the image would turn with the slightest change of the view.
+        if forward.cross(DVec3::from(axis)).length() < 1e-3 { north } else { axis }
+    }
+
+    /// A position or direction of the file in the scene.
+    fn upright_vector(self, file: [f64; 3]) -> [f64; 3] {
+        match self {
             UpAxis::Y => file,
             // The quarter turn of `upright`: +Z to +Y.
             UpAxis::Z => [file[0], file[2], -file[1]],
-        };
-        CameraSpec { position: upright(camera.position), look_at: upright(camera.look_at), ..camera }
+        }
     }
 
     fn upright(self) -> TransformSpec {
@@ -122,5 +157,21 @@ impl PointsScene {
             // Relative paths stay relative to the working directory, as the user typed them.
             path: PathBuf::from("(default scene)"),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_view_from_straight_above_has_north_at_the_top() {
+        let above = ([10.0, 20.0, 3000.0], [10.0, 20.0, 400.0]);
+        let camera = UpAxis::Z.camera_from_file(above, None, None);
+        assert_eq!(camera.up, [0.0, 0.0, -1.0], "the file's +Y, in the scene");
+        let oblique = UpAxis::Z.camera_from_file(([0.0, -50.0, 30.0], [0.0; 3]), None, None);
+        assert_eq!(oblique.up, [0.0, 1.0, 0.0], "the file's +Z, in the scene");
+        let given = UpAxis::Z.camera_from_file(above, Some([1.0, 0.0, 0.0]), Some(30.0));
+        assert_eq!((given.up, given.vfov_degrees), ([1.0, 0.0, 0.0], 30.0));
     }
 }

@@ -248,6 +248,12 @@ impl SceneFile {
         }
     }
 
+    /// Every check that needs no file (as `read` makes them), again: for a scene changed since
+    /// it was read, such as a camera placed from the command line.
+    pub fn recheck(&self) -> Result<(), SceneError> {
+        self.check().map_err(|invalid| invalid.in_file(&self.path))
+    }
+
     /// Every check that needs no file, so that a typo fails before any slow loading.
     fn check(&self) -> Result<(), InvalidValue> {
         if let Some(camera) = &self.camera {

@@ -129,3 +129,24 @@ fn tiny_clouds_are_refused_at_once_instead_of_hanging() {
     let (ok, stderr) = render(dir.path(), "scene.toml");
     assert!(!ok && stderr.contains("scale the coordinates up"), "{stderr}");
 }
+
+/// A view from straight above used to be refused ("camera.up must not be parallel"), after
+/// prep had written its cache, and no flag could fix it. Now such a view gets the file's north
+/// as its up, `--up` sets any other, and a camera that cannot be is refused before any work.
+#[test]
+fn a_view_from_straight_above_renders_and_up_can_be_given() {
+    let dir = tempfile::tempdir().unwrap();
+    write_grid_ply(&dir.path().join("grid.ply"));
+    let above = ["--look-from", "0.5,3,0.5", "--look-at", "0.5,0,0.5"];
+    let render =
+        ["render", "grid.ply", "-o", "top.png", "--backend", "cpu", "--width", "16", "--height", "16"];
+    let (ok, _, stderr) = pointray_in(dir.path(), &[&render[..], &above].concat());
+    assert!(ok && dir.path().join("top.png").is_file(), "{stderr}");
+    let east = [&render[..], &above, &["--up", "1,0,0"]].concat();
+    assert!(pointray_in(dir.path(), &east).0, "--up sets the image's top");
+    std::fs::remove_dir_all(dir.path().join(".pointray-cache")).unwrap();
+    let parallel = [&render[..], &above, &["--up", "0,1,0"]].concat();
+    let (ok, _, stderr) = pointray_in(dir.path(), &parallel);
+    assert!(!ok && stderr.contains("up") && stderr.contains("parallel"), "{stderr}");
+    assert!(!dir.path().join(".pointray-cache").exists(), "refused before prep wrote anything");
+}
