@@ -95,6 +95,13 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
         slots[index] = Some((ground, placement));
     }
     let objects: Vec<SceneObject> = slots.into_iter().flatten().map(|(object, _)| object).collect();
+    if objects.is_empty() {
+        // A background alone is a scene, but rarely the one meant (a missing `[[objects]]`).
+        tracing::warn!(
+            "{}: the scene has no objects; the image shows only its background",
+            file.path.display()
+        );
+    }
 
     let lights = file
         .lights

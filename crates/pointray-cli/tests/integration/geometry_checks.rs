@@ -150,3 +150,13 @@ fn a_view_from_straight_above_renders_and_up_can_be_given() {
     assert!(!ok && stderr.contains("up") && stderr.contains("parallel"), "{stderr}");
     assert!(!dir.path().join(".pointray-cache").exists(), "refused before prep wrote anything");
 }
+
+/// A scene without objects renders its background alone, as it may, but no longer silently.
+#[test]
+fn a_scene_without_objects_renders_with_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("empty.toml"), "[[lights]]\ntype = \"point\"\nposition = [0, 2, 0]\n")
+        .unwrap();
+    let (ok, stderr) = render(dir.path(), "empty.toml");
+    assert!(ok && stderr.contains("empty.toml") && stderr.contains("no objects"), "{stderr}");
+}
