@@ -88,7 +88,7 @@ impl ScanMode {
 }
 
 /// Fewer neighbours than this cannot give a PCA normal or a plane fit.
-const MIN_NEIGHBOURS: u32 = 3;
+pub const MIN_NEIGHBOURS: u32 = 3;
 
 /// More neighbours than this no longer describe a local surface, and the neighbour search
 /// grows with k squared.

@@ -7,6 +7,7 @@ use pointray_io::{MemoryBudget, PointCloud};
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
 use pointray_kernels::tangent_frame::normal_basis;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PackedTangentFrame, PatchCold, PatchHot, TangentFrame};
+use pointray_patches::prep_settings::MIN_NEIGHBOURS;
 use pointray_patches::{OutlierFilter, PatchSet, PrepSettings, RadiusMode};
 use rayon::prelude::*;
 
@@ -101,7 +102,27 @@ fn prep_cloud(
     settings: &PrepSettings,
     progress: &dyn PrepProgress,
 ) -> Result<(PatchSet, PrepReport), PrepError> {
-    prep_with_context(cloud, settings, None, progress)
+    let settings = neighbourhoods_within(settings, cloud.len());
+    prep_with_context(cloud, &settings, None, progress)
+}
+
+/// `settings` with `k` and `normal_k` cut to the other points of a cloud of `points` (the
+/// PCL and pypcd4 test clouds hold 8), but never below `MIN_NEIGHBOURS`, the fewest a normal
+/// needs: a small cloud preps with the neighbours it has, with a warning, instead of being
+/// refused.
+fn neighbourhoods_within(settings: &PrepSettings, points: usize) -> PrepSettings {
+    let others = u32::try_from(points.saturating_sub(1)).unwrap_or(u32::MAX).max(MIN_NEIGHBOURS);
+    if settings.k.max(settings.normal_k) <= others {
+        return *settings;
+    }
+    tracing::warn!(
+        "{points} points: each has {others} neighbours at most, so k = {} and normal_k = {} become {} and {}",
+        settings.k,
+        settings.normal_k,
+        settings.k.min(others),
+        settings.normal_k.min(others)
+    );
+    PrepSettings { k: settings.k.min(others), normal_k: settings.normal_k.min(others), ..*settings }
 }
 
 /// Each array is dropped as soon as its last stage is done, so that the peak (in the

@@ -99,30 +99,36 @@ impl PcdLayout {
     fn from_meta(meta: &PcdMeta, origin: &Path) -> Result<Self, IoError> {
         let fields: Vec<&pcd_rs::FieldDef> =
             meta.field_defs.iter().filter(|field| !field.is_padding()).collect();
-        let find = |name: &str| -> Result<Option<usize>, IoError> {
-            let Some(index) = fields.iter().position(|field| field.name.eq_ignore_ascii_case(name)) else {
-                return Ok(None);
-            };
-            match fields[index].count {
-                1 => Ok(Some(index)),
-                count => Err(unsupported(origin, format!("PCD field {name} with COUNT {count}"))),
-            }
-        };
-        let require = |name: &str| {
-            find(name)?.ok_or_else(|| IoError::malformed(origin, format!("PCD has no field {name:?}")))
-        };
-        let position = [require("x")?, require("y")?, require("z")?];
-        let group = |names: [&str; 3]| -> Result<Option<[usize; 3]>, IoError> {
-            Ok(match (find(names[0])?, find(names[1])?, find(names[2])?) {
-                (Some(a), Some(b), Some(c)) => Some([a, b, c]),
-                _ => None,
+        let position_of = |name: &str| fields.iter().position(|field| field.name.eq_ignore_ascii_case(name));
+        // An attribute of several values a point (PCL's arrays and descriptors) is left out:
+        // pointray reads one value a point.
+        let find = |name: &str| {
+            position_of(name).filter(|&index| match fields[index].count {
+                1 => true,
+                count => {
+                    tracing::warn!(
+                        "{}: PCD field {name} has COUNT {count}; it is left out",
+                        origin.display()
+                    );
+                    false
+                }
             })
         };
+        let require = |name: &str| match position_of(name).map(|index| (index, fields[index].count)) {
+            Some((index, 1)) => Ok(index),
+            Some((_, count)) => Err(unsupported(origin, format!("PCD field {name} with COUNT {count}"))),
+            None => Err(IoError::malformed(origin, format!("PCD has no field {name:?}"))),
+        };
+        let position = [require("x")?, require("y")?, require("z")?];
+        let group = |names: [&str; 3]| match (find(names[0]), find(names[1]), find(names[2])) {
+            (Some(a), Some(b), Some(c)) => Some([a, b, c]),
+            _ => None,
+        };
         let color =
-            Self::color_fields(&fields, find("rgb")?.or(find("rgba")?), group(["r", "g", "b"])?, origin)?;
-        let normal = group(["normal_x", "normal_y", "normal_z"])?;
-        let intensity = find("intensity")?;
-        let ring = find("ring")?;
+            Self::color_fields(&fields, find("rgb").or(find("rgba")), group(["r", "g", "b"]), origin)?;
+        let normal = group(["normal_x", "normal_y", "normal_z"]);
+        let intensity = find("intensity");
+        let ring = find("ring");
         if let Some(index) = ring
             && matches!(fields[index].kind, ValueKind::F32 | ValueKind::F64)
         {
@@ -186,14 +192,15 @@ fn check_payload(meta: &PcdMeta, layout: &PcdLayout, payload: &[u8], origin: &Pa
         )),
         DataKind::Binary => match needed {
             Some(needed) if needed == payload.len() as u64 => Ok(()),
+            // PCL and pypcd4 read the declared points and leave the rest, and so does pointray.
             Some(needed) if needed < payload.len() as u64 => {
-                let problem = format!(
-                    "{} bytes follow the {} points the header declares: its POINTS or field sizes do \
-                     not match the data",
+                tracing::warn!(
+                    "{}: {} bytes follow the {} points the header declares; they are left out",
+                    origin.display(),
                     payload.len() as u64 - needed,
                     meta.num_points
                 );
-                Err(IoError::malformed(origin, problem))
+                Ok(())
             }
             _ => truncated(payload.len() as u64),
         },

@@ -227,11 +227,30 @@ fn a_binary_header_over_a_text_body_is_refused() {
     );
 }
 
+/// PCL and pypcd4 read the declared points of a binary file that has bytes after them (as
+/// pypcd4's own `binary.pcd` does), and so does pointray, with a warning.
 #[test]
-fn binary_data_beyond_the_declared_points_is_refused() {
-    let mut bytes = valid_bytes(DataKind::Binary);
+fn binary_data_beyond_the_declared_points_is_left_out() {
+    let valid = valid_bytes(DataKind::Binary);
+    let (_dir, path) = write_file("valid.pcd", &valid);
+    let expected = read_pcd(&path).unwrap();
+    let mut bytes = valid;
     bytes.extend([0u8; 28]);
-    assert_refused("extra.pcd", &bytes, "28 bytes follow the 40 points the header declares");
+    let (_dir, path) = write_file("extra.pcd", &bytes);
+    assert_eq!(read_pcd(&path).unwrap(), expected);
+}
+
+/// A field of several values a point that pointray reads as one (pypcd4's
+/// `ascii_multi_count.pcd`: intensity with COUNT 4) is left out, not the whole file.
+#[test]
+fn a_multi_count_attribute_is_left_out_and_the_points_read() {
+    let header = "VERSION .7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 4\n\
+                  WIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n";
+    let text = format!("{header}0 0 1 0.1 0.1 0.1 0.1\n1 0 0 0.2 0.2 0.2 0.2\n");
+    let (_dir, path) = write_file("multi.pcd", text.as_bytes());
+    let cloud = read_pcd(&path).unwrap();
+    assert_eq!(cloud.positions, vec![DVec3::new(0.0, 0.0, 1.0), DVec3::new(1.0, 0.0, 0.0)]);
+    assert_eq!(cloud.intensities, None);
 }
 
 /// A header that is not text is said to be so, not in the standard library's words.

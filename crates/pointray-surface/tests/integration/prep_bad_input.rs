@@ -31,8 +31,18 @@ fn nan_and_infinite_coordinates_name_the_point() {
 
 #[test]
 fn too_few_points_for_k() {
-    assert_eq!(prep_error(plane(3)), PrepError::TooFewPoints { found: 9, k: 9 });
-    assert_eq!(prep_error(Vec::new()), PrepError::TooFewPoints { found: 0, k: 9 });
+    // k shrinks to the other points, down to 3: fewer than 4 points are refused.
+    assert_eq!(prep_error(plane(3)[..3].to_vec()), PrepError::TooFewPoints { found: 3, k: 3 });
+    assert_eq!(prep_error(Vec::new()), PrepError::TooFewPoints { found: 0, k: 3 });
+}
+
+/// A cloud of fewer points than k + 1 (PCL's and pypcd4's test clouds hold 8) used to be
+/// refused; it preps with k cut to the other points, which its store records.
+#[test]
+fn a_cloud_smaller_than_k_preps_with_the_neighbours_it_has() {
+    let cloud = PointCloud::from_positions(plane(3));
+    let (patches, report) = prep(&cloud, &PrepSettings::default(), &NoProgress).expect("9 points prep");
+    assert_eq!((report.patches, patches.settings.k, patches.settings.normal_k), (9, 8, 8));
 }
 
 #[test]
