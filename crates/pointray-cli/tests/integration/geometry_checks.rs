@@ -7,7 +7,7 @@ use std::path::Path;
 
 use pointray_patches::{PatchSet, patch_store};
 
-use crate::common::{pointray_in, write_grid_ply, write_points_scene};
+use crate::common::{cached_store, pointray_in, write_grid_ply, write_points_scene};
 
 fn render(dir: &Path, scene: &str) -> (bool, String) {
     let (ok, _, stderr) = pointray_in(
@@ -59,8 +59,7 @@ fn a_poisoned_cache_entry_is_regenerated_not_kept() {
     write_grid_ply(&dir.path().join("grid.ply"));
     write_points_scene(dir.path(), "scene.toml", "grid.ply");
     assert!(render(dir.path(), "scene.toml").0, "the first render succeeds");
-    let cache =
-        std::fs::read_dir(dir.path().join(".pointray-cache")).unwrap().next().unwrap().unwrap().path();
+    let cache = cached_store(dir.path());
     let mut poisoned = patch_store::read(&cache).unwrap();
     poisoned.aabbs[0].max = [f32::INFINITY; 3];
     patch_store::write(&cache, &poisoned).unwrap();

@@ -4,7 +4,7 @@
 //! namespace; warnings piped to a file carry no colour codes; `pointray cache clean` empties
 //! the point-set cache.
 
-use crate::common::{pointray_in, write_grid_ply};
+use crate::common::{cached_store, pointray_in, write_grid_ply};
 
 #[cfg(target_os = "linux")]
 #[test]
@@ -141,8 +141,7 @@ fn warnings_carry_no_colour_codes_when_piped() {
         .unwrap();
     let args = ["render", "scene.toml", "-o", "out.png", "--backend", "cpu", "--width", "8", "--height", "8"];
     assert!(pointray_in(dir.path(), &args).0);
-    let cache =
-        std::fs::read_dir(dir.path().join(".pointray-cache")).unwrap().next().unwrap().unwrap().path();
+    let cache = cached_store(dir.path());
     std::fs::write(&cache, b"PRPATCH\0 damaged").unwrap();
     let (ok, _, stderr) = pointray_in(dir.path(), &args);
     assert!(ok && stderr.contains("regenerating"), "a warning is printed: {stderr}");

@@ -106,5 +106,5 @@ fn bad_scenes_and_outputs() {
     let twice = path_str(&points);
     let (ok, _, stderr) =
         pointray(&["scan", "--street", "--sensor", "vlp16", "-o", twice, "--mesh-out", twice]);
-    assert!(!ok && stderr.contains("same file"), "{stderr}");
+    assert!(!ok && stderr.contains("each output needs a file of its own"), "{stderr}");
 }

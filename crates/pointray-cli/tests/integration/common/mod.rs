@@ -36,3 +36,12 @@ pub fn write_points_scene(dir: &Path, name: &str, points: &str) -> PathBuf {
     std::fs::write(&path, text).unwrap();
     path
 }
+
+/// The one prepped store in `dir`'s cache folder, beside the folder's own files.
+pub fn cached_store(dir: &Path) -> PathBuf {
+    let entries = std::fs::read_dir(dir.join(".pointray-cache")).unwrap();
+    entries
+        .map(|entry| entry.unwrap().path())
+        .find(|path| path.extension().is_some_and(|extension| extension == "patches"))
+        .expect("a cached store")
+}
