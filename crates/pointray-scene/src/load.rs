@@ -289,8 +289,9 @@ fn has_intensities(patches: &PatchSet) -> bool {
 
 fn intensities(patches: &PatchSet) -> Result<Vec<f32>, &'static str> {
     if !has_intensities(patches) {
-        return Err("the points have no intensity, which `color_source = \"intensity\"` needs; \
-                    use \"points\", \"height\" or \"fixed\"");
+        return Err("the points have no intensity, or every intensity is 0 (prep stores 0 for none, \
+                    so the two are one), which `color_source = \"intensity\"` needs; use \"points\", \
+                    \"height\" or \"fixed\"");
     }
     Ok(patches.cold.iter().map(|record| record.intensity).collect())
 }

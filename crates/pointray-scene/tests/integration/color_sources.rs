@@ -226,3 +226,18 @@ fn a_ramp_over_a_mapped_store_copies_its_colours_alone_and_leaves_the_file_as_it
     assert_ne!(patches.cold, store.cold, "the ramp coloured the patches");
     assert_eq!(std::fs::read(&store_path).unwrap(), before, "the store on disk is unchanged");
 }
+
+/// Intensities that are all 0 are stored as none (prep stores 0 for a point without one), so
+/// the refusal of `color_source = "intensity"` says both, not "no intensity" alone.
+#[test]
+fn all_zero_intensities_are_named_as_such_when_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let cloud = PointCloud { intensities: Some(vec![0.0; 1600]), ..slope(false) };
+    let scene = write_scene(
+        dir.path(),
+        &write_points(dir.path(), "zeros.ply", &cloud),
+        "[objects.material]\ncolor_source = \"intensity\"",
+    );
+    let error = load_error(&scene);
+    assert!(error.contains("zeros.ply") && error.contains("every intensity is 0"), "{error}");
+}
