@@ -87,7 +87,8 @@ fn non_finite_coordinates() {
 
 #[test]
 fn fewer_points_than_k_plus_one() {
-    assert_prep_refuses("few.ply", &ascii_ply(&grid(6)), "points");
+    // k shrinks to the points a small cloud has, but not below 3: 3 points are too few.
+    assert_prep_refuses("few.ply", &ascii_ply(&grid(3)), "3 points, but k = 3 needs at least 4");
 }
 
 #[test]
