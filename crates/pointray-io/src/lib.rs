@@ -26,7 +26,7 @@ pub use file_roles::{
     folder_of,
 };
 pub use huge_page_allocator::HugePageAllocator;
-pub use linear_image::{LinearImage, read_linear_image};
+pub use linear_image::{LinearImage, read_linear_image, read_linear_image_within};
 pub use memory_budget::{MemoryBudget, MemoryShortfall};
 pub use point_cloud::{AttributeBytes, PointCloud};
 pub use point_stream::PointStream;

@@ -31,10 +31,11 @@ pub fn read_linear_image(
     path: &Path,
     check_size: impl FnOnce(u32, u32) -> Result<(), IoError>,
 ) -> Result<LinearImage, IoError> {
-    read_within(path, MemoryBudget::of_this_machine(), check_size)
+    read_linear_image_within(path, MemoryBudget::of_this_machine(), check_size)
 }
 
-fn read_within(
+/// `read_linear_image` within `budget` instead of the memory available (the fuzz target's cap).
+pub fn read_linear_image_within(
     path: &Path,
     budget: MemoryBudget,
     check_size: impl FnOnce(u32, u32) -> Result<(), IoError>,
@@ -125,10 +126,10 @@ mod tests {
         let path = dir.path().join("small.hdr");
         hdr_header(&path, 64, 32);
         let budget = MemoryBudget { bytes: 64 * 32 * DECODE_BYTES_PER_TEXEL - 1 };
-        let message = read_within(&path, budget, |_, _| Ok(())).unwrap_err().to_string();
+        let message = read_linear_image_within(&path, budget, |_, _| Ok(())).unwrap_err().to_string();
         assert!(message.contains("small.hdr") && message.contains("2048 texels"), "{message}");
         let enough = MemoryBudget { bytes: 64 * 32 * DECODE_BYTES_PER_TEXEL };
-        let message = read_within(&path, enough, |_, _| Ok(())).unwrap_err().to_string();
+        let message = read_linear_image_within(&path, enough, |_, _| Ok(())).unwrap_err().to_string();
         assert!(message.contains("not a readable"), "priced, then found truncated: {message}");
     }
 }
