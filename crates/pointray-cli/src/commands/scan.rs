@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 use clap::{ArgGroup, Args};
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
+use pointray_io::MemoryBudget;
 use pointray_lidar::{LidarScene, Scan, ScanProgress, Sensor, SensorPose, SensorPreset, Surface, UpAxis};
 
 use super::resimulation::{self, ResimulationArgs};
@@ -86,6 +87,10 @@ pub fn run(args: ScanArgs) -> anyhow::Result<()> {
     let world = World::open(&args)?;
     check_outputs(&args, &world.inputs)?;
     let stations = stations(&args, &sensor, world.scene.up())?;
+    price_rays(
+        sensor.rays_per_sweep().saturating_mul(stations.len() as u64),
+        MemoryBudget::of_this_machine(),
+    )?;
     let started = Instant::now();
     let bar = ScanBar::for_scan(&sensor, stations.len());
     let scanned = pointray_lidar::scan(&world.scene, &sensor, &stations, args.seed, &bar)?;
@@ -99,6 +104,14 @@ pub fn run(args: ScanArgs) -> anyhow::Result<()> {
     );
     println!("{}", summary(&scanned, &sensor, stations.len(), &world.description, elapsed));
     write_outputs(&args, &world, &scanned, &sensor, stations.len())
+}
+
+/// Refuses a scan whose returns would not fit in `budget`: each ray may return, and the
+/// returns are held twice while the columns' are gathered into one list (measured: about 120
+/// bytes a ray).
+fn price_rays(rays: u64, budget: MemoryBudget) -> anyhow::Result<()> {
+    let bytes_each = 2 * std::mem::size_of::<pointray_lidar::Return>() as u64;
+    budget.check(rays, bytes_each, "rays").map_err(|shortfall| anyhow::anyhow!("the scan's {shortfall}"))
 }
 
 /// The points file, and the street's mesh when asked for.
@@ -257,5 +270,18 @@ impl ScanProgress for ScanBar {
         if let Some(bar) = &self.0 {
             bar.inc(count);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rays_are_priced_against_the_memory_budget() {
+        let budget = MemoryBudget { bytes: 1 << 30 };
+        price_rays(4_000_000, budget).expect("4M rays fit in 1 GiB");
+        let message = price_rays(57_600_000, budget).unwrap_err().to_string();
+        assert!(message.contains("57600000 rays") && message.contains("of memory"), "{message}");
     }
 }
