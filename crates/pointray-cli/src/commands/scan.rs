@@ -194,6 +194,12 @@ impl World {
 fn check_outputs(args: &ScanArgs, inputs: &[PathBuf]) -> anyhow::Result<()> {
     let outputs: Vec<PathBuf> = std::iter::once(args.output.clone()).chain(args.mesh_out.clone()).collect();
     pointray_io::ensure_outputs_spare_inputs(inputs, &outputs)?;
+    // Another extension would name the PLY bytes written as a format they are not.
+    anyhow::ensure!(
+        args.output.extension().is_some_and(|extension| extension.eq_ignore_ascii_case("ply")),
+        "{}: scan writes its returns as PLY; name the output *.ply",
+        args.output.display()
+    );
     if let Some(mesh_out) = &args.mesh_out {
         anyhow::ensure!(
             !same_path(mesh_out, &args.output),

@@ -108,3 +108,13 @@ fn bad_scenes_and_outputs() {
         pointray(&["scan", "--street", "--sensor", "vlp16", "-o", twice, "--mesh-out", twice]);
     assert!(!ok && stderr.contains("each output needs a file of its own"), "{stderr}");
 }
+
+/// The returns are written as PLY: `-o x.las` used to put PLY bytes under a LAS name.
+#[test]
+fn a_scan_output_not_named_ply_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = dir.path().join("x.las");
+    let (ok, _, stderr) = pointray(&["scan", "--street", "--sensor", "vlp16", "-o", path_str(&output)]);
+    assert!(!ok && stderr.contains("x.las") && stderr.contains("*.ply"), "{stderr}");
+    assert!(!output.exists());
+}
