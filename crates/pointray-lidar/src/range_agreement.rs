@@ -77,10 +77,9 @@ impl RangeAgreement {
 
 /// The points along `rays` at `ranges` (one or none per ray) within `CHAMFER_RANGE`.
 fn within_chamfer_range(rays: &SweepRays, ranges: impl Iterator<Item = Option<f64>>) -> Vec<DVec3> {
-    rays.directions
-        .iter()
-        .zip(ranges)
-        .filter_map(|(&direction, range)| range.filter(|&r| r <= CHAMFER_RANGE).map(|r| direction * r))
+    ranges
+        .enumerate()
+        .filter_map(|(i, range)| range.filter(|&r| r <= CHAMFER_RANGE).map(|r| rays.point(i, r)))
         .collect()
 }
 
@@ -110,7 +109,7 @@ mod tests {
 
     fn rays() -> SweepRays {
         SweepRays {
-            origin: DVec3::ZERO,
+            origins: vec![DVec3::ZERO; 4],
             directions: vec![DVec3::X, DVec3::Y, DVec3::Z, -DVec3::X],
             ranges: vec![10.0, 20.0, 30.0, 40.0],
         }

@@ -7,33 +7,36 @@ use rayon::prelude::*;
 
 use crate::{LidarError, LidarScene};
 
-/// The rays of a sweep in its sensor's frame: their origin (the sensor), unit directions and
-/// the ranges the sensor measured along them.
+/// The rays of a sweep in its sensor's frame: where each starts (its laser's origin), unit
+/// directions and the ranges the sensor measured along them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SweepRays {
-    pub origin: DVec3,
+    pub origins: Vec<DVec3>,
     pub directions: Vec<DVec3>,
     pub ranges: Vec<f64>,
 }
 
 impl SweepRays {
-    /// The rays of a sweep read in its sensor's frame; returns at the sensor itself have no
-    /// direction and are left out.
+    /// The rays of a sweep read in its sensor's frame, each from its return's own sensor
+    /// origin (a multi-block head's laser block); returns at their origin have no direction
+    /// and are left out.
     pub fn of_sweep(sweep: &PointCloud) -> Self {
-        let origin = sweep.sensor_position.unwrap_or(DVec3::ZERO);
-        let (directions, ranges) = sweep
-            .positions
-            .iter()
-            .map(|&p| p - origin)
-            .filter(|offset| offset.length() > 0.0 && offset.is_finite())
-            .map(|offset| (offset.normalize(), offset.length()))
-            .unzip();
-        Self { origin, directions, ranges }
+        let mut rays = Self { origins: Vec::new(), directions: Vec::new(), ranges: Vec::new() };
+        for (i, &position) in sweep.positions.iter().enumerate() {
+            let origin = sweep.sensor_of(i).unwrap_or(DVec3::ZERO);
+            let offset = position - origin;
+            if offset.length() > 0.0 && offset.is_finite() {
+                rays.origins.push(origin);
+                rays.directions.push(offset.normalize());
+                rays.ranges.push(offset.length());
+            }
+        }
+        rays
     }
 
-    /// Where the measured returns lie in the sensor's frame.
-    pub fn measured_points(&self) -> Vec<DVec3> {
-        self.directions.iter().zip(&self.ranges).map(|(&d, &r)| self.origin + d * r).collect()
+    /// Where ray `i` lies at `range`, in the sensor's frame.
+    pub fn point(&self, i: usize, range: f64) -> DVec3 {
+        self.origins[i] + self.directions[i] * range
     }
 }
 
@@ -48,12 +51,13 @@ pub fn resimulate(
     if !(max_range > 0.0 && max_range.is_finite()) {
         return Err(LidarError::invalid("max-range", format!("must be positive, not {max_range}")));
     }
-    let origin = pose.transform_point3(rays.origin);
     Ok(rays
-        .directions
+        .origins
         .par_iter()
-        .map(|&direction| {
-            let direction = pose.transform_vector3(direction).normalize();
+        .zip(&rays.directions)
+        .map(|(&origin, &direction)| {
+            let (origin, direction) =
+                (pose.transform_point3(origin), pose.transform_vector3(direction).normalize());
             scene.first_hit(origin, direction, max_range).map(|hit| hit.range)
         })
         .collect())

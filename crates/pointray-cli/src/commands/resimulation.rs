@@ -100,9 +100,9 @@ fn pose_of(resimulation: &ResimulationArgs, sweep: &Path) -> anyhow::Result<DAff
 /// rays that met nothing give no return.
 fn write_sweep(output: &Path, rays: &SweepRays, ranges: &[Option<f64>]) -> anyhow::Result<()> {
     pointray_io::write_atomically(output, |writer| {
-        for (&direction, range) in rays.directions.iter().zip(ranges) {
+        for (i, range) in ranges.iter().enumerate() {
             let Some(range) = range else { continue };
-            let point = rays.origin + direction * *range;
+            let point = rays.point(i, *range);
             for value in [point.x as f32, point.y as f32, point.z as f32, 0.0] {
                 writer.write_all(&value.to_le_bytes())?;
             }
