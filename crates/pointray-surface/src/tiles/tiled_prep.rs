@@ -180,7 +180,8 @@ pub fn merge_tiles(tiles: Vec<TilePatches>) -> PatchSet {
     merged
 }
 
-/// Every tile of `cloud` in turn, merged: at its peak the cloud and one tile's prep.
+/// Every tile of `cloud` in turn, merged: at its peak the cloud and one tile's prep. More
+/// tiles than points are refused, since a tile needs points of its own.
 pub fn prep_tiled(
     cloud: &PointCloud,
     settings: &PrepSettings,
@@ -188,6 +189,9 @@ pub fn prep_tiled(
     progress: &dyn PrepProgress,
 ) -> Result<PatchSet, PrepError> {
     validate_positions(&cloud.positions, settings.k as usize)?;
+    if tiles > cloud.len() {
+        return Err(PrepError::TooManyTiles { tiles, points: cloud.len() as u64 });
+    }
     let plan = TilePlan::new(cloud, settings, tiles);
     let prepped = (0..plan.tile_count())
         .map(|index| prep_tile(cloud, settings, &plan, index, progress))

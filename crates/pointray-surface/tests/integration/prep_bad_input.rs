@@ -106,3 +106,17 @@ fn a_nan_intensity_is_refused_naming_its_point() {
     let tiled = prep_tiled(&cloud, &PrepSettings::default(), 4, &NoProgress).unwrap_err();
     assert_eq!(tiled, PrepError::NonFiniteIntensity { index: 317 }, "the cloud's point, not the tile's");
 }
+
+/// A tile needs points of its own: library callers asking for more tiles than points get the
+/// reason, as the command line's callers do, not empty tiles.
+#[test]
+fn more_tiles_than_points_are_refused_in_the_library() {
+    let cloud = PointCloud::from_positions(plane(10));
+    let error = prep_tiled(&cloud, &PrepSettings::default(), 101, &NoProgress).unwrap_err();
+    assert_eq!(error, PrepError::TooManyTiles { tiles: 101, points: 100 });
+    assert!(error.to_string().contains("101 tiles asked for"), "{error}");
+    assert!(
+        prep_tiled(&cloud, &PrepSettings::default(), 100, &NoProgress).is_ok(),
+        "one point a tile is allowed"
+    );
+}
