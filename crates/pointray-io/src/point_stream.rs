@@ -97,6 +97,15 @@ impl PointStream {
         !matches!(self.source, Source::Whole { .. })
     }
 
+    /// The cloud of a file that was read whole, for a caller that preps it in memory and so
+    /// need not read the file again (`None` for a file read in chunks).
+    pub fn into_whole_cloud(self) -> Option<PointCloud> {
+        match self.source {
+            Source::Whole { cloud, .. } => Some(cloud),
+            Source::Ply(_) | Source::Las(_) | Source::RawBin(_) => None,
+        }
+    }
+
     /// The bytes each point's attributes take once read (at most: a LAS file's unfilled
     /// fields are dropped).
     pub fn attribute_bytes_per_point(&self) -> u64 {

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
-use pointray_io::{MemoryBudget, SweepPoses};
+use pointray_io::{MemoryBudget, PointStream, SweepPoses};
 use pointray_patches::PrepSettings;
 use pointray_surface::peak_memory::peak_rss;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
@@ -84,11 +84,11 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         );
         return Ok(());
     }
+    let started = Instant::now();
     let mut stream = args.columns.open_stream(points, memory)?;
     let route = prep_route(stream.len(), &settings, stream.attribute_bytes_per_point(), memory);
     if args.tiles.is_none() && route == PrepRoute::InMemory {
-        drop(stream);
-        return prep_in_memory(points, &args, &settings, &bar);
+        return prep_in_memory(stream, started, &args, &settings, &bar);
     }
     let count = TileCount::AtLeast(args.tiles.unwrap_or(1) as usize);
     let merged = prep_streamed(&mut stream, &settings, (count, memory), &args.output, &bar)?;
@@ -104,15 +104,21 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Preps the cloud of `stream`, opened at `started`, in memory: a file the stream read whole
+/// is not read again (which would also repeat its warnings).
 fn prep_in_memory(
-    points: &Path,
+    stream: PointStream,
+    started: Instant,
     args: &PrepArgs,
     settings: &PrepSettings,
     bar: &PrepBar,
 ) -> anyhow::Result<()> {
+    let points = stream.path().to_path_buf();
+    let cloud = match stream.into_whole_cloud() {
+        Some(cloud) => cloud,
+        None => args.columns.read_point_cloud(&points)?,
+    };
     // Reading and writing sit outside prep's stages, and at a billion points take as long.
-    let started = Instant::now();
-    let cloud = args.columns.read_point_cloud(points)?;
     println!("read {} points in {:.3} s", cloud.len(), started.elapsed().as_secs_f64());
     prep_and_write(cloud, &points.display().to_string(), args, settings, bar)
 }

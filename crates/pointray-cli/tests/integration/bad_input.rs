@@ -265,3 +265,24 @@ fn more_tiles_than_points_are_refused_clearly() {
         assert!(!stderr.contains("panicked") && !stderr.contains("os error"), "{stderr}");
     }
 }
+
+/// A PCD field of several values a point is left out with one warning: a file read whole is
+/// read once, not once to size the prep and again to prep it.
+#[test]
+fn a_pcd_multi_count_field_is_warned_about_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let points = grid(100);
+    let mut text = format!(
+        "VERSION .7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 4\nWIDTH {0}\n\
+         HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {0}\nDATA ascii\n",
+        points.len()
+    );
+    for [x, y, z] in &points {
+        text += &format!("{x} {y} {z} 0.1 0.2 0.3 0.4\n");
+    }
+    let input = write(dir.path(), "multi.pcd", text.as_bytes());
+    let output = dir.path().join("out.patches");
+    let (ok, stderr) = pointray(&["prep", input.to_str().unwrap(), "-o", output.to_str().unwrap()]);
+    assert!(ok, "{stderr}");
+    assert_eq!(stderr.matches("has COUNT 4; it is left out").count(), 1, "{stderr}");
+}
