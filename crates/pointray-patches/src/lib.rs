@@ -5,8 +5,10 @@
 //!
 //! It may use `pointray-kernels` (the record types) and `pointray-io` (files), nothing above.
 
+pub mod compact_patches;
 pub mod geometry_range;
 mod parallel_checksum;
+pub mod patch_bounds;
 mod patch_checks;
 pub mod patch_records;
 pub mod patch_set;
@@ -15,7 +17,9 @@ pub mod patch_store_in_place;
 mod patch_store_write;
 pub mod patch_tiles;
 pub mod prep_settings;
+pub mod scan_structure;
 
 pub use patch_records::PatchRecords;
 pub use patch_set::PatchSet;
 pub use prep_settings::{BoxKind, InvalidSetting, OutlierFilter, PrepSettings, RadiusMode, ScanMode};
+pub use scan_structure::ScanStructure;

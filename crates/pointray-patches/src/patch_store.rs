@@ -1,23 +1,33 @@
 //! The patch store: the versioned binary file that caches a `PatchSet`.
 //!
-//! All numbers are little-endian. Version 7 layout:
+//! All numbers are little-endian. Version 8 layout:
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRPATCH\0"` |
-//! | 8 | 4 | format version, u32 = 7 (version 6 stores read too) |
-//! | 12 | 4 | header size in bytes, u32 = 208 |
+//! | 8 | 4 | format version, u32 = 8 |
+//! | 12 | 4 | header size in bytes, u32 = 384 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
 //! | 24 | 24 | offset, f64 x 3 (`input = local + offset`) |
 //! | 48 | 24 | bounds of all boxes: min xyz, max xyz, f32 x 6 (local coordinates) |
-//! | 72 | 64 | section table: (byte offset u64, byte length u64) for aabbs, hot, cold, neighbours |
+//! | 72 | 64 | section table: (byte offset u64, byte length u64) for each of the four sections |
 //! | 136 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
 //! | 140 | 68 | the `PrepSettings` the patches were made with (below) |
-//! | 208 | 24 n | aabbs: `Aabb` (min xyz, max xyz, f32) |
-//! | section table | 32 n | hot: `PatchHot` (origin with c0 folded in, d_u: f32 x 4; octahedral normal and tangent angle, d_v/d_u and c1, c2..c5 as scaled halves: u32 x 4) |
-//! | section table | 12 n | cold: `PatchCold` (RGBA8 u32, intensity f32, colour reach f32) |
-//! | section table | 4 m n | neighbours: `m` patch indices per patch (u32, `NO_NEIGHBOR` = unused) |
+//! | 208 | 4 | record encoding, u32: 0 compact, 1 full |
+//! | 212 | 4 | patches a block, u32 = `BLOCK_PATCHES` (compact), 0 (full) |
+//! | 216 | 4 | colour columns, u32: 1 when the compact colour section is there, else 0 |
+//! | 220 | 4 | scan structure, u32: 0 not recorded, 1 none sought, 2 lines, 3 unstructured |
+//! | 224 | 32 | lines, returns on lines, patches, surface patches, u64 x 4 (scan structure 2) |
+//! | 256 | 128 | the reason, UTF-8, zero-padded (scan structure 3) |
+//! | 384 | | the sections, each where the section table puts it |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
+//!
+//! The sections of the compact encoding (`compact_patches`), which `write` and prep write:
+//! block frames (32 bytes a block of `BLOCK_PATCHES` patches), compact patches (28 n),
+//! colours and intensities (6 n, or none without colour columns), colour neighbours (4 m n:
+//! `m` patch indices per patch, `NO_NEIGHBOR` = unused). The full encoding, which tile
+//! files embed so that a merge quantises the records once: `Aabb` (24 n), `PatchHot` (32 n),
+//! `PatchCold` (12 n), colour neighbours (4 m n), the records as the renderers take them.
 //!
 //! The settings: `k`, `normal_k` (u32), recompute normals (u32, 0 or 1), radius (u32: 0 paper,
 //! 1 adaptive, 2 cell), disk scale (f32), boxes (u32: 0 cube, 1 tight), scan (u32: 0 auto,
@@ -29,10 +39,9 @@
 //! the end of the one before; the bytes between sections are zero. `write` leaves no room
 //! between them; prep in bounded memory leaves room for one patch per input point
 //! (`Layout::with_room`), since it writes each tile's records before the count is known. The
-//! file ends 4 bytes after the last section. The record layouts are
-//! those of `pointray_kernels::layout`, so the sections can be uploaded to the GPU as
-//! they are. `docs/PATCH_STORE.md` describes the same format.
+//! file ends 4 bytes after the last section. `docs/PATCH_STORE.md` describes the same format.
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
@@ -41,18 +50,21 @@ use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use memmap2::Mmap;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
+use rayon::prelude::*;
 
+use crate::compact_patches::{
+    BLOCK_PATCHES, BlockFrame, CompactColor, CompactPatch, decode_block, frame_problem,
+};
 use crate::parallel_checksum;
 use crate::patch_records::PatchRecords;
 use crate::patch_set::PatchSet;
 use crate::prep_settings::{BoxKind, OutlierFilter, PrepSettings, RadiusMode, ScanMode};
+use crate::scan_structure::{REASON_BYTES, ScanStructure};
 
-pub use crate::patch_store_write::{StoreSummary, write, write_sections, write_to};
+pub use crate::patch_store_write::{StoreSummary, write, write_to, write_with_scan};
 
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
-pub const FORMAT_VERSION: u32 = 7;
-/// Version 6 stores are version 7's with no room between sections.
-const READABLE_VERSIONS: std::ops::RangeInclusive<u32> = 6..=FORMAT_VERSION;
+pub const FORMAT_VERSION: u32 = 8;
 pub(crate) const SECTION_COUNT: usize = 4;
 pub(crate) const HEADER_BYTES: usize = std::mem::size_of::<Header>();
 const CHECKSUM_BYTES: usize = 4;
@@ -65,7 +77,7 @@ pub enum StoreError {
     #[error("{path}: not a pointray patch store (wrong magic)")]
     NotAPatchStore { path: PathBuf },
     #[error(
-        "{path}: patch store version {found}, this build reads versions 6 and {FORMAT_VERSION}: re-run `pointray prep`"
+        "{path}: patch store version {found}, this build reads version {FORMAT_VERSION} only: re-run `pointray prep` on the points to make the store again"
     )]
     WrongVersion { path: PathBuf, found: u32 },
     #[error("{path}: truncated or wrong length: the header implies {expected} bytes, the file has {actual}")]
@@ -99,6 +111,59 @@ pub(crate) struct Header {
     pub neighbor_slots: u32,
     pub settings: StoredSettings,
     pub sensor: [f64; 3],
+    pub encoding: u32,
+    pub block_patches: u32,
+    pub color_columns: u32,
+    pub scan_kind: u32,
+    pub scan_counts: [u64; 4],
+    pub scan_reason: [u8; REASON_BYTES],
+}
+
+/// How a store holds its records.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Encoding {
+    /// Quantised within blocks (`compact_patches`): what `write` and prep write.
+    Compact,
+    /// The records as the renderers take them, bit for bit: what tile files embed.
+    Full,
+}
+
+/// What decides the sections' lengths.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RecordShape {
+    pub encoding: Encoding,
+    /// Colour neighbours per patch: 0 or `COLOR_NEIGHBORS`.
+    pub neighbor_slots: u32,
+    /// Whether a compact store has its colour section (always false for the full encoding,
+    /// whose cold records hold the colours).
+    pub colors: bool,
+}
+
+impl RecordShape {
+    /// A compact store's shape: colour columns when `colors`.
+    pub fn compact(neighbor_slots: u32, colors: bool) -> Self {
+        Self { encoding: Encoding::Compact, neighbor_slots, colors }
+    }
+
+    pub fn full(neighbor_slots: u32) -> Self {
+        Self { encoding: Encoding::Full, neighbor_slots, colors: false }
+    }
+
+    /// The bytes of section `index` for `count` patches.
+    fn section_bytes(&self, index: usize, count: u64) -> Option<u64> {
+        let per_patch = |bytes: usize| count.checked_mul(bytes as u64);
+        match (self.encoding, index) {
+            (_, 3) => per_patch(size_of::<u32>() * self.neighbor_slots as usize),
+            (Encoding::Full, 0) => per_patch(size_of::<Aabb>()),
+            (Encoding::Full, 1) => per_patch(size_of::<PatchHot>()),
+            (Encoding::Full, _) => per_patch(size_of::<PatchCold>()),
+            (Encoding::Compact, 0) => {
+                count.div_ceil(BLOCK_PATCHES as u64).checked_mul(size_of::<BlockFrame>() as u64)
+            }
+            (Encoding::Compact, 1) => per_patch(size_of::<CompactPatch>()),
+            (Encoding::Compact, _) => per_patch(if self.colors { size_of::<CompactColor>() } else { 0 }),
+        }
+    }
 }
 
 /// `PrepSettings` as the header holds it, but for the sensor, which follows at an 8-byte
@@ -126,43 +191,37 @@ pub struct Layout {
 }
 
 impl Layout {
-    /// The sections of `n` patches with `neighbor_slots` colour neighbours each, back to back.
-    pub fn new(n: u64, neighbor_slots: u32) -> Option<Self> {
-        Self::with_room(n, n, neighbor_slots)
+    /// The sections of `n` patches of `shape`, back to back.
+    pub fn new(n: u64, shape: RecordShape) -> Option<Self> {
+        Self::with_room(n, n, shape)
     }
 
     /// The sections of `n` patches, each placed with room for `room` patches, so that a
     /// writer that knows only a bound on the count can write every section as it comes.
-    pub(crate) fn with_room(n: u64, room: u64, neighbor_slots: u32) -> Option<Self> {
+    pub(crate) fn with_room(n: u64, room: u64, shape: RecordShape) -> Option<Self> {
         let mut cursor = HEADER_BYTES as u64;
         let mut sections = [Section::zeroed(); SECTION_COUNT];
-        for (section, stride) in sections.iter_mut().zip(strides(neighbor_slots)) {
+        for (index, section) in sections.iter_mut().enumerate() {
             let offset = cursor.checked_next_multiple_of(SECTION_ALIGNMENT as u64)?;
-            *section = Section { offset, length: n.checked_mul(stride)? };
-            cursor = offset.checked_add(room.max(n).checked_mul(stride)?)?;
+            *section = Section { offset, length: shape.section_bytes(index, n)? };
+            cursor = offset.checked_add(shape.section_bytes(index, room.max(n))?)?;
         }
-        Self::of_table(sections, n, neighbor_slots)
+        Self::of_table(sections, n, shape)
     }
 
     /// The layout of a header's section table, if its sections lie in order after the
     /// header, at aligned offsets, each holding `n` records.
-    fn of_table(sections: [Section; SECTION_COUNT], n: u64, neighbor_slots: u32) -> Option<Self> {
+    fn of_table(sections: [Section; SECTION_COUNT], n: u64, shape: RecordShape) -> Option<Self> {
         let mut cursor = HEADER_BYTES as u64;
-        for (section, stride) in sections.iter().zip(strides(neighbor_slots)) {
+        for (index, section) in sections.iter().enumerate() {
             let placed = section.offset >= cursor && section.offset % SECTION_ALIGNMENT as u64 == 0;
-            if !placed || section.length != n.checked_mul(stride)? {
+            if !placed || section.length != shape.section_bytes(index, n)? {
                 return None;
             }
             cursor = section.offset.checked_add(section.length)?;
         }
         Some(Self { sections, total_bytes: cursor.checked_add(CHECKSUM_BYTES as u64)? })
     }
-}
-
-/// The bytes of one patch's record in each section.
-fn strides(neighbor_slots: u32) -> [u64; SECTION_COUNT] {
-    let neighbors = size_of::<u32>() * neighbor_slots as usize;
-    [size_of::<Aabb>(), size_of::<PatchHot>(), size_of::<PatchCold>(), neighbors].map(|bytes| bytes as u64)
 }
 
 impl StoredSettings {
@@ -206,11 +265,90 @@ impl StoredSettings {
     }
 }
 
+impl Header {
+    /// The header's scan structure fields for `scan`, as (kind, counts, reason).
+    pub(crate) fn scan_fields(scan: &ScanStructure) -> (u32, [u64; 4], [u8; REASON_BYTES]) {
+        let reason = scan.reason_bytes();
+        match *scan {
+            ScanStructure::NotRecorded => (0, [0; 4], reason),
+            ScanStructure::NotSought => (1, [0; 4], reason),
+            ScanStructure::Lines { lines, returns_on_lines, patches, surface_patches } => {
+                (2, [lines, returns_on_lines, patches, surface_patches], reason)
+            }
+            ScanStructure::Unstructured { .. } => (3, [0; 4], reason),
+        }
+    }
+
+    /// The scan structure the header records, or why it records none this build knows.
+    fn scan(&self) -> Result<ScanStructure, &'static str> {
+        let [lines, returns_on_lines, patches, surface_patches] = self.scan_counts;
+        let structure = match self.scan_kind {
+            0 => ScanStructure::NotRecorded,
+            1 => ScanStructure::NotSought,
+            2 => ScanStructure::Lines { lines, returns_on_lines, patches, surface_patches },
+            3 => ScanStructure::Unstructured { reason: ScanStructure::reason_of(&self.scan_reason)? },
+            _ => return Err("unknown scan structure kind"),
+        };
+        Ok(structure)
+    }
+
+    /// The shape of the records, or which code this build does not know.
+    fn shape(&self) -> Result<RecordShape, &'static str> {
+        let neighbor_slots = self.neighbor_slots;
+        match (self.encoding, self.block_patches, self.color_columns) {
+            (0, blocks, colors @ (0 | 1)) if blocks as usize == BLOCK_PATCHES => {
+                Ok(RecordShape::compact(neighbor_slots, colors == 1))
+            }
+            (1, 0, 0) => Ok(RecordShape::full(neighbor_slots)),
+            (0 | 1, _, _) => Err("the block size or colour columns are not this encoding's"),
+            _ => Err("unknown record encoding"),
+        }
+    }
+}
+
+/// What a store's header says, read without its records: `pointray info`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StoreDescription {
+    pub patches: u64,
+    pub file_bytes: u64,
+    pub shape: RecordShape,
+    pub settings: PrepSettings,
+    pub offset: DVec3,
+    /// The union of all patch boxes, in local coordinates (`None` for no patches).
+    pub bounds: Option<Aabb>,
+    pub scan: ScanStructure,
+}
+
+/// The header of the store at `path`, checked as `read` checks it but for the checksum and
+/// the records, which it does not read.
+pub fn describe(path: &Path) -> Result<StoreDescription, StoreError> {
+    let io = |source| StoreError::Io { path: path.to_path_buf(), source };
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let file_bytes = file.metadata().map_err(io)?.len();
+    let mut bytes = Vec::with_capacity(HEADER_BYTES);
+    std::io::Read::read_to_end(&mut std::io::Read::take(&mut file, HEADER_BYTES as u64), &mut bytes)
+        .map_err(io)?;
+    let (header, shape) = checked_header_fields(path, &bytes, file_bytes)?;
+    let malformed =
+        |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
+    let settings = header.settings.decode(header.sensor).map_err(malformed)?;
+    let bounds = (header.point_count > 0).then_some(Aabb { min: header.bounds_min, max: header.bounds_max });
+    Ok(StoreDescription {
+        patches: header.point_count,
+        file_bytes,
+        shape,
+        settings,
+        offset: DVec3::from_array(header.offset),
+        bounds,
+        scan: header.scan().map_err(malformed)?,
+    })
+}
+
 /// Reads a patch store, checking, in order, the magic, the version, the length and the
-/// checksum. The file is mapped, not read: its sections are the page cache's pages, which the
-/// checksum reads on every core and the renderers read again as they upload or trace, so a
-/// store larger than the machine's free memory still loads. Where the file system cannot map
-/// it, it is read into memory instead.
+/// checksum, then decoding its records. The file is mapped, not read: the checksum reads it
+/// on every core, and the colour neighbours (and a full store's records) stay the page
+/// cache's pages, which the renderers read as they upload or trace. Where the file system
+/// cannot map it, it is read into memory instead.
 pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     let started = Instant::now();
     let io = |source| StoreError::Io { path: path.to_path_buf(), source };
@@ -226,14 +364,7 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
             return read_from(&std::fs::read(path).map_err(io)?, path);
         }
     };
-    let patches = checked_store(path, &map, |[aabbs, hot, cold, neighbors]| {
-        Ok(Records {
-            aabbs: mapped_section(&map, aabbs, path)?,
-            hot: mapped_section(&map, hot, path)?,
-            cold: mapped_section(&map, cold, path)?,
-            color_neighbors: mapped_section(&map, neighbors, path)?,
-        })
-    })?;
+    let patches = checked_store(path, &map, Some(&map))?;
     let (gigabytes, seconds) = (map.len() as f64 / 1e9, started.elapsed().as_secs_f64());
     tracing::info!(
         "read {}: {} patches, {gigabytes:.2} GB in {seconds:.2} s ({:.2} GB/s)",
@@ -244,13 +375,59 @@ pub fn read(path: &Path) -> Result<PatchSet, StoreError> {
     Ok(patches)
 }
 
-/// The records of `section` of a mapped store, which `checked_header` has placed inside it
-/// at an aligned offset.
-fn mapped_section<T: Pod>(
-    map: &Arc<Mmap>,
+/// Reads a patch store held in memory; `path` names it in errors.
+pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
+    checked_store(path, bytes, None)
+}
+
+/// The patch set of a whole store's `bytes` (which `map`, when given, maps), once every
+/// check has passed: the same checks whether the bytes are mapped or read.
+fn checked_store(path: &Path, bytes: &[u8], map: Option<&Arc<Mmap>>) -> Result<PatchSet, StoreError> {
+    let (header, shape) = checked_header_fields(path, bytes, bytes.len() as u64)?;
+    let layout =
+        Layout::of_table(header.sections, header.point_count, shape).expect("checked with the header");
+    let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
+    if stored != parallel_checksum::checksum(body).to_le_bytes() {
+        return Err(StoreError::ChecksumMismatch { path: path.to_path_buf() });
+    }
+    let malformed =
+        |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
+    if header.header_bytes as usize != HEADER_BYTES {
+        return Err(malformed("the header size is not this version's"));
+    }
+    let settings = header.settings.decode(header.sensor).map_err(malformed)?;
+    header.scan().map_err(malformed)?;
+    let [first, second, third, neighbors] = layout.sections;
+    let section = |s: Section| &bytes[s.offset as usize..(s.offset + s.length) as usize];
+    let (aabbs, hot, cold) = match shape.encoding {
+        Encoding::Full => (
+            records(section(first), map, first, path)?,
+            records(section(second), map, second, path)?,
+            records(section(third), map, third, path)?,
+        ),
+        Encoding::Compact => {
+            let colors = shape.colors.then(|| section(third));
+            decoded(section(first), section(second), colors, settings.boxes).map_err(malformed)?
+        }
+    };
+    let color_neighbors = records(section(neighbors), map, neighbors, path)?;
+    let offset = DVec3::from_array(header.offset);
+    let patches = PatchSet { settings, offset, aabbs, hot, cold, color_neighbors };
+    // A store can pass its checksum and still hold numbers no renderer can build on.
+    patches.check().map_err(|problem| malformed(&problem))?;
+    Ok(patches)
+}
+
+/// The records of `section`: mapped where `map` is given, else copied from `bytes`.
+fn records<T: Pod>(
+    bytes: &[u8],
+    map: Option<&Arc<Mmap>>,
     section: Section,
     path: &Path,
 ) -> Result<PatchRecords<T>, StoreError> {
+    let Some(map) = map else {
+        return Ok(bytemuck::pod_collect_to_vec(bytes).into());
+    };
     let range = section.offset as usize..(section.offset + section.length) as usize;
     PatchRecords::mapped(map.clone(), range).ok_or_else(|| StoreError::Malformed {
         path: path.to_path_buf(),
@@ -258,44 +435,51 @@ fn mapped_section<T: Pod>(
     })
 }
 
-/// Reads a patch store held in memory; `path` names it in errors.
-pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
-    let section = |Section { offset, length }: Section| &bytes[offset as usize..(offset + length) as usize];
-    checked_store(path, bytes, |[aabbs, hot, cold, neighbors]| {
-        Ok(Records {
-            aabbs: bytemuck::pod_collect_to_vec(section(aabbs)).into(),
-            hot: bytemuck::pod_collect_to_vec(section(hot)).into(),
-            cold: bytemuck::pod_collect_to_vec(section(cold)).into(),
-            color_neighbors: bytemuck::pod_collect_to_vec(section(neighbors)).into(),
-        })
-    })
+/// The records as `T`, borrowed where the bytes are aligned for them.
+fn cast_or_copy<T: Pod>(bytes: &[u8]) -> Cow<'_, [T]> {
+    bytemuck::try_cast_slice(bytes)
+        .map_or_else(|_| Cow::Owned(bytemuck::pod_collect_to_vec(bytes)), Cow::Borrowed)
 }
 
-/// The patch set of a whole store's `bytes`, its `records` taken from the sections the header
-/// places, once every check has passed: the same checks whether the bytes are mapped or read.
-fn checked_store(
+type DecodedRecords = (PatchRecords<Aabb>, PatchRecords<PatchHot>, PatchRecords<PatchCold>);
+
+/// The boxes (of `kind`), hot and cold records of a compact store's sections, decoded block
+/// by block on every core.
+fn decoded(
+    frames: &[u8],
+    patches: &[u8],
+    colors: Option<&[u8]>,
+    kind: BoxKind,
+) -> Result<DecodedRecords, &'static str> {
+    let frames = cast_or_copy::<BlockFrame>(frames);
+    let patches = cast_or_copy::<CompactPatch>(patches);
+    let colors = colors.map(cast_or_copy::<CompactColor>);
+    if let Some(problem) = frames.par_iter().find_map_first(frame_problem) {
+        return Err(problem);
+    }
+    let n = patches.len();
+    let (mut hot, mut aabbs, mut cold) =
+        (vec![PatchHot::zeroed(); n], vec![Aabb::zeroed(); n], vec![PatchCold::zeroed(); n]);
+    hot.par_chunks_mut(BLOCK_PATCHES)
+        .zip(aabbs.par_chunks_mut(BLOCK_PATCHES))
+        .zip(cold.par_chunks_mut(BLOCK_PATCHES))
+        .enumerate()
+        .for_each(|(block, ((hot, aabbs), cold))| {
+            let range = block * BLOCK_PATCHES..block * BLOCK_PATCHES + hot.len();
+            let colors = colors.as_deref().map(|colors| &colors[range.clone()]);
+            decode_block(&frames[block], &patches[range], colors, kind, (hot, aabbs, cold));
+        });
+    Ok((aabbs.into(), hot.into(), cold.into()))
+}
+
+/// The header and the shape of its records, once magic, version, colour neighbours, the
+/// codes of the encoding, the section table and the file's length (`length`, of which
+/// `bytes` holds at least the header) have been verified.
+fn checked_header_fields(
     path: &Path,
     bytes: &[u8],
-    records: impl FnOnce([Section; SECTION_COUNT]) -> Result<Records, StoreError>,
-) -> Result<PatchSet, StoreError> {
-    let (header, layout) = checked_header(path, bytes)?;
-    let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
-    let records = records(layout.sections)?;
-    checked_patches(path, &header, (parallel_checksum::checksum(body), stored), records)
-}
-
-/// A store's four sections, read or mapped but not yet checked.
-struct Records {
-    aabbs: PatchRecords<Aabb>,
-    hot: PatchRecords<PatchHot>,
-    cold: PatchRecords<PatchCold>,
-    color_neighbors: PatchRecords<u32>,
-}
-
-/// The header and the layout its section table gives, once magic, version, colour
-/// neighbours, the section table and the length of the file's `bytes` have been verified.
-fn checked_header(path: &Path, bytes: &[u8]) -> Result<(Header, Layout), StoreError> {
-    let length = bytes.len() as u64;
+    length: u64,
+) -> Result<(Header, RecordShape), StoreError> {
     let path_buf = || path.to_path_buf();
     if bytes.len() < MAGIC.len() || bytes[..MAGIC.len()] != MAGIC {
         return Err(StoreError::NotAPatchStore { path: path_buf() });
@@ -307,33 +491,21 @@ fn checked_header(path: &Path, bytes: &[u8]) -> Result<(Header, Layout), StoreEr
     };
     let version_bytes = bytes.get(8..12).ok_or_else(too_short)?;
     let found = u32::from_le_bytes(version_bytes.try_into().expect("four bytes"));
-    if !READABLE_VERSIONS.contains(&found) {
+    if found != FORMAT_VERSION {
         return Err(StoreError::WrongVersion { path: path_buf(), found });
     }
     let header: Header = bytemuck::pod_read_unaligned(bytes.get(..HEADER_BYTES).ok_or_else(too_short)?);
+    let malformed = |problem: String| StoreError::Malformed { path: path_buf(), problem };
     if header.neighbor_slots != 0 && header.neighbor_slots as usize != COLOR_NEIGHBORS {
-        return Err(StoreError::Malformed {
-            path: path_buf(),
-            problem: format!(
-                "{} colour neighbours per patch; 0 or {COLOR_NEIGHBORS} allowed",
-                header.neighbor_slots
-            ),
-        });
+        let slots = header.neighbor_slots;
+        return Err(malformed(format!(
+            "{slots} colour neighbours per patch; 0 or {COLOR_NEIGHBORS} allowed"
+        )));
     }
-    let layout =
-        Layout::of_table(header.sections, header.point_count, header.neighbor_slots).ok_or_else(|| {
-            StoreError::Malformed {
-                path: path_buf(),
-                problem: "the section table does not hold the point count's records in order".into(),
-            }
-        })?;
-    let back_to_back = Layout::new(header.point_count, header.neighbor_slots).map(|exact| exact.sections);
-    if found < FORMAT_VERSION && back_to_back != Some(layout.sections) {
-        return Err(StoreError::Malformed {
-            path: path_buf(),
-            problem: format!("a version {found} store leaves no room between its sections"),
-        });
-    }
+    let shape = header.shape().map_err(|problem| malformed(problem.into()))?;
+    let layout = Layout::of_table(header.sections, header.point_count, shape).ok_or_else(|| {
+        malformed("the section table does not hold the point count's records in order".into())
+    })?;
     if layout.total_bytes != length {
         return Err(StoreError::WrongLength {
             path: path_buf(),
@@ -341,33 +513,7 @@ fn checked_header(path: &Path, bytes: &[u8]) -> Result<(Header, Layout), StoreEr
             actual: length,
         });
     }
-    Ok((header, layout))
-}
-
-/// The patch set of `records` with the header's settings and offset, once the checksum
-/// (`computed` against `stored`), the header's size, the settings' codes and every record
-/// have been verified.
-fn checked_patches(
-    path: &Path,
-    header: &Header,
-    (computed, stored): (u32, &[u8]),
-    records: Records,
-) -> Result<PatchSet, StoreError> {
-    if stored != computed.to_le_bytes() {
-        return Err(StoreError::ChecksumMismatch { path: path.to_path_buf() });
-    }
-    let malformed =
-        |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
-    if header.header_bytes as usize != HEADER_BYTES {
-        return Err(malformed("the header size is not this version's"));
-    }
-    let settings = header.settings.decode(header.sensor).map_err(malformed)?;
-    let Records { aabbs, hot, cold, color_neighbors } = records;
-    let offset = DVec3::from_array(header.offset);
-    let patches = PatchSet { settings, offset, aabbs, hot, cold, color_neighbors };
-    // A store can pass its checksum and still hold numbers no renderer can build on.
-    patches.check().map_err(|problem| malformed(&problem))?;
-    Ok(patches)
+    Ok((header, shape))
 }
 
 #[cfg(test)]
@@ -375,33 +521,37 @@ mod tests {
     use super::*;
 
     #[test]
-    fn header_is_208_bytes_and_sections_are_aligned() {
-        assert_eq!(HEADER_BYTES, 208);
+    fn header_is_384_bytes_and_sections_are_aligned() {
+        assert_eq!(HEADER_BYTES, 384);
         assert_eq!(std::mem::offset_of!(Header, settings), 140);
         assert_eq!(std::mem::offset_of!(Header, sensor), 184);
-        let layout = Layout::new(3, COLOR_NEIGHBORS as u32).unwrap();
-        assert!(layout.sections.iter().all(|s| s.offset % 16 == 0));
-        assert_eq!(layout.sections[0], Section { offset: 208, length: 72 });
-        assert_eq!(layout.sections[1], Section { offset: 288, length: 96 });
-        assert_eq!(layout.sections[2], Section { offset: 384, length: 36 });
-        assert_eq!(layout.sections[3], Section { offset: 432, length: 144 });
-        assert_eq!(layout.total_bytes, 580);
-        let without = Layout::new(3, 0).unwrap();
-        assert_eq!(without.sections[3], Section { offset: 432, length: 0 });
-        assert_eq!(without.total_bytes, 436);
-        assert!(Layout::new(u64::MAX, 0).is_none());
+        assert_eq!(std::mem::offset_of!(Header, encoding), 208);
+        assert_eq!(std::mem::offset_of!(Header, scan_counts), 224);
+        assert_eq!(std::mem::offset_of!(Header, scan_reason), 256);
+        let layout = Layout::new(3, RecordShape::compact(COLOR_NEIGHBORS as u32, true)).unwrap();
+        let sections = layout.sections.map(|s| (s.offset, s.length));
+        assert_eq!(sections, [(384, 32), (416, 84), (512, 18), (544, 144)]);
+        assert_eq!(layout.total_bytes, 692);
+        let plain = Layout::new(3, RecordShape::compact(0, false)).unwrap();
+        assert_eq!(plain.sections.map(|s| (s.offset, s.length)), [(384, 32), (416, 84), (512, 0), (512, 0)]);
+        assert_eq!(plain.total_bytes, 516);
+        let full = Layout::new(3, RecordShape::full(COLOR_NEIGHBORS as u32)).unwrap();
+        assert_eq!(
+            full.sections.map(|s| (s.offset, s.length)),
+            [(384, 72), (464, 96), (560, 36), (608, 144)]
+        );
+        assert!(Layout::new(u64::MAX, RecordShape::compact(0, false)).is_none());
     }
 
     #[test]
     fn room_moves_the_sections_but_not_their_lengths() {
-        let layout = Layout::with_room(3, 5, COLOR_NEIGHBORS as u32).unwrap();
-        assert_eq!(layout.sections[0], Section { offset: 208, length: 72 });
-        assert_eq!(layout.sections[1], Section { offset: 336, length: 96 });
-        assert_eq!(layout.sections[2], Section { offset: 496, length: 36 });
-        assert_eq!(layout.sections[3], Section { offset: 560, length: 144 });
-        assert_eq!(layout.total_bytes, 708, "the last section's room is not kept");
-        assert_eq!(Layout::of_table(layout.sections, 3, COLOR_NEIGHBORS as u32).unwrap().total_bytes, 708);
-        assert!(Layout::of_table(layout.sections, 4, COLOR_NEIGHBORS as u32).is_none());
-        assert!(Layout::with_room(3, u64::MAX, 0).is_none());
+        let shape = RecordShape::compact(COLOR_NEIGHBORS as u32, true);
+        let layout = Layout::with_room(3, 5, shape).unwrap();
+        let sections = layout.sections.map(|s| (s.offset, s.length));
+        assert_eq!(sections, [(384, 32), (416, 84), (560, 18), (592, 144)]);
+        assert_eq!(layout.total_bytes, 740, "the last section's room is not kept");
+        assert_eq!(Layout::of_table(layout.sections, 3, shape).unwrap().total_bytes, 740);
+        assert!(Layout::of_table(layout.sections, 4, shape).is_none());
+        assert!(Layout::with_room(3, u64::MAX, shape).is_none());
     }
 }

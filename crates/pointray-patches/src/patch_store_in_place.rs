@@ -1,20 +1,24 @@
-//! A patch store written in place while its patches are still being made. Each section has
-//! room for a bound on the patch count (`Layout::with_room`), so every batch of patches goes
-//! straight to its place in the output as it comes, and the disk writes it while later
-//! batches are made. Finishing writes only the header, the colour neighbours mapped to
-//! patches, and the checksum: the store `patch_store_write::write_sections` writes with the
-//! same room, byte for byte.
+//! A compact patch store written in place while its patches are still being made. Each
+//! section has room for a bound on the patch count (`Layout::with_room`), so every batch of
+//! patches goes straight to its place in the output as it comes, and the disk writes it while
+//! later batches are made. Blocks (`compact_patches`) are cut at the same patches whatever
+//! the batches: a block a batch leaves unfinished waits in memory for the next. Finishing
+//! writes the last block, the header, the colour neighbours mapped to patches, and the
+//! checksum: the same store whichever batches its patches came in.
 
 use std::os::unix::fs::FileExt;
 use std::path::Path;
 
 use crc32fast::Hasher;
 use pointray_io::AtomicFile;
+use pointray_kernels::{COLOR_NEIGHBORS, PatchCold, PatchHot};
 use rayon::prelude::*;
 
+use crate::compact_patches::{BLOCK_PATCHES, BlockFrame, CompactColor, CompactPatch, cold_problem};
+use crate::compact_patches::{colors_of, frames_of, patches_of};
 use crate::parallel_checksum::{joined, piece_hasher, zeros_hasher};
 use crate::patch_set::PatchSet;
-use crate::patch_store::{HEADER_BYTES, Layout, SECTION_COUNT, StoreError};
+use crate::patch_store::{HEADER_BYTES, Layout, RecordShape, SECTION_COUNT, StoreError};
 use crate::patch_store_write::{StoreSummary, header_for, store_error};
 
 /// The section of colour neighbours, which name input points until the store is finished.
@@ -28,10 +32,14 @@ const PIECE_BYTES: usize = 1 << 20;
 pub struct StoreInPlace {
     output: AtomicFile,
     room: u64,
-    /// Where each section starts.
-    starts: [u64; SECTION_COUNT],
-    /// Patches written so far.
+    /// The records' shape and where each section starts, fixed by the first patches.
+    placed: Option<(RecordShape, [u64; SECTION_COUNT])>,
+    /// Patches appended so far.
     patches: u64,
+    /// Patches encoded and written so far: whole blocks, until the store is finished.
+    encoded: u64,
+    /// The records of the block the last batch left unfinished.
+    pending: (Vec<PatchHot>, Vec<PatchCold>),
     /// The checksum of each section's bytes so far; the neighbours' come when mapped.
     hashers: [Hasher; NEIGHBOR_SECTION],
 }
@@ -39,40 +47,106 @@ pub struct StoreInPlace {
 impl StoreInPlace {
     /// A store to become `path`, with room for `room` patches.
     pub fn create(path: &Path, room: u64) -> Result<Self, StoreError> {
-        let overflow = || StoreError::InconsistentPatchSet {
-            path: path.to_path_buf(),
-            problem: format!("room for {room} patches overflows a file's length"),
-        };
-        let layout = Layout::with_room(0, room, 0).ok_or_else(overflow)?;
+        if Layout::with_room(0, room, RecordShape::compact(COLOR_NEIGHBORS as u32, true)).is_none() {
+            let problem = format!("room for {room} patches overflows a file's length");
+            return Err(StoreError::InconsistentPatchSet { path: path.to_path_buf(), problem });
+        }
         let output = AtomicFile::create(path).map_err(|e| store_error(path, e))?;
-        let starts = layout.sections.map(|section| section.offset);
-        Ok(Self { output, room, starts, patches: 0, hashers: Default::default() })
+        Ok(Self {
+            output,
+            room,
+            placed: None,
+            patches: 0,
+            encoded: 0,
+            pending: Default::default(),
+            hashers: Default::default(),
+        })
     }
 
     /// Writes `set`'s records after those written so far, its colour neighbours naming input
-    /// points.
+    /// points. The first patches fix the colour neighbours per patch; a store has colour
+    /// columns when it has colour neighbours.
     pub fn append(&mut self, set: &PatchSet) -> Result<(), StoreError> {
         let count = set.len() as u64;
+        if count == 0 {
+            return Ok(());
+        }
         if self.patches + count > self.room {
             let problem = format!("{} patches overflow the room for {}", self.patches + count, self.room);
             return Err(self.inconsistent(problem));
         }
-        let sections: [&[u8]; SECTION_COUNT] = [
-            bytemuck::cast_slice(&set.aabbs),
-            bytemuck::cast_slice(&set.hot),
-            bytemuck::cast_slice(&set.cold),
-            bytemuck::cast_slice(&set.color_neighbors),
+        let slots = (set.color_neighbors.len() as u64 / count) as u32;
+        let (shape, starts) = self.placed(slots)?;
+        if shape.neighbor_slots != slots || set.color_neighbors.len() as u64 != count * u64::from(slots) {
+            return Err(self.inconsistent("the batches' colour neighbours per patch differ".into()));
+        }
+        if let Some(problem) = cold_problem(&set.cold, shape.colors) {
+            return Err(self.inconsistent(problem));
+        }
+        let at = starts[NEIGHBOR_SECTION] + self.patches * 4 * u64::from(slots);
+        self.write_at(bytemuck::cast_slice(&set.color_neighbors), at).map_err(|e| self.io_error(e))?;
+        self.patches += count;
+        self.encode(&set.hot, &set.cold)
+    }
+
+    /// The shape and section starts, fixed now by a batch of `slots` colour neighbours a patch
+    /// if no batch has fixed them yet.
+    fn placed(&mut self, slots: u32) -> Result<(RecordShape, [u64; SECTION_COUNT]), StoreError> {
+        if let Some(placed) = self.placed {
+            return Ok(placed);
+        }
+        let shape = RecordShape::compact(slots, slots != 0);
+        let layout =
+            Layout::with_room(0, self.room, shape).ok_or_else(|| self.inconsistent("no room".into()))?;
+        let placed = (shape, layout.sections.map(|section| section.offset));
+        self.placed = Some(placed);
+        Ok(placed)
+    }
+
+    /// Encodes and writes the whole blocks of the pending records followed by `hot` and
+    /// `cold`, keeping the rest pending.
+    fn encode(&mut self, mut hot: &[PatchHot], mut cold: &[PatchCold]) -> Result<(), StoreError> {
+        if !self.pending.0.is_empty() {
+            let take = (BLOCK_PATCHES - self.pending.0.len()).min(hot.len());
+            self.pending.0.extend_from_slice(&hot[..take]);
+            self.pending.1.extend_from_slice(&cold[..take]);
+            (hot, cold) = (&hot[take..], &cold[take..]);
+            if self.pending.0.len() < BLOCK_PATCHES {
+                return Ok(());
+            }
+            let (pending_hot, pending_cold) = std::mem::take(&mut self.pending);
+            self.write_blocks(&pending_hot, &pending_cold)?;
+        }
+        let whole = hot.len() / BLOCK_PATCHES * BLOCK_PATCHES;
+        self.write_blocks(&hot[..whole], &cold[..whole])?;
+        self.pending = (hot[whole..].to_vec(), cold[whole..].to_vec());
+        Ok(())
+    }
+
+    /// Encodes `hot` and `cold`, which start a block, and writes them after those encoded.
+    fn write_blocks(&mut self, hot: &[PatchHot], cold: &[PatchCold]) -> Result<(), StoreError> {
+        if hot.is_empty() {
+            return Ok(());
+        }
+        let (shape, starts) = self.placed.expect("placed by the first batch");
+        let frames = frames_of(hot, cold);
+        let (patches, colors) = rayon::join(
+            || patches_of(&frames, hot, cold),
+            || if shape.colors { colors_of(cold) } else { Vec::new() },
+        );
+        let first = self.encoded;
+        let block = first / BLOCK_PATCHES as u64;
+        let sections: [(&[u8], u64); NEIGHBOR_SECTION] = [
+            (bytemuck::cast_slice(&frames), block * size_of::<BlockFrame>() as u64),
+            (bytemuck::cast_slice(&patches), first * size_of::<CompactPatch>() as u64),
+            (bytemuck::cast_slice(&colors), first * size_of::<CompactColor>() as u64),
         ];
-        let first = self.patches;
-        let hashers: Vec<Hasher> = (0..SECTION_COUNT)
-            .into_par_iter()
-            .map(|index| {
-                let bytes = sections[index];
-                let at = self.starts[index] + first * (bytes.len() as u64 / count.max(1));
-                let written = self.write_at(bytes, at)?;
-                if index != NEIGHBOR_SECTION {
-                    self.output.start_writeback(at, bytes.len() as u64);
-                }
+        let hashers: Vec<Hasher> = sections
+            .par_iter()
+            .zip(starts)
+            .map(|(&(bytes, offset), start)| {
+                let written = self.write_at(bytes, start + offset)?;
+                self.output.start_writeback(start + offset, bytes.len() as u64);
                 Ok(written)
             })
             .collect::<std::io::Result<_>>()
@@ -80,22 +154,30 @@ impl StoreInPlace {
         for (running, written) in self.hashers.iter_mut().zip(hashers) {
             running.combine(&written);
         }
-        self.patches += count;
+        self.encoded += hot.len() as u64;
         Ok(())
     }
 
-    /// Maps the colour neighbours through `neighbor`, writes the header of `summary` (whose
-    /// patches are those appended) and the checksum, and renames the store into place.
+    /// Writes the last block, maps the colour neighbours through `neighbor`, writes the
+    /// header of `summary` (whose patches are those appended) and the checksum, and renames
+    /// the store into place.
     pub fn finish(
-        self,
+        mut self,
         summary: &StoreSummary,
         neighbor: impl Fn(u32) -> u32 + Sync,
     ) -> Result<(), StoreError> {
-        let layout = Layout::with_room(self.patches, self.room, summary.neighbor_slots)
-            .filter(|_| summary.patches == self.patches && summary.room == self.room)
+        let (shape, _) = self.placed(summary.neighbor_slots)?;
+        let (pending_hot, pending_cold) = std::mem::take(&mut self.pending);
+        self.write_blocks(&pending_hot, &pending_cold)?;
+        let layout = Layout::with_room(self.patches, self.room, shape)
+            .filter(|_| {
+                summary.patches == self.patches
+                    && summary.room == self.room
+                    && summary.neighbor_slots == shape.neighbor_slots
+            })
             .ok_or_else(|| self.inconsistent("the summary is not of the patches written".into()))?;
-        let neighbors = self.map_neighbors(layout.sections[NEIGHBOR_SECTION].length, &neighbor)?;
-        let header = header_for(summary, &layout);
+        let neighbors = self.map_neighbors(layout.sections[NEIGHBOR_SECTION], &neighbor)?;
+        let header = header_for(summary, &layout, shape);
         let mut checksum = piece_hasher(bytemuck::bytes_of(&header));
         let mut position = HEADER_BYTES as u64;
         for (section, hasher) in layout.sections.iter().zip(self.hashers.iter().chain([&neighbors])) {
@@ -111,14 +193,14 @@ impl StoreInPlace {
         self.output.commit().map_err(|e| store_error(&target, e))
     }
 
-    /// Rewrites the neighbour section's `length` bytes through `neighbor`, on every core,
-    /// and returns their checksum.
+    /// Rewrites the neighbour section's bytes through `neighbor`, on every core, and returns
+    /// their checksum.
     fn map_neighbors(
         &self,
-        length: u64,
+        section: crate::patch_store::Section,
         neighbor: &(impl Fn(u32) -> u32 + Sync),
     ) -> Result<Hasher, StoreError> {
-        let start = self.starts[NEIGHBOR_SECTION];
+        let (start, length) = (section.offset, section.length);
         let pieces = length.div_ceil(PIECE_BYTES as u64);
         let file = self.output.file();
         let hashers = (0..pieces)

@@ -1,5 +1,5 @@
-//! Writing the patch store (`patch_store`'s layout): whole from a `PatchSet`, or section by
-//! section from parts that never sit in memory together (the tiles of a merge).
+//! Writing the patch store (`patch_store`'s layout) whole from a `PatchSet`: compact, as
+//! `write` does, or with the full records, as tile files embed it.
 
 use std::io::Write;
 use std::path::Path;
@@ -7,14 +7,21 @@ use std::path::Path;
 use glam::DVec3;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS};
 
+use crate::compact_patches::{
+    BLOCK_PATCHES, BlockFrame, cold_problem, colors_of, frames_of, is_plain, patches_of,
+};
 use crate::patch_set::PatchSet;
 use crate::patch_store::{
-    FORMAT_VERSION, HEADER_BYTES, Header, Layout, MAGIC, SECTION_COUNT, StoreError, StoredSettings,
+    Encoding, FORMAT_VERSION, HEADER_BYTES, Header, Layout, MAGIC, RecordShape, StoreError, StoredSettings,
 };
 use crate::prep_settings::PrepSettings;
+use crate::scan_structure::ScanStructure;
+
+/// Blocks encoded at a time while writing a whole set: a few MiB of compact records.
+const CHUNK_BLOCKS: usize = 256;
 
 /// What a store's header says of its patches.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct StoreSummary {
     pub settings: PrepSettings,
     pub offset: DVec3,
@@ -26,6 +33,7 @@ pub struct StoreSummary {
     pub room: u64,
     /// Colour neighbours per patch: 0 or `COLOR_NEIGHBORS`.
     pub neighbor_slots: u32,
+    pub scan: ScanStructure,
 }
 
 impl StoreSummary {
@@ -39,33 +47,30 @@ impl StoreSummary {
     }
 }
 
-/// Receives a section's bytes, in as many pieces as its writer likes.
-pub type SectionSink<'a> = dyn FnMut(&[u8]) -> std::io::Result<()> + 'a;
-
-/// Writes `patches` to `path` atomically (`pointray_io::write_atomically`): a temporary file
-/// in the same directory, renamed over `path` only once complete.
+/// Writes `patches` compactly to `path` atomically (`pointray_io::write_atomically`): a
+/// temporary file in the same directory, renamed over `path` only once complete. The store
+/// records no scan structure.
 pub fn write(path: &Path, patches: &PatchSet) -> Result<(), StoreError> {
-    let summary = summary_of(patches, path)?;
-    write_sections(path, &summary, |section, sink| sink(section_bytes(patches, section)))
+    write_with_scan(path, patches, &ScanStructure::NotRecorded)
 }
 
-/// Writes `patches` as a store into `out`; `path` names it in errors.
-pub fn write_to(out: &mut impl Write, patches: &PatchSet, path: &Path) -> Result<(), StoreError> {
-    let summary = summary_of(patches, path)?;
-    write_contents(out, &summary, &mut |section, sink| sink(section_bytes(patches, section)))
-        .map_err(|source| StoreError::Io { path: path.to_path_buf(), source })
-}
-
-/// Writes a store of `summary`'s patches to `path` atomically, `fill` handing each section's
-/// bytes (0: boxes, 1: hot, 2: cold, 3: colour neighbours) to the sink it is given; a
-/// section of the wrong length fails the write.
-pub fn write_sections(
-    path: &Path,
-    summary: &StoreSummary,
-    mut fill: impl FnMut(usize, &mut SectionSink) -> std::io::Result<()>,
-) -> Result<(), StoreError> {
-    pointray_io::write_atomically(path, |file| write_contents(file, summary, &mut fill))
+/// Writes `patches` compactly to `path` atomically, recording the `scan` structure prep found.
+pub fn write_with_scan(path: &Path, patches: &PatchSet, scan: &ScanStructure) -> Result<(), StoreError> {
+    let (summary, shape) = summary_of(patches, scan, Encoding::Compact, path)?;
+    pointray_io::write_atomically(path, |file| write_contents(file, &summary, shape, patches))
         .map_err(|error| store_error(path, error))
+}
+
+/// Writes `patches` as a store of `encoding` into `out`; `path` names it in errors.
+pub fn write_to(
+    out: &mut impl Write,
+    patches: &PatchSet,
+    encoding: Encoding,
+    path: &Path,
+) -> Result<(), StoreError> {
+    let (summary, shape) = summary_of(patches, &ScanStructure::NotRecorded, encoding, path)?;
+    write_contents(out, &summary, shape, patches)
+        .map_err(|source| StoreError::Io { path: path.to_path_buf(), source })
 }
 
 pub(crate) fn store_error(path: &Path, error: pointray_io::IoError) -> StoreError {
@@ -81,30 +86,37 @@ fn overflow() -> std::io::Error {
     std::io::Error::other("the patch count overflows the store's length")
 }
 
-fn wrong_length(index: usize, found: u64, wanted: u64) -> std::io::Error {
-    std::io::Error::other(format!("section {index} has {found} bytes, its patches need {wanted}"))
-}
-
-fn summary_of(patches: &PatchSet, path: &Path) -> Result<StoreSummary, StoreError> {
-    let neighbor_slots = neighbor_slots(patches)
-        .map_err(|problem| StoreError::InconsistentPatchSet { path: path.to_path_buf(), problem })?;
-    Ok(StoreSummary {
+/// The header's summary of `patches` and the shape of their records, once they are seen to
+/// be consistent and in range: a compact store would otherwise turn a NaN into a number.
+fn summary_of(
+    patches: &PatchSet,
+    scan: &ScanStructure,
+    encoding: Encoding,
+    path: &Path,
+) -> Result<(StoreSummary, RecordShape), StoreError> {
+    let inconsistent = |problem| StoreError::InconsistentPatchSet { path: path.to_path_buf(), problem };
+    let neighbor_slots = neighbor_slots(patches).map_err(inconsistent)?;
+    let shape = match encoding {
+        Encoding::Full => RecordShape::full(neighbor_slots),
+        Encoding::Compact => {
+            patches.check().map_err(inconsistent)?;
+            let colors = neighbor_slots != 0 || patches.cold.iter().any(|c| !is_plain(c));
+            if let Some(problem) = cold_problem(&patches.cold, colors) {
+                return Err(inconsistent(problem));
+            }
+            RecordShape::compact(neighbor_slots, colors)
+        }
+    };
+    let summary = StoreSummary {
         settings: patches.settings,
         offset: patches.offset,
         bounds: patches.bounds(),
         patches: patches.len() as u64,
         room: patches.len() as u64,
         neighbor_slots,
-    })
-}
-
-fn section_bytes(patches: &PatchSet, section: usize) -> &[u8] {
-    match section {
-        0 => bytemuck::cast_slice(&patches.aabbs),
-        1 => bytemuck::cast_slice(&patches.hot),
-        2 => bytemuck::cast_slice(&patches.cold),
-        _ => bytemuck::cast_slice(&patches.color_neighbors),
-    }
+        scan: scan.clone(),
+    };
+    Ok((summary, shape))
 }
 
 /// How many colour neighbours each patch has (0 or `COLOR_NEIGHBORS`), or why the record
@@ -128,22 +140,30 @@ fn neighbor_slots(patches: &PatchSet) -> Result<u32, String> {
 fn write_contents(
     file: &mut impl Write,
     summary: &StoreSummary,
-    fill: &mut impl FnMut(usize, &mut SectionSink) -> std::io::Result<()>,
+    shape: RecordShape,
+    patches: &PatchSet,
 ) -> std::io::Result<()> {
     let mut writer = ChecksummedWriter::new(file);
-    let layout =
-        Layout::with_room(summary.patches, summary.room, summary.neighbor_slots).ok_or_else(overflow)?;
-    writer.write_all(bytemuck::bytes_of(&header_for(summary, &layout)))?;
+    let layout = Layout::with_room(summary.patches, summary.room, shape).ok_or_else(overflow)?;
+    writer.write_all(bytemuck::bytes_of(&header_for(summary, &layout, shape)))?;
+    let frames = match shape.encoding {
+        Encoding::Compact => frames_of(&patches.hot, &patches.cold),
+        Encoding::Full => Vec::new(),
+    };
     let mut position = HEADER_BYTES as u64;
-    for (index, section) in layout.sections.iter().enumerate().take(SECTION_COUNT) {
+    for (index, section) in layout.sections.iter().enumerate() {
         writer.write_zeros(section.offset - position)?;
-        let mut written = 0u64;
-        fill(index, &mut |bytes: &[u8]| {
-            written += bytes.len() as u64;
-            writer.write_all(bytes)
-        })?;
-        if written != section.length {
-            return Err(wrong_length(index, written, section.length));
+        match (shape.encoding, index) {
+            (_, 3) => writer.write_all(bytemuck::cast_slice(&patches.color_neighbors))?,
+            (Encoding::Full, 0) => writer.write_all(bytemuck::cast_slice(&patches.aabbs))?,
+            (Encoding::Full, 1) => writer.write_all(bytemuck::cast_slice(&patches.hot))?,
+            (Encoding::Full, _) => writer.write_all(bytemuck::cast_slice(&patches.cold))?,
+            (Encoding::Compact, 0) => writer.write_all(bytemuck::cast_slice(&frames))?,
+            (Encoding::Compact, 1) => write_compact_records(&mut writer, patches, &frames, true)?,
+            (Encoding::Compact, _) if shape.colors => {
+                write_compact_records(&mut writer, patches, &frames, false)?
+            }
+            (Encoding::Compact, _) => {}
         }
         position = section.offset + section.length;
     }
@@ -151,8 +171,30 @@ fn write_contents(
     writer.inner.write_all(&checksum.to_le_bytes())
 }
 
-pub(crate) fn header_for(summary: &StoreSummary, layout: &Layout) -> Header {
+/// The compact patches (`geometry`) or the colours of `patches`, a few blocks at a time.
+fn write_compact_records<W: Write>(
+    writer: &mut ChecksummedWriter<W>,
+    patches: &PatchSet,
+    frames: &[BlockFrame],
+    geometry: bool,
+) -> std::io::Result<()> {
+    let chunk = CHUNK_BLOCKS * BLOCK_PATCHES;
+    for (index, frames) in frames.chunks(CHUNK_BLOCKS).enumerate() {
+        let range = index * chunk..((index + 1) * chunk).min(patches.len());
+        let (hot, cold) = (&patches.hot[range.clone()], &patches.cold[range]);
+        if geometry {
+            writer.write_all(bytemuck::cast_slice(&patches_of(frames, hot, cold)))?;
+        } else {
+            writer.write_all(bytemuck::cast_slice(&colors_of(cold)))?;
+        }
+    }
+    Ok(())
+}
+
+pub(crate) fn header_for(summary: &StoreSummary, layout: &Layout, shape: RecordShape) -> Header {
     let bounds = summary.bounds.unwrap_or_default();
+    let (scan_kind, scan_counts, scan_reason) = Header::scan_fields(&summary.scan);
+    let compact = shape.encoding == Encoding::Compact;
     Header {
         magic: MAGIC,
         version: FORMAT_VERSION,
@@ -165,6 +207,12 @@ pub(crate) fn header_for(summary: &StoreSummary, layout: &Layout) -> Header {
         neighbor_slots: summary.neighbor_slots,
         settings: StoredSettings::of(&summary.settings),
         sensor: summary.settings.sensor.unwrap_or_default().to_array(),
+        encoding: if compact { 0 } else { 1 },
+        block_patches: if compact { BLOCK_PATCHES as u32 } else { 0 },
+        color_columns: shape.colors.into(),
+        scan_kind,
+        scan_counts,
+        scan_reason,
     }
 }
 

@@ -22,7 +22,6 @@ pub mod normals;
 pub mod orientation;
 mod orientation_tree;
 mod outlier_removal;
-mod patch_bounds;
 pub mod peak_memory;
 mod prep;
 mod prep_error;

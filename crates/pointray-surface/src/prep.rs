@@ -7,6 +7,7 @@ use pointray_io::{MemoryBudget, PointCloud};
 use pointray_kernels::interpolate_color::COLOR_SUPPORT_SCALE;
 use pointray_kernels::tangent_frame::normal_basis;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PackedTangentFrame, PatchCold, PatchHot, TangentFrame};
+use pointray_patches::patch_bounds::patch_box;
 use pointray_patches::prep_settings::MIN_NEIGHBOURS;
 use pointray_patches::{OutlierFilter, PatchSet, PrepSettings, RadiusMode};
 use rayon::prelude::*;
@@ -22,7 +23,6 @@ use crate::neighbors::{Neighbors, k_nearest};
 use crate::normals::pca_normals;
 use crate::orientation::{orient_consistently, orient_toward};
 use crate::outlier_removal::inliers;
-use crate::patch_bounds::patch_box;
 use crate::prep_error::PrepError;
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::prep_report::{FitCounts, PrepReport, RadiusFallbacks};
@@ -49,9 +49,10 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// revision 8 a scan's planes take normals smoothed over their neighbours'; in revision 9
 /// the hot record is 32 bytes, its frame and `c0` packed anew; in revision 10 equally distant
 /// neighbours come in index order; in revision 11 raw sweeps arrive with their scan lines and
-/// laser origins), so that caches keyed on the settings also key on this and never serve
-/// patches of an older rule.
-pub const PREP_REVISION: u32 = 11;
+/// laser origins; in revision 12 the store holds the compact record, so a cache entry decodes
+/// to quantised positions and radii), so that caches keyed on the settings also key on this
+/// and never serve patches of an older rule.
+pub const PREP_REVISION: u32 = 12;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(

@@ -10,6 +10,8 @@ use std::sync::LazyLock;
 use glam::Vec3;
 
 use crate::wendland::wendland;
+#[cfg(test)]
+use pointray_patches::patch_bounds::evaluate;
 
 /// Which model the fit ended with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -155,11 +157,6 @@ static RIM_DIRECTIONS: LazyLock<[(f64, f64); RIM_SAMPLES]> = LazyLock::new(|| {
 fn unscale(a: [f64; 6], h: f64) -> [f32; 6] {
     let h2 = h * h;
     [a[0], a[1] / h, a[2] / h, a[3] / h2, a[4] / h2, a[5] / h2].map(|c| c as f32)
-}
-
-/// Evaluates `f(u, v)` from stored coefficients.
-pub fn evaluate(c: &[f32; 6], u: f32, v: f32) -> f32 {
-    c[0] + c[1] * u + c[2] * v + c[3] * u * u + c[4] * u * v + c[5] * v * v
 }
 
 #[cfg(test)]

@@ -1,18 +1,20 @@
-//! Tile files merged into one patch store, section by section, so that no more than one
-//! tile's patches and a map from input points to patches are in memory at once: the store a
-//! single process prepping the same tiles writes, byte for byte.
+//! Tile files merged into one patch store, tile by tile through the writer a single process
+//! uses (`StoreInPlace`), so that no more than one tile's patches and a map from input points
+//! to patches are in memory at once: the store a single process prepping the same tiles
+//! writes, byte for byte.
 
 use std::path::{Path, PathBuf};
 
 use pointray_io::MemoryBudget;
-use pointray_patches::patch_store::{self, StoreSummary};
+use pointray_patches::ScanStructure;
+use pointray_patches::patch_store::StoreSummary;
+use pointray_patches::patch_store_in_place::StoreInPlace;
 
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::tiles::patch_map::PatchMap;
 use crate::tiles::stream_budget::StreamBudget;
 use crate::tiles::stream_error::StreamError;
-use crate::tiles::tile_file::{TileHeader, read_tile_file, read_tile_header, read_tile_section};
-use rayon::prelude::*;
+use crate::tiles::tile_file::{read_tile_file, read_tile_header};
 
 /// What a merge wrote.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -51,23 +53,12 @@ pub(crate) fn merge_ordered_tile_files(
     }
     progress.stage_started(Stage::MergeTiles, first.input_points);
     let started = std::time::Instant::now();
-    let (summary, patch_of, headers) = survey_tiles(ordered, first.input_points, progress)?;
-    patch_store::write_sections(output, &summary, |section, sink| {
-        for (path, header) in ordered.iter().zip(&headers) {
-            let bytes =
-                read_tile_section(path, header, section).map_err(|e| std::io::Error::other(e.to_string()))?;
-            if section < 3 {
-                sink(&bytes)?;
-                continue;
-            }
-            let patches: Vec<u32> = bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)
-                .into_par_iter()
-                .map(|input| patch_of.patch(input))
-                .collect();
-            sink(bytemuck::cast_slice(&patches))?
-        }
-        Ok(())
-    })?;
+    let (summary, patch_of) = survey_tiles(ordered, first.input_points, progress)?;
+    let mut store = StoreInPlace::create(output, summary.room)?;
+    for path in ordered {
+        store.append(&read_tile_file(path)?.1.patches)?;
+    }
+    store.finish(&summary, |input| patch_of.patch(input))?;
     progress.stage_finished(Stage::MergeTiles, started.elapsed());
     Ok(MergeSummary { tiles: ordered.len(), input_points: first.input_points, patches: summary.patches })
 }
@@ -113,20 +104,17 @@ fn in_tile_order(tiles: &[PathBuf]) -> Result<Vec<PathBuf>, StreamError> {
     Ok(slots.into_iter().flatten().collect())
 }
 
-/// The store's header from every tile, each of the `input_points` input points' patch, and
-/// each tile's header, with every tile file checked whole; tiles must agree on the settings
-/// and the offset.
+/// The store's header from every tile and each of the `input_points` input points' patch,
+/// with every tile file checked whole; tiles must agree on the settings and the offset.
 fn survey_tiles(
     ordered: &[PathBuf],
     input_points: u64,
     progress: &dyn PrepProgress,
-) -> Result<(StoreSummary, PatchMap, Vec<TileHeader>), StreamError> {
+) -> Result<(StoreSummary, PatchMap), StreamError> {
     let mut summary: Option<StoreSummary> = None;
     let mut patch_of = PatchMap::new(input_points as usize);
-    let mut headers = Vec::with_capacity(ordered.len());
     for path in ordered {
-        let (header, tile): (TileHeader, _) = read_tile_file(path)?;
-        headers.push(header);
+        let (header, tile) = read_tile_file(path)?;
         let set = &tile.patches;
         let total = summary.get_or_insert(StoreSummary {
             settings: set.settings,
@@ -135,6 +123,7 @@ fn survey_tiles(
             patches: 0,
             room: header.input_points,
             neighbor_slots: header.neighbor_slots,
+            scan: ScanStructure::NotRecorded,
         });
         if set.settings != total.settings || set.offset != total.offset {
             let problem = format!(
@@ -147,5 +136,5 @@ fn survey_tiles(
         total.add(set);
         progress.advanced(tile.sources.len() as u64);
     }
-    Ok((summary.expect("at least one tile"), patch_of, headers))
+    Ok((summary.expect("at least one tile"), patch_of))
 }

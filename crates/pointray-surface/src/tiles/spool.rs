@@ -12,9 +12,9 @@ use crate::tiles::patch_map::PatchMap;
 use crate::tiles::stream_error::StreamError;
 use crate::tiles::tiled_prep::TilePatches;
 use glam::DVec3;
-use pointray_patches::PrepSettings;
 use pointray_patches::patch_store::StoreSummary;
 use pointray_patches::patch_store_in_place::StoreInPlace;
+use pointray_patches::{PrepSettings, ScanStructure};
 
 pub(crate) struct TileSpool {
     store: StoreInPlace,
@@ -41,6 +41,7 @@ impl TileSpool {
             patches: 0,
             room: input_points,
             neighbor_slots: 0,
+            scan: ScanStructure::NotRecorded,
         };
         Ok(Self { store, patch_of, summary, tiles: 0, input_points })
     }

@@ -6,7 +6,7 @@
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRTILE\0\0"` |
-//! | 8 | 4 | version, u32 = 1 |
+//! | 8 | 4 | version, u32 = 2 |
 //! | 12 | 4 | tile index, u32 |
 //! | 16 | 4 | tile count, u32 |
 //! | 20 | 4 | colour neighbours per patch `m`, u32 |
@@ -14,20 +14,21 @@
 //! | 32 | 8 | patches `n`, u64 |
 //! | 40 | 4 n | each patch's input point, u32 |
 //! | 40 + 4 n | 4 m n | colour neighbours as input points, u32 (`0xffffffff`: none) |
-//! | then | | a patch store (`patch_store`) of the patches, `m` = 0 |
+//! | then | | a patch store (`patch_store`) of the patches with their full records, `m` = 0 |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it |
 
 use std::io::Read;
 use std::path::Path;
 
 use bytemuck::{Pod, Zeroable};
-use pointray_patches::patch_store;
+use pointray_patches::patch_store::{self, Encoding};
 
 use crate::tiles::stream_error::StreamError;
 use crate::tiles::tiled_prep::TilePatches;
 
 const MAGIC: [u8; 8] = *b"PRTILE\0\0";
-const VERSION: u32 = 1;
+/// Version 2 embeds a version 8 store of full records, which the merge quantises once.
+const VERSION: u32 = 2;
 const HEADER_BYTES: usize = size_of::<TileHeader>();
 
 /// Where a tile belongs.
@@ -64,7 +65,7 @@ pub fn write_tile_file(
     let mut bytes = bytemuck::bytes_of(&header).to_vec();
     bytes.extend_from_slice(bytemuck::cast_slice(&sources));
     bytes.extend_from_slice(bytemuck::cast_slice(&neighbors));
-    patch_store::write_to(&mut bytes, &patches, path)?;
+    patch_store::write_to(&mut bytes, &patches, Encoding::Full, path)?;
     let checksum = crc32fast::hash(&bytes);
     bytes.extend(checksum.to_le_bytes());
     pointray_io::write_atomically(path, |file| std::io::Write::write_all(file, &bytes))?;
@@ -97,11 +98,6 @@ pub fn read_tile_file(path: &Path) -> Result<(TileHeader, TilePatches), StreamEr
     if patches.len() != n || !patches.color_neighbors.is_empty() {
         return Err(bad(path, "its patches do not match its header's count"));
     }
-    // `read_tile_section` reads the sections where a store without room puts them.
-    let back_to_back = patch_store::Layout::new(n as u64, 0).map(|layout| layout.total_bytes);
-    if back_to_back != Some((body.len() - store_start) as u64) {
-        return Err(bad(path, "its store leaves room between its sections"));
-    }
     let table = |start: usize, len: usize| bytemuck::pod_collect_to_vec::<u8, u32>(&body[start..start + len]);
     let sources = table(HEADER_BYTES, 4 * n);
     patches.color_neighbors = table(HEADER_BYTES + 4 * n, 4 * m * n).into();
@@ -109,31 +105,6 @@ pub fn read_tile_file(path: &Path) -> Result<(TileHeader, TilePatches), StreamEr
         return Err(bad(path, "a patch names a point beyond the input's count"));
     }
     Ok((header, TilePatches { patches, sources }))
-}
-
-/// The bytes of store section `section` (0: boxes, 1: hot, 2: cold, 3: colour neighbours as
-/// input points) of a tile file that `read_tile_file` has already checked: a merge reads
-/// each section of each tile once, not the whole tile per section.
-pub(crate) fn read_tile_section(
-    path: &Path,
-    header: &TileHeader,
-    section: usize,
-) -> Result<Vec<u8>, StreamError> {
-    let (n, m) = (header.patches, u64::from(header.neighbor_slots));
-    let tables = HEADER_BYTES as u64 + 4 * n;
-    let (offset, length) = match section {
-        3 => (tables, 4 * m * n),
-        _ => {
-            let layout = patch_store::Layout::new(n, 0).ok_or_else(|| bad(path, "malformed tile header"))?;
-            let store = layout.sections[section];
-            (tables + 4 * m * n + store.offset, store.length)
-        }
-    };
-    let file = std::fs::File::open(path).map_err(|e| StreamError::scratch(path, e))?;
-    let mut bytes = vec![0; length as usize];
-    std::os::unix::fs::FileExt::read_exact_at(&file, &mut bytes, offset)
-        .map_err(|e| StreamError::scratch(path, e))?;
-    Ok(bytes)
 }
 
 fn checked_header(bytes: &[u8], path: &Path) -> Result<TileHeader, StreamError> {

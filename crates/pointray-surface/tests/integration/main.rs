@@ -4,6 +4,7 @@ mod analytic_surfaces;
 mod bunny;
 mod color_interpolation;
 mod common;
+mod compact_store;
 mod density_adaptive_radii;
 mod disk_scale;
 mod normals_analytic;

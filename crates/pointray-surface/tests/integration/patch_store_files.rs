@@ -1,5 +1,5 @@
-//! The patch store: bit-identical round trips and a distinct error for each kind of
-//! damage.
+//! The patch store: round trips within the compact records' bounds (bit-identical for the
+//! full records tile files embed) and a distinct error for each kind of damage.
 
 use crate::common;
 
@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use pointray_kernels::COLOR_NEIGHBORS;
-use pointray_patches::patch_store::{self, StoreError};
+use pointray_patches::patch_store::{self, Encoding, StoreError};
 use pointray_patches::{BoxKind, OutlierFilter, PatchSet, PrepSettings, RadiusMode, ScanMode};
 use pointray_surface::{NoProgress, prep};
 
@@ -25,8 +25,14 @@ fn written(directory: &Path, patches: &PatchSet) -> PathBuf {
     path
 }
 
+/// The section table's entry `i`: (offset, length).
+fn entry(bytes: &[u8], i: usize) -> (usize, usize) {
+    let word = |at: usize| u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
+    (word(72 + 16 * i), word(80 + 16 * i))
+}
+
 #[test]
-fn round_trip_is_bit_identical() {
+fn round_trip_keeps_every_record_within_the_compact_bounds() {
     let directory = tempfile::tempdir().unwrap();
     for box_kind in [BoxKind::Cube, BoxKind::Tight] {
         let patches = sample_patches(box_kind);
@@ -34,23 +40,38 @@ fn round_trip_is_bit_identical() {
         let loaded = patch_store::read(&path).expect("reading what was written");
         assert_eq!(loaded.settings, patches.settings);
         assert_eq!(loaded.offset.to_array().map(f64::to_bits), patches.offset.to_array().map(f64::to_bits));
-        let bytes = |p: &PatchSet| {
-            let mut all: Vec<u8> = bytemuck::cast_slice(&p.aabbs).to_vec();
-            all.extend_from_slice(bytemuck::cast_slice(&p.hot));
-            all.extend_from_slice(bytemuck::cast_slice(&p.cold));
-            all.extend_from_slice(bytemuck::cast_slice(&p.color_neighbors));
-            all
-        };
-        assert_eq!(bytes(&loaded), bytes(&patches));
         assert_eq!(loaded.len(), 3000);
-        assert_eq!(
-            loaded.color_neighbors.len(),
-            3000 * COLOR_NEIGHBORS,
-            "a coloured cloud keeps its neighbours"
-        );
+        crate::compact_store::assert_within_compact_bounds(&patches, &loaded);
+        assert_eq!(loaded.color_neighbors, patches.color_neighbors, "a coloured cloud keeps its neighbours");
+        for (hot, aabb) in loaded.hot.iter().zip(loaded.aabbs.iter()) {
+            assert_eq!(
+                *aabb,
+                pointray_patches::patch_bounds::patch_box(hot, box_kind),
+                "boxes are made again"
+            );
+        }
     }
     let leftovers = std::fs::read_dir(directory.path()).unwrap().count();
     assert_eq!(leftovers, 1, "no temporary files left behind");
+}
+
+#[test]
+fn the_full_records_round_trip_bit_identical() {
+    let patches = sample_patches(BoxKind::Tight);
+    let mut bytes = Vec::new();
+    let path = Path::new("tile.patches");
+    patch_store::write_to(&mut bytes, &patches, Encoding::Full, path).unwrap();
+    assert_eq!(patch_store::read_from(&bytes, path).unwrap(), patches);
+}
+
+#[test]
+fn a_set_no_renderer_can_build_on_is_not_written() {
+    let directory = tempfile::tempdir().unwrap();
+    let mut patches = sample_patches(BoxKind::Cube);
+    patches.aabbs[7].max[0] = f32::NAN;
+    let error = patch_store::write(&directory.path().join("bad.patches"), &patches).unwrap_err();
+    assert!(matches!(error, StoreError::InconsistentPatchSet { .. }), "{error:?}");
+    assert!(error.to_string().contains("box 7"), "{error}");
 }
 
 #[test]
@@ -93,7 +114,15 @@ fn a_cloud_without_colours_or_intensities_stores_no_neighbours() {
     let size = |p: &PatchSet| std::fs::metadata(written(directory.path(), p)).unwrap().len();
     let plain = PatchSet { color_neighbors: Default::default(), ..coloured.clone() };
     assert_eq!(size(&coloured) - size(&plain), neighbour_bytes);
-    assert_eq!(patch_store::read(&written(directory.path(), &patches)).unwrap(), patches);
+    let uncoloured = size(&patches);
+    assert!(
+        uncoloured <= 29 * patches.len() as u64 + 1024,
+        "{uncoloured} bytes for {} patches",
+        patches.len()
+    );
+    let loaded = patch_store::read(&written(directory.path(), &patches)).unwrap();
+    assert!(loaded.color_neighbors.is_empty() && loaded.len() == patches.len());
+    assert!(loaded.cold.iter().all(|c| c.color_rgba8 == u32::MAX && c.intensity == 0.0));
 }
 
 #[test]
@@ -126,7 +155,7 @@ fn a_neighbour_beyond_the_patches_is_malformed() {
 }
 
 #[test]
-fn a_read_store_is_mapped_and_outlives_a_new_store_written_over_it() {
+fn a_read_stores_neighbours_are_mapped_and_outlive_a_new_store_written_over_it() {
     let directory = tempfile::tempdir().unwrap();
     let (cubes, tight) = (sample_patches(BoxKind::Cube), sample_patches(BoxKind::Tight));
     let path = written(directory.path(), &cubes);
@@ -137,10 +166,12 @@ fn a_read_store_is_mapped_and_outlives_a_new_store_written_over_it() {
         loaded.cold.is_mapped(),
         loaded.color_neighbors.is_mapped(),
     ];
-    assert_eq!(sections, [true; 4], "a store's sections are mapped, not copied into memory");
+    assert_eq!(sections, [false, false, false, true], "decoded records are the process's, neighbours mapped");
+    let decoded_again = patch_store::read(&path).unwrap();
     patch_store::write(&path, &tight).unwrap();
-    assert_eq!(loaded, cubes, "a store written over a mapped one leaves the mapped one whole");
-    assert_eq!(patch_store::read(&path).unwrap(), tight);
+    assert_eq!(loaded, decoded_again, "a store written over a mapped one leaves the mapped one whole");
+    assert_eq!(loaded.color_neighbors, cubes.color_neighbors);
+    assert_eq!(patch_store::read(&path).unwrap().settings.boxes, BoxKind::Tight);
 }
 
 #[test]
@@ -163,12 +194,12 @@ fn damaged(damage: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, StoreError, tempfile:
 
 #[test]
 fn another_version_is_refused_by_name() {
-    // Version 5 stores (whose hot records were 36 bytes) are refused with the way out.
-    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&5u32.to_le_bytes()));
-    assert!(matches!(error, StoreError::WrongVersion { found: 5, .. }), "{error:?}");
+    // Version 7 stores (the full records, 68 bytes a patch) are refused with the way out.
+    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&7u32.to_le_bytes()));
+    assert!(matches!(error, StoreError::WrongVersion { found: 7, .. }), "{error:?}");
     let message = error.to_string();
     assert!(
-        message.contains("version 5, this build reads versions 6 and 7: re-run `pointray prep`"),
+        message.contains("patch store version 7, this build reads version 8 only: re-run `pointray prep`"),
         "{message}"
     );
     assert!(message.contains(&path.display().to_string()), "{message}");
@@ -194,42 +225,27 @@ fn resealed(bytes: &mut [u8]) {
     bytes[body..].copy_from_slice(&checksum.to_le_bytes());
 }
 
-#[test]
-fn version_6_stores_still_read() {
-    let (path, patches, _dir) = resealed_store(|bytes| bytes[8..12].copy_from_slice(&6u32.to_le_bytes()));
-    assert_eq!(patch_store::read(&path).unwrap(), patches);
-}
-
-/// `bytes` with `room` zero bytes between the boxes and the hot records, the later
+/// `bytes` with `room` zero bytes between the block frames and the patches, the later
 /// sections' offsets moved by as much.
 fn with_room(bytes: &mut Vec<u8>, room: usize) {
-    let entry =
-        |bytes: &[u8], i: usize| u64::from_le_bytes(bytes[72 + 16 * i..80 + 16 * i].try_into().unwrap());
-    let hot = entry(bytes, 1) as usize;
-    bytes.splice(hot..hot, std::iter::repeat_n(0u8, room));
+    let patches = entry(bytes, 1).0;
+    bytes.splice(patches..patches, std::iter::repeat_n(0u8, room));
     for i in 1..4 {
-        let moved = entry(bytes, i) + room as u64;
+        let moved = (entry(bytes, i).0 + room) as u64;
         bytes[72 + 16 * i..80 + 16 * i].copy_from_slice(&moved.to_le_bytes());
     }
 }
 
 #[test]
-fn room_between_sections_is_read_in_version_7_only() {
-    let (path, patches, _dir) = resealed_store(|bytes| with_room(bytes, 4096));
-    assert_eq!(patch_store::read(&path).unwrap(), patches);
-    let (_, error, _dir) = damaged(|bytes| {
-        bytes[8..12].copy_from_slice(&6u32.to_le_bytes());
-        with_room(bytes, 16);
-        resealed(bytes);
-    });
-    assert!(error.to_string().contains("a version 6 store leaves no room between its sections"), "{error}");
+fn room_between_sections_is_read() {
+    let directory = tempfile::tempdir().unwrap();
+    let expected = patch_store::read(&written(directory.path(), &sample_patches(BoxKind::Cube))).unwrap();
+    let (path, _, _dir) = resealed_store(|bytes| with_room(bytes, 4096));
+    assert_eq!(patch_store::read(&path).unwrap(), expected);
 }
 
 #[test]
 fn section_tables_out_of_order_or_misaligned_are_malformed() {
-    // The table's entries: (offset, length) at 72 + 16 i.
-    let entry =
-        |bytes: &[u8], i: usize| u64::from_le_bytes(bytes[72 + 16 * i..80 + 16 * i].try_into().unwrap());
     let damages: [fn(&mut Vec<u8>, u64, u64); 3] = [
         |bytes, boxes, _| bytes[88..96].copy_from_slice(&boxes.to_le_bytes()), // hot over the boxes
         |bytes, _, hot| bytes[88..96].copy_from_slice(&(hot + 4).to_le_bytes()), // misaligned
@@ -237,7 +253,7 @@ fn section_tables_out_of_order_or_misaligned_are_malformed() {
     ];
     for damage in damages {
         let (_, error, _dir) = damaged(|bytes| {
-            let (boxes, hot) = (entry(bytes, 0), entry(bytes, 1));
+            let (boxes, hot) = (entry(bytes, 0).0 as u64, entry(bytes, 1).0 as u64);
             damage(bytes, boxes, hot);
             resealed(bytes);
         });
@@ -278,26 +294,39 @@ fn other_files_are_not_patch_stores() {
     assert!(matches!(missing, StoreError::Io { .. }));
 }
 
-/// A change to a patch set that its store must not survive.
-type Damage = fn(&mut PatchSet);
+/// A change to a store's bytes that its checksum, made again, does not catch.
+type Damage = fn(&mut Vec<u8>);
+
+/// Where `field` of compact patch `i` lies: position (8 bytes), frame, aspect and c1, c2..c5
+/// (8), radii (4).
+fn patch_field(bytes: &[u8], i: usize, field: usize) -> usize {
+    entry(bytes, 1).0 + 28 * i + field
+}
 
 #[test]
 fn numbers_no_renderer_can_build_on_are_malformed_despite_a_good_checksum() {
-    let directory = tempfile::tempdir().unwrap();
-    let good = sample_patches(BoxKind::Tight);
     let damages: [(&str, Damage); 5] = [
-        ("box 7", |p| p.aabbs[7].max[0] = f32::NAN),
-        ("box 0", |p| {
-            p.aabbs[0] = pointray_kernels::Aabb::new(glam::Vec3::splat(-1e38), glam::Vec3::splat(1e38))
+        ("a block's box is not finite", |b| {
+            let at = entry(b, 0).0 + 4;
+            b[at..at + 4].copy_from_slice(&f32::NAN.to_le_bytes())
         }),
-        ("offset", |p| p.offset.y = f64::NAN),
-        ("patch 3", |p| p.hot[3].coefficients[1] = 0x7c00_7c00), // two half-float infinities
-        ("cold record 5", |p| p.cold[5].color_reach = f32::NAN),
+        ("a block's radius scale is out of range", |b| {
+            let at = entry(b, 0).0 + 24;
+            b[at..at + 4].copy_from_slice(&900i32.to_le_bytes())
+        }),
+        ("offset", |b| b[32..40].copy_from_slice(&f64::NAN.to_le_bytes())),
+        ("patch 3", |b| {
+            let at = patch_field(b, 3, 16);
+            b[at..at + 4].copy_from_slice(&0x7c00_7c00u32.to_le_bytes()) // two half-float infinities
+        }),
+        ("cold record 5", |b| {
+            let at = patch_field(b, 5, 26);
+            b[at..at + 2].copy_from_slice(&0x7e00u16.to_le_bytes()) // a half-float NaN reach
+        }),
     ];
     for (expected, damage) in damages {
-        let mut patches = good.clone();
-        damage(&mut patches);
-        let error = patch_store::read(&written(directory.path(), &patches)).unwrap_err();
+        let (path, _, _dir) = resealed_store(damage);
+        let error = patch_store::read(&path).unwrap_err();
         assert!(matches!(error, StoreError::Malformed { .. }), "{expected}: {error:?}");
         assert!(error.to_string().contains(expected), "{expected}: {error}");
     }

@@ -3,11 +3,9 @@
 
 use std::sync::LazyLock;
 
+use crate::prep_settings::BoxKind;
 use glam::{Vec2, Vec3};
 use pointray_kernels::{Aabb, Patch, PatchHot};
-use pointray_patches::BoxKind;
-
-use crate::quadratic_fit::evaluate;
 
 /// Rim samples of the tight box.
 const RIM_SAMPLES: usize = 24;
@@ -67,6 +65,11 @@ static RIM_DIRECTIONS: LazyLock<[Vec2; RIM_SAMPLES]> = LazyLock::new(|| {
         Vec2::new(angle.cos(), angle.sin())
     })
 });
+
+/// Evaluates `f(u, v) = c0 + c1 u + c2 v + c3 u² + c4 uv + c5 v²`.
+pub fn evaluate(c: &[f32; 6], u: f32, v: f32) -> f32 {
+    c[0] + c[1] * u + c[2] * v + c[3] * u * u + c[4] * u * v + c[5] * v * v
+}
 
 /// Where the gradient of `f` vanishes, if the quadratic part is not singular.
 fn critical_point(c: &[f32; 6]) -> Option<Vec2> {
