@@ -16,6 +16,7 @@ use glslang::{
 /// interface tests reflect on (`src/spirv_reflection.rs`).
 const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
     ("primary.rgen", ShaderStage::RayGeneration),
+    ("ray_list.rgen", ShaderStage::RayGeneration),
     ("background.rmiss", ShaderStage::Miss),
     ("shadow.rmiss", ShaderStage::Miss),
     ("patch.rint", ShaderStage::Intersect),

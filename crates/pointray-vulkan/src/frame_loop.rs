@@ -1,7 +1,6 @@
 //! The benchmark's frame loop: many frames of one prepared scene in one submission, each
 //! between GPU timestamps, with the copy-out recorded but no per-frame read-back on the host.
 
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use ash::vk;
@@ -9,11 +8,11 @@ use pointray_scene::RenderSettings;
 
 use crate::barrier::record_memory_barrier;
 use crate::binding_table::ShaderBindingTable;
-use crate::context::GpuContext;
-use crate::error::{VkContext, VulkanError};
+use crate::error::VulkanError;
 use crate::pipeline::RayTracingPipeline;
 use crate::prepared_scene::PreparedScene;
 use crate::renderer::VulkanRenderer;
+use crate::timestamp_pool::{TimestampPool, span};
 use crate::trace::{record_copy_out, record_trace_rays, validate};
 use crate::trace_target::{PixelOutput, TargetBuffers, TraceTarget};
 
@@ -31,45 +30,6 @@ pub struct FrameLoopTimes {
     pub wall: Duration,
 }
 
-/// A timestamp query pool, destroyed on drop (after its submission was waited on).
-struct TimestampPool {
-    context: Arc<GpuContext>,
-    handle: vk::QueryPool,
-    count: u32,
-}
-
-impl TimestampPool {
-    fn new(context: &Arc<GpuContext>, count: u32) -> Result<Self, VulkanError> {
-        let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(count);
-        // SAFETY: the device is alive; the pool is destroyed in Drop.
-        let handle = unsafe { context.device.create_query_pool(&info, None) }
-            .during("creating the frame loop's timestamp pool")?;
-        Ok(Self { context: context.clone(), handle, count })
-    }
-
-    fn ticks(&self) -> Result<Vec<u64>, VulkanError> {
-        let mut ticks = vec![0u64; self.count as usize];
-        // SAFETY: every query was written by a completed submission.
-        unsafe {
-            self.context.device.get_query_pool_results(
-                self.handle,
-                0,
-                &mut ticks,
-                vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
-            )
-        }
-        .during("reading the frame loop's timestamps")?;
-        Ok(ticks)
-    }
-}
-
-impl Drop for TimestampPool {
-    fn drop(&mut self) {
-        // SAFETY: the submission that used the pool has completed.
-        unsafe { self.context.device.destroy_query_pool(self.handle, None) };
-    }
-}
-
 impl VulkanRenderer {
     /// Traces `frames` frames of `scene` back to back in one submission and returns each
     /// frame's GPU times. Each frame's `output` is copied to host-visible memory, as a viewer
@@ -84,12 +44,12 @@ impl VulkanRenderer {
         self.ensure_prepared_here(scene)?;
         let (pipeline, table) = self.pipeline_for(settings.integrator)?;
         validate(settings, &self.context, pipeline)?;
-        let Some(period_ns) = self.context.timestamp_period_ns else {
+        if self.context.timestamp_period_ns.is_none() {
             return Err(VulkanError::InvalidSettings(format!(
                 "{} has no timestamps on its compute queue; the frame loop times with them",
                 self.context.info.name
             )));
-        };
+        }
         if frames == 0 {
             return Err(VulkanError::InvalidSettings("the frame loop needs at least one frame".into()));
         }
@@ -102,9 +62,7 @@ impl VulkanRenderer {
         })?;
         let wall = started.elapsed();
         let ticks = pool.ticks()?;
-        let span = |from: u64, to: u64| {
-            Duration::from_secs_f64(to.saturating_sub(from) as f64 * f64::from(period_ns) * 1e-9)
-        };
+        let span = |from: u64, to: u64| span(&self.context, from, to);
         let per_frame = ticks.chunks_exact(STAMPS_PER_FRAME as usize);
         Ok(FrameLoopTimes {
             trace: per_frame.clone().map(|t| span(t[0], t[1])).collect(),

@@ -2,7 +2,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use pointray_kernels::{PatchCold, PatchHot};
+use pointray_kernels::{PatchAcceptance, PatchCold, PatchHot, Ray};
 use pointray_scene::light::WhittedLight;
 use pointray_scene::{BufferLayout, Light, Material, RenderSettings};
 
@@ -165,6 +165,49 @@ impl TraceSettings {
             first_sample: settings.first_sample,
         }
     }
+
+    /// The push constants of a ray list's cast: only the hit shaders' settings count.
+    pub(crate) fn for_ray_list(acceptance: PatchAcceptance, buffer_layout: BufferLayout) -> Self {
+        Self { acceptance: acceptance.code(), buffer_layout: layout_code(buffer_layout), ..Self::zeroed() }
+    }
+}
+
+/// One ray of a ray list (`ListedRay` in bindings.glsl), in the prepared scene's frame: hits
+/// are reported between `t_min` and `t_max` along `direction`, in its units.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct ListedRay {
+    pub origin: [f32; 3],
+    pub t_min: f32,
+    pub direction: [f32; 3],
+    pub t_max: f32,
+}
+
+/// What a listed ray met (`RayHit` in bindings.glsl).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct RayHit {
+    /// The distance along the ray; negative on a miss.
+    pub t: f32,
+    /// The object's index in the scene; `RenderedImage::MISS` on a miss.
+    pub object_index: u32,
+    /// The patch's index in its whole set, or the triangle's; `RenderedImage::MISS` on a miss.
+    pub primitive: u32,
+}
+
+impl ListedRay {
+    /// `ray` (a unit direction gives distances in the scene's units) between `t_min` and
+    /// `t_max`.
+    pub fn new(ray: &Ray, t_min: f32, t_max: f32) -> Self {
+        Self { origin: ray.origin.to_array(), t_min, direction: ray.direction.to_array(), t_max }
+    }
+}
+
+impl RayHit {
+    /// The distance along the ray, `None` on a miss.
+    pub fn distance(&self) -> Option<f32> {
+        (self.t >= 0.0).then_some(self.t)
+    }
 }
 
 /// The value the shaders receive for `layout` (`LAYOUT_*` in bindings.glsl).
@@ -190,7 +233,7 @@ mod tests {
     use std::mem::{offset_of, size_of};
 
     use pointray_kernels::interpolate_color::{COLOR_NEIGHBORS, COLOR_WALK_SCANS, NO_NEIGHBOR};
-    use pointray_kernels::{PatchAcceptance, bsdf, light_source};
+    use pointray_kernels::{bsdf, light_source};
     use pointray_scene::RenderedImage;
 
     use super::*;
@@ -281,7 +324,28 @@ mod tests {
                 ("ids", offset_of!(PixelRecord, ids)),
             ],
         );
+        assert_members(
+            &probe,
+            "ListedRay",
+            &[
+                ("origin", offset_of!(ListedRay, origin)),
+                ("t_min", offset_of!(ListedRay, t_min)),
+                ("direction", offset_of!(ListedRay, direction)),
+                ("t_max", offset_of!(ListedRay, t_max)),
+            ],
+        );
+        assert_members(
+            &probe,
+            "RayHit",
+            &[
+                ("t", offset_of!(RayHit, t)),
+                ("object_index", offset_of!(RayHit, object_index)),
+                ("primitive", offset_of!(RayHit, primitive)),
+            ],
+        );
         for (glsl_struct, size) in [
+            ("ListedRay", size_of::<ListedRay>()),
+            ("RayHit", size_of::<RayHit>()),
             ("PatchHot", size_of::<PatchHot>()),
             ("PatchCold", size_of::<PatchCold>()),
             ("PatchCombined", size_of::<PatchCombined>()),

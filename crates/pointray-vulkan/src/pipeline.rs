@@ -19,6 +19,11 @@ pub(crate) const BINDING_LIGHTS: u32 = 3;
 pub(crate) const BINDING_PIXELS: u32 = 4;
 pub(crate) const BINDING_DISPLAY_PIXELS: u32 = 5;
 pub(crate) const BINDING_ACCUMULATION: u32 = 6;
+pub(crate) const BINDING_RAY_LIST: u32 = 7;
+pub(crate) const BINDING_RAY_HITS: u32 = 8;
+/// The storage buffers among the bindings: the objects, lights, the three pixel outputs and
+/// the ray list's two.
+pub(crate) const STORAGE_BINDING_COUNT: u32 = 7;
 
 /// Shader groups in pipeline order; the shader binding table follows it.
 pub(crate) const GROUP_RAYGEN: u32 = 0;
@@ -107,6 +112,8 @@ fn create_set_layout(device: &ash::Device) -> Result<vk::DescriptorSetLayout, Vu
         binding(BINDING_PIXELS, vk::DescriptorType::STORAGE_BUFFER, raygen),
         binding(BINDING_DISPLAY_PIXELS, vk::DescriptorType::STORAGE_BUFFER, raygen),
         binding(BINDING_ACCUMULATION, vk::DescriptorType::STORAGE_BUFFER, raygen),
+        binding(BINDING_RAY_LIST, vk::DescriptorType::STORAGE_BUFFER, raygen),
+        binding(BINDING_RAY_HITS, vk::DescriptorType::STORAGE_BUFFER, raygen),
     ];
     let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
     // SAFETY: the device is alive.
@@ -211,6 +218,8 @@ mod tests {
             ("Pixels", BINDING_PIXELS),
             ("DisplayPixels", BINDING_DISPLAY_PIXELS),
             ("Accumulation", BINDING_ACCUMULATION),
+            ("RayList", BINDING_RAY_LIST),
+            ("RayHits", BINDING_RAY_HITS),
         ] {
             assert_eq!(probe.binding_of(glsl_name), (0, binding), "{glsl_name}: (set, binding)");
         }

@@ -33,6 +33,8 @@ pub struct VulkanRenderer {
     /// and kept (targets' descriptor sets are allocated with its layout): renderers that
     /// never path trace (Table 1, Whitted windows) pay nothing for them.
     path: OnceLock<(RayTracingPipeline, ShaderBindingTable)>,
+    /// Ray lists' pipeline and table (`cast_rays`), likewise built on first use.
+    ray_list: OnceLock<(RayTracingPipeline, ShaderBindingTable)>,
     pub(crate) table: ShaderBindingTable,
     pub(crate) pipeline: RayTracingPipeline,
     pub(crate) context: Arc<GpuContext>,
@@ -83,7 +85,13 @@ impl VulkanRenderer {
     fn with_raygen(context: &Arc<GpuContext>, raygen: &[u8]) -> Result<Self, VulkanError> {
         let pipeline = RayTracingPipeline::with_raygen(context, raygen, Integrator::Whitted)?;
         let table = ShaderBindingTable::new(context, &pipeline)?;
-        Ok(Self { path: OnceLock::new(), table, pipeline, context: context.clone() })
+        Ok(Self {
+            path: OnceLock::new(),
+            ray_list: OnceLock::new(),
+            table,
+            pipeline,
+            context: context.clone(),
+        })
     }
 
     pub fn device_name(&self) -> &str {
@@ -165,14 +173,31 @@ impl VulkanRenderer {
         if integrator == Integrator::Whitted {
             return Ok((&self.pipeline, &self.table));
         }
-        if self.path.get().is_none() {
-            let pipeline =
-                RayTracingPipeline::with_raygen(&self.context, shaders::PATH_RGEN, Integrator::Path)?;
+        self.built(&self.path, shaders::PATH_RGEN, Integrator::Path)
+    }
+
+    /// The pipeline and binding table of ray lists. Their ray generation shades nothing, so
+    /// no integrator applies; no frame is traced with it.
+    pub(crate) fn ray_list_pipeline(
+        &self,
+    ) -> Result<(&RayTracingPipeline, &ShaderBindingTable), VulkanError> {
+        self.built(&self.ray_list, shaders::RAY_LIST_RGEN, Integrator::Whitted)
+    }
+
+    /// The pipeline and table in `slot`, built with `raygen` on the first call.
+    fn built<'a>(
+        &self,
+        slot: &'a OnceLock<(RayTracingPipeline, ShaderBindingTable)>,
+        raygen: &[u8],
+        integrator: Integrator,
+    ) -> Result<(&'a RayTracingPipeline, &'a ShaderBindingTable), VulkanError> {
+        if slot.get().is_none() {
+            let pipeline = RayTracingPipeline::with_raygen(&self.context, raygen, integrator)?;
             let table = ShaderBindingTable::new(&self.context, &pipeline)?;
             // Only `&self` builds it; a racing build's copy is dropped.
-            let _ = self.path.set((pipeline, table));
+            let _ = slot.set((pipeline, table));
         }
-        let (pipeline, table) = self.path.get().expect("built above");
+        let (pipeline, table) = slot.get().expect("built above");
         Ok((pipeline, table))
     }
 

@@ -15,6 +15,8 @@ pub(crate) const PRIMARY_REORDERING_RGEN: &[u8] = spirv!("primary_reordering.rge
 pub(crate) const PATH_RGEN: &[u8] = spirv!("path.rgen");
 /// `path.rgen` with `COUNT_RAYS`.
 pub(crate) const PATH_COUNTING_RGEN: &[u8] = spirv!("path_counting.rgen");
+/// Casts a list of rays to their closest hits, shading nothing (`RayListTarget`).
+pub(crate) const RAY_LIST_RGEN: &[u8] = spirv!("ray_list.rgen");
 pub(crate) const BACKGROUND_RMISS: &[u8] = spirv!("background.rmiss");
 pub(crate) const SHADOW_RMISS: &[u8] = spirv!("shadow.rmiss");
 pub(crate) const PATCH_RINT: &[u8] = spirv!("patch.rint");

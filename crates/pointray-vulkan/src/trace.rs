@@ -10,10 +10,11 @@ use pointray_scene::RenderSettings;
 use crate::barrier::record_memory_barrier;
 use crate::binding_table::ShaderBindingTable;
 use crate::context::GpuContext;
-use crate::error::{VkContext, VulkanError};
+use crate::error::VulkanError;
 use crate::gpu_records::TraceSettings;
 use crate::pipeline::{RayTracingPipeline, all_ray_stages};
 use crate::prepared_scene::PreparedScene;
+use crate::timestamp_pool::TimestampPool;
 use crate::trace_target::{TargetBuffers, TraceTarget};
 
 /// Checks `settings` against the device and against the integrator `pipeline` implements.
@@ -58,16 +59,14 @@ pub(crate) fn record(
     target: &TargetBuffers,
     settings: &RenderSettings,
 ) {
-    let device = &context.device;
     // SAFETY: `command` is recording; every bound resource outlives the submission.
     unsafe {
-        if let Some(pool) = target.timestamps {
-            device.cmd_reset_query_pool(command, pool, 0, 2);
-            device.cmd_write_timestamp(command, vk::PipelineStageFlags::TOP_OF_PIPE, pool, 0);
+        if let Some(pool) = &target.timestamps {
+            pool.record_start(command);
         }
         record_trace_rays(context, command, pipeline, table, target, settings);
-        if let Some(pool) = target.timestamps {
-            device.cmd_write_timestamp(command, vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, pool, 1);
+        if let Some(pool) = &target.timestamps {
+            pool.record_traced(command);
         }
         record_copy_out(context, command, target);
     }
@@ -85,22 +84,47 @@ pub(crate) unsafe fn record_trace_rays(
     target: &TargetBuffers,
     settings: &RenderSettings,
 ) {
+    let push = TraceSettings::new(settings, target.output.code());
+    let launch = Launch { set: target.descriptors.set, push, width: settings.width, height: settings.height };
+    // SAFETY: the caller's contract.
+    unsafe { record_launch(context, command, pipeline, table, &launch) };
+}
+
+/// What one `vkCmdTraceRaysKHR` binds and how many invocations it launches.
+pub(crate) struct Launch {
+    pub(crate) set: vk::DescriptorSet,
+    pub(crate) push: TraceSettings,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+}
+
+/// Records the binding of the pipeline, `launch`'s set and push constants, and the trace.
+///
+/// # Safety
+/// `command` is recording; every bound resource outlives the submission.
+pub(crate) unsafe fn record_launch(
+    context: &GpuContext,
+    command: vk::CommandBuffer,
+    pipeline: &RayTracingPipeline,
+    table: &ShaderBindingTable,
+    launch: &Launch,
+) {
     let device = &context.device;
     let bind_point = vk::PipelineBindPoint::RAY_TRACING_KHR;
-    let push = TraceSettings::new(settings, target.output.code());
+    let push = bytemuck::bytes_of(&launch.push);
     // SAFETY: the caller's contract.
     unsafe {
         device.cmd_bind_pipeline(command, bind_point, pipeline.pipeline);
-        device.cmd_bind_descriptor_sets(command, bind_point, pipeline.layout, 0, &[target.set], &[]);
-        device.cmd_push_constants(command, pipeline.layout, all_ray_stages(), 0, bytemuck::bytes_of(&push));
+        device.cmd_bind_descriptor_sets(command, bind_point, pipeline.layout, 0, &[launch.set], &[]);
+        device.cmd_push_constants(command, pipeline.layout, all_ray_stages(), 0, push);
         context.ray_tracing.cmd_trace_rays(
             command,
             &table.raygen,
             &table.miss,
             &table.hit,
             &table.callable,
-            settings.width,
-            settings.height,
+            launch.width,
+            launch.height,
             1,
         );
     }
@@ -162,26 +186,6 @@ pub(crate) unsafe fn record_read_back(
     }
 }
 
-/// Time the GPU spent between the two timestamps around the trace.
-fn gpu_time(context: &GpuContext, target: &TargetBuffers) -> Result<Option<Duration>, VulkanError> {
-    let (Some(pool), Some(period)) = (target.timestamps, context.timestamp_period_ns) else {
-        return Ok(None);
-    };
-    let mut ticks = [0u64; 2];
-    // SAFETY: both timestamps were written by a completed submission.
-    unsafe {
-        context.device.get_query_pool_results(
-            pool,
-            0,
-            &mut ticks,
-            vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
-        )
-    }
-    .during("reading trace timestamps")?;
-    let nanoseconds = ticks[1].saturating_sub(ticks[0]) as f64 * f64::from(period);
-    Ok(Some(Duration::from_nanos(nanoseconds as u64)))
-}
-
 /// Traces `scene` into `target`, re-allocating it only if the size changed; returns the
 /// GPU time of the trace itself.
 pub(crate) fn trace_into(
@@ -197,5 +201,5 @@ pub(crate) fn trace_into(
     context.submit_and_wait("tracing rays", |command| {
         record(context, command, pipeline, table, buffers, settings)
     })?;
-    gpu_time(context, buffers)
+    buffers.timestamps.as_ref().map(TimestampPool::trace_time).transpose()
 }

@@ -12,13 +12,15 @@ use pointray_scene::{Integrator, RenderSettings, RenderedImage};
 
 use crate::buffer::Buffer;
 use crate::context::GpuContext;
-use crate::error::{VkContext, VulkanError};
-use crate::gpu_records::{FrameUniforms, PixelRecord};
+use crate::descriptor_set::{StorageRange, TraceDescriptors};
+use crate::error::VulkanError;
+use crate::gpu_records::PixelRecord;
+use crate::kept_buffers::kept_or_made;
 use crate::pipeline::{
-    BINDING_ACCUMULATION, BINDING_DISPLAY_PIXELS, BINDING_FRAME, BINDING_LIGHTS, BINDING_OBJECTS,
-    BINDING_PIXELS, BINDING_TLAS, RayTracingPipeline,
+    BINDING_ACCUMULATION, BINDING_DISPLAY_PIXELS, BINDING_LIGHTS, BINDING_PIXELS, RayTracingPipeline,
 };
 use crate::prepared_scene::PreparedScene;
+use crate::timestamp_pool::TimestampPool;
 
 /// What a trace writes per pixel.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -64,16 +66,14 @@ pub(crate) struct TargetBuffers {
     pub(crate) output: PixelOutput,
     width: u32,
     height: u32,
-    uniforms: Buffer,
     /// The output the shaders write (`output`'s records); the other binding gets `unused`.
     pub(crate) written: Buffer,
     unused: Buffer,
     /// The display outputs' running sums (`unused` for the AOV output, which has none).
     accumulation: Option<Buffer>,
     pub(crate) readback: Buffer,
-    descriptor_pool: vk::DescriptorPool,
-    pub(crate) set: vk::DescriptorSet,
-    pub(crate) timestamps: Option<vk::QueryPool>,
+    pub(crate) descriptors: TraceDescriptors,
+    pub(crate) timestamps: Option<TimestampPool>,
 }
 
 impl TraceTarget {
@@ -137,16 +137,12 @@ impl TraceTarget {
         width: u32,
         height: u32,
     ) -> Result<&mut TargetBuffers, VulkanError> {
-        let reusable = self
-            .buffers
-            .as_ref()
-            .is_some_and(|b| Arc::ptr_eq(&b.context, context) && (b.width, b.height) == (width, height));
-        if !reusable {
-            // The old buffers go first, so that a resize never holds both sizes at once.
-            self.buffers = None;
-            self.buffers = Some(TargetBuffers::new(context, pipeline, width, height, self.output)?);
-        }
-        Ok(self.buffers.as_mut().expect("made just above"))
+        let output = self.output;
+        kept_or_made(
+            &mut self.buffers,
+            |b| Arc::ptr_eq(&b.context, context) && (b.width, b.height) == (width, height),
+            || TargetBuffers::new(context, pipeline, width, height, output),
+        )
     }
 }
 
@@ -158,13 +154,6 @@ impl TargetBuffers {
         height: u32,
         output: PixelOutput,
     ) -> Result<Self, VulkanError> {
-        let uniforms = Buffer::new(
-            context,
-            "frame uniforms",
-            std::mem::size_of::<FrameUniforms>() as u64,
-            vk::BufferUsageFlags::UNIFORM_BUFFER,
-            MemoryLocation::CpuToGpu,
-        )?;
         let bytes = u64::from(width) * u64::from(height) * output.bytes_per_pixel();
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC;
         let written = Buffer::new(context, "pixel output", bytes, usage, MemoryLocation::GpuOnly)?;
@@ -185,112 +174,33 @@ impl TargetBuffers {
             vk::BufferUsageFlags::TRANSFER_DST,
             MemoryLocation::GpuToCpu,
         )?;
-        let (descriptor_pool, set) = allocate_set(context, pipeline)?;
-        let mut buffers = Self {
+        Ok(Self {
             context: context.clone(),
             output,
             width,
             height,
-            uniforms,
             written,
             unused,
             accumulation,
             readback,
-            descriptor_pool,
-            set,
-            timestamps: None,
-        };
-        if context.timestamp_period_ns.is_some() {
-            let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2);
-            // SAFETY: the device is alive; the pool is destroyed in Drop.
-            buffers.timestamps = Some(
-                unsafe { context.device.create_query_pool(&info, None) }
-                    .during("creating a timestamp pool")?,
-            );
-        }
-        Ok(buffers)
+            descriptors: TraceDescriptors::new(context, pipeline)?,
+            timestamps: TimestampPool::around_trace(context)?,
+        })
     }
 
     /// Points the descriptors at `scene` and writes its camera to the uniforms.
     fn bind(&mut self, scene: &PreparedScene) {
-        let uniforms = scene.frame_uniforms();
-        self.uniforms.write(bytemuck::bytes_of(&uniforms));
         let (pixels, display) = match self.output {
             PixelOutput::Aovs => (&self.written, &self.unused),
             PixelOutput::Display | PixelOutput::DisplayBgra => (&self.unused, &self.written),
         };
-        let structures = [scene.tlas.handle];
-        let mut tlas =
-            vk::WriteDescriptorSetAccelerationStructureKHR::default().acceleration_structures(&structures);
-        let whole = |buffer: &Buffer| {
-            [vk::DescriptorBufferInfo::default().buffer(buffer.handle).range(vk::WHOLE_SIZE)]
-        };
-        let infos = [
-            whole(&self.uniforms),
-            whole(&scene.objects),
-            whole(&scene.lights),
-            whole(pixels),
-            whole(display),
-            whole(self.accumulation.as_ref().unwrap_or(&self.unused)),
+        let storage = [
+            StorageRange::whole(BINDING_LIGHTS, &scene.lights),
+            StorageRange::whole(BINDING_PIXELS, pixels),
+            StorageRange::whole(BINDING_DISPLAY_PIXELS, display),
+            StorageRange::whole(BINDING_ACCUMULATION, self.accumulation.as_ref().unwrap_or(&self.unused)),
         ];
-        let write = |binding, ty| {
-            vk::WriteDescriptorSet::default().dst_set(self.set).dst_binding(binding).descriptor_type(ty)
-        };
-        let storage = vk::DescriptorType::STORAGE_BUFFER;
-        let writes = [
-            write(BINDING_TLAS, vk::DescriptorType::ACCELERATION_STRUCTURE_KHR)
-                .descriptor_count(1)
-                .push_next(&mut tlas),
-            write(BINDING_FRAME, vk::DescriptorType::UNIFORM_BUFFER).buffer_info(&infos[0]),
-            write(BINDING_OBJECTS, storage).buffer_info(&infos[1]),
-            write(BINDING_LIGHTS, storage).buffer_info(&infos[2]),
-            write(BINDING_PIXELS, storage).buffer_info(&infos[3]),
-            write(BINDING_DISPLAY_PIXELS, storage).buffer_info(&infos[4]),
-            write(BINDING_ACCUMULATION, storage).buffer_info(&infos[5]),
-        ];
-        // SAFETY: every written resource is alive; the caller's contract says the set is idle.
-        unsafe { self.context.device.update_descriptor_sets(&writes, &[]) };
-    }
-}
-
-fn allocate_set(
-    context: &GpuContext,
-    pipeline: &RayTracingPipeline,
-) -> Result<(vk::DescriptorPool, vk::DescriptorSet), VulkanError> {
-    let sizes = [
-        vk::DescriptorPoolSize::default()
-            .ty(vk::DescriptorType::ACCELERATION_STRUCTURE_KHR)
-            .descriptor_count(1),
-        vk::DescriptorPoolSize::default().ty(vk::DescriptorType::UNIFORM_BUFFER).descriptor_count(1),
-        vk::DescriptorPoolSize::default().ty(vk::DescriptorType::STORAGE_BUFFER).descriptor_count(5),
-    ];
-    let pool_info = vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes);
-    let device = &context.device;
-    // SAFETY: the device is alive; the pool is destroyed with the target's buffers.
-    let pool =
-        unsafe { device.create_descriptor_pool(&pool_info, None) }.during("creating a descriptor pool")?;
-    let layouts = [pipeline.set_layout];
-    let allocate = vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts);
-    // SAFETY: the pool has room for exactly this set.
-    match unsafe { device.allocate_descriptor_sets(&allocate) }.during("allocating a descriptor set") {
-        Ok(sets) => Ok((pool, sets[0])),
-        Err(error) => {
-            // SAFETY: nothing uses the new pool.
-            unsafe { device.destroy_descriptor_pool(pool, None) };
-            Err(error)
-        }
-    }
-}
-
-impl Drop for TargetBuffers {
-    fn drop(&mut self) {
-        // SAFETY: every trace into this target was waited on before its call returned.
-        unsafe {
-            self.context.device.destroy_descriptor_pool(self.descriptor_pool, None);
-            if let Some(pool) = self.timestamps {
-                self.context.device.destroy_query_pool(pool, None);
-            }
-        }
+        self.descriptors.write(scene, &storage);
     }
 }
 
