@@ -33,6 +33,7 @@ struct Cli {
 enum Command {
     Sample(commands::sample::SampleArgs),
     Prep(commands::prep::PrepArgs),
+    Info(commands::info::InfoArgs),
     Render(commands::render::RenderArgs),
     Devices(commands::devices::DevicesArgs),
     Fidelity(commands::fidelity::FidelityArgs),
@@ -53,6 +54,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Command::Sample(args) => commands::sample::run(args),
         Command::Prep(args) => commands::prep::run(args),
+        Command::Info(args) => commands::info::run(args),
         Command::Render(args) => commands::render::run(args),
         Command::Devices(args) => commands::devices::run(args),
         Command::Fidelity(args) => commands::fidelity::run(args),

@@ -4,6 +4,7 @@ use std::fmt;
 use std::time::Duration;
 
 use glam::DVec3;
+use pointray_patches::ScanStructure;
 
 use crate::density_radius::RadiusAdjustments;
 use crate::prep_progress::Stage;
@@ -65,6 +66,20 @@ pub struct ScanSummary {
 }
 
 impl PrepReport {
+    /// The scan structure as the patch store records it.
+    pub fn scan_structure(&self) -> ScanStructure {
+        match (self.scan, self.unstructured_because) {
+            (Some(ScanSummary { lines, returns_on_lines, surface_patches }), _) => ScanStructure::Lines {
+                lines: lines as u64,
+                returns_on_lines: returns_on_lines as u64,
+                patches: self.patches as u64,
+                surface_patches: surface_patches as u64,
+            },
+            (None, Some(reason)) => ScanStructure::Unstructured { reason: reason.to_string() },
+            (None, None) => ScanStructure::NotSought,
+        }
+    }
+
     pub fn total_time(&self) -> Duration {
         self.stage_times.iter().map(|(_, time)| *time).sum()
     }

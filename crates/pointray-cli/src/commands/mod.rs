@@ -6,6 +6,7 @@ pub mod compare;
 pub mod consistency;
 pub mod devices;
 pub mod fidelity;
+pub mod info;
 pub mod prep;
 pub mod render;
 pub mod resimulation;

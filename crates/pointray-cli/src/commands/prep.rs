@@ -154,7 +154,7 @@ fn prep_and_write(
     let (patches, report) = prep_owned(cloud, settings, bar).map_err(in_file)?;
     println!("{report}");
     let started = Instant::now();
-    pointray_patches::patch_store::write(&args.output, &patches)?;
+    pointray_patches::patch_store::write_with_scan(&args.output, &patches, &report.scan_structure())?;
     println!(
         "wrote {} patches to {} (offset stored in its header) in {:.3} s",
         patches.len(),

@@ -21,5 +21,6 @@ mod scan_command;
 mod scan_measures;
 mod scene_prep_keys;
 mod size_limits;
+mod store_info;
 mod streamed_prep;
 mod sweep_map;
