@@ -32,6 +32,8 @@ pub enum BenchError {
     Vulkan { case: String, source: pointray_vulkan::VulkanError },
     #[error("{case}: {source}")]
     Backend { case: String, source: pointray_render::BackendError },
+    #[error("{case}: {source}")]
+    Lidar { case: String, source: Box<pointray_lidar::LidarError> },
     #[error("{path}: cannot write the report: {message}")]
     WriteReport { path: PathBuf, message: String },
 }

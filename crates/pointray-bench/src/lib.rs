@@ -1,7 +1,8 @@
 //! `pointray bench`: the paper's Table 1 (and any scene) timed on the Vulkan renderer: GPU
 //! timestamps per frame (trace and whole frame), rays counted on the GPU, build times and
-//! memory, the mesh limit and the ablations; and the scale suite (1M to 1B points: prep,
-//! memory, store, load and frame rate, on either backend); reports as JSON and markdown.
+//! memory, the mesh limit and the ablations; the scale suite (1M to 1B points: prep,
+//! memory, store, load and frame rate, on either backend); and LiDAR re-simulation on the
+//! GPU (sweeps per second); reports as JSON and markdown.
 
 pub mod case_result;
 pub mod data;
@@ -11,6 +12,7 @@ pub mod measure;
 pub mod model_scene;
 pub mod output;
 pub mod report;
+pub mod resimulation;
 pub mod run;
 pub mod scale;
 pub mod scale_fit;
@@ -25,6 +27,7 @@ pub use error::BenchError;
 pub use measure::FrameCounts;
 pub use output::{write_json, write_text};
 pub use report::{LimitRow, Report};
+pub use resimulation::{ResimOptions, ResimReport, resim_markdown, run_resimulation};
 pub use run::{BenchOptions, run_scene_file, run_suite};
 pub use scale::{ScaleOptions, run_scale};
 pub use scale_render::ScaleBackend;

@@ -21,6 +21,9 @@ pub enum LidarError {
     Scene(#[from] SceneError),
     #[error(transparent)]
     Io(#[from] IoError),
+    /// The caster casting into a map (a GPU's) failed.
+    #[error("casting rays into the map failed: {0}")]
+    Cast(#[source] Box<dyn std::error::Error + Send + Sync>),
 }
 
 impl LidarError {

@@ -13,11 +13,14 @@
 //! - `scan.rs`: the casting, deterministic for a seed; `returns.rs`: what it records;
 //!   `ply_output.rs`: the points file.
 //! - `resimulation.rs`, `range_agreement.rs`: a real sweep's rays cast from a pose into a
-//!   prepped map, and the ranges met scored against those the sensor measured.
+//!   prepped map (by any `MapCaster`: the CPU's here, a GPU's in pointray-render), and the
+//!   ranges met scored against those the sensor measured; `caster_agreement.rs`: two
+//!   casters' ranges for the same rays set against each other.
 //!
 //! Positions are in the scene's coordinates: Z up for the street (as KITTI and nuScenes frames are),
 //! Y up for pointray scene files.
 
+pub mod caster_agreement;
 pub mod classification;
 pub mod error;
 pub mod lidar_scene;
@@ -32,13 +35,14 @@ pub mod sensor;
 pub mod street;
 pub mod surface;
 
+pub use caster_agreement::CasterAgreement;
 pub use classification::Classification;
 pub use error::LidarError;
-pub use lidar_scene::LidarScene;
+pub use lidar_scene::{LidarScene, map_scene};
 pub use pose::{SensorPose, UpAxis};
 pub use presets::SensorPreset;
 pub use range_agreement::RangeAgreement;
-pub use resimulation::{SweepRays, resimulate};
+pub use resimulation::{MapCaster, SENSOR_ACCEPTANCE, SweepRays, rays_in_map, resimulate};
 pub use returns::{Return, ScanStats, to_point_cloud};
 pub use scan::{NoProgress, Scan, ScanProgress, scan};
 pub use sensor::{Elevations, Sensor};

@@ -8,8 +8,9 @@ use glam::{Affine3A, DVec3, Vec3};
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::Ray;
 use pointray_patches::PatchSet;
-use pointray_scene::{Background, Geometry, LoadOptions, Material, PatchAcceptance, Scene, SceneObject};
+use pointray_scene::{Background, Geometry, LoadOptions, Material, Scene, SceneObject};
 
+use crate::resimulation::SENSOR_ACCEPTANCE;
 use crate::surface::{Surface, reflectance_of};
 use crate::{Classification, LidarError, UpAxis};
 
@@ -78,13 +79,7 @@ impl LidarScene {
     /// prepped from.
     pub fn from_patches(patches: Arc<PatchSet>) -> Result<Self, LidarError> {
         let offset = patches.offset;
-        let object = SceneObject {
-            name: "map".to_owned(),
-            transform: Affine3A::IDENTITY,
-            material: Material::default(),
-            geometry: Geometry::Patches(patches),
-        };
-        Ok(Self { offset, ..Self::from_scene(&scene_of(vec![object]), UpAxis::Z)? })
+        Ok(Self { offset, ..Self::from_scene(&map_scene(patches), UpAxis::Z)? })
     }
 
     /// A pointray scene file, Y up as all of them are. Point sets in it are prepped in memory.
@@ -97,10 +92,15 @@ impl LidarScene {
         self.up
     }
 
+    /// Where the renderer's origin lies in the scene's coordinates (`MapCaster::centre`).
+    pub fn centre(&self) -> DVec3 {
+        self.offset
+    }
+
     /// The first surface along a unit `direction` from `origin` within `max_range`.
     pub fn first_hit(&self, origin: DVec3, direction: DVec3, max_range: f64) -> Option<SurfaceHit> {
         let ray = Ray::new((origin - self.offset).as_vec3(), direction.as_vec3());
-        let hit = self.renderer.first_hit(&ray, 0.0, max_range as f32, PatchAcceptance::Disk)?;
+        let hit = self.renderer_hit(&ray, max_range as f32)?;
         let response = self.responses[hit.object as usize];
         Some(SurfaceHit {
             range: f64::from(hit.t),
@@ -109,6 +109,24 @@ impl LidarScene {
             class: response.class,
         })
     }
+
+    /// The renderer's first hit on `ray`, in its frame (the scene's less `centre`), as
+    /// sensors see surfaces: from t = 0, patches accepted over their support.
+    pub(crate) fn renderer_hit(&self, ray: &Ray, max_range: f32) -> Option<pointray_cpu::RayHit> {
+        self.renderer.first_hit(ray, 0.0, max_range, SENSOR_ACCEPTANCE)
+    }
+}
+
+/// A prepped map as a scene of one object, in its patches' recentred frame: what
+/// `LidarScene::from_patches` casts into, and what a GPU caster uploads.
+pub fn map_scene(patches: Arc<PatchSet>) -> Scene {
+    let object = SceneObject {
+        name: "map".to_owned(),
+        transform: Affine3A::IDENTITY,
+        material: Material::default(),
+        geometry: Geometry::Patches(patches),
+    };
+    scene_of(vec![object])
 }
 
 /// A scene of bare objects: scans need no camera or lights, but a `Scene` carries them.

@@ -3,6 +3,7 @@
 
 use glam::{DAffine3, DVec3};
 use pointray_io::PointCloud;
+use pointray_kernels::{PatchAcceptance, Ray};
 use rayon::prelude::*;
 
 use crate::{LidarError, LidarScene};
@@ -40,10 +41,49 @@ impl SweepRays {
     }
 }
 
-/// The range each ray of `rays`, moved by `pose` (sensor to map), meets in `scene` within
-/// `max_range`; `None` where it meets nothing.
+/// How sensors meet patches, on every caster: inside the box and over the patch's support.
+pub const SENSOR_ACCEPTANCE: PatchAcceptance = PatchAcceptance::Disk;
+
+/// Casts rays into a prepped map: the CPU renderer's BVHs (`LidarScene`), or a GPU's
+/// (pointray-render opens the one a backend choice names). Rays start at t = 0 and meet
+/// patches as `SENSOR_ACCEPTANCE` says.
+pub trait MapCaster {
+    /// Where the caster's frame has its origin, in the map's coordinates. Rays come in that
+    /// frame in f32, which keeps their precision where a map lies far from the origin.
+    fn centre(&self) -> DVec3;
+
+    /// The distance to the first surface along each ray (a unit direction) within
+    /// `max_range`, `None` where it meets none.
+    fn cast(&self, rays: &[Ray], max_range: f32) -> Result<Vec<Option<f32>>, LidarError>;
+}
+
+impl MapCaster for LidarScene {
+    fn centre(&self) -> DVec3 {
+        LidarScene::centre(self)
+    }
+
+    fn cast(&self, rays: &[Ray], max_range: f32) -> Result<Vec<Option<f32>>, LidarError> {
+        Ok(rays.par_iter().map(|ray| self.renderer_hit(ray, max_range).map(|hit| hit.t)).collect())
+    }
+}
+
+/// The rays of `rays`, moved by `pose` (sensor to map), in the frame of a caster centred at
+/// `centre`.
+pub fn rays_in_map(rays: &SweepRays, pose: &DAffine3, centre: DVec3) -> Vec<Ray> {
+    rays.origins
+        .par_iter()
+        .zip(&rays.directions)
+        .map(|(&origin, &direction)| {
+            let origin = pose.transform_point3(origin) - centre;
+            Ray::new(origin.as_vec3(), pose.transform_vector3(direction).normalize().as_vec3())
+        })
+        .collect()
+}
+
+/// The range each ray of `rays`, moved by `pose` (sensor to map), meets in the map `caster`
+/// casts into, within `max_range`; `None` where it meets nothing.
 pub fn resimulate(
-    scene: &LidarScene,
+    caster: &dyn MapCaster,
     pose: &DAffine3,
     rays: &SweepRays,
     max_range: f64,
@@ -51,14 +91,6 @@ pub fn resimulate(
     if !(max_range > 0.0 && max_range.is_finite()) {
         return Err(LidarError::invalid("max-range", format!("must be positive, not {max_range}")));
     }
-    Ok(rays
-        .origins
-        .par_iter()
-        .zip(&rays.directions)
-        .map(|(&origin, &direction)| {
-            let (origin, direction) =
-                (pose.transform_point3(origin), pose.transform_vector3(direction).normalize());
-            scene.first_hit(origin, direction, max_range).map(|hit| hit.range)
-        })
-        .collect())
+    let ranges = caster.cast(&rays_in_map(rays, pose, caster.centre()), max_range as f32)?;
+    Ok(ranges.into_iter().map(|range| range.map(f64::from)).collect())
 }

@@ -10,6 +10,9 @@ pub enum BackendError {
     /// The Vulkan renderer failed while preparing or tracing a scene.
     #[error("the Vulkan backend failed: {0}")]
     Vulkan(#[from] VulkanError),
+    /// A prepped map could not be made ready for casting rays on the CPU.
+    #[error(transparent)]
+    Lidar(Box<pointray_lidar::LidarError>),
     /// The CPU backend was handed a scene the Vulkan backend made ready.
     #[error("the CPU backend cannot trace a scene the Vulkan backend prepared")]
     CpuGivenVulkanScene,

@@ -8,6 +8,7 @@ mod backend_choice;
 mod environment;
 mod error;
 mod error_line;
+mod map_caster;
 mod missing_tiles;
 mod ready_scene;
 
@@ -16,6 +17,7 @@ pub use backend_choice::BackendChoice;
 pub use environment::device_options_from_environment;
 pub use error::BackendError;
 pub use error_line::error_line;
+pub use map_caster::GpuMapCaster;
 pub use missing_tiles::missing_tiles;
 pub use pointray_vulkan::{DeviceOptions, DeviceSelector};
 pub use ready_scene::{ReadyScene, Tracer};

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::Args;
 use pointray_bench::{
-    BenchError, BenchOptions, CaseResult, FrameCounts, ScaleBackend, ScaleOptions, ScaleRow, Suite,
-    run_scale, run_scene_file, run_suite,
+    BenchError, BenchOptions, CaseResult, FrameCounts, ResimOptions, ScaleBackend, ScaleOptions, ScaleRow,
+    Suite, resim_markdown, run_resimulation as run_resimulation_bench, run_scale, run_scene_file, run_suite,
 };
 use pointray_io::MemoryBudget;
 use pointray_render::{Backend, BackendChoice, DeviceSelector};
@@ -22,10 +22,12 @@ use crate::setting_flag::setting_flag;
 /// Time frames with GPU timestamps: FPS, frame and trace times, rays/s, build costs.
 #[derive(Args)]
 pub struct BenchArgs {
-    /// A scene file (.toml), a suite file (bench/suites/*.toml), `table1`, or `scale` (1M to
-    /// 1B points sampled on the dragon: prep, memory, store, load and FPS; give it --cache).
+    /// A scene file (.toml), a suite file (bench/suites/*.toml), `table1`, `scale` (1M to
+    /// 1B points sampled on the dragon: prep, memory, store, load and FPS; give it --cache),
+    /// or `resim` (a real Ouster sweep re-simulated on the GPU in a map of its neighbours:
+    /// sweeps per second, checked against the CPU and the real sweep).
     target: String,
-    /// Timed frames per case.
+    /// Timed frames per case (`resim`: timed sweeps).
     #[arg(long, default_value_t = 100)]
     frames: u32,
     /// Untimed frames before the timed ones, repeated until at least 0.5 s has passed.
@@ -130,6 +132,9 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     if args.target == "scale" {
         return run_scale_suite(&args);
     }
+    if args.target == "resim" {
+        return run_resimulation(&args);
+    }
     anyhow::ensure!(args.backend != BackendChoice::Cpu, "only the scale suite runs on the CPU backend");
     let data = args.data.clone().unwrap_or_else(data_dir);
     let target = Target::read(&args.target)?;
@@ -209,4 +214,17 @@ fn run_scale_suite(args: &BenchArgs) -> anyhow::Result<()> {
     };
     let report = run_scale(scale_backend, &options)?;
     emit(args, &|path| pointray_bench::write_json(&report, path), &pointray_bench::scale_markdown(&report))
+}
+
+fn run_resimulation(args: &BenchArgs) -> anyhow::Result<()> {
+    let outputs: Vec<PathBuf> = args.json.iter().chain(&args.markdown).cloned().collect();
+    pointray_io::ensure_outputs_spare_inputs(&[], &outputs)?;
+    let renderer = Backend::open_vulkan(&args.device, device_options(args.gpu_memory.budget))?;
+    println!("device: {}", renderer.device_info());
+    let options = ResimOptions {
+        data: args.data.clone().unwrap_or_else(data_dir),
+        sweeps: FrameCounts { warmup: args.warmup, timed: args.frames },
+    };
+    let report = run_resimulation_bench(&renderer, &options)?;
+    emit(args, &|path| pointray_bench::write_json(&report, path), &resim_markdown(&report))
 }

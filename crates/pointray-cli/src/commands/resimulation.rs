@@ -9,7 +9,10 @@ use std::time::Instant;
 use clap::Args;
 use glam::DAffine3;
 use pointray_io::SweepPoses;
-use pointray_lidar::{LidarScene, RangeAgreement, SweepRays, resimulate};
+use pointray_lidar::{RangeAgreement, SweepRays, resimulate};
+use pointray_render::{BackendChoice, DeviceSelector};
+
+use crate::backend::{GpuMemoryArg, backend_choice, open_backend};
 
 /// The map's ranges reach this far by default (metres): past the farthest return of the
 /// automotive sensors that sweeps come from.
@@ -35,6 +38,15 @@ pub struct ResimulationArgs {
     /// Write the comparison with the real sweep as JSON.
     #[arg(long, requires = "rays_from")]
     json: Option<PathBuf>,
+    /// Where `--rays-from`'s rays are cast: `auto` takes a hardware ray-tracing GPU if there
+    /// is one, otherwise the CPU backend.
+    #[arg(long, default_value = "auto", value_parser = backend_choice(), requires = "rays_from")]
+    backend: BackendChoice,
+    /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
+    #[arg(long, default_value = "auto", requires = "rays_from")]
+    device: DeviceSelector,
+    #[command(flatten)]
+    gpu_memory: GpuMemoryArg,
 }
 
 /// Re-simulates the sweep `rays_from` in `map` and writes it to `output`.
@@ -59,9 +71,11 @@ pub fn run(
     let real = pointray_io::formats::read_point_cloud(sweep)?;
     let rays = SweepRays::of_sweep(&real);
     let patches = pointray_patches::patch_store::read(map)?;
-    let scene = LidarScene::from_patches(Arc::new(patches))?;
+    let backend = open_backend(resimulation.backend, &resimulation.device, resimulation.gpu_memory.budget)?;
+    println!("backend: {}", backend.describe());
+    let caster = backend.map_caster(Arc::new(patches))?;
     let started = Instant::now();
-    let ranges = resimulate(&scene, &pose, &rays, max_range.unwrap_or(DEFAULT_MAX_RANGE))?;
+    let ranges = resimulate(caster.as_ref(), &pose, &rays, max_range.unwrap_or(DEFAULT_MAX_RANGE))?;
     let seconds = started.elapsed().as_secs_f64();
     write_sweep(output, &rays, &ranges)?;
     let agreement = RangeAgreement::of(&rays, &ranges);
