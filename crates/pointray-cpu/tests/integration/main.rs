@@ -3,6 +3,7 @@
 mod bad_input;
 mod camera_and_light_updates;
 mod common;
+mod compact_store_image;
 mod first_hit;
 mod hostile_coordinates;
 mod light_leaks;
