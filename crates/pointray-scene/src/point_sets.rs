@@ -119,14 +119,18 @@ pub(crate) fn load_points_file(
             Some(problem.to_string())
         }
     };
-    let patches = prep_file(path, &settings, read, options)?;
+    let prepped = prep_file(path, &settings, read, options)?;
     // Made only now, so that a failed load leaves no empty cache folder behind.
     cache_folder::make(cache_dir)
         .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
-    patch_store::write(&cache, &patches).map_err(PointSetError::Store)?;
+    patch_store::write(&cache, &prepped).map_err(PointSetError::Store)?;
+    drop(prepped);
     let name = cache.file_name().map(|name| name.to_string_lossy().into_owned()).unwrap_or_default();
     cache_folder::record(cache_dir, &name)
         .map_err(|source| PointSetError::CacheDir { path: cache_dir.to_path_buf(), source })?;
+    // The patches as the compact store holds them, so that a scene renders the same whether
+    // its cache was there or not.
+    let patches = patch_store::read(&cache).map_err(PointSetError::Store)?;
     let origin = match regenerated_because {
         Some(problem) => PointSetOrigin::CacheRegenerated { cache, problem },
         None => PointSetOrigin::Prepped { cache: Some(cache) },
