@@ -50,9 +50,10 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// the hot record is 32 bytes, its frame and `c0` packed anew; in revision 10 equally distant
 /// neighbours come in index order; in revision 11 raw sweeps arrive with their scan lines and
 /// laser origins; in revision 12 the store holds the compact record, so a cache entry decodes
-/// to quantised positions and radii), so that caches keyed on the settings also key on this
-/// and never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 12;
+/// to quantised positions and radii; in revision 13 a ray passing a scan's patch cuts its edge
+/// back to part of the way to the ray, not to the ray), so that caches keyed on the settings
+/// also key on this and never serve patches of an older rule.
+pub const PREP_REVISION: u32 = 13;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(
