@@ -35,6 +35,7 @@ mod shaped_patches;
 mod stage_clock;
 mod support_radius;
 pub mod tiles;
+mod trimmed_centre;
 pub mod uneven_sampling;
 mod wendland;
 

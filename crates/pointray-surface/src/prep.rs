@@ -31,6 +31,7 @@ use crate::scan::prep::{scan_shaped, scan_structure};
 use crate::shaped_patches::{ShapedPatches, count_fits};
 use crate::stage_clock::StageClock;
 use crate::support_radius::{RadiusSource, support_radius};
+use crate::trimmed_centre::trimmed_centre;
 
 /// The Wendland scale `h_i` is this multiple of the farthest neighbour's distance, so
 /// that every neighbour keeps some weight (METHOD.md §2.6, ours).
@@ -318,11 +319,10 @@ fn validate(
     }
 }
 
-/// Recentres on the bounding-box centre in f64, then drops to f32: geo-referenced
-/// coordinates (~10^6) would otherwise lose their centimetres.
+/// Recentres on the trimmed centre in f64, then drops to f32: geo-referenced coordinates
+/// (~10^6) would otherwise lose their centimetres.
 pub(crate) fn recentre(positions: &[DVec3]) -> (DVec3, Vec<Vec3>) {
-    let (min, max) = bounds_of(positions);
-    let centre = (min + max) * 0.5;
+    let centre = trimmed_centre(positions);
     (centre, recentre_on(positions, centre))
 }
 

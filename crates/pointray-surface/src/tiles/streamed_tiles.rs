@@ -1,9 +1,9 @@
 //! Prep in tiles from a cloud read in chunks, in bounded memory: a first read finds the
-//! bounds (and so the recentring, the duplicate distance and the Morton curve of the whole
-//! cloud, as a single pass has them), a second sorts the points along the curve out of
-//! core, and each tile is then read back with the halo of points its own reach, from
-//! whichever neighbouring tiles hold them. The tiles are those of `tiles::tiled_prep`, and so are
-//! their patches, bit for bit.
+//! bounds and the sample the centre is placed by (and so the recentring, the duplicate
+//! distance and the Morton curve of the whole cloud, as a single pass has them), a second
+//! sorts the points along the curve out of core, and each tile is then read back with the
+//! halo of points its own reach, from whichever neighbouring tiles hold them. The tiles are
+//! those of `tiles::tiled_prep`, and so are their patches, bit for bit.
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -30,6 +30,7 @@ use crate::tiles::sorted_points::SortedPoints;
 use crate::tiles::stream_budget::{MIN_TILE_POINTS, StreamBudget};
 use crate::tiles::stream_error::StreamError;
 use crate::tiles::tiled_prep::{TilePatches, own_patches};
+use crate::trimmed_centre::CentreSample;
 
 /// How many tiles to cut the cloud into.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,7 +64,7 @@ impl StreamPlan {
     ) -> Result<Self, StreamError> {
         let input = stream.path().to_path_buf();
         let budget = StreamBudget::new(memory, stream.attribute_bytes_per_point());
-        let (min, max) = survey_bounds(stream, budget.chunk_points(), progress)?;
+        let (min, max, centre) = survey_bounds(stream, budget.chunk_points(), progress)?;
         let points = stream.len();
         let prep_error = |source| StreamError::Prep { path: input.clone(), source };
         let k = settings.k.max(settings.normal_k) as usize;
@@ -77,7 +78,7 @@ impl StreamPlan {
         }
         let tiles = tile_count(count, points, settings, &budget, &input)?;
         let budget = budget.with_patch_map(points);
-        let offset = (min + max) * 0.5;
+        let offset = centre.centre();
         let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
         let frame = TileContext {
             offset,
@@ -260,16 +261,18 @@ pub(crate) struct GatheredTile {
     core: usize,
 }
 
-/// The bounds of the cloud, from a first read; non-finite coordinates are refused.
+/// The bounds of the cloud and the sample that places its centre, from a first read;
+/// non-finite coordinates are refused.
 fn survey_bounds(
     stream: &mut PointStream,
     chunk: usize,
     progress: &dyn PrepProgress,
-) -> Result<(DVec3, DVec3), StreamError> {
+) -> Result<(DVec3, DVec3, CentreSample), StreamError> {
     let input = stream.path().to_path_buf();
     progress.stage_started(Stage::Survey, stream.len());
     let started = std::time::Instant::now();
     let (mut min, mut max, mut seen) = (DVec3::INFINITY, DVec3::NEG_INFINITY, 0usize);
+    let mut centre = CentreSample::new(stream.len());
     stream.survey(chunk, |positions| {
         if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
             let source = PrepError::NonFiniteCoordinate { index: seen + i };
@@ -278,12 +281,13 @@ fn survey_bounds(
         for &p in positions {
             (min, max) = (min.min(p), max.max(p));
         }
+        centre.offer(seen as u64, positions);
         seen += positions.len();
         progress.advanced(positions.len() as u64);
         Ok(())
     })?;
     progress.stage_finished(Stage::Survey, started.elapsed());
-    Ok((min, max))
+    Ok((min, max, centre))
 }
 
 /// The tiles to cut `points` into within the budget.

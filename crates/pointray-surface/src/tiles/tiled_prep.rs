@@ -27,6 +27,7 @@ use crate::tiles::curve_span::CurveSpan;
 use crate::tiles::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::tiles::halo_test::HaloTest;
 use crate::tiles::patch_map::PatchMap;
+use crate::trimmed_centre::trimmed_centre;
 
 /// How a cloud is cut into tiles; the same input and count always give the same plan, so
 /// separate jobs agree on it.
@@ -51,7 +52,7 @@ impl TilePlan {
     /// `tiles` tiles (at least 1) of `cloud` prepped with `settings`.
     pub fn new(cloud: &PointCloud, settings: &PrepSettings, tiles: usize) -> Self {
         let bounds = bounds_of(&cloud.positions);
-        let offset = (bounds.0 + bounds.1) * 0.5;
+        let offset = trimmed_centre(&cloud.positions);
         let recentred = recentre_on(&cloud.positions, offset);
         let frame = TileContext {
             offset,
