@@ -52,8 +52,9 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// neighbours come in index order; in revision 11 raw sweeps arrive with their scan lines and
 /// laser origins; in revision 12 the store holds the compact record, so a cache entry decodes
 /// to quantised positions and radii; in revision 13 a ray passing a scan's patch cuts its edge
-/// back to part of the way to the ray, not to the ray), so that caches keyed on the settings
-/// also key on this and never serve patches of an older rule.
+/// back to part of the way to the ray, not to the ray, and a cloud is recentred on its
+/// trimmed centre, not its box's), so that caches keyed on the settings also key on this and
+/// never serve patches of an older rule.
 pub const PREP_REVISION: u32 = 13;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
@@ -118,6 +119,14 @@ fn neighbourhoods_within(settings: &PrepSettings, points: usize) -> PrepSettings
     if settings.k.max(settings.normal_k) <= others {
         return *settings;
     }
+    // A cloud too small even for that is refused next, saying so; a warning would miscount.
+    if points > MIN_NEIGHBOURS as usize {
+        warn_of_smaller_neighbourhoods(settings, points, others);
+    }
+    PrepSettings { k: settings.k.min(others), normal_k: settings.normal_k.min(others), ..*settings }
+}
+
+fn warn_of_smaller_neighbourhoods(settings: &PrepSettings, points: usize, others: u32) {
     tracing::warn!(
         "{points} points: each has {others} neighbours at most, so k = {} and normal_k = {} become {} and {}",
         settings.k,
@@ -125,7 +134,6 @@ fn neighbourhoods_within(settings: &PrepSettings, points: usize) -> PrepSettings
         settings.k.min(others),
         settings.normal_k.min(others)
     );
-    PrepSettings { k: settings.k.min(others), normal_k: settings.normal_k.min(others), ..*settings }
 }
 
 /// Each array is dropped as soon as its last stage is done, so that the peak (in the

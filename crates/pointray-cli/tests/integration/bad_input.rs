@@ -89,6 +89,13 @@ fn non_finite_coordinates() {
 fn fewer_points_than_k_plus_one() {
     // k shrinks to the points a small cloud has, but not below 3: 3 points are too few.
     assert_prep_refuses("few.ply", &ascii_ply(&grid(3)), "3 points, but k = 3 needs at least 4");
+    // The refusal says it all: no warning first that miscounts the neighbours of 2 points.
+    let dir = tempfile::tempdir().unwrap();
+    let input = write(dir.path(), "two.ply", &ascii_ply(&grid(2)));
+    let output = dir.path().join("out.patches");
+    let (ok, stderr) = pointray(&["prep", input.to_str().unwrap(), "-o", output.to_str().unwrap()]);
+    assert!(!ok && stderr.contains("2 points, but k = 3"), "{stderr}");
+    assert!(!stderr.contains("neighbours at most"), "{stderr}");
 }
 
 #[test]
