@@ -16,6 +16,7 @@ mod large_coordinates;
 mod leftovers;
 mod outputs_spare_inputs;
 mod path_integrator_flags;
+mod peer_files;
 mod prep_robustness_flags;
 mod scan_command;
 mod scan_measures;

@@ -37,6 +37,9 @@ pub fn read_pcd(path: &Path) -> Result<PointCloud, IoError> {
 
 /// Reads PCD data held in memory; `origin` names it in errors.
 pub fn read_pcd_from(bytes: &[u8], origin: &Path) -> Result<PointCloud, IoError> {
+    if bytes.is_empty() {
+        return Err(IoError::malformed(origin, "file is empty"));
+    }
     let mut cursor = Cursor::new(bytes);
     let meta = PcdMeta::from_reader(&mut cursor).map_err(|error| pcd_error(origin, error))?;
     let payload = &bytes[cursor.position() as usize..];

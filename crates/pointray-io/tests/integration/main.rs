@@ -13,6 +13,7 @@ mod formats_raw_bin;
 mod formats_xyz;
 mod image_output;
 mod obj;
+mod peer_files;
 mod ply_attributes;
 mod ply_bad_input;
 mod ply_round_trip;
