@@ -40,6 +40,10 @@ pub struct ResimOptions {
     pub sweeps: FrameCounts,
 }
 
+/// Sweeps cast together in one ray list: one at a time, and a batch, as a sequence's poses
+/// would be cast at once.
+pub const SWEEPS_PER_CAST: [u32; 2] = [1, 16];
+
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ResimReport {
     pub device: String,
@@ -52,19 +56,29 @@ pub struct ResimReport {
     pub prep_seconds: f64,
     /// The map's upload and acceleration-structure build.
     pub upload_seconds: f64,
-    pub timed_sweeps: u32,
+    pub throughput: Vec<ThroughputRow>,
+    /// One re-simulation of the same sweep on the CPU caster, on this machine's cores.
+    pub cpu_sweep_ms: f64,
+    /// The GPU's ranges of the sweep cast alone against the CPU caster's.
+    pub against_cpu: CasterAgreement,
+    pub against_real: RangeAgreement,
+}
+
+/// Re-simulations of `sweeps_per_cast` copies of the sweep in one ray list, timed per cast.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ThroughputRow {
+    pub sweeps_per_cast: u32,
+    pub timed_casts: u32,
     pub gpu_median_ms: f64,
     pub gpu_p90_ms: f64,
     pub wall_median_ms: f64,
     pub wall_p90_ms: f64,
-    /// One sweep over the median GPU time of its cast.
+    /// The sweeps of a cast over its median GPU time.
     pub sweeps_per_second_gpu: f64,
-    /// The timed sweeps over the wall time of all of them, one after another.
+    /// The timed sweeps over the wall time of all the casts, one after another.
     pub sweeps_per_second_wall: f64,
-    /// One re-simulation of the same sweep on the CPU caster, on this machine's cores.
-    pub cpu_sweep_ms: f64,
-    pub against_cpu: CasterAgreement,
-    pub against_real: RangeAgreement,
+    /// Every copy of the sweep met the ranges of the sweep cast alone.
+    pub same_as_alone: bool,
 }
 
 /// Preps the map, uploads it to `renderer`'s device once and times the re-simulations.
@@ -85,13 +99,15 @@ pub fn run_resimulation(
     let started = Instant::now();
     let gpu = GpuMapCaster::new(renderer, map.clone()).map_err(backend_error)?;
     let upload_seconds = started.elapsed().as_secs_f64();
-    let (gpu_times, wall_times, wall_total, ranges) = timed_casts(&gpu, &pose, &rays, options.sweeps)?;
+    let alone = resimulate(&gpu, &pose, &rays, MAX_RANGE_M).map_err(lidar_error)?;
+    let throughput = SWEEPS_PER_CAST
+        .iter()
+        .map(|&copies| throughput(&gpu, &pose, &rays, &alone, copies, options.sweeps))
+        .collect::<Result<_, _>>()?;
     let cpu = LidarScene::from_patches(map.clone()).map_err(lidar_error)?;
     let started = Instant::now();
     let reference = resimulate(&cpu, &pose, &rays, MAX_RANGE_M).map_err(lidar_error)?;
     let cpu_sweep_ms = started.elapsed().as_secs_f64() * 1e3;
-    let timed = options.sweeps.timed;
-    let ms = |time: Duration| time.as_secs_f64() * 1e3;
     Ok(ResimReport {
         device: renderer.device_info().to_string(),
         map_sweeps: MAP_SWEEPS.iter().map(|name| name.to_string()).collect(),
@@ -100,16 +116,43 @@ pub fn run_resimulation(
         rays: rays.ranges.len(),
         prep_seconds,
         upload_seconds,
-        timed_sweeps: timed,
+        throughput,
+        cpu_sweep_ms,
+        against_cpu: CasterAgreement::of(&alone, &reference, CASTER_TOLERANCE_M),
+        against_real: RangeAgreement::of(&rays, &alone),
+    })
+}
+
+/// Times casts of `copies` copies of `rays` at once: `sweeps` counts sweeps, so each count
+/// is divided among the casts (at least one cast each).
+fn throughput(
+    gpu: &GpuMapCaster,
+    pose: &DAffine3,
+    rays: &SweepRays,
+    alone: &[Option<f64>],
+    copies: u32,
+    sweeps: FrameCounts,
+) -> Result<ThroughputRow, BenchError> {
+    let copies_of = |values: &[_]| values.repeat(copies as usize);
+    let batch = SweepRays {
+        origins: copies_of(&rays.origins),
+        directions: copies_of(&rays.directions),
+        ranges: rays.ranges.repeat(copies as usize),
+    };
+    let casts = FrameCounts { warmup: sweeps.warmup.div_ceil(copies), timed: (sweeps.timed / copies).max(1) };
+    let (gpu_times, wall_times, wall_total, ranges) = timed_casts(gpu, pose, &batch, casts)?;
+    let ms = |time: Duration| time.as_secs_f64() * 1e3;
+    let sweeps_cast = f64::from(copies);
+    Ok(ThroughputRow {
+        sweeps_per_cast: copies,
+        timed_casts: casts.timed,
         gpu_median_ms: ms(median(&gpu_times)),
         gpu_p90_ms: ms(p90(&gpu_times)),
         wall_median_ms: ms(median(&wall_times)),
         wall_p90_ms: ms(p90(&wall_times)),
-        sweeps_per_second_gpu: 1.0 / median(&gpu_times).as_secs_f64(),
-        sweeps_per_second_wall: f64::from(timed) / wall_total.as_secs_f64(),
-        cpu_sweep_ms,
-        against_cpu: CasterAgreement::of(&ranges, &reference, CASTER_TOLERANCE_M),
-        against_real: RangeAgreement::of(&rays, &ranges),
+        sweeps_per_second_gpu: sweeps_cast / median(&gpu_times).as_secs_f64(),
+        sweeps_per_second_wall: sweeps_cast * f64::from(casts.timed) / wall_total.as_secs_f64(),
+        same_as_alone: ranges.chunks(alone.len().max(1)).all(|copy| copy == alone),
     })
 }
 
@@ -171,27 +214,34 @@ pub fn resim_markdown(report: &ResimReport) -> String {
     let _ = writeln!(text, "# Re-simulation throughput\n\ndevice: {}\n", report.device);
     let _ = writeln!(
         text,
-        "map: {} ({} patches, prep {:.2} s, upload {:.2} s); cast: {} ({} rays), {} sweeps timed\n",
+        "map: {} ({} patches, prep {:.2} s, upload {:.2} s); cast: {} ({} rays)\n",
         report.map_sweeps.join(" + "),
         report.map_patches,
         report.prep_seconds,
         report.upload_seconds,
         report.cast_sweep,
-        report.rays,
-        report.timed_sweeps
-    );
-    let _ = writeln!(text, "| | median ms | p90 ms | sweeps/s |\n|---|---|---|---|");
-    let _ = writeln!(
-        text,
-        "| GPU (cast) | {:.3} | {:.3} | {:.0} |",
-        report.gpu_median_ms, report.gpu_p90_ms, report.sweeps_per_second_gpu
+        report.rays
     );
     let _ = writeln!(
         text,
-        "| wall (re-simulation) | {:.3} | {:.3} | {:.0} |",
-        report.wall_median_ms, report.wall_p90_ms, report.sweeps_per_second_wall
+        "| sweeps a cast | casts | GPU median ms | GPU p90 ms | wall median ms | wall p90 ms | sweeps/s (GPU) | sweeps/s (wall) | same as alone |\n|---|---|---|---|---|---|---|---|---|"
     );
-    let _ = writeln!(text, "| CPU caster, one sweep | {:.1} | | |\n", report.cpu_sweep_ms);
+    for row in &report.throughput {
+        let _ = writeln!(
+            text,
+            "| {} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.0} | {:.0} | {} |",
+            row.sweeps_per_cast,
+            row.timed_casts,
+            row.gpu_median_ms,
+            row.gpu_p90_ms,
+            row.wall_median_ms,
+            row.wall_p90_ms,
+            row.sweeps_per_second_gpu,
+            row.sweeps_per_second_wall,
+            row.same_as_alone
+        );
+    }
+    let _ = writeln!(text, "\nthe CPU caster, one sweep: {:.1} ms\n", report.cpu_sweep_ms);
     let (cpu, real) = (&report.against_cpu, &report.against_real);
     let _ = writeln!(
         text,
