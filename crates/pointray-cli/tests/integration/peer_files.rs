@@ -1,4 +1,4 @@
-//! `prep` over the test files laspy, pypcd4 and pye57 ship (`data/peer/`): each makes patches,
+//! `prep` over the test files laspy, pypcd4, pye57 and libE57Format ship (`data/peer/`): each makes patches,
 //! or is refused in words that name the file and say why, never a panic.
 
 use crate::common::pointray_in;
@@ -10,20 +10,25 @@ const REFUSED: &[(&str, &str)] = &[
     ("pypcd4/ascii_invalid_header.pcd", "before DATA line"),
     ("pypcd4/ascii_with_empty_points.pcd", "0 points"),
     ("pye57/testWithNormals.e57", "2 points"),
+    ("libE57Format/InvalidCVHeader.e57", "not a readable E57 file"),
+    ("libE57Format/ZeroPoints.e57", "0 points"),
+    ("libE57Format/ZeroPointsInvalid.e57", "not a readable E57 file"),
+    ("libE57Format/bad-crc.e57", "not a readable E57 file"),
+    ("libE57Format/empty.e57", "holds no point cloud"),
 ];
 
 #[test]
 fn every_peer_test_file_preps_or_is_refused_naming_it() {
     let peer = pointray_test_support::data_dir().join("peer");
     let dir = tempfile::tempdir().unwrap();
-    let mut files: Vec<_> = ["laspy", "pypcd4", "pye57"]
+    let mut files: Vec<_> = ["laspy", "pypcd4", "pye57", "libE57Format"]
         .iter()
         .flat_map(|library| std::fs::read_dir(peer.join(library)).unwrap().flatten())
         .map(|entry| entry.path())
         .filter(|path| !path.file_name().unwrap().to_string_lossy().starts_with("LICENSE"))
         .collect();
     files.sort();
-    assert_eq!(files.len(), 17, "{files:?}");
+    assert_eq!(files.len(), 23, "{files:?}");
     for file in files {
         let name = file.strip_prefix(&peer).unwrap().to_str().unwrap().to_owned();
         let output = dir.path().join("out.patches");

@@ -1,4 +1,4 @@
-//! The test files that laspy, pypcd4 and pye57 ship (`data/peer/`, sources in
+//! The test files that laspy, pypcd4, pye57 and libE57Format ship (`data/peer/`, sources in
 //! data/SOURCES.md) read as those libraries read them: the same points, the first and last
 //! of them at the same coordinates. `bench/peer_files.py` makes the same comparison over every
 //! point file the libraries ship, the large ones too.
@@ -7,8 +7,8 @@ use glam::DVec3;
 use pointray_io::formats::read_point_cloud;
 
 /// A file, its points, and its first and last point, as the peer library reads them
-/// (laspy 2.7.0, pypcd4 1.5.1, pye57 0.4.19; pypcd4's NaN points left out, as pointray
-/// leaves them out).
+/// (laspy 2.7.0, pypcd4 1.5.1, pye57 0.4.19 for the E57 files; pypcd4's NaN points left
+/// out, as pointray leaves them out).
 const AS_PEERS_READ: &[(&str, usize, [f64; 3], [f64; 3])] = &[
     ("laspy/simple.las", 1065, [637012.24, 849028.31, 431.66], [637342.85, 853240.32, 423.92]),
     ("laspy/extra.laz", 1065, [637012.24, 849028.31, 431.66], [637342.85, 853240.32, 423.92]),
@@ -30,11 +30,25 @@ const AS_PEERS_READ: &[(&str, usize, [f64; 3], [f64; 3])] = &[
     ("pypcd4/ascii_with_empty_points.pcd", 0, [0.0; 3], [0.0; 3]),
     ("pye57/testWithNormals.e57", 2, [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]),
     ("pye57/translationWithoutRotation.e57", 4, [4.0, 5.0, 6.0], [5.0, 6.0, 6.0]),
+    (
+        "libE57Format/ColouredCubeFloat.e57",
+        7680,
+        [-0.5, -0.4990559220314026, 0.07136291265487671],
+        [0.16827905178070068, -0.00394439697265625, 0.5],
+    ),
+    ("libE57Format/ZeroPoints.e57", 0, [0.0; 3], [0.0; 3]),
 ];
 
-/// Files the peer libraries refuse too, and why pointray does.
-const REFUSED: &[(&str, &str)] =
-    &[("pypcd4/ascii_empty.pcd", "file is empty"), ("pypcd4/ascii_invalid_header.pcd", "before DATA line")];
+/// Files the peer libraries refuse too, and why pointray does. (pye57 reads
+/// `InvalidCVHeader.e57` as 0 points; its name and pointray say its header is invalid.)
+const REFUSED: &[(&str, &str)] = &[
+    ("pypcd4/ascii_empty.pcd", "file is empty"),
+    ("pypcd4/ascii_invalid_header.pcd", "before DATA line"),
+    ("libE57Format/InvalidCVHeader.e57", "not a readable E57 file"),
+    ("libE57Format/ZeroPointsInvalid.e57", "not a readable E57 file"),
+    ("libE57Format/bad-crc.e57", "not a readable E57 file"),
+    ("libE57Format/empty.e57", "holds no point cloud"),
+];
 
 fn peer_file(relative: &str) -> std::path::PathBuf {
     pointray_test_support::data_file(&format!("peer/{relative}"))
