@@ -6,11 +6,14 @@ mod arrays;
 mod devices;
 mod errors;
 mod image_out;
+mod image_settings;
 mod patches;
+mod point_attributes;
 mod prep;
 mod read;
 mod render;
 mod render_options;
+mod render_source;
 mod scene_text;
 mod toml_values;
 
@@ -23,10 +26,14 @@ static ALLOCATOR: pointray_io::HugePageAllocator = pointray_io::HugePageAllocato
 fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("PointrayError", module.py().get_type::<errors::PointrayError>())?;
     module.add_class::<patches::Patches>()?;
+    module.add_class::<image_settings::ImageSettings>()?;
     module.add_class::<render_options::RenderOptions>()?;
+    module.add_class::<render_source::RenderSource>()?;
     module.add_class::<prep::PrepOptions>()?;
+    module.add_class::<point_attributes::PointAttributes>()?;
     module.add_function(wrap_pyfunction!(read::read, module)?)?;
     module.add_function(wrap_pyfunction!(read::read_sweeps, module)?)?;
+    module.add_function(wrap_pyfunction!(read::recentring_offset, module)?)?;
     module.add_function(wrap_pyfunction!(prep::prep, module)?)?;
     module.add_function(wrap_pyfunction!(render::render, module)?)?;
     module.add_function(wrap_pyfunction!(scene_text::scene_to_toml, module)?)?;

@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+use glam::DVec3;
 use numpy::{IntoPyArray, PyArrayMethods};
 use pointray_io::formats::{ColumnSpec, read_point_cloud_with};
 use pointray_io::{PointCloud, SweepPoses, sweep_map};
@@ -9,6 +10,7 @@ use pointray_scene::UpAxis;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::arrays::float_rows;
 use crate::errors::to_python;
 
 /// Reads several sweeps and places them by their sensor poses (`poses`: a KITTI poses file,
@@ -71,4 +73,12 @@ fn cloud_to_dict(py: Python<'_>, cloud: PointCloud) -> PyResult<Bound<'_, PyDict
     fields
         .set_item("sensor_origins", origins.map(|o| o.into_pyarray(py).reshape([count, 3])).transpose()?)?;
     Ok(fields)
+}
+
+/// The offset `prep` recentres `positions` (N, 3) on (`input = local + offset`).
+#[pyfunction]
+pub fn recentring_offset(positions: &Bound<'_, PyAny>) -> PyResult<[f64; 3]> {
+    let positions: Vec<DVec3> =
+        float_rows::<3>("positions", positions)?.into_iter().map(DVec3::from_array).collect();
+    Ok(pointray_surface::trimmed_centre(&positions).to_array())
 }

@@ -55,3 +55,32 @@ def test_prep_settings_are_the_flags_and_checked_like_them():
     paper = pointray.prep(sheet(), radius="paper", boxes="cube", remove_outliers={"neighbors": 8, "sigmas": 2.0})
     cell = pointray.prep(sheet())
     assert not np.array_equal(paper.radii, cell.radii), "the radius setting reaches prep"
+
+
+def test_a_clouds_offset_is_the_one_prep_recentres_on_whatever_a_stray_point(bunny):
+    cloud = pointray.read(bunny)
+    stray = np.vstack([cloud.positions, [[1e4, 0.0, 0.0]]])
+    offset = pointray.PointCloud(positions=stray).offset
+    assert np.array_equal(offset, pointray.prep(stray).offset)
+    assert np.abs(offset - cloud.offset).max() < 0.01, "one far point leaves the centre in the bunny"
+
+
+def test_the_extensions_arguments_are_typed_and_checked_when_made(bunny):
+    from pointray import _native
+
+    with pytest.raises(ValueError, match=r"normals: expected an array of shape \(N, 3\)"):
+        _native.PointAttributes(normals=np.zeros((4, 2)))
+    with pytest.raises(ValueError, match="sensor_position .* is not finite"):
+        _native.PointAttributes(sensor_position=(0.0, float("nan"), 0.0))
+    with pytest.raises(TypeError):
+        _native.prep(sheet(), {"colors": None}, _native.PrepOptions())
+    with pytest.raises(ValueError, match="unknown up axis `w`"):
+        _native.RenderSource.points(points_file=str(bunny), up="w")
+    with pytest.raises(pointray.PointrayError, match="unknown field"):
+        _native.RenderSource.scene("[camera]\nzoom = 2\n", "scene.toml", [])
+    with pytest.raises(ValueError, match="spp"):
+        _native.ImageSettings(spp=0)
+    with pytest.raises(TypeError):
+        _native.render({"points_file": str(bunny)}, _native.RenderOptions(_native.ImageSettings()))
+    with pytest.raises(ValueError, match="unknown up axis `w`"):
+        pointray.render(bunny, backend="cpu", width=8, height=6, up="w")

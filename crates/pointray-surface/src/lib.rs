@@ -45,3 +45,4 @@ pub use prep_progress::{NoProgress, PrepProgress, Stage};
 pub use prep_report::{FitCounts, PrepReport, RadiusFallbacks, ScanSummary};
 pub use quadratic_fit::{FitKind, PatchFit};
 pub use sampling::sample_mesh;
+pub use trimmed_centre::trimmed_centre;

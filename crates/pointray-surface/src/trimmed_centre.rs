@@ -39,8 +39,8 @@ impl CentreSample {
     }
 }
 
-/// The trimmed centre of a cloud held in memory.
-pub(crate) fn trimmed_centre(positions: &[DVec3]) -> DVec3 {
+/// The trimmed centre of a cloud held in memory: the offset `prep` recentres it on.
+pub fn trimmed_centre(positions: &[DVec3]) -> DVec3 {
     let mut sample = CentreSample::new(positions.len() as u64);
     sample.offer(0, positions);
     sample.centre()

@@ -38,17 +38,14 @@ class PrepOptions:
 
     def __init__(self, **settings: Any) -> None: ...
 
-class RenderOptions:
-    """What ``pointray.render``'s keywords become, each checked when made: a bad one raises
-    ``ValueError`` naming it (``camera``, a bad table: ``PointrayError``). ``None`` leaves the
-    scene's ``[render]`` setting as it is."""
+class ImageSettings:
+    """The scene's ``[render]`` settings one ``render`` call overrides, each checked when made:
+    a bad one raises ``ValueError`` naming it. ``None`` leaves the scene's setting as it is."""
 
     def __init__(self, *, width: int | None = None, height: int | None = None,
                  spp: int | None = None, max_depth: int | None = None,
                  shadows: bool | None = None, integrator: str | None = None,
-                 seed: int | None = None, backend: str = "auto", device: str = "auto",
-                 gpu_memory: int | str | None = None, camera: dict[str, Any] | None = None,
-                 denoise: bool = False) -> None: ...
+                 seed: int | None = None) -> None: ...
     @property
     def width(self) -> int | None: ...
     @property
@@ -61,11 +58,46 @@ class RenderOptions:
     def shadows(self) -> bool | None: ...
     @property
     def seed(self) -> int | None: ...
+
+class PointAttributes:
+    """What ``prep`` takes beside the positions, read and checked when made: per-point
+    ``colors`` (sRGB, N x 3), ``normals`` (N x 3), ``intensity`` (0..1), ``classification``
+    (ASPRS codes), ``ring`` (scan line) and ``sensor_origins`` (N x 3), and the one
+    ``sensor_position``. A bad array raises ``ValueError`` naming it; one of the wrong length,
+    when ``prep`` meets the positions."""
+
+    def __init__(self, *, colors: Any = None, normals: Any = None, intensity: Any = None,
+                 classification: Any = None, ring: Any = None,
+                 sensor_position: tuple[float, float, float] | None = None,
+                 sensor_origins: Any = None) -> None: ...
+
+class RenderOptions:
+    """What ``pointray.render``'s keywords become: the ``image`` settings, where it renders,
+    the camera and the denoiser, each checked when made: a bad one raises ``ValueError`` naming
+    it (``camera``, a bad table: ``PointrayError``)."""
+
+    def __init__(self, image: ImageSettings, *, backend: str = "auto", device: str = "auto",
+                 gpu_memory: int | str | None = None, camera: dict[str, Any] | None = None,
+                 denoise: bool = False) -> None: ...
     @property
     def gpu_memory(self) -> int | None:
         """The GPU memory budget in bytes."""
     @property
     def denoise(self) -> bool: ...
+
+class RenderSource:
+    """What one ``render`` call draws, checked when made: a scene, or points shown as
+    ``pointray render POINTS`` shows them."""
+
+    @staticmethod
+    def scene(text: str, anchor: str, in_memory: list[tuple[int, Patches]]) -> RenderSource:
+        """A scene file's ``text``, its relative paths taken from ``anchor``'s folder, with
+        ``in_memory``'s patches standing for the point sets of those object indices."""
+    @staticmethod
+    def points(*, points_file: str | None = None, patches: Patches | None = None,
+               up: str | None = None, floor: bool = True, color: str = "auto") -> RenderSource:
+        """Points from ``points_file`` or ``patches``, stood upright by ``up`` (``"y"`` or
+        ``"z"``), on a ``floor``, coloured by ``color``, lit by one light and framed."""
 
 def devices() -> list[dict[str, Any]]:
     """The Vulkan devices the loader sees: ``index``, ``name``, ``type``, ``api_version``,
@@ -73,8 +105,9 @@ def devices() -> list[dict[str, Any]]:
 
 def read(path: str, columns: str | None) -> dict[str, Any]: ...
 def read_sweeps(paths: list[str], poses: str, columns: str | None) -> dict[str, Any]: ...
-def prep(positions: Any, attributes: dict[str, Any], options: PrepOptions) -> Patches: ...
-def render(source: dict[str, Any], options: RenderOptions) -> dict[str, np.ndarray]: ...
+def recentring_offset(positions: np.ndarray) -> tuple[float, float, float]: ...
+def prep(positions: Any, attributes: PointAttributes, options: PrepOptions) -> Patches: ...
+def render(source: RenderSource, options: RenderOptions) -> dict[str, np.ndarray]: ...
 def scene_to_toml(scene: dict[str, Any], anchor: str) -> str: ...
 def scene_from_toml(text: str, anchor: str) -> dict[str, Any]: ...
 def encode_png(image: np.ndarray) -> bytes: ...

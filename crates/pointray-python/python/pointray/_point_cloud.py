@@ -44,11 +44,10 @@ class PointCloud:
 
     @property
     def offset(self) -> np.ndarray:
-        """The recentring offset: the centre of the points' bounding box, which ``prep``
-        subtracts (in float64) before anything becomes float32."""
-        if len(self.positions) == 0:
-            return np.zeros(3)
-        return (self.positions.min(axis=0) + self.positions.max(axis=0)) * 0.5
+        """The recentring offset, which ``prep`` subtracts (in float64) before anything becomes
+        float32: on each axis, the middle of the points' range with the outermost percent left
+        out, so that one stray point far off does not move it."""
+        return np.array(_native.recentring_offset(self.positions))
 
     def __repr__(self) -> str:
         fields = [name for name in ("normals", "colors", "intensity", "classification", "ring")

@@ -42,4 +42,4 @@ def prep(points: PointCloud | np.ndarray, *, colors: Optional[np.ndarray] = None
         attributes, positions = given, points
     if attributes.get("sensor_position") is not None:
         attributes["sensor_position"] = tuple(float(c) for c in np.asarray(attributes["sensor_position"]).ravel())
-    return _native.prep(positions, attributes, _native.PrepOptions(**settings))
+    return _native.prep(positions, _native.PointAttributes(**attributes), _native.PrepOptions(**settings))

@@ -73,28 +73,28 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
     noise out of a preview of few samples, as ``pointray render --denoise`` does (the AOVs stay
     unfiltered). The GIL is released while the scene loads and renders.
     """
-    options = _native.RenderOptions(width=width, height=height, spp=spp, max_depth=max_depth,
-                                    shadows=shadows, integrator=integrator, seed=seed,
-                                    backend=backend, device=device, gpu_memory=gpu_memory,
-                                    camera=camera, denoise=denoise)
+    image_settings = _native.ImageSettings(width=width, height=height, spp=spp, max_depth=max_depth,
+                                           shadows=shadows, integrator=integrator, seed=seed)
+    options = _native.RenderOptions(image_settings, backend=backend, device=device,
+                                    gpu_memory=gpu_memory, camera=camera, denoise=denoise)
     result = _native.render(_source(source, up, floor, color), options)
     image = result.pop("image").view(RenderedImage)
     image.aovs = result if aovs else None
     return image
 
 
-def _source(source: Any, up: Optional[str], floor: bool, color: str) -> dict[str, Any]:
+def _source(source: Any, up: Optional[str], floor: bool, color: str) -> _native.RenderSource:
     look = dict(up=up, floor=floor, color=color)
     if isinstance(source, Scene):
-        return dict(scene=source._toml(), anchor=str(source._anchor), in_memory=list(source._in_memory.items()))
+        return _native.RenderSource.scene(source._toml(), str(source._anchor), list(source._in_memory.items()))
     if isinstance(source, (str, os.PathLike)):
         path = Path(source)
         if path.suffix.lower() == ".toml":
             return _source(Scene.from_file(path), up, floor, color)
-        return dict(points_file=os.fspath(path), **look)
+        return _native.RenderSource.points(points_file=os.fspath(path), **look)
     if isinstance(source, PointCloud):
         look["up"] = up or source.up_axis
-        return dict(patches=prep(source), **look)
+        return _native.RenderSource.points(patches=prep(source), **look)
     if isinstance(source, Patches):
-        return dict(patches=source, **look)
-    return dict(patches=prep(np.asarray(source)), **look)
+        return _native.RenderSource.points(patches=source, **look)
+    return _native.RenderSource.points(patches=prep(np.asarray(source)), **look)
