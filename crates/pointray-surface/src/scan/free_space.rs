@@ -95,8 +95,10 @@ impl Reach {
 }
 
 impl Ellipse {
-    /// The ellipse of point `i`'s patch cut back by the rays of the returns around it that
-    /// pass through it in front of their return, skipping those of `members` (sorted) within
+    /// The ellipse of point `i`'s patch cut back by the rays of the returns around it, its
+    /// station's and the nearest other stations', that pass through it in front of their
+    /// return (another sweep of a map, or a multi-block head's other block, saw through
+    /// there too), skipping those of `members` (sorted) within
     /// its reach and any other return that lies on its plane as members do (within `max_rise`
     /// of it). Members beyond its reach count as any return: a narrow object's plane may take
     /// in a wall far behind it, whose rays must still cut it.
@@ -113,7 +115,8 @@ impl Ellipse {
         let angle = (self.radii.x / range).min(1.0);
         let point = points[i];
         let mut reach = self.reach_from(point);
-        for j in scan.returns_near_ray(i, angle) {
+        let others = scan.other_stations_returns_near(self.centre, self.radii.x, scan.station_of(i));
+        for j in scan.returns_near_ray(i, angle).into_iter().chain(others) {
             let (origin, end) = (scan.sensor[j as usize], points[j as usize]);
             let member = members.binary_search(&j).is_ok() && self.reaches(end);
             if member || self.holds(origin, end, margin, max_rise) {
@@ -242,7 +245,9 @@ mod tests {
         assert_eq!(reach.minus, Vec2::new(2.0, 1.0));
         assert!((reach.plus - Vec2::new(1.5 * PASSING_RAY_EDGE_SHARE, 1.0)).length() < 1e-6, "{reach:?}");
         let cut = ellipse.with_reach(Vec3::ZERO, reach);
-        assert!((cut.centre - Vec3::new((1.5 * PASSING_RAY_EDGE_SHARE - 2.0) * 0.5, 0.0, 0.0)).length() < 1e-6);
+        assert!(
+            (cut.centre - Vec3::new((1.5 * PASSING_RAY_EDGE_SHARE - 2.0) * 0.5, 0.0, 0.0)).length() < 1e-6
+        );
     }
 
     #[test]

@@ -87,11 +87,26 @@ pub struct ScanLines {
     /// The standard deviation of the range noise, in scene units, measured along the lines
     /// (`scan::noise`), and never below `MIN_RANGE_NOISE`.
     pub range_noise: f32,
+    /// Per station: where it stood and its lines, lowest first.
+    pub stations: Vec<Station>,
+}
+
+/// One sensor position and the lines seen from it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Station {
+    pub position: Vec3,
+    /// Its lines in order of elevation.
+    pub lines: Vec<u32>,
 }
 
 /// Near the poles of a station's sphere an angle spans ever more azimuth; beyond this cosine
 /// of the elevation (about 87°) it is taken to span no more.
 const MIN_AZIMUTH_COSINE: f32 = 0.05;
+
+/// The rays of at most this many other stations, the nearest, pass judgement on a patch: a
+/// map of sweeps along a street sees each surface from the few sweeps around it, and a sweep
+/// far down the street adds nothing but time.
+const JUDGING_STATIONS: usize = 8;
 
 /// The least range noise assumed: returns are quantised (a millimetre for most sensors) and
 /// a perfect simulated scan must still tolerate rounding.
@@ -118,7 +133,8 @@ impl ScanLines {
             return Err(Unstructured::FewReturnsOnLines { lines: lines.len(), share });
         }
         let range_noise = range_noise(&lines, &offsets, &azimuth).max(MIN_RANGE_NOISE);
-        Ok(Self { lines, line_of, azimuth, sensor, range_noise })
+        let stations = stations_with_lines(&stations, &lines);
+        Ok(Self { lines, line_of, azimuth, sensor, range_noise, stations })
     }
 
     /// The returns on lines of `MIN_LINE_RETURNS` or more.
@@ -155,16 +171,51 @@ impl ScanLines {
         };
         let lines = std::iter::once(own).chain(walk(true)).chain(walk(false));
         let azimuth = self.azimuth[i];
-        lines
-            .flat_map(|l| {
-                let members = &self.lines[l as usize].members;
-                let first = members.partition_point(|&m| self.azimuth[m as usize] < azimuth - azimuth_reach);
-                members[first..]
-                    .iter()
-                    .copied()
-                    .take_while(move |&m| self.azimuth[m as usize] <= azimuth + azimuth_reach)
-            })
+        lines.flat_map(|l| self.members_within(l, azimuth, azimuth_reach)).collect()
+    }
+
+    /// The returns of the stations nearest `point`, other than `own`, whose rays may pass
+    /// within `radius` of it: a surface seen from one sweep must leave room for what the
+    /// other sweeps of a map saw through.
+    pub fn other_stations_returns_near(&self, point: Vec3, radius: f32, own: u32) -> Vec<u32> {
+        let mut nearest: Vec<(f32, u32)> = (0..self.stations.len() as u32)
+            .filter(|&s| s != own)
+            .map(|s| (self.stations[s as usize].position.distance_squared(point), s))
+            .collect();
+        if nearest.len() > JUDGING_STATIONS {
+            nearest.select_nth_unstable_by(JUDGING_STATIONS, |a, b| a.0.total_cmp(&b.0));
+            nearest.truncate(JUDGING_STATIONS);
+        }
+        nearest.into_iter().flat_map(|(_, s)| self.station_returns_near(s, point, radius)).collect()
+    }
+
+    /// The returns of `station` seen within the angle `radius` spans at `point`.
+    fn station_returns_near(&self, station: u32, point: Vec3, radius: f32) -> Vec<u32> {
+        let Station { position, lines } = &self.stations[station as usize];
+        let offset = point - *position;
+        let angle = (radius / offset.length().max(f32::MIN_POSITIVE)).min(1.0);
+        let elevation = elevation(offset) as f32;
+        let azimuth_reach = angle / elevation.cos().max(MIN_AZIMUTH_COSINE);
+        let line_elevation = |l: &u32| self.lines[*l as usize].elevation;
+        let first = lines.partition_point(|l| line_elevation(l) < elevation - angle);
+        let azimuth = offset.y.atan2(offset.x);
+        lines[first..]
+            .iter()
+            .take_while(|l| line_elevation(l) <= elevation + angle)
+            .flat_map(|&l| self.members_within(l, azimuth, azimuth_reach))
             .collect()
+    }
+
+    /// The members of line `l` within `reach` of `azimuth`.
+    fn members_within(&self, l: u32, azimuth: f32, reach: f32) -> impl Iterator<Item = u32> + '_ {
+        let members = &self.lines[l as usize].members;
+        let first = members.partition_point(|&m| self.azimuth[m as usize] < azimuth - reach);
+        members[first..].iter().copied().take_while(move |&m| self.azimuth[m as usize] <= azimuth + reach)
+    }
+
+    /// The station point `i` was seen from.
+    pub fn station_of(&self, i: usize) -> u32 {
+        self.lines[self.line_of[i] as usize].station
     }
 
     /// The azimuth step along point `i`'s line, radians, when the line has one.
@@ -209,6 +260,19 @@ fn stations(sensors: &[DVec3]) -> Option<(Vec<u32>, Vec<Vec3>)> {
         station_of.push(station);
     }
     Some((station_of, stations))
+}
+
+/// Each station's position with its lines, lowest first.
+fn stations_with_lines(positions: &[Vec3], lines: &[ScanLine]) -> Vec<Station> {
+    let mut stations: Vec<Station> =
+        positions.iter().map(|&position| Station { position, lines: Vec::new() }).collect();
+    for (l, line) in lines.iter().enumerate() {
+        stations[line.station as usize].lines.push(l as u32);
+    }
+    for station in &mut stations {
+        station.lines.sort_by(|&a, &b| lines[a as usize].elevation.total_cmp(&lines[b as usize].elevation));
+    }
+    stations
 }
 
 fn elevation(offset: Vec3) -> f64 {
@@ -346,6 +410,35 @@ mod tests {
                 })
             })
             .collect()
+    }
+
+    #[test]
+    fn another_station_finds_its_own_returns_around_a_point_and_not_the_askers() {
+        // The same three beams seen from two stations 5 m apart along x.
+        let near = three_beams();
+        let far: Vec<Vec3> = near.iter().map(|&p| p + Vec3::X * 5.0).collect();
+        let points = [near.clone(), far].concat();
+        let sensors: Vec<DVec3> =
+            (0..points.len()).map(|i| if i < near.len() { DVec3::ZERO } else { DVec3::X * 5.0 }).collect();
+        let rings: Vec<u16> = (0..points.len()).map(|i| ((i % 270) / 90) as u16).collect();
+        let scan = ScanLines::new(&points, &sensors, Some(&rings)).unwrap();
+        assert_eq!(scan.stations.len(), 2);
+        // Point 100 (middle beam, 40° round) from the first station: the second station's
+        // rays toward it come from its middle beam, around the same spot on its own cylinder.
+        let (own, point) = (scan.station_of(100), points[100]);
+        let others = scan.other_stations_returns_near(point, 0.5, own);
+        assert!(!others.is_empty());
+        for j in &others {
+            assert_ne!(scan.station_of(*j as usize), own);
+            let toward = (points[*j as usize] - Vec3::X * 5.0).normalize();
+            let angle = toward.angle_between((point - Vec3::X * 5.0).normalize());
+            assert!(angle <= 0.5 / (point - Vec3::X * 5.0).length() * 1.5, "{j} at {angle}");
+        }
+        assert!(
+            scan.other_stations_returns_near(point, 0.5, 1 - own)
+                .iter()
+                .all(|&j| scan.station_of(j as usize) == own)
+        );
     }
 
     #[test]
