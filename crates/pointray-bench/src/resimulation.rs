@@ -2,8 +2,8 @@
 //! sequence (data/scans/real/ouster_os1_128_seq/) re-simulated from its pose, again and again,
 //! in a map prepped from the sweeps either side of it, the map uploaded once. Timed per sweep:
 //! the GPU time of the cast (timestamps) and the wall time of the whole re-simulation (the
-//! rays moved by the pose, uploaded, cast, read back). Checked: the GPU's ranges against the
-//! CPU caster's, and against the ranges the sensor measured.
+//! sweep's rays and poses uploaded, cast, read back and turned into ranges). Checked: the
+//! GPU's ranges against the CPU caster's, and against the ranges the sensor measured.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -11,7 +11,9 @@ use std::time::{Duration, Instant};
 
 use glam::DAffine3;
 use pointray_io::SweepPoses;
-use pointray_lidar::{CasterAgreement, LidarScene, MapCaster, RangeAgreement, SweepRays, resimulate};
+use pointray_lidar::{
+    CasterAgreement, LidarScene, MapCaster, RangeAgreement, SweepRays, resimulate, resimulate_from,
+};
 use pointray_patches::{PatchSet, PrepSettings};
 use pointray_render::GpuMapCaster;
 use pointray_surface::NoProgress;
@@ -40,8 +42,8 @@ pub struct ResimOptions {
     pub sweeps: FrameCounts,
 }
 
-/// Sweeps cast together in one ray list: one at a time, and a batch, as a sequence's poses
-/// would be cast at once.
+/// Sweeps cast together, from as many poses in one ray list: one at a time, and a batch, as
+/// a sequence's poses would be cast at once.
 pub const SWEEPS_PER_CAST: [u32; 2] = [1, 16];
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -64,7 +66,7 @@ pub struct ResimReport {
     pub against_real: RangeAgreement,
 }
 
-/// Re-simulations of `sweeps_per_cast` copies of the sweep in one ray list, timed per cast.
+/// Re-simulations of the sweep from `sweeps_per_cast` poses in one ray list, timed per cast.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ThroughputRow {
     pub sweeps_per_cast: u32,
@@ -77,7 +79,7 @@ pub struct ThroughputRow {
     pub sweeps_per_second_gpu: f64,
     /// The timed sweeps over the wall time of all the casts, one after another.
     pub sweeps_per_second_wall: f64,
-    /// Every copy of the sweep met the ranges of the sweep cast alone.
+    /// Every sweep of a cast met the ranges of the sweep cast alone (the poses are the same).
     pub same_as_alone: bool,
 }
 
@@ -123,8 +125,8 @@ pub fn run_resimulation(
     })
 }
 
-/// Times casts of `copies` copies of `rays` at once: `sweeps` counts sweeps, so each count
-/// is divided among the casts (at least one cast each).
+/// Times casts of `rays` from `copies` copies of `pose` at once: `sweeps` counts sweeps, so
+/// each count is divided among the casts (at least one cast each).
 fn throughput(
     gpu: &GpuMapCaster,
     pose: &DAffine3,
@@ -133,16 +135,11 @@ fn throughput(
     copies: u32,
     sweeps: FrameCounts,
 ) -> Result<ThroughputRow, BenchError> {
-    let copies_of = |values: &[_]| values.repeat(copies as usize);
-    let batch = SweepRays {
-        origins: copies_of(&rays.origins),
-        directions: copies_of(&rays.directions),
-        ranges: rays.ranges.repeat(copies as usize),
-    };
+    let poses = vec![*pose; copies as usize];
     let casts = FrameCounts { warmup: sweeps.warmup.div_ceil(copies), timed: (sweeps.timed / copies).max(1) };
-    let (gpu_times, wall_times, wall_total, ranges) = timed_casts(gpu, pose, &batch, casts)?;
+    let (gpu_times, wall_times, wall_total, sweeps_cast) = timed_casts(gpu, &poses, rays, casts)?;
     let ms = |time: Duration| time.as_secs_f64() * 1e3;
-    let sweeps_cast = f64::from(copies);
+    let copies_cast = f64::from(copies);
     Ok(ThroughputRow {
         sweeps_per_cast: copies,
         timed_casts: casts.timed,
@@ -150,9 +147,9 @@ fn throughput(
         gpu_p90_ms: ms(p90(&gpu_times)),
         wall_median_ms: ms(median(&wall_times)),
         wall_p90_ms: ms(p90(&wall_times)),
-        sweeps_per_second_gpu: sweeps_cast / median(&gpu_times).as_secs_f64(),
-        sweeps_per_second_wall: sweeps_cast * f64::from(casts.timed) / wall_total.as_secs_f64(),
-        same_as_alone: ranges.chunks(alone.len().max(1)).all(|copy| copy == alone),
+        sweeps_per_second_gpu: copies_cast / median(&gpu_times).as_secs_f64(),
+        sweeps_per_second_wall: copies_cast * f64::from(casts.timed) / wall_total.as_secs_f64(),
+        same_as_alone: sweeps_cast.iter().all(|sweep| sweep == alone),
     })
 }
 
@@ -174,17 +171,18 @@ fn prepped_map(data: &Path, poses: &SweepPoses) -> Result<PatchSet, BenchError> 
     Ok(patches)
 }
 
-type Timings = (Vec<Duration>, Vec<Duration>, Duration, Vec<Option<f64>>);
+type Timings = (Vec<Duration>, Vec<Duration>, Duration, Vec<Vec<Option<f64>>>);
 
-/// The GPU and wall time of each timed re-simulation, the wall time of them all, and the
-/// last one's ranges.
+/// The GPU and wall time of each timed re-simulation from `poses`, the wall time of them
+/// all, and the last one's sweeps.
 fn timed_casts(
     gpu: &GpuMapCaster,
-    pose: &DAffine3,
+    poses: &[DAffine3],
     rays: &SweepRays,
     sweeps: FrameCounts,
 ) -> Result<Timings, BenchError> {
-    let cast = |caster: &dyn MapCaster| resimulate(caster, pose, rays, MAX_RANGE_M).map_err(lidar_error);
+    let cast =
+        |caster: &dyn MapCaster| resimulate_from(caster, poses, rays, MAX_RANGE_M).map_err(lidar_error);
     let mut ranges = Vec::new();
     for _ in 0..sweeps.warmup {
         ranges = cast(gpu)?;

@@ -42,7 +42,9 @@ pub use lidar_scene::{LidarScene, map_scene};
 pub use pose::{SensorPose, UpAxis};
 pub use presets::SensorPreset;
 pub use range_agreement::RangeAgreement;
-pub use resimulation::{MapCaster, SENSOR_ACCEPTANCE, SweepRays, rays_in_map, resimulate};
+pub use resimulation::{
+    MapCaster, SENSOR_ACCEPTANCE, SweepRays, pose_about, resimulate, resimulate_from, sensor_rays,
+};
 pub use returns::{Return, ScanStats, to_point_cloud};
 pub use scan::{NoProgress, Scan, ScanProgress, scan};
 pub use sensor::{Elevations, Sensor};

@@ -1,7 +1,7 @@
 //! Re-simulation from real data: the rays of a real sweep cast from a pose into a prepped map,
 //! and the ranges they meet set against the ranges the sensor measured.
 
-use glam::{DAffine3, DVec3};
+use glam::{Affine3A, DAffine3, DVec3};
 use pointray_io::PointCloud;
 use pointray_kernels::{PatchAcceptance, Ray};
 use rayon::prelude::*;
@@ -48,13 +48,14 @@ pub const SENSOR_ACCEPTANCE: PatchAcceptance = PatchAcceptance::Disk;
 /// (pointray-render opens the one a backend choice names). Rays start at t = 0 and meet
 /// patches as `SENSOR_ACCEPTANCE` says.
 pub trait MapCaster {
-    /// Where the caster's frame has its origin, in the map's coordinates. Rays come in that
+    /// Where the caster's frame has its origin, in the map's coordinates. Poses come in that
     /// frame in f32, which keeps their precision where a map lies far from the origin.
     fn centre(&self) -> DVec3;
 
-    /// The distance to the first surface along each ray (a unit direction) within
-    /// `max_range`, `None` where it meets none.
-    fn cast(&self, rays: &[Ray], max_range: f32) -> Result<Vec<Option<f32>>, LidarError>;
+    /// The distance to the first surface along each of `rays` (in a sensor's frame, unit
+    /// directions) cast from each of `poses` (the sensor's frame into the caster's), pose
+    /// after pose, within `max_range`; `None` where it meets none.
+    fn cast(&self, rays: &[Ray], poses: &[Affine3A], max_range: f32) -> Result<Vec<Option<f32>>, LidarError>;
 }
 
 impl MapCaster for LidarScene {
@@ -62,22 +63,28 @@ impl MapCaster for LidarScene {
         LidarScene::centre(self)
     }
 
-    fn cast(&self, rays: &[Ray], max_range: f32) -> Result<Vec<Option<f32>>, LidarError> {
-        Ok(rays.par_iter().map(|ray| self.renderer_hit(ray, max_range).map(|hit| hit.t)).collect())
+    fn cast(&self, rays: &[Ray], poses: &[Affine3A], max_range: f32) -> Result<Vec<Option<f32>>, LidarError> {
+        let posed = |i: usize| {
+            let (pose, ray) = (&poses[i / rays.len()], &rays[i % rays.len()]);
+            Ray::new(pose.transform_point3(ray.origin), pose.transform_vector3(ray.direction).normalize())
+        };
+        let casts = rays.len() * poses.len();
+        Ok((0..casts)
+            .into_par_iter()
+            .map(|i| self.renderer_hit(&posed(i), max_range).map(|hit| hit.t))
+            .collect())
     }
 }
 
-/// The rays of `rays`, moved by `pose` (sensor to map), in the frame of a caster centred at
+/// The rays of `rays` in their sensor's frame, in f32.
+pub fn sensor_rays(rays: &SweepRays) -> Vec<Ray> {
+    rays.origins.par_iter().zip(&rays.directions).map(|(o, d)| Ray::new(o.as_vec3(), d.as_vec3())).collect()
+}
+
+/// `pose` (sensor to map) as a map from the sensor's frame into that of a caster centred at
 /// `centre`.
-pub fn rays_in_map(rays: &SweepRays, pose: &DAffine3, centre: DVec3) -> Vec<Ray> {
-    rays.origins
-        .par_iter()
-        .zip(&rays.directions)
-        .map(|(&origin, &direction)| {
-            let origin = pose.transform_point3(origin) - centre;
-            Ray::new(origin.as_vec3(), pose.transform_vector3(direction).normalize().as_vec3())
-        })
-        .collect()
+pub fn pose_about(pose: &DAffine3, centre: DVec3) -> Affine3A {
+    Affine3A::from_mat3_translation(pose.matrix3.as_mat3(), (pose.translation - centre).as_vec3())
 }
 
 /// The range each ray of `rays`, moved by `pose` (sensor to map), meets in the map `caster`
@@ -88,9 +95,25 @@ pub fn resimulate(
     rays: &SweepRays,
     max_range: f64,
 ) -> Result<Vec<Option<f64>>, LidarError> {
+    Ok(resimulate_from(caster, std::slice::from_ref(pose), rays, max_range)?.pop().unwrap_or_default())
+}
+
+/// As `resimulate`, from each of `poses` in one cast: a sweep's ranges for each pose.
+pub fn resimulate_from(
+    caster: &dyn MapCaster,
+    poses: &[DAffine3],
+    rays: &SweepRays,
+    max_range: f64,
+) -> Result<Vec<Vec<Option<f64>>>, LidarError> {
     if !(max_range > 0.0 && max_range.is_finite()) {
         return Err(LidarError::invalid("max-range", format!("must be positive, not {max_range}")));
     }
-    let ranges = caster.cast(&rays_in_map(rays, pose, caster.centre()), max_range as f32)?;
-    Ok(ranges.into_iter().map(|range| range.map(f64::from)).collect())
+    let centre = caster.centre();
+    let poses: Vec<Affine3A> = poses.iter().map(|pose| pose_about(pose, centre)).collect();
+    let ranges = caster.cast(&sensor_rays(rays), &poses, max_range as f32)?;
+    let sweep = |chunk: &[Option<f32>]| chunk.iter().map(|range| range.map(f64::from)).collect();
+    Ok(match rays.ranges.len() {
+        0 => vec![Vec::new(); poses.len()],
+        rays => ranges.par_chunks(rays).map(sweep).collect(),
+    })
 }

@@ -3,11 +3,13 @@
 
 use std::sync::{Arc, Mutex, PoisonError};
 
-use glam::DVec3;
+use glam::{Affine3A, DVec3};
 use pointray_kernels::Ray;
 use pointray_lidar::{LidarError, LidarScene, MapCaster, SENSOR_ACCEPTANCE, map_scene};
 use pointray_patches::PatchSet;
-use pointray_vulkan::{ListedRay, PreparedScene, RayHit, RayListTarget, TraceTiming, VulkanRenderer};
+use pointray_vulkan::{
+    ListedRay, PreparedScene, RayHit, RayListTarget, RayPose, TraceTiming, VulkanRenderer,
+};
 use rayon::prelude::*;
 
 use crate::backend::Backend;
@@ -48,12 +50,13 @@ impl MapCaster for GpuMapCaster<'_> {
         self.centre
     }
 
-    fn cast(&self, rays: &[Ray], max_range: f32) -> Result<Vec<Option<f32>>, LidarError> {
+    fn cast(&self, rays: &[Ray], poses: &[Affine3A], max_range: f32) -> Result<Vec<Option<f32>>, LidarError> {
         let listed: Vec<ListedRay> = rays.par_iter().map(|ray| ListedRay::new(ray, 0.0, max_range)).collect();
+        let poses: Vec<RayPose> = poses.iter().map(RayPose::new).collect();
         let mut target = self.target.lock().unwrap_or_else(PoisonError::into_inner);
         let timing = self
             .renderer
-            .cast_rays(&self.map, &listed, SENSOR_ACCEPTANCE, &mut target)
+            .cast_rays(&self.map, &listed, &poses, SENSOR_ACCEPTANCE, &mut target)
             .map_err(|error| LidarError::Cast(Box::new(error)))?;
         *self.last_timing.lock().unwrap_or_else(PoisonError::into_inner) = Some(timing);
         Ok(target.hits().par_iter().map(RayHit::distance).collect())

@@ -106,14 +106,19 @@ layout(set = 0, binding = 5, std430) writeonly buffer DisplayPixels { uint displ
 // sample 0, so that a trace from settings.first_sample > 0 continues the ones before it.
 layout(set = 0, binding = 6, std430) buffer Accumulation { vec4 accumulated[]; };
 
-// A ray list (ray_list.rgen): each ray as traceRayEXT takes it, in the scene's frame, and
-// what it met: its distance (negative on a miss), the object's index in the scene and the
-// patch or triangle index (MISS_ID on a miss).
+// A ray list (ray_list.rgen): each ray as traceRayEXT takes it, in the frame of the poses
+// that place it in the scene (a sensor's); each pose, an affine map into the scene's frame
+// by rows (scene = rows * (x, y, z, 1)); and what each ray met from each pose: its distance
+// (negative on a miss), the object's index in the scene and the patch or triangle index
+// (MISS_ID on a miss).
 struct ListedRay {
     vec3 origin;
     float t_min;
     vec3 direction;
     float t_max;
+};
+struct RayPose {
+    vec4 rows[3];
 };
 struct RayHit {
     float t;
@@ -122,6 +127,7 @@ struct RayHit {
 };
 layout(set = 0, binding = 7, std430) readonly buffer RayList { ListedRay listed_rays[]; };
 layout(set = 0, binding = 8, std430) writeonly buffer RayHits { RayHit ray_hits[]; };
+layout(set = 0, binding = 9, std430) readonly buffer RayPoses { RayPose ray_poses[]; };
 
 // Which output a trace writes; the other is left untouched. The display output is sRGB8
 // RGBA, or with blue in the low byte for B8G8R8A8 swapchains.

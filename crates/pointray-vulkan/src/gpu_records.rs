@@ -1,7 +1,7 @@
 //! Records the shaders read, byte for byte as `shaders/bindings.glsl` declares them.
 
 use bytemuck::{Pod, Zeroable};
-use glam::Vec3;
+use glam::{Affine3A, Vec3};
 use pointray_kernels::{PatchAcceptance, PatchCold, PatchHot, Ray};
 use pointray_scene::light::WhittedLight;
 use pointray_scene::{BufferLayout, Light, Material, RenderSettings};
@@ -172,8 +172,9 @@ impl TraceSettings {
     }
 }
 
-/// One ray of a ray list (`ListedRay` in bindings.glsl), in the prepared scene's frame: hits
-/// are reported between `t_min` and `t_max` along `direction`, in its units.
+/// One ray of a ray list (`ListedRay` in bindings.glsl), in the frame its poses place in the
+/// scene: hits are reported between `t_min` and `t_max` along `direction` once posed, in the
+/// scene's units.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct ListedRay {
@@ -200,6 +201,22 @@ impl ListedRay {
     /// `t_max`.
     pub fn new(ray: &Ray, t_min: f32, t_max: f32) -> Self {
         Self { origin: ray.origin.to_array(), t_min, direction: ray.direction.to_array(), t_max }
+    }
+}
+
+/// Where a ray list is cast from (`RayPose` in bindings.glsl): an affine map from the list's
+/// frame into the prepared scene's, by rows.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct RayPose {
+    rows: [[f32; 4]; 3],
+}
+
+impl RayPose {
+    pub fn new(pose: &Affine3A) -> Self {
+        let (m, t) = (pose.matrix3, pose.translation);
+        let row = |i: usize| [m.x_axis[i], m.y_axis[i], m.z_axis[i], t[i]];
+        Self { rows: [row(0), row(1), row(2)] }
     }
 }
 
@@ -343,7 +360,9 @@ mod tests {
                 ("primitive", offset_of!(RayHit, primitive)),
             ],
         );
+        assert_members(&probe, "RayPose", &[("rows", offset_of!(RayPose, rows))]);
         for (glsl_struct, size) in [
+            ("RayPose", size_of::<RayPose>()),
             ("ListedRay", size_of::<ListedRay>()),
             ("RayHit", size_of::<RayHit>()),
             ("PatchHot", size_of::<PatchHot>()),
@@ -413,6 +432,16 @@ mod tests {
             ],
         );
         assert_eq!(size_of::<TraceSettings>(), offset_of!(TraceSettings, first_sample) + 4);
+    }
+
+    #[test]
+    fn a_ray_pose_holds_its_affine_map_by_rows() {
+        let pose = Affine3A::from_rotation_z(0.3) * Affine3A::from_translation(Vec3::new(1.0, -2.0, 3.5));
+        let record = RayPose::new(&pose);
+        let point = Vec3::new(0.25, 4.0, -1.5);
+        let by_rows =
+            Vec3::from_array(record.rows.map(|row| Vec3::from_slice(&row[..3]).dot(point) + row[3]));
+        assert!(by_rows.distance(pose.transform_point3(point)) < 1e-5, "{by_rows} against the map");
     }
 
     #[test]

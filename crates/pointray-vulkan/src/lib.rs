@@ -58,7 +58,7 @@ pub use device::{DeviceInfo, DeviceOptions, DeviceSelector, list_devices};
 pub use device_type::DeviceType;
 pub use error::VulkanError;
 pub use frame_loop::FrameLoopTimes;
-pub use gpu_records::{ListedRay, RayHit};
+pub use gpu_records::{ListedRay, RayHit, RayPose};
 pub use memory_report::BuildReport;
 pub use prepared_scene::{PreparedScene, SceneLayout};
 pub use present_device::PresentDevice;

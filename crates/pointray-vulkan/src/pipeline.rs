@@ -21,9 +21,10 @@ pub(crate) const BINDING_DISPLAY_PIXELS: u32 = 5;
 pub(crate) const BINDING_ACCUMULATION: u32 = 6;
 pub(crate) const BINDING_RAY_LIST: u32 = 7;
 pub(crate) const BINDING_RAY_HITS: u32 = 8;
+pub(crate) const BINDING_RAY_POSES: u32 = 9;
 /// The storage buffers among the bindings: the objects, lights, the three pixel outputs and
-/// the ray list's two.
-pub(crate) const STORAGE_BINDING_COUNT: u32 = 7;
+/// the ray list's three.
+pub(crate) const STORAGE_BINDING_COUNT: u32 = 8;
 
 /// Shader groups in pipeline order; the shader binding table follows it.
 pub(crate) const GROUP_RAYGEN: u32 = 0;
@@ -114,6 +115,7 @@ fn create_set_layout(device: &ash::Device) -> Result<vk::DescriptorSetLayout, Vu
         binding(BINDING_ACCUMULATION, vk::DescriptorType::STORAGE_BUFFER, raygen),
         binding(BINDING_RAY_LIST, vk::DescriptorType::STORAGE_BUFFER, raygen),
         binding(BINDING_RAY_HITS, vk::DescriptorType::STORAGE_BUFFER, raygen),
+        binding(BINDING_RAY_POSES, vk::DescriptorType::STORAGE_BUFFER, raygen),
     ];
     let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
     // SAFETY: the device is alive.
@@ -220,6 +222,7 @@ mod tests {
             ("Accumulation", BINDING_ACCUMULATION),
             ("RayList", BINDING_RAY_LIST),
             ("RayHits", BINDING_RAY_HITS),
+            ("RayPoses", BINDING_RAY_POSES),
         ] {
             assert_eq!(probe.binding_of(glsl_name), (0, binding), "{glsl_name}: (set, binding)");
         }

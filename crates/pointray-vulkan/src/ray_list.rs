@@ -1,7 +1,7 @@
-//! Ray lists: rays given one by one (a LiDAR sweep's, say) cast into a prepared scene to
-//! their closest hits by `ray_list.rgen`, through the renderer's hit groups. A
-//! `RayListTarget` keeps the list's buffers between casts, so that casting sweep after sweep
-//! allocates only when a list outgrows them.
+//! Ray lists: rays given one by one (a LiDAR sweep's, in its sensor's frame) cast from each
+//! of several poses into a prepared scene, to their closest hits, by `ray_list.rgen` through
+//! the renderer's hit groups. A `RayListTarget` keeps the buffers between casts, so that
+//! casting sweep after sweep allocates only when a cast outgrows them.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -16,9 +16,9 @@ use crate::buffer::Buffer;
 use crate::context::GpuContext;
 use crate::descriptor_set::{StorageRange, TraceDescriptors};
 use crate::error::VulkanError;
-use crate::gpu_records::{ListedRay, RayHit, TraceSettings};
+use crate::gpu_records::{ListedRay, RayHit, RayPose, TraceSettings};
 use crate::kept_buffers::kept_or_made;
-use crate::pipeline::{BINDING_RAY_HITS, BINDING_RAY_LIST, RayTracingPipeline};
+use crate::pipeline::{BINDING_RAY_HITS, BINDING_RAY_LIST, BINDING_RAY_POSES, RayTracingPipeline};
 use crate::prepared_scene::PreparedScene;
 use crate::renderer::{TraceTiming, VulkanRenderer};
 use crate::timestamp_pool::TimestampPool;
@@ -29,19 +29,39 @@ const LAUNCH_ROW: u32 = 1 << 16;
 
 const RAY_BYTES: u64 = std::mem::size_of::<ListedRay>() as u64;
 const HIT_BYTES: u64 = std::mem::size_of::<RayHit>() as u64;
+const POSE_BYTES: u64 = std::mem::size_of::<RayPose>() as u64;
 
 /// Reusable buffers of ray-list casts; see `VulkanRenderer::cast_rays`.
 #[derive(Default)]
 pub struct RayListTarget {
     buffers: Option<ListBuffers>,
-    /// Rays in the last cast.
+    /// Hits of the last cast.
     cast: usize,
+}
+
+/// The rays of a list, its poses, and the hits of casting one from the other.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Counts {
+    rays: u64,
+    poses: u64,
+}
+
+impl Counts {
+    fn hits(self) -> u64 {
+        self.rays * self.poses
+    }
+
+    fn holds(self, other: Counts) -> bool {
+        self.rays >= other.rays && self.poses >= other.poses
+    }
 }
 
 struct ListBuffers {
     context: Arc<GpuContext>,
-    capacity: u64,
+    /// Rays, poses and hits the buffers hold.
+    capacity: Counts,
     rays: Buffer,
+    poses: Buffer,
     hits: Buffer,
     descriptors: TraceDescriptors,
     timestamps: Option<TimestampPool>,
@@ -52,7 +72,8 @@ impl RayListTarget {
         Self::default()
     }
 
-    /// What each ray of the last cast met, in the list's order.
+    /// What each ray of the last cast met from each pose: the list's rays from the first
+    /// pose, then from the second, and so on.
     pub fn hits(&self) -> &[RayHit] {
         match &self.buffers {
             Some(buffers) => &bytemuck::cast_slice(buffers.hits.read())[..self.cast],
@@ -60,17 +81,17 @@ impl RayListTarget {
         }
     }
 
-    /// Buffers for `rays` rays, made anew when the device changed or the list outgrew them.
+    /// Buffers for `counts`, made anew when the device changed or the cast outgrew them.
     fn buffers_for(
         &mut self,
         context: &Arc<GpuContext>,
         pipeline: &RayTracingPipeline,
-        rays: u64,
+        counts: Counts,
     ) -> Result<&mut ListBuffers, VulkanError> {
         kept_or_made(
             &mut self.buffers,
-            |b| Arc::ptr_eq(&b.context, context) && b.capacity >= rays,
-            || ListBuffers::new(context, pipeline, rays),
+            |b| Arc::ptr_eq(&b.context, context) && b.capacity.holds(counts),
+            || ListBuffers::new(context, pipeline, counts),
         )
     }
 }
@@ -79,26 +100,29 @@ impl ListBuffers {
     fn new(
         context: &Arc<GpuContext>,
         pipeline: &RayTracingPipeline,
-        capacity: u64,
+        capacity: Counts,
     ) -> Result<Self, VulkanError> {
         let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
+        let (host, readback) = (MemoryLocation::CpuToGpu, MemoryLocation::GpuToCpu);
         Ok(Self {
             context: context.clone(),
             capacity,
-            rays: Buffer::new(context, "ray list", capacity * RAY_BYTES, storage, MemoryLocation::CpuToGpu)?,
-            hits: Buffer::new(context, "ray hits", capacity * HIT_BYTES, storage, MemoryLocation::GpuToCpu)?,
+            rays: Buffer::new(context, "ray list", capacity.rays * RAY_BYTES, storage, host)?,
+            poses: Buffer::new(context, "ray poses", capacity.poses * POSE_BYTES, storage, host)?,
+            hits: Buffer::new(context, "ray hits", capacity.hits() * HIT_BYTES, storage, readback)?,
             descriptors: TraceDescriptors::new(context, pipeline)?,
             timestamps: TimestampPool::around_trace(context)?,
         })
     }
 
-    /// Casts the rays `first .. first + count` of the uploaded list; their GPU time.
+    /// Casts the uploaded list of `rays` rays from the poses `first .. first + count`; their
+    /// GPU time.
     fn cast_batch(
         &mut self,
         (pipeline, table): (&RayTracingPipeline, &ShaderBindingTable),
         scene: &PreparedScene,
         push: TraceSettings,
-        (first, count): (u64, u64),
+        (rays, first, count): (u64, u64, u64),
     ) -> Result<Option<Duration>, VulkanError> {
         let range = |binding, buffer, bytes| StorageRange {
             binding,
@@ -106,9 +130,18 @@ impl ListBuffers {
             offset: first * bytes,
             range: count * bytes,
         };
-        let storage =
-            [range(BINDING_RAY_LIST, &self.rays, RAY_BYTES), range(BINDING_RAY_HITS, &self.hits, HIT_BYTES)];
+        let storage = [
+            StorageRange {
+                binding: BINDING_RAY_LIST,
+                buffer: &self.rays,
+                offset: 0,
+                range: rays * RAY_BYTES,
+            },
+            range(BINDING_RAY_POSES, &self.poses, POSE_BYTES),
+            range(BINDING_RAY_HITS, &self.hits, rays * HIT_BYTES),
+        ];
         self.descriptors.write(scene, &storage);
+        let count = rays * count;
         let width = count.min(u64::from(LAUNCH_ROW)) as u32;
         let launch = Launch {
             set: self.descriptors.set,
@@ -139,43 +172,78 @@ impl ListBuffers {
     }
 }
 
-/// The most rays one launch casts: within the device's invocations a dispatch and the bytes
-/// a storage binding reach, in whole launch rows.
-fn batch_rays(context: &GpuContext) -> u64 {
+/// The device's bounds on one launch: the invocations a dispatch holds, the bytes one
+/// storage binding reaches, and the alignment of a binding's offset.
+fn launch_bounds(context: &GpuContext) -> (u64, u64, u64) {
     // SAFETY: the physical device belongs to the context's live instance.
     let limits = unsafe { context.instance.instance.get_physical_device_properties(context.physical) }.limits;
     let invocations = u64::from(context.ray_tracing_properties.max_ray_dispatch_invocation_count);
-    let reach = u64::from(limits.max_storage_buffer_range) / RAY_BYTES;
-    let row = u64::from(LAUNCH_ROW);
-    (invocations.min(reach) / row).max(1) * row
+    (
+        invocations,
+        u64::from(limits.max_storage_buffer_range),
+        limits.min_storage_buffer_offset_alignment.max(1),
+    )
+}
+
+/// How many poses one launch casts a list of `counts.rays` rays from: as many as the device
+/// holds, in whole multiples of the offset alignment when it takes several launches. An
+/// error when the list alone, or its poses, are more than the launches can hold.
+fn poses_per_launch(context: &GpuContext, counts: Counts) -> Result<u64, VulkanError> {
+    let (invocations, reach, alignment) = launch_bounds(context);
+    let refuse = |what: String| Err(VulkanError::InvalidSettings(format!("{what} on {}", context.info.name)));
+    let most_rays = invocations.min(reach / RAY_BYTES).min(reach / HIT_BYTES);
+    if counts.rays > most_rays {
+        return refuse(format!(
+            "a ray list of {} rays is more than the {most_rays} one cast holds",
+            counts.rays
+        ));
+    }
+    let most = (invocations.min(reach / HIT_BYTES) / counts.rays.max(1)).min(reach / POSE_BYTES).max(1);
+    if counts.poses <= most {
+        return Ok(most);
+    }
+    // Later launches bind the poses and hits from an offset, which must be aligned.
+    match most / alignment * alignment {
+        0 => refuse(format!(
+            "{} poses of a list of {} rays take several launches, and one launch holds fewer than {alignment}",
+            counts.poses, counts.rays
+        )),
+        aligned => Ok(aligned),
+    }
 }
 
 impl VulkanRenderer {
-    /// Casts each of `rays` (in `scene`'s frame) to its closest hit, patches accepted by
-    /// `acceptance`, into `target`; read what they met with `RayListTarget::hits`. Lists
-    /// longer than one launch holds go in several.
+    /// Casts each of `rays` from each of `poses` (each placing the list's frame in `scene`'s)
+    /// to its closest hit, patches accepted by `acceptance`, into `target`; read what they met
+    /// with `RayListTarget::hits`. Casts of more poses than one launch holds go in several.
     pub fn cast_rays(
         &self,
         scene: &PreparedScene,
         rays: &[ListedRay],
+        poses: &[RayPose],
         acceptance: PatchAcceptance,
         target: &mut RayListTarget,
     ) -> Result<TraceTiming, VulkanError> {
         self.ensure_prepared_here(scene)?;
         let start = Instant::now();
         let pipelines = self.ray_list_pipeline()?;
-        let count = rays.len() as u64;
+        let counts = Counts { rays: rays.len() as u64, poses: poses.len() as u64 };
+        let per_launch = poses_per_launch(&self.context, counts)?;
         target.cast = 0;
-        let buffers = target.buffers_for(&self.context, pipelines.0, count.max(1))?;
+        let room = Counts { rays: counts.rays.max(1), poses: counts.poses.max(1) };
+        let buffers = target.buffers_for(&self.context, pipelines.0, room)?;
         buffers.rays.write(bytemuck::cast_slice(rays));
+        buffers.poses.write(bytemuck::cast_slice(poses));
         let push = TraceSettings::for_ray_list(acceptance, scene.buffer_layout);
-        let batch = batch_rays(&self.context);
         let mut gpu = Some(Duration::ZERO);
-        for first in (0..count).step_by(batch as usize) {
-            let time = buffers.cast_batch(pipelines, scene, push, (first, batch.min(count - first)))?;
-            gpu = gpu.zip(time).map(|(sum, time)| sum + time);
+        if counts.rays > 0 {
+            for first in (0..counts.poses).step_by(per_launch as usize) {
+                let batch = (counts.rays, first, per_launch.min(counts.poses - first));
+                let time = buffers.cast_batch(pipelines, scene, push, batch)?;
+                gpu = gpu.zip(time).map(|(sum, time)| sum + time);
+            }
         }
-        target.cast = rays.len();
+        target.cast = counts.hits() as usize;
         Ok(TraceTiming { gpu, wall: start.elapsed() })
     }
 }
