@@ -5,8 +5,10 @@
 //! its origins span and the power of two its radii are scaled by (`BlockFrame`).
 //!
 //! What each field keeps, against the records prep made:
-//! - the origin: 21 bits an axis within the block's box, so it moves by at most half a step,
-//!   `extent / (2 (2^21 - 1))` along an axis of the block's extent, plus f32 rounding;
+//! - the origin: 21 bits an axis on a grid over the block's box whose step is a power of two,
+//!   under `2 extent / (2^21 - 2)` along an axis of the block's extent, so it moves by at most
+//!   `extent / (2^21 - 2)`; decoded origins lie on the grid, so a second round trip keeps
+//!   them, and an origin already on it (a step finer than its f32 spacing) is kept exactly;
 //! - `d_u` and the colour reach: half floats of the value times the block's power of two, so
 //!   the relative error is at most 2^-11 for values within 2^28 of the block's largest;
 //! - the normal and tangent angle, `d_v / d_u` and `c1 .. c5`: the GPU record's own bits,
@@ -21,6 +23,7 @@ use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use rayon::prelude::*;
 
 use crate::patch_bounds::patch_box;
+use crate::patch_set::PatchSet;
 use crate::prep_settings::BoxKind;
 
 /// Patches a block holds (the last block of a store may hold fewer).
@@ -32,7 +35,7 @@ const POSITION_STEPS: u32 = (1 << POSITION_BITS) - 1;
 
 /// The scaled largest radius of a block lies in [2^14, 2^15): within a half float's range,
 /// with 28 binades of normal numbers below it.
-const LARGEST_SCALED_BINADE: i32 = 14;
+const LARGEST_SCALED_BINADE: u32 = 14;
 
 /// How a block's patches are quantised. 32 bytes.
 #[repr(C)]
@@ -75,19 +78,54 @@ pub fn block_frame(hot: &[PatchHot], cold: &[PatchCold]) -> BlockFrame {
     let (low, high) = hot.iter().fold(([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]), |(low, high), h| {
         (std::array::from_fn(|a| low[a].min(h.origin[a])), std::array::from_fn(|a| high[a].max(h.origin[a])))
     });
-    let min = if hot.is_empty() { [0.0; 3] } else { low };
-    let step = std::array::from_fn(|a| {
-        let extent = f64::from(high[a]) - f64::from(min[a]);
-        if extent > 0.0 { (extent / f64::from(POSITION_STEPS)) as f32 } else { 0.0 }
-    });
+    let axes: [(f32, f32); 3] =
+        std::array::from_fn(|a| if hot.is_empty() { (0.0, 0.0) } else { grid(low[a], high[a]) });
     let largest =
         hot.iter().map(|h| h.radius).chain(cold.iter().map(|c| c.color_reach)).fold(0.0f32, f32::max);
-    let radius_exponent = if largest > 0.0 && largest.is_finite() {
-        largest.log2().floor() as i32 - LARGEST_SCALED_BINADE
-    } else {
-        0
-    };
-    BlockFrame { min, step, radius_exponent, reserved: 0 }
+    BlockFrame {
+        min: axes.map(|(start, _)| start),
+        step: axes.map(|(_, step)| step),
+        radius_exponent: radius_exponent(largest),
+        reserved: 0,
+    }
+}
+
+/// The grid a block's coordinates in `[low, high]` are stored on: its first line, a multiple
+/// of the step, and the step, the smallest power of two at least `(high - low) / (2^21 - 2)`,
+/// so that `2^21 - 1` steps from the first line reach `high`. Decoded coordinates lie on the
+/// grid and are f32 numbers, so a second round trip changes nothing.
+fn grid(low: f32, high: f32) -> (f32, f32) {
+    if high <= low {
+        return (low, 0.0);
+    }
+    let (low, high) = (f64::from(low), f64::from(high));
+    let mut step = ((high - low) / f64::from(POSITION_STEPS - 1)).log2().ceil().exp2();
+    loop {
+        let start = (low / step).floor() * step;
+        let reaches = start + f64::from(POSITION_STEPS) * step >= high;
+        if reaches && f64::from(start as f32) == start {
+            return (start as f32, step as f32);
+        }
+        step *= 2.0;
+    }
+}
+
+/// The power of two radii are divided by: the block's largest value becomes a half float in
+/// [2^14, 2^15), after rounding, so that decoded radii give the same exponent again.
+fn radius_exponent(largest: f32) -> i32 {
+    if !(largest > 0.0 && largest.is_finite()) {
+        return 0;
+    }
+    let scaled = |exponent: i32| f16::from_f64(f64::from(largest) * (-f64::from(exponent)).exp2()).to_f64();
+    let (low, high) = (f64::from(1u32 << LARGEST_SCALED_BINADE), f64::from(2u32 << LARGEST_SCALED_BINADE));
+    // The logarithm of a value near a power of two may round across it, and rounding to a
+    // half float may carry the value up to the next power.
+    let exponent = largest.log2().floor() as i32 - LARGEST_SCALED_BINADE as i32;
+    match scaled(exponent) {
+        s if s >= high => exponent + 1,
+        s if s < low => exponent - 1,
+        _ => exponent,
+    }
 }
 
 /// `hot` and `cold` (one block, of the same length as `out`) in `frame`, into `out`.
@@ -176,6 +214,12 @@ pub fn cold_problem(cold: &[PatchCold], colors: bool) -> Option<String> {
     coloured.map(|i| {
         format!("cold record {i} has a colour or intensity, but the store keeps none (no colour neighbours)")
     })
+}
+
+/// Whether a store of `patches` keeps colour columns: where they have colour neighbours, or
+/// any colour or intensity.
+pub fn keeps_colors(patches: &PatchSet) -> bool {
+    !patches.color_neighbors.is_empty() || patches.cold.par_iter().any(|c| !is_plain(c))
 }
 
 /// Why `frame` cannot be decoded, if it cannot.
@@ -292,6 +336,26 @@ mod tests {
             );
         }
         assert!(frame_problem(&frame).is_none());
+    }
+
+    #[test]
+    fn a_second_round_trip_changes_nothing() {
+        for (origin, scale) in [(Vec3::new(-3.7, 1e4, 0.001), 1.0), (Vec3::new(5e5, -2e3, 7.0), 3e3)] {
+            let hot: Vec<PatchHot> = (0..BLOCK_PATCHES)
+                .map(|i| {
+                    let t = i as f32 / BLOCK_PATCHES as f32;
+                    let radius =
+                        0.01 * scale * (1.0 + (37.0 * t).sin().abs()) * if i == 9 { 2.0 } else { 1.0 };
+                    patch(origin + scale * Vec3::new(t, (13.0 * t).cos(), -t * t), radius)
+                })
+                .collect();
+            let cold: Vec<PatchCold> = (0..BLOCK_PATCHES)
+                .map(|i| PatchCold { intensity: (i % 97) as f32 / 96.0, ..PatchCold::default() })
+                .collect();
+            let (_, once, once_cold) = round_trip(&hot, &cold);
+            let (_, twice, twice_cold) = round_trip(&once, &once_cold);
+            assert_eq!((once, once_cold), (twice, twice_cold));
+        }
     }
 
     #[test]

@@ -53,7 +53,8 @@ use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 use rayon::prelude::*;
 
 use crate::compact_patches::{
-    BLOCK_PATCHES, BlockFrame, CompactColor, CompactPatch, decode_block, frame_problem,
+    BLOCK_PATCHES, BlockFrame, CompactColor, CompactPatch, cold_problem, colors_of, decode_block,
+    frame_problem, frames_of, keeps_colors, patches_of,
 };
 use crate::parallel_checksum;
 use crate::patch_records::PatchRecords;
@@ -452,11 +453,19 @@ fn decoded(
     kind: BoxKind,
 ) -> Result<DecodedRecords, &'static str> {
     let frames = cast_or_copy::<BlockFrame>(frames);
-    let patches = cast_or_copy::<CompactPatch>(patches);
-    let colors = colors.map(cast_or_copy::<CompactColor>);
     if let Some(problem) = frames.par_iter().find_map_first(frame_problem) {
         return Err(problem);
     }
+    let colors = colors.map(cast_or_copy::<CompactColor>);
+    Ok(decoded_records(&frames, &cast_or_copy::<CompactPatch>(patches), colors.as_deref(), kind))
+}
+
+fn decoded_records(
+    frames: &[BlockFrame],
+    patches: &[CompactPatch],
+    colors: Option<&[CompactColor]>,
+    kind: BoxKind,
+) -> DecodedRecords {
     let n = patches.len();
     let (mut hot, mut aabbs, mut cold) =
         (vec![PatchHot::zeroed(); n], vec![Aabb::zeroed(); n], vec![PatchCold::zeroed(); n]);
@@ -466,10 +475,30 @@ fn decoded(
         .enumerate()
         .for_each(|(block, ((hot, aabbs), cold))| {
             let range = block * BLOCK_PATCHES..block * BLOCK_PATCHES + hot.len();
-            let colors = colors.as_deref().map(|colors| &colors[range.clone()]);
+            let colors = colors.map(|colors| &colors[range.clone()]);
             decode_block(&frames[block], &patches[range], colors, kind, (hot, aabbs, cold));
         });
-    Ok((aabbs.into(), hot.into(), cold.into()))
+    (aabbs.into(), hot.into(), cold.into())
+}
+
+/// `patches` as a compact store holds them: what `write` then `read` give, without a file
+/// (`path` names them in errors). The scene loader and the Python package hand renderers
+/// these, so that a point set renders the same whether it was prepped just now or read from
+/// a store, and a second round trip changes nothing.
+pub fn as_stored(patches: &PatchSet, path: &Path) -> Result<PatchSet, StoreError> {
+    let inconsistent = |problem| StoreError::InconsistentPatchSet { path: path.to_path_buf(), problem };
+    patches.check().map_err(inconsistent)?;
+    let colors = keeps_colors(patches);
+    if let Some(problem) = cold_problem(&patches.cold, colors) {
+        return Err(inconsistent(problem));
+    }
+    let frames = frames_of(&patches.hot, &patches.cold);
+    let compact = patches_of(&frames, &patches.hot, &patches.cold);
+    let colors = colors.then(|| colors_of(&patches.cold));
+    let (aabbs, hot, cold) = decoded_records(&frames, &compact, colors.as_deref(), patches.settings.boxes);
+    let (settings, offset, color_neighbors) =
+        (patches.settings, patches.offset, patches.color_neighbors.clone());
+    Ok(PatchSet { settings, offset, aabbs, hot, cold, color_neighbors })
 }
 
 /// The header and the shape of its records, once magic, version, colour neighbours, the

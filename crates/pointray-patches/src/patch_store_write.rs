@@ -8,7 +8,7 @@ use glam::DVec3;
 use pointray_kernels::{Aabb, COLOR_NEIGHBORS};
 
 use crate::compact_patches::{
-    BLOCK_PATCHES, BlockFrame, cold_problem, colors_of, frames_of, is_plain, patches_of,
+    BLOCK_PATCHES, BlockFrame, cold_problem, colors_of, frames_of, keeps_colors, patches_of,
 };
 use crate::patch_set::PatchSet;
 use crate::patch_store::{
@@ -100,7 +100,7 @@ fn summary_of(
         Encoding::Full => RecordShape::full(neighbor_slots),
         Encoding::Compact => {
             patches.check().map_err(inconsistent)?;
-            let colors = neighbor_slots != 0 || patches.cold.iter().any(|c| !is_plain(c));
+            let colors = keeps_colors(patches);
             if let Some(problem) = cold_problem(&patches.cold, colors) {
                 return Err(inconsistent(problem));
             }

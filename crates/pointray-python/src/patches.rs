@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use numpy::{IntoPyArray, PyArrayMethods};
-use pointray_patches::{PatchSet, patch_store};
+use pointray_patches::{PatchSet, ScanStructure, patch_store};
 use pyo3::prelude::*;
 
 use crate::errors::to_python;
@@ -13,6 +13,8 @@ use crate::errors::to_python;
 #[pyclass(module = "pointray", frozen)]
 pub struct Patches {
     pub set: Arc<PatchSet>,
+    /// The scan structure prep found, which the store records.
+    pub scan: ScanStructure,
 }
 
 #[pymethods]
@@ -20,13 +22,16 @@ impl Patches {
     /// Reads a patch store (`.patches`) that `pointray prep` or `Patches.save` wrote.
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
-        let set = py.detach(|| patch_store::read(&path)).map_err(|e| to_python(&e))?;
-        Ok(Self { set: Arc::new(set) })
+        let read = || {
+            Ok::<_, patch_store::StoreError>((patch_store::read(&path)?, patch_store::describe(&path)?.scan))
+        };
+        let (set, scan) = py.detach(read).map_err(|e| to_python(&e))?;
+        Ok(Self { set: Arc::new(set), scan })
     }
 
     /// Writes a patch store, atomically; it never replaces the file it was read from.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        py.detach(|| patch_store::write(&path, &self.set)).map_err(|e| to_python(&e))
+        py.detach(|| patch_store::write_with_scan(&path, &self.set, &self.scan)).map_err(|e| to_python(&e))
     }
 
     fn __len__(&self) -> usize {

@@ -1,9 +1,10 @@
 //! `prep(positions, ...)`: numpy arrays to patches, with the command line's settings.
 
+use std::path::Path;
 use std::sync::Arc;
 
 use glam::DVec3;
-use pointray_patches::PrepSettings;
+use pointray_patches::{PrepSettings, patch_store};
 use pointray_surface::NoProgress;
 use pointray_surface::input_validation::validate_settings;
 use pyo3::prelude::*;
@@ -52,8 +53,10 @@ pub fn prep(
     let settings = options.settings;
     let positions = float_rows::<3>("positions", positions)?.into_iter().map(DVec3::from_array).collect();
     let cloud = attributes.cloud_of(positions)?;
-    let (set, _report) = py
+    let (set, report) = py
         .detach(|| pointray_surface::prep_owned(cloud, &settings, &NoProgress))
         .map_err(|e| to_python(&e))?;
-    Ok(Patches { set: Arc::new(set) })
+    // The patches as a store holds them, as `Patches.load` and the renderers' loader give them.
+    let stored = py.detach(|| patch_store::as_stored(&set, Path::new("(points from Python)")));
+    Ok(Patches { set: Arc::new(stored.map_err(|e| to_python(&e))?), scan: report.scan_structure() })
 }

@@ -108,7 +108,8 @@ pub(crate) fn load_points_file(
     }
     let settings = settings.copied().unwrap_or_default();
     let Some(cache_dir) = options.cache_dir else {
-        return Ok((prep_file(path, &settings, read, options)?, PointSetOrigin::Prepped { cache: None }));
+        let patches = stored(&prep_file(path, &settings, read, options)?, path)?;
+        return Ok((patches, PointSetOrigin::Prepped { cache: None }));
     };
     let cache = cache_dir.join(cache_file_name(path, &settings, read).map_err(PointSetError::Input)?);
     let regenerated_because = match patch_store::read(&cache) {
@@ -141,9 +142,16 @@ pub(crate) fn load_points_file(
 /// Preps a procedural cloud with default settings; nothing is cached, since sampling and prep
 /// are cheap at demo sizes.
 pub(crate) fn prep_in_memory(cloud: &PointCloud, options: &LoadOptions) -> Result<PatchSet, PointSetError> {
+    let file = PathBuf::from("(procedural points)");
     let (patches, _report) = prep(cloud, &PrepSettings::default(), options.progress)
-        .map_err(|source| PointSetError::Prep { file: PathBuf::from("(procedural points)"), source })?;
-    Ok(patches)
+        .map_err(|source| PointSetError::Prep { file: file.clone(), source })?;
+    stored(&patches, &file)
+}
+
+/// `patches` as a patch store holds them, as every point set the loader gives is: a scene
+/// renders the same whether its points were prepped now or read from a store or the cache.
+fn stored(patches: &PatchSet, source: &Path) -> Result<PatchSet, PointSetError> {
+    patch_store::as_stored(patches, source).map_err(PointSetError::Store)
 }
 
 fn prep_file(

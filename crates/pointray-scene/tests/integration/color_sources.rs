@@ -72,7 +72,13 @@ fn classification_colours_each_patch_in_the_asprs_palette() {
     for (hot, cold) in patches.hot.iter().zip(&patches.cold) {
         let x = f64::from(hot.origin().x) + patches.offset.x;
         let rgb: [u8; 3] = cold.color_rgba8.to_le_bytes()[..3].try_into().unwrap();
-        assert_eq!(rgb, if x < 0.0 { ground } else { building }, "patch at x = {x}");
+        // A point on the border, x = 0, may be stored a quantisation step either side of it.
+        let expected: &[[u8; 3]] = match x {
+            x if x.abs() < 1e-5 => &[ground, building],
+            x if x < 0.0 => &[ground],
+            _ => &[building],
+        };
+        assert!(expected.contains(&rgb), "patch at x = {x}: {rgb:?}");
     }
 }
 

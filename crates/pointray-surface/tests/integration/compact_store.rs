@@ -54,13 +54,13 @@ pub fn assert_within_compact_bounds(before: &PatchSet, after: &PatchSet) -> Comp
     errors
 }
 
-/// Half of one position step along each axis of the block of `hot`: its extent over
-/// 2^21 - 1 steps.
+/// The largest error of a position along each axis of the block of `hot`: half a step, which
+/// is under `2 extent / (2^21 - 2)`.
 fn half_steps(hot: &[PatchHot]) -> [f64; 3] {
     std::array::from_fn(|axis| {
         let values = hot.iter().map(|h| f64::from(h.origin[axis]));
         let (low, high) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
-        0.5 * (high - low) / f64::from((1u32 << 21) - 1) * (1.0 + 1e-6)
+        (high - low) / f64::from((1u32 << 21) - 2)
     })
 }
 

@@ -65,6 +65,17 @@ fn the_full_records_round_trip_bit_identical() {
 }
 
 #[test]
+fn the_stored_patches_are_those_a_store_gives_and_a_second_round_trip_keeps_them() {
+    let directory = tempfile::tempdir().unwrap();
+    let patches = sample_patches(BoxKind::Tight);
+    let stored = patch_store::as_stored(&patches, Path::new("sphere")).unwrap();
+    assert_eq!(stored, patch_store::read(&written(directory.path(), &patches)).unwrap());
+    let again = written(directory.path(), &stored);
+    assert_eq!(patch_store::read(&again).unwrap(), stored);
+    assert_eq!(patch_store::as_stored(&stored, Path::new("sphere")).unwrap(), stored);
+}
+
+#[test]
 fn a_set_no_renderer_can_build_on_is_not_written() {
     let directory = tempfile::tempdir().unwrap();
     let mut patches = sample_patches(BoxKind::Cube);
