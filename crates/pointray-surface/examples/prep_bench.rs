@@ -6,14 +6,16 @@
 //!
 //! Prints `prep`'s per-stage wall times and peak resident memory (the whole process's, with the
 //! mesh; `prep_owned` frees the sampled positions once recentred, as `pointray prep` does),
-//! then the store's write time and its load time (median of 5 loads). A measurement, not a
-//! test: bench/PREP.md records its output.
+//! then the store's write time, bytes a patch and load time (median of 5 loads), compact (as
+//! `pointray prep` writes it) and with the full records (version 7's). A measurement, not a
+//! test: bench/PREP.md and bench/RESULTS.md record its output.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use pointray_io::formats::ply;
-use pointray_patches::{PrepSettings, patch_store};
+use pointray_patches::patch_store::{self, Encoding};
+use pointray_patches::{PatchSet, PrepSettings};
 use pointray_surface::peak_memory::{StagePeaks, current_rss};
 use pointray_surface::{NoProgress, prep_owned, sample_mesh};
 
@@ -36,21 +38,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("{report}");
     print_peaks(&peaks, before, points);
     let directory = tempfile::tempdir()?;
-    let store = directory.path().join("bench.patches");
-    let start = Instant::now();
-    patch_store::write(&store, &patches)?;
-    let bytes = std::fs::metadata(&store)?.len();
-    println!("store write: {:.3} s, {:.1} MB", seconds(start.elapsed()), bytes as f64 / 1e6);
-    let mut loads: Vec<Duration> = (0..5)
-        .map(|_| {
-            let start = Instant::now();
-            let loaded = patch_store::read(&store).map(|p| p.len());
-            (start.elapsed(), loaded)
-        })
-        .map(|(time, loaded)| loaded.map(|_| time))
-        .collect::<Result<_, _>>()?;
-    loads.sort();
-    println!("store load (median of 5, file in page cache): {:.3} s", seconds(loads[2]));
+    for encoding in [Encoding::Compact, Encoding::Full] {
+        measure_store(&directory.path().join(format!("{encoding:?}.patches")), &patches, encoding)?;
+    }
     Ok(())
 }
 
@@ -65,6 +55,40 @@ fn print_peaks(peaks: &StagePeaks, before: u64, points: usize) {
     if let Some(bytes) = peaks.overall() {
         println!("  {:<22} {:>9.0} MB {:>6.0} B/point", "overall", megabytes(bytes), per_point(bytes));
     }
+}
+
+/// Writes `patches` to `store` in `encoding` and prints the write time, the bytes a patch
+/// and the load time (median of 5 loads, the file in the page cache). The full records are
+/// version 7's 68 bytes a patch, read without decoding as version 7 read them.
+fn measure_store(
+    store: &Path,
+    patches: &PatchSet,
+    encoding: Encoding,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let start = Instant::now();
+    pointray_io::write_atomically(store, |file| {
+        let mut writer = std::io::BufWriter::new(file);
+        patch_store::write_to(&mut writer, patches, encoding, store).map_err(std::io::Error::other)?;
+        std::io::Write::flush(&mut writer)
+    })?;
+    let written = seconds(start.elapsed());
+    let bytes = std::fs::metadata(store)?.len();
+    let per_patch = bytes as f64 / patches.len().max(1) as f64;
+    println!(
+        "{encoding:?} store write: {written:.3} s, {:.1} MB, {per_patch:.2} bytes a patch",
+        bytes as f64 / 1e6
+    );
+    let mut loads: Vec<Duration> = (0..5)
+        .map(|_| {
+            let start = Instant::now();
+            let loaded = patch_store::read(store).map(|p| p.len());
+            (start.elapsed(), loaded)
+        })
+        .map(|(time, loaded)| loaded.map(|_| time))
+        .collect::<Result<_, _>>()?;
+    loads.sort();
+    println!("{encoding:?} store load (median of 5, file in page cache): {:.3} s", seconds(loads[2]));
+    Ok(())
 }
 
 fn seconds(duration: Duration) -> f64 {
