@@ -24,7 +24,7 @@ pub struct BackendArgs {
 }
 
 /// `--gpu-memory`, for every command that may trace on a GPU.
-#[derive(Args, Clone, Copy, Debug)]
+#[derive(Args, Clone, Copy)]
 pub struct GpuMemoryArg {
     /// GPU memory a scene may take, building included, e.g. `40G` (default: the device's).
     /// A large point set is split into more tiles to fit. Where point sets still do not fit,

@@ -3,16 +3,17 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::str::FromStr;
 use std::sync::Arc;
 use std::time::Instant;
 
 use clap::Args;
 use glam::DAffine3;
-use pointray_io::SweepPoses;
+use pointray_io::{MemoryBudget, SweepPoses};
 use pointray_lidar::{RangeAgreement, SweepRays, resimulate};
 use pointray_render::{BackendChoice, DeviceSelector};
 
-use crate::backend::{GpuMemoryArg, backend_choice, open_backend};
+use crate::backend::{backend_choice, open_backend};
 
 /// The map's ranges reach this far by default (metres): past the farthest return of the
 /// automotive sensors that sweeps come from.
@@ -38,15 +39,17 @@ pub struct ResimulationArgs {
     /// Write the comparison with the real sweep as JSON.
     #[arg(long, requires = "rays_from")]
     json: Option<PathBuf>,
-    /// Where `--rays-from`'s rays are cast: `auto` takes a hardware ray-tracing GPU if there
-    /// is one, otherwise the CPU backend.
-    #[arg(long, default_value = "auto", value_parser = backend_choice(), requires = "rays_from")]
-    backend: BackendChoice,
-    /// Vulkan device: `auto`, an index from `pointray devices`, or part of its name.
-    #[arg(long, default_value = "auto", requires = "rays_from")]
-    device: DeviceSelector,
-    #[command(flatten)]
-    gpu_memory: GpuMemoryArg,
+    /// Where `--rays-from`'s rays are cast: `auto` (the default) takes a hardware ray-tracing
+    /// GPU if there is one, otherwise the CPU backend.
+    #[arg(long, value_parser = backend_choice(), requires = "rays_from")]
+    backend: Option<BackendChoice>,
+    /// Vulkan device: `auto` (the default), an index from `pointray devices`, or part of its
+    /// name.
+    #[arg(long, requires = "rays_from")]
+    device: Option<DeviceSelector>,
+    /// GPU memory the map may take, building included, e.g. `40G` (default: the device's).
+    #[arg(long = "gpu-memory", value_name = "SIZE", value_parser = MemoryBudget::from_str, requires = "rays_from")]
+    gpu_memory: Option<MemoryBudget>,
 }
 
 /// Re-simulates the sweep `rays_from` in `map` and writes it to `output`.
@@ -71,7 +74,8 @@ pub fn run(
     let real = pointray_io::formats::read_point_cloud(sweep)?;
     let rays = SweepRays::of_sweep(&real);
     let patches = pointray_patches::patch_store::read(map)?;
-    let backend = open_backend(resimulation.backend, &resimulation.device, resimulation.gpu_memory.budget)?;
+    let device = resimulation.device.clone().unwrap_or(DeviceSelector::Auto);
+    let backend = open_backend(resimulation.backend.unwrap_or_default(), &device, resimulation.gpu_memory)?;
     println!("backend: {}", backend.describe());
     let caster = backend.map_caster(Arc::new(patches))?;
     let started = Instant::now();
