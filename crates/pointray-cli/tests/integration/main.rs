@@ -18,6 +18,7 @@ mod outputs_spare_inputs;
 mod path_integrator_flags;
 mod peer_files;
 mod prep_robustness_flags;
+mod resimulation_backends;
 mod scan_command;
 mod scan_measures;
 mod scene_prep_keys;
