@@ -73,13 +73,11 @@ pub struct CompactColor {
     pub intensity: [u8; 2],
 }
 
-/// The frame of the block of `hot` records and their `cold` ones.
+/// The frame of the block of `hot` records and their `cold` ones. Its grid is that of the
+/// origins as a first grid over them places them (`snapped`): the grid a round trip of the
+/// decoded block finds again, so that a store of decoded patches has the same bytes.
 pub fn block_frame(hot: &[PatchHot], cold: &[PatchCold]) -> BlockFrame {
-    let (low, high) = hot.iter().fold(([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]), |(low, high), h| {
-        (std::array::from_fn(|a| low[a].min(h.origin[a])), std::array::from_fn(|a| high[a].max(h.origin[a])))
-    });
-    let axes: [(f32, f32); 3] =
-        std::array::from_fn(|a| if hot.is_empty() { (0.0, 0.0) } else { grid(low[a], high[a]) });
+    let axes = grids(&snapped(hot));
     let largest =
         hot.iter().map(|h| h.radius).chain(cold.iter().map(|c| c.color_reach)).fold(0.0f32, f32::max);
     BlockFrame {
@@ -88,6 +86,39 @@ pub fn block_frame(hot: &[PatchHot], cold: &[PatchCold]) -> BlockFrame {
         radius_exponent: radius_exponent(largest),
         reserved: 0,
     }
+}
+
+/// The origins of `hot` on the grid over them: where a first round trip puts them. Every one
+/// lies on the grid of these too, whose step is no coarser, so they are what is stored.
+fn snapped(hot: &[PatchHot]) -> Vec<[f32; 3]> {
+    let origins: Vec<[f32; 3]> = hot.iter().map(|h| h.origin).collect();
+    let axes = grids(&origins);
+    origins.iter().map(|o| std::array::from_fn(|a| on_grid(position_steps(o[a], axes[a]), axes[a]))).collect()
+}
+
+/// The box of the origins of `hot` as a store keeps them, blocks from its first: the same for
+/// decoded patches as for those they were decoded from.
+pub fn stored_origin_bounds(hot: &[PatchHot]) -> Option<Aabb> {
+    let block_box = |block: &[PatchHot]| {
+        let origins = snapped(block).into_iter().map(glam::Vec3::from_array);
+        origins.fold(None, |bounds: Option<Aabb>, o| {
+            Some(bounds.map_or(Aabb::new(o, o), |b| b.union(&Aabb::new(o, o))))
+        })
+    };
+    hot.par_chunks(BLOCK_PATCHES).filter_map(block_box).reduce_with(|a, b| a.union(&b))
+}
+
+/// The grid (first line, step) along each axis of `origins`.
+fn grids(origins: &[[f32; 3]]) -> [(f32, f32); 3] {
+    let (low, high) = origins.iter().fold(([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]), |(low, high), o| {
+        (std::array::from_fn(|a| low[a].min(o[a])), std::array::from_fn(|a| high[a].max(o[a])))
+    });
+    std::array::from_fn(|a| if origins.is_empty() { (0.0, 0.0) } else { grid(low[a], high[a]) })
+}
+
+/// The coordinate `steps` steps along `(start, step)`.
+fn on_grid(steps: u64, (start, step): (f32, f32)) -> f32 {
+    (f64::from(start) + steps as f64 * f64::from(step)) as f32
 }
 
 /// The grid a block's coordinates in `[low, high]` are stored on: its first line, a multiple
@@ -131,9 +162,9 @@ fn radius_exponent(largest: f32) -> i32 {
 /// `hot` and `cold` (one block, of the same length as `out`) in `frame`, into `out`.
 pub fn encode_patches(frame: &BlockFrame, hot: &[PatchHot], cold: &[PatchCold], out: &mut [CompactPatch]) {
     let scale = (-f64::from(frame.radius_exponent)).exp2();
-    for ((h, c), record) in hot.iter().zip(cold).zip(out) {
+    for (((h, c), origin), record) in hot.iter().zip(cold).zip(snapped(hot)).zip(out) {
         let steps: [u64; 3] =
-            std::array::from_fn(|a| position_steps(h.origin[a], frame.min[a], frame.step[a]));
+            std::array::from_fn(|a| position_steps(origin[a], (frame.min[a], frame.step[a])));
         let packed = steps[0] | steps[1] << POSITION_BITS | steps[2] << (2 * POSITION_BITS);
         let radius = positive_half(f64::from(h.radius) * scale);
         let reach = f16::from_f64(f64::from(c.color_reach) * scale).to_bits();
@@ -147,12 +178,12 @@ pub fn encode_patches(frame: &BlockFrame, hot: &[PatchHot], cold: &[PatchCold], 
     }
 }
 
-/// The nearest step of `value` from `min`, within the block's steps.
-fn position_steps(value: f32, min: f32, step: f32) -> u64 {
+/// The nearest step of `value` along the grid `(start, step)`, within the block's steps.
+fn position_steps(value: f32, (start, step): (f32, f32)) -> u64 {
     if step <= 0.0 {
         return 0;
     }
-    ((f64::from(value) - f64::from(min)) / f64::from(step)).round().clamp(0.0, f64::from(POSITION_STEPS))
+    ((f64::from(value) - f64::from(start)) / f64::from(step)).round().clamp(0.0, f64::from(POSITION_STEPS))
         as u64
 }
 
@@ -247,7 +278,7 @@ pub fn decode_block(
         let packed = u64::from(record.position[0]) | u64::from(record.position[1]) << 32;
         let origin = std::array::from_fn(|a| {
             let steps = (packed >> (a as u32 * POSITION_BITS)) & u64::from(POSITION_STEPS);
-            (f64::from(frame.min[a]) + steps as f64 * f64::from(frame.step[a])) as f32
+            on_grid(steps, (frame.min[a], frame.step[a]))
         });
         let half = |bits: u32| (f64::from(f16::from_bits(bits as u16)) * scale) as f32;
         hot[i] = PatchHot {
@@ -354,7 +385,12 @@ mod tests {
                 .collect();
             let (_, once, once_cold) = round_trip(&hot, &cold);
             let (_, twice, twice_cold) = round_trip(&once, &once_cold);
-            assert_eq!((once, once_cold), (twice, twice_cold));
+            assert_eq!((&once, &once_cold), (&twice, &twice_cold));
+            let encoded = |hot: &[PatchHot], cold: &[PatchCold]| {
+                let frames = frames_of(hot, cold);
+                (patches_of(&frames, hot, cold), frames)
+            };
+            assert_eq!(encoded(&hot, &cold), encoded(&once, &once_cold), "the same bytes again");
         }
     }
 

@@ -9,7 +9,7 @@
 //! | 12 | 4 | header size in bytes, u32 = 384 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
 //! | 24 | 24 | offset, f64 x 3 (`input = local + offset`) |
-//! | 48 | 24 | bounds of all boxes: min xyz, max xyz, f32 x 6 (local coordinates) |
+//! | 48 | 24 | bounds of the origins as stored (of the boxes, for full records): min xyz, max xyz, f32 x 6 (local) |
 //! | 72 | 64 | section table: (byte offset u64, byte length u64) for each of the four sections |
 //! | 136 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
 //! | 140 | 68 | the `PrepSettings` the patches were made with (below) |
@@ -315,7 +315,8 @@ pub struct StoreDescription {
     pub shape: RecordShape,
     pub settings: PrepSettings,
     pub offset: DVec3,
-    /// The union of all patch boxes, in local coordinates (`None` for no patches).
+    /// The box of the patches' origins as stored, in local coordinates (`None` for no
+    /// patches; the union of the boxes for full records).
     pub bounds: Option<Aabb>,
     pub scan: ScanStructure,
 }

@@ -11,11 +11,11 @@ use std::path::Path;
 
 use crc32fast::Hasher;
 use pointray_io::AtomicFile;
-use pointray_kernels::{COLOR_NEIGHBORS, PatchCold, PatchHot};
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, PatchCold, PatchHot};
 use rayon::prelude::*;
 
 use crate::compact_patches::{BLOCK_PATCHES, BlockFrame, CompactColor, CompactPatch, cold_problem};
-use crate::compact_patches::{colors_of, frames_of, patches_of};
+use crate::compact_patches::{colors_of, frames_of, patches_of, stored_origin_bounds};
 use crate::parallel_checksum::{joined, piece_hasher, zeros_hasher};
 use crate::patch_set::PatchSet;
 use crate::patch_store::{HEADER_BYTES, Layout, RecordShape, SECTION_COUNT, StoreError};
@@ -42,6 +42,8 @@ pub struct StoreInPlace {
     pending: (Vec<PatchHot>, Vec<PatchCold>),
     /// The checksum of each section's bytes so far; the neighbours' come when mapped.
     hashers: [Hasher; NEIGHBOR_SECTION],
+    /// The box of the origins encoded so far, as stored.
+    bounds: Option<Aabb>,
 }
 
 impl StoreInPlace {
@@ -60,6 +62,7 @@ impl StoreInPlace {
             encoded: 0,
             pending: Default::default(),
             hashers: Default::default(),
+            bounds: None,
         })
     }
 
@@ -155,6 +158,10 @@ impl StoreInPlace {
             running.combine(&written);
         }
         self.encoded += hot.len() as u64;
+        self.bounds = match (self.bounds, stored_origin_bounds(hot)) {
+            (Some(a), Some(b)) => Some(a.union(&b)),
+            (a, b) => a.or(b),
+        };
         Ok(())
     }
 
@@ -177,7 +184,7 @@ impl StoreInPlace {
             })
             .ok_or_else(|| self.inconsistent("the summary is not of the patches written".into()))?;
         let neighbors = self.map_neighbors(layout.sections[NEIGHBOR_SECTION], &neighbor)?;
-        let header = header_for(summary, &layout, shape);
+        let header = header_for(summary, &layout, shape, self.bounds);
         let mut checksum = piece_hasher(bytemuck::bytes_of(&header));
         let mut position = HEADER_BYTES as u64;
         for (section, hasher) in layout.sections.iter().zip(self.hashers.iter().chain([&neighbors])) {

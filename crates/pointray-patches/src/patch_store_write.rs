@@ -9,6 +9,7 @@ use pointray_kernels::{Aabb, COLOR_NEIGHBORS};
 
 use crate::compact_patches::{
     BLOCK_PATCHES, BlockFrame, cold_problem, colors_of, frames_of, keeps_colors, patches_of,
+    stored_origin_bounds,
 };
 use crate::patch_set::PatchSet;
 use crate::patch_store::{
@@ -25,8 +26,6 @@ const CHUNK_BLOCKS: usize = 256;
 pub struct StoreSummary {
     pub settings: PrepSettings,
     pub offset: DVec3,
-    /// The union of all patch boxes (`None` for no patches).
-    pub bounds: Option<Aabb>,
     pub patches: u64,
     /// The patches each section has room for (at least `patches`): a writer that knows only
     /// a bound on the count as it starts leaves room for that many.
@@ -37,13 +36,9 @@ pub struct StoreSummary {
 }
 
 impl StoreSummary {
-    /// Counts `set`'s patches after those counted so far, and takes in their boxes.
+    /// Counts `set`'s patches after those counted so far.
     pub fn add(&mut self, set: &PatchSet) {
         self.patches += set.len() as u64;
-        self.bounds = match (self.bounds, set.bounds()) {
-            (Some(a), Some(b)) => Some(a.union(&b)),
-            (a, b) => a.or(b),
-        };
     }
 }
 
@@ -110,7 +105,6 @@ fn summary_of(
     let summary = StoreSummary {
         settings: patches.settings,
         offset: patches.offset,
-        bounds: patches.bounds(),
         patches: patches.len() as u64,
         room: patches.len() as u64,
         neighbor_slots,
@@ -145,11 +139,11 @@ fn write_contents(
 ) -> std::io::Result<()> {
     let mut writer = ChecksummedWriter::new(file);
     let layout = Layout::with_room(summary.patches, summary.room, shape).ok_or_else(overflow)?;
-    writer.write_all(bytemuck::bytes_of(&header_for(summary, &layout, shape)))?;
-    let frames = match shape.encoding {
-        Encoding::Compact => frames_of(&patches.hot, &patches.cold),
-        Encoding::Full => Vec::new(),
+    let (frames, bounds) = match shape.encoding {
+        Encoding::Compact => (frames_of(&patches.hot, &patches.cold), stored_origin_bounds(&patches.hot)),
+        Encoding::Full => (Vec::new(), patches.bounds()),
     };
+    writer.write_all(bytemuck::bytes_of(&header_for(summary, &layout, shape, bounds)))?;
     let mut position = HEADER_BYTES as u64;
     for (index, section) in layout.sections.iter().enumerate() {
         writer.write_zeros(section.offset - position)?;
@@ -191,8 +185,15 @@ fn write_compact_records<W: Write>(
     Ok(())
 }
 
-pub(crate) fn header_for(summary: &StoreSummary, layout: &Layout, shape: RecordShape) -> Header {
-    let bounds = summary.bounds.unwrap_or_default();
+/// The header of `summary`'s patches, of which `bounds` bounds the origins as stored (the
+/// boxes, for full records).
+pub(crate) fn header_for(
+    summary: &StoreSummary,
+    layout: &Layout,
+    shape: RecordShape,
+    bounds: Option<Aabb>,
+) -> Header {
+    let bounds = bounds.unwrap_or_default();
     let (scan_kind, scan_counts, scan_reason) = Header::scan_fields(&summary.scan);
     let compact = shape.encoding == Encoding::Compact;
     Header {

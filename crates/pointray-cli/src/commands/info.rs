@@ -34,7 +34,7 @@ fn described(name: &str, store: &StoreDescription) -> String {
         format!("patches: {} ({} bytes, {per_patch:.2} a patch)", store.patches, store.file_bytes),
         format!("records: {records}; {} colour neighbours a patch", store.shape.neighbor_slots),
         format!("offset (input = local + offset): {}, {}, {}", offset.x, offset.y, offset.z),
-        format!("bounds (local): {bounds}"),
+        format!("origins' bounds (local): {bounds}"),
         format!("prep settings: {:?}", store.settings),
         format!("scan structure: {}", store.scan),
     ]

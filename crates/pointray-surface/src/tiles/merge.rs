@@ -119,7 +119,6 @@ fn survey_tiles(
         let total = summary.get_or_insert(StoreSummary {
             settings: set.settings,
             offset: set.offset,
-            bounds: None,
             patches: 0,
             room: header.input_points,
             neighbor_slots: header.neighbor_slots,

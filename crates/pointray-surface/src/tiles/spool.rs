@@ -37,7 +37,6 @@ impl TileSpool {
         let summary = StoreSummary {
             settings,
             offset,
-            bounds: None,
             patches: 0,
             room: input_points,
             neighbor_slots: 0,

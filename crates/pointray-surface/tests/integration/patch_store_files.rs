@@ -70,7 +70,9 @@ fn the_stored_patches_are_those_a_store_gives_and_a_second_round_trip_keeps_them
     let patches = sample_patches(BoxKind::Tight);
     let stored = patch_store::as_stored(&patches, Path::new("sphere")).unwrap();
     assert_eq!(stored, patch_store::read(&written(directory.path(), &patches)).unwrap());
+    let first_bytes = std::fs::read(written(directory.path(), &patches)).unwrap();
     let again = written(directory.path(), &stored);
+    assert!(std::fs::read(&again).unwrap() == first_bytes, "a store of stored patches has the same bytes");
     assert_eq!(patch_store::read(&again).unwrap(), stored);
     assert_eq!(patch_store::as_stored(&stored, Path::new("sphere")).unwrap(), stored);
 }
