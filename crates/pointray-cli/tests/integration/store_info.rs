@@ -28,11 +28,17 @@ fn info_shows_the_scan_lines_prep_found_in_a_real_sweep() {
     assert!(info.contains("compact, with colours and intensities"), "{info}");
 }
 
-#[test]
-fn info_says_no_scan_structure_was_sought_for_points_without_a_sensor() {
+/// A folder holding a 400-point grid prepped into `store`.
+fn prepped_grid(store: &str) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     write_grid_ply(&dir.path().join("grid.ply"));
-    succeeds(dir.path(), &["prep", "grid.ply", "-o", "grid.patches"]);
+    succeeds(dir.path(), &["prep", "grid.ply", "-o", store]);
+    dir
+}
+
+#[test]
+fn info_says_no_scan_structure_was_sought_for_points_without_a_sensor() {
+    let dir = prepped_grid("grid.patches");
     let info = succeeds(dir.path(), &["info", "grid.patches"]);
     assert!(info.contains("scan structure: none sought"), "{info}");
     assert!(info.contains("patches: 400 ("), "{info}");
@@ -40,9 +46,7 @@ fn info_says_no_scan_structure_was_sought_for_points_without_a_sensor() {
 
 #[test]
 fn a_store_of_an_older_version_is_refused_with_the_way_out() {
-    let dir = tempfile::tempdir().unwrap();
-    write_grid_ply(&dir.path().join("grid.ply"));
-    succeeds(dir.path(), &["prep", "grid.ply", "-o", "old.patches"]);
+    let dir = prepped_grid("old.patches");
     let store = dir.path().join("old.patches");
     let mut bytes = std::fs::read(&store).unwrap();
     bytes[8..12].copy_from_slice(&7u32.to_le_bytes());
