@@ -15,6 +15,7 @@ mod render;
 mod render_options;
 mod render_source;
 mod scene_text;
+mod tile_jobs;
 mod toml_values;
 
 use pyo3::prelude::*;
@@ -35,6 +36,8 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(read::read_sweeps, module)?)?;
     module.add_function(wrap_pyfunction!(read::recentring_offset, module)?)?;
     module.add_function(wrap_pyfunction!(prep::prep, module)?)?;
+    module.add_function(wrap_pyfunction!(tile_jobs::prep_tile, module)?)?;
+    module.add_function(wrap_pyfunction!(tile_jobs::merge_tiles, module)?)?;
     module.add_function(wrap_pyfunction!(render::render, module)?)?;
     module.add_function(wrap_pyfunction!(scene_text::scene_to_toml, module)?)?;
     module.add_function(wrap_pyfunction!(scene_text::scene_from_toml, module)?)?;

@@ -44,5 +44,5 @@ pub use prep_error::PrepError;
 pub use prep_progress::{NoProgress, PrepProgress, Stage};
 pub use prep_report::{FitCounts, PrepReport, RadiusFallbacks, ScanSummary};
 pub use quadratic_fit::{FitKind, PatchFit};
-pub use sampling::sample_mesh;
+pub use sampling::{sample_mesh, sample_mesh_part};
 pub use trimmed_centre::trimmed_centre;

@@ -2,6 +2,7 @@
 
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
+use std::ops::Range;
 
 use glam::{DVec3, IVec3};
 use pointray_io::{PointCloud, TriangleMesh};
@@ -31,11 +32,34 @@ pub fn sample_mesh(mesh: &TriangleMesh, count: usize, seed: u64, blue_noise: boo
         return PointCloud::default();
     };
     if !blue_noise {
-        return PointCloud::from_positions(uniform_samples(mesh, &areas, count, seed, SAMPLES_PER_CHUNK));
+        return PointCloud::from_positions(uniform_samples(mesh, &areas, 0..count, seed, SAMPLES_PER_CHUNK));
     }
-    let candidates =
-        uniform_samples(mesh, &areas, count.saturating_mul(BLUE_NOISE_OVERSAMPLING), seed, SAMPLES_PER_CHUNK);
+    let candidates = uniform_samples(
+        mesh,
+        &areas,
+        0..count.saturating_mul(BLUE_NOISE_OVERSAMPLING),
+        seed,
+        SAMPLES_PER_CHUNK,
+    );
     PointCloud::from_positions(thin_to_blue_noise(candidates, count, areas.total))
+}
+
+/// Part `index` of `parts` of the uniform sample `sample_mesh(mesh, count, seed, false)`:
+/// its samples `count·index/parts` up to `count·(index+1)/parts`, drawn from their place in
+/// the seed's stream, so the parts in order are the whole sample, and separate jobs can each
+/// draw one. Blue noise thins the whole sample at once and has no parts.
+pub fn sample_mesh_part(
+    mesh: &TriangleMesh,
+    count: usize,
+    seed: u64,
+    (index, parts): (usize, usize),
+) -> PointCloud {
+    let Some(areas) = CumulativeAreas::of(mesh) else {
+        return PointCloud::default();
+    };
+    let share = |part: usize| (count as u128 * part as u128 / parts.max(1) as u128) as usize;
+    let range = share(index.min(parts))..share((index + 1).min(parts));
+    PointCloud::from_positions(uniform_samples(mesh, &areas, range, seed, SAMPLES_PER_CHUNK))
 }
 
 /// The running sum of triangle areas, for picking a triangle with probability
@@ -79,19 +103,19 @@ const SAMPLES_PER_CHUNK: usize = 1 << 16;
 /// `6 i` of the seed's stream, so chunks drawn in parallel give the points one stream gives.
 const WORDS_PER_SAMPLE: u128 = 6;
 
-/// `count` samples of the seed's stream, drawn in chunks of `chunk` on every core.
+/// The samples `indices` of the seed's stream, drawn in chunks of `chunk` on every core.
 fn uniform_samples(
     mesh: &TriangleMesh,
     areas: &CumulativeAreas,
-    count: usize,
+    indices: Range<usize>,
     seed: u64,
     chunk: usize,
 ) -> Vec<DVec3> {
     let chunk = chunk.max(1);
-    let mut points = vec![DVec3::ZERO; count];
+    let mut points = vec![DVec3::ZERO; indices.len()];
     points.par_chunks_mut(chunk).enumerate().for_each(|(index, points)| {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        rng.set_word_pos((index * chunk) as u128 * WORDS_PER_SAMPLE);
+        rng.set_word_pos((indices.start + index * chunk) as u128 * WORDS_PER_SAMPLE);
         for point in points {
             *point = uniform_sample(mesh, areas, &mut rng);
         }
@@ -228,7 +252,19 @@ mod tests {
         let areas = CumulativeAreas::of(&mesh).expect("area");
         let serial = one_stream(&mesh, 10_007, 3);
         for chunk in [1, 7, 64, 10_007, 1 << 20] {
-            assert_eq!(uniform_samples(&mesh, &areas, 10_007, 3, chunk), serial, "chunks of {chunk}");
+            assert_eq!(uniform_samples(&mesh, &areas, 0..10_007, 3, chunk), serial, "chunks of {chunk}");
+        }
+    }
+
+    #[test]
+    fn parts_in_order_are_the_whole_sample() {
+        let mesh = two_squares();
+        let whole = sample_mesh(&mesh, 1001, 5, false).positions;
+        for parts in [1, 3, 7, 1001, 1500] {
+            let joined: Vec<DVec3> = (0..parts)
+                .flat_map(|index| sample_mesh_part(&mesh, 1001, 5, (index, parts)).positions)
+                .collect();
+            assert_eq!(joined, whole, "{parts} parts");
         }
     }
 
