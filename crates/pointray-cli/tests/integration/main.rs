@@ -19,6 +19,7 @@ mod path_integrator_flags;
 mod peer_files;
 mod prep_robustness_flags;
 mod resimulation_backends;
+mod sample_parts;
 mod scan_command;
 mod scan_measures;
 mod scene_prep_keys;
