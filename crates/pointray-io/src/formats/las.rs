@@ -11,6 +11,7 @@ use std::path::Path;
 use glam::DVec3;
 use las::{PointData, PointDataBuilder};
 
+use super::copc::{is_copc, read_copc};
 use super::intensity::normalise_intensities;
 use crate::{IoError, PointCloud};
 
@@ -25,10 +26,15 @@ const BATCH_BYTES: u64 = 4 << 20;
 /// in the 16-bit fields are detected and kept as they are); intensities are normalised to
 /// [0, 1]; classifications are the ASPRS codes (5 bits before point format 6, 8 bits from it
 /// on). Every LAS point has these fields, filled or not: an all-zero colour, intensity or
-/// classification (class 0, "never classified") is reported as absent.
+/// classification (class 0, "never classified") is reported as absent. COPC files, whose
+/// chunks can be decoded independently, are decoded in parallel.
 pub fn read_las(path: &Path) -> Result<PointCloud, IoError> {
     let file = File::open(path).map_err(|source| IoError::os(path, source))?;
-    read_las_from(BufReader::new(file), path)
+    let mut read = BufReader::new(file);
+    if is_copc(&mut read) {
+        return read_copc(path);
+    }
+    read_las_from(read, path)
 }
 
 /// Reads LAS or LAZ data from any seekable stream; `origin` names it in errors.
@@ -90,7 +96,7 @@ where
 /// before reading (a corrupt one asks for gigabytes), a LAZ item list they
 /// index without looking (an empty one panics) and a chunk count they reserve room for
 /// before reading (a corrupt one asks for gigabytes). Leaves the stream at its start.
-fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError> {
+pub(super) fn preflight<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<(), IoError> {
     check_evlr_lengths(read, origin)?;
     check_declared_points(read, origin)?;
     read.seek(SeekFrom::Start(0)).map_err(|source| IoError::os(origin, source))?;
@@ -340,7 +346,7 @@ pub(super) fn las_error(origin: &Path, error: las::Error) -> IoError {
 
 /// The columns we keep, filled batch by batch.
 #[derive(Default)]
-struct LasColumns {
+pub(super) struct LasColumns {
     positions: Vec<DVec3>,
     raw_intensities: Vec<f64>,
     raw_colors: Option<Vec<[u16; 3]>>,
@@ -348,7 +354,7 @@ struct LasColumns {
 }
 
 impl LasColumns {
-    fn append(&mut self, batch: &PointData) {
+    pub(super) fn append(&mut self, batch: &PointData) {
         self.positions.extend(batch.x().zip(batch.y()).zip(batch.z()).map(|((x, y), z)| DVec3::new(x, y, z)));
         self.raw_intensities.extend(batch.intensity().map(f64::from));
         self.classifications.extend(batch.classification());
@@ -357,7 +363,7 @@ impl LasColumns {
         }
     }
 
-    fn into_point_cloud(self) -> PointCloud {
+    pub(super) fn into_point_cloud(self) -> PointCloud {
         PointCloud {
             intensities: normalise_intensities(&self.raw_intensities),
             colors: self.raw_colors.as_deref().and_then(colors_to_8_bit),

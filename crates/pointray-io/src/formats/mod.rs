@@ -2,6 +2,8 @@
 
 mod column_rows;
 pub mod columns;
+pub mod copc;
+mod copc_hierarchy;
 pub mod detect;
 mod dispatch;
 pub mod e57;

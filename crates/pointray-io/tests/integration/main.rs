@@ -4,6 +4,7 @@ mod atomic_write;
 mod common;
 mod dispatch;
 mod file_roles;
+mod formats_copc;
 mod formats_detect;
 mod formats_e57;
 mod formats_fuzz_regressions;

@@ -1,0 +1,119 @@
+//! COPC (https://copc.io): LAZ 1.4 whose points are stored in independently compressed
+//! chunks, one per node of an octree that a hierarchy EVLR lists. The chunks are decoded in
+//! parallel with the `las` crate's `CopcReader`, one reader per worker, after the hierarchy
+//! has been checked against the file (`copc_hierarchy`).
+
+use std::fs::File;
+use std::io::{BufReader, Read, Seek, SeekFrom};
+use std::path::Path;
+
+use las::copc::Entry;
+use las::{CopcReader, PointData};
+use rayon::prelude::*;
+
+use super::copc_hierarchy::{ChunkRoom, point_chunks};
+use super::las::{LasColumns, las_error, preflight, survive_decoder};
+use crate::{IoError, PointCloud};
+
+/// Where COPC puts its info VLR: first after the 375-byte LAS 1.4 header, whose user id
+/// field starts 2 bytes in and whose record id follows it.
+const INFO_USER_ID_AT: u64 = 375 + 2;
+const INFO_RECORD_ID: u16 = 1;
+const HIERARCHY_RECORD_ID: u16 = 1000;
+
+type FileCopcReader = CopcReader<'static, BufReader<File>>;
+
+/// Whether the LAS stream `read` is COPC (its first VLR is the COPC info VLR, as the
+/// specification places it). Leaves the stream at its start.
+pub(super) fn is_copc<R: Read + Seek>(read: &mut R) -> bool {
+    let mut user_and_record = [0u8; 18];
+    let found = read.seek(SeekFrom::Start(INFO_USER_ID_AT)).is_ok()
+        && read.read_exact(&mut user_and_record).is_ok()
+        && user_and_record.starts_with(b"copc\0")
+        && u16::from_le_bytes([user_and_record[16], user_and_record[17]]) == INFO_RECORD_ID;
+    read.seek(SeekFrom::Start(0)).map(|_| found).unwrap_or(false)
+}
+
+/// Reads a COPC file whole, its chunks decoded in parallel and put in file order. Points
+/// and attributes come out as `read_las` gives them for the same file read as LAZ.
+pub fn read_copc(path: &Path) -> Result<PointCloud, IoError> {
+    let mut read = open(path)?;
+    preflight(&mut read, path)?;
+    let file_bytes = read.seek(SeekFrom::End(0)).map_err(|source| IoError::os(path, source))?;
+    read.seek(SeekFrom::Start(0)).map_err(|source| IoError::os(path, source))?;
+    let header = las::Header::new(&mut read).map_err(|error| las_error(path, error))?;
+    let room = point_data_room(&mut read, file_bytes, path)?;
+    let hierarchy_at = hierarchy_data_at(&mut read, path)?;
+    let chunks = point_chunks(&header, hierarchy_at, &room, path)?;
+    let decoded: Vec<PointData> = chunks
+        .par_iter()
+        .map_init(|| open_reader(path), |reader, chunk| decode_chunk(reader, chunk, path))
+        .collect::<Result<_, _>>()?;
+    let mut columns = LasColumns::default();
+    decoded.iter().for_each(|chunk| columns.append(chunk));
+    Ok(columns.into_point_cloud())
+}
+
+fn open(path: &Path) -> Result<BufReader<File>, IoError> {
+    File::open(path).map(BufReader::new).map_err(|source| IoError::os(path, source))
+}
+
+/// The bytes chunks may occupy: from the header's offset to point data (u32 at byte 96) to
+/// the first EVLR (u64 at byte 235; COPC keeps its hierarchy there) or the end of the file.
+fn point_data_room<R: Read + Seek>(
+    read: &mut R,
+    file_bytes: u64,
+    origin: &Path,
+) -> Result<ChunkRoom, IoError> {
+    let os = |source| IoError::os(origin, source);
+    let data_start = u32::from_le_bytes(read_array_at(read, 96).map_err(os)?).into();
+    let data_end = match u64::from_le_bytes(read_array_at(read, 235).map_err(os)?) {
+        0 => file_bytes,
+        evlr_start => evlr_start.min(file_bytes),
+    };
+    Ok(ChunkRoom { data_start, data_end })
+}
+
+/// EVLR header bytes: reserved (2), user id (16), record id (2), data length (8), description (32).
+const EVLR_HEADER_BYTES: u64 = 60;
+
+/// The file offset of the COPC hierarchy EVLR's data, found by walking the EVLRs from the
+/// header's first-EVLR offset (u64 at byte 235) and count (u32 at byte 243); hierarchy
+/// page offsets are file offsets into it.
+fn hierarchy_data_at<R: Read + Seek>(read: &mut R, origin: &Path) -> Result<u64, IoError> {
+    let os = |source| IoError::os(origin, source);
+    let mut at = u64::from_le_bytes(read_array_at(read, 235).map_err(os)?);
+    let count = u32::from_le_bytes(read_array_at(read, 243).map_err(os)?);
+    for _ in 0..count {
+        let user_id: [u8; 16] = read_array_at(read, at + 2).map_err(os)?;
+        let record_id = u16::from_le_bytes(read_array_at(read, at + 18).map_err(os)?);
+        if user_id.starts_with(b"copc\0") && record_id == HIERARCHY_RECORD_ID {
+            return Ok(at + EVLR_HEADER_BYTES);
+        }
+        let length = u64::from_le_bytes(read_array_at(read, at + 20).map_err(os)?);
+        at = at.saturating_add(EVLR_HEADER_BYTES).saturating_add(length);
+    }
+    Err(IoError::malformed(origin, "COPC hierarchy EVLR is missing"))
+}
+
+fn read_array_at<R: Read + Seek, const N: usize>(read: &mut R, at: u64) -> std::io::Result<[u8; N]> {
+    let mut bytes = [0u8; N];
+    read.seek(SeekFrom::Start(at))?;
+    read.read_exact(&mut bytes)?;
+    Ok(bytes)
+}
+
+fn open_reader(path: &Path) -> Result<FileCopcReader, IoError> {
+    let read = open(path)?;
+    survive_decoder(path, || CopcReader::new(read).map_err(|error| las_error(path, error)))
+}
+
+fn decode_chunk(
+    reader: &mut Result<FileCopcReader, IoError>,
+    chunk: &Entry,
+    path: &Path,
+) -> Result<PointData, IoError> {
+    let reader =
+        reader.as_mut().map_err(|error| IoError::malformed(path, format!("reopening failed: {error}")))?;
+    survive_decoder(path, || reader.read_entry(chunk).map_err(|error| las_error(path, error)))
+}

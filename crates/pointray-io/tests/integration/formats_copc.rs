@@ -1,0 +1,150 @@
+//! COPC reader: the Autzen tile written as COPC by copclib (`data/scans/write_autzen_copc.py`)
+//! reads as the LAS it came from, its parallel read agrees with a sequential LAZ read, and
+//! corrupt hierarchies and chunks are refused with the file named.
+
+use std::fs::File;
+use std::io::BufReader;
+use std::path::{Path, PathBuf};
+
+use pointray_io::formats::las::{read_las, read_las_from};
+use pointray_io::{IoError, PointCloud};
+
+/// The first VLR's data (the COPC info) starts after the 375-byte header and 54-byte VLR
+/// header; the root hierarchy page's offset and size are 40 bytes into it.
+const ROOT_PAGE_OFFSET_AT: usize = 375 + 54 + 40;
+const ENTRY_BYTES: usize = 32;
+const EVLR_START_AT: usize = 235;
+
+fn copc_path() -> PathBuf {
+    pointray_test_support::data_file("scans/autzen_trim.copc.laz")
+}
+
+/// Each point's position, colour, intensity and class, sorted, so that clouds compare up to
+/// point order.
+fn sorted_points(cloud: &PointCloud) -> Vec<String> {
+    let colors = cloud.colors.as_ref().expect("colours");
+    let intensities = cloud.intensities.as_ref().expect("intensities");
+    let classes = cloud.classifications.as_ref().expect("classes");
+    let mut points: Vec<String> = (0..cloud.len())
+        .map(|i| format!("{} {:?} {} {}", cloud.positions[i], colors[i], intensities[i], classes[i]))
+        .collect();
+    points.sort_unstable();
+    points
+}
+
+#[test]
+fn copc_tile_reads_as_the_las_it_was_written_from() {
+    let las = read_las(&pointray_test_support::data_file("scans/autzen_trim.las")).unwrap();
+    let copc = read_las(&copc_path()).unwrap();
+    assert_eq!(copc.len(), 110_000);
+    assert_eq!(sorted_points(&copc), sorted_points(&las));
+}
+
+#[test]
+fn parallel_chunk_read_matches_a_sequential_laz_read() {
+    let path = copc_path();
+    let sequential = read_las_from(BufReader::new(File::open(&path).unwrap()), &path).unwrap();
+    assert_eq!(read_las(&path).unwrap(), sequential);
+}
+
+// ---- corrupt files ----
+
+fn u64_at(bytes: &[u8], at: usize) -> u64 {
+    u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap())
+}
+
+fn root_page_at(bytes: &[u8]) -> usize {
+    u64_at(bytes, ROOT_PAGE_OFFSET_AT) as usize
+}
+
+/// The byte of the root page's entry field `field` (16: offset, 24: byte size, 28: point
+/// count) of its `index`th entry.
+fn entry_field_at(bytes: &[u8], index: usize, field: usize) -> usize {
+    root_page_at(bytes) + index * ENTRY_BYTES + field
+}
+
+fn refused(name: &str, bytes: &[u8]) -> (tempfile::TempDir, PathBuf, IoError) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).unwrap();
+    let Err(error) = read_las(&path) else { panic!("corrupt COPC {name} was read") };
+    (dir, path, error)
+}
+
+fn assert_names_file(path: &Path, error: &IoError, needle: &str) {
+    let message = error.to_string();
+    assert!(message.contains(&path.display().to_string()), "{message}");
+    assert!(message.contains(needle), "{message:?} lacks {needle:?}");
+}
+
+fn copc_bytes() -> Vec<u8> {
+    std::fs::read(copc_path()).unwrap()
+}
+
+#[test]
+fn truncated_chunk_is_refused() {
+    // Cut the last chunk short, keeping the hierarchy EVLR after it.
+    let bytes = copc_bytes();
+    let evlr_start = u64_at(&bytes, EVLR_START_AT) as usize;
+    let cut = 1000;
+    let mut truncated = bytes[..evlr_start - cut].to_vec();
+    truncated.extend_from_slice(&bytes[evlr_start..]);
+    let moved_evlr = (evlr_start - cut) as u64;
+    truncated[EVLR_START_AT..EVLR_START_AT + 8].copy_from_slice(&moved_evlr.to_le_bytes());
+    let root = root_page_at(&bytes) - cut;
+    truncated[ROOT_PAGE_OFFSET_AT..ROOT_PAGE_OFFSET_AT + 8].copy_from_slice(&(root as u64).to_le_bytes());
+    let (_dir, path, error) = refused("cut.copc.laz", &truncated);
+    assert_names_file(&path, &error, "outside the point data");
+}
+
+#[test]
+fn chunk_offset_past_the_file_is_refused() {
+    let mut bytes = copc_bytes();
+    let at = entry_field_at(&bytes, 0, 16);
+    bytes[at..at + 8].copy_from_slice(&(1u64 << 40).to_le_bytes());
+    let (_dir, path, error) = refused("far.copc.laz", &bytes);
+    assert_names_file(&path, &error, "outside the point data");
+}
+
+#[test]
+fn root_page_offset_outside_the_hierarchy_is_refused() {
+    let mut bytes = copc_bytes();
+    let wrong = (root_page_at(&bytes) + 7) as u64;
+    bytes[ROOT_PAGE_OFFSET_AT..ROOT_PAGE_OFFSET_AT + 8].copy_from_slice(&wrong.to_le_bytes());
+    let (_dir, path, error) = refused("root.copc.laz", &bytes);
+    assert_names_file(&path, &error, "COPC hierarchy page");
+}
+
+#[test]
+fn hierarchy_page_referring_back_to_the_root_is_refused() {
+    // Turn a chunk entry into a reference to the root page: a cycle the `las` crate would
+    // follow forever.
+    let mut bytes = copc_bytes();
+    let root = root_page_at(&bytes) as u64;
+    let root_size = u64_at(&bytes, ROOT_PAGE_OFFSET_AT + 8) as i32;
+    let entry = entry_field_at(&bytes, 1, 0);
+    bytes[entry + 16..entry + 24].copy_from_slice(&root.to_le_bytes());
+    bytes[entry + 24..entry + 28].copy_from_slice(&root_size.to_le_bytes());
+    bytes[entry + 28..entry + 32].copy_from_slice(&(-1i32).to_le_bytes());
+    let (_dir, path, error) = refused("cycle.copc.laz", &bytes);
+    assert_names_file(&path, &error, "cycle");
+}
+
+#[test]
+fn point_count_the_header_does_not_declare_is_refused() {
+    let mut bytes = copc_bytes();
+    let at = entry_field_at(&bytes, 0, 28);
+    let count = i32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+    bytes[at..at + 4].copy_from_slice(&(count + 1).to_le_bytes());
+    let (_dir, path, error) = refused("count.copc.laz", &bytes);
+    assert_names_file(&path, &error, "header declares 110000");
+}
+
+#[test]
+fn every_truncation_is_refused_without_a_panic() {
+    let bytes = copc_bytes();
+    for keep in (0..bytes.len()).step_by(bytes.len() / 37) {
+        let (_dir, path, error) = refused("short.copc.laz", &bytes[..keep]);
+        assert!(error.to_string().contains(&path.display().to_string()), "{error}");
+    }
+}
