@@ -5,6 +5,7 @@ mod bunny;
 mod color_interpolation;
 mod common;
 mod compact_store;
+mod copc_prep;
 mod density_adaptive_radii;
 mod disk_scale;
 mod normals_analytic;
