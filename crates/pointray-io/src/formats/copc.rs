@@ -5,7 +5,7 @@
 
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use las::copc::Entry;
 use las::{CopcReader, PointData};
@@ -37,21 +37,53 @@ pub(super) fn is_copc<R: Read + Seek>(read: &mut R) -> bool {
 /// Reads a COPC file whole, its chunks decoded in parallel and put in file order. Points
 /// and attributes come out as `read_las` gives them for the same file read as LAZ.
 pub fn read_copc(path: &Path) -> Result<PointCloud, IoError> {
-    let mut read = open(path)?;
-    preflight(&mut read, path)?;
-    let file_bytes = read.seek(SeekFrom::End(0)).map_err(|source| IoError::os(path, source))?;
-    read.seek(SeekFrom::Start(0)).map_err(|source| IoError::os(path, source))?;
-    let header = las::Header::new(&mut read).map_err(|error| las_error(path, error))?;
-    let room = point_data_room(&mut read, file_bytes, path)?;
-    let hierarchy_at = hierarchy_data_at(&mut read, path)?;
-    let chunks = point_chunks(&header, hierarchy_at, &room, path)?;
-    let decoded: Vec<PointData> = chunks
-        .par_iter()
-        .map_init(|| open_reader(path), |reader, chunk| decode_chunk(reader, chunk, path))
-        .collect::<Result<_, _>>()?;
+    let file = CopcFile::open(path)?;
     let mut columns = LasColumns::default();
-    decoded.iter().for_each(|chunk| columns.append(chunk));
+    file.decode_each(file.chunks())?.iter().for_each(|chunk| columns.append(chunk));
     Ok(columns.into_point_cloud())
+}
+
+/// A COPC file whose hierarchy has been checked, ready to decode its chunks.
+pub(super) struct CopcFile {
+    path: PathBuf,
+    header: las::Header,
+    /// The chunks that hold points, in file order.
+    chunks: Vec<Entry>,
+}
+
+impl CopcFile {
+    pub(super) fn open(path: &Path) -> Result<Self, IoError> {
+        let mut read = open(path)?;
+        preflight(&mut read, path)?;
+        let file_bytes = read.seek(SeekFrom::End(0)).map_err(|source| IoError::os(path, source))?;
+        read.seek(SeekFrom::Start(0)).map_err(|source| IoError::os(path, source))?;
+        let header = las::Header::new(&mut read).map_err(|error| las_error(path, error))?;
+        let room = point_data_room(&mut read, file_bytes, path)?;
+        let hierarchy_at = hierarchy_data_at(&mut read, path)?;
+        let chunks = point_chunks(&header, hierarchy_at, &room, path)?;
+        Ok(Self { path: path.to_path_buf(), header, chunks })
+    }
+
+    pub(super) fn path(&self) -> &Path {
+        &self.path
+    }
+
+    pub(super) fn header(&self) -> &las::Header {
+        &self.header
+    }
+
+    pub(super) fn chunks(&self) -> &[Entry] {
+        &self.chunks
+    }
+
+    /// `chunks` decoded in parallel, one reader per worker, in their order.
+    pub(super) fn decode_each(&self, chunks: &[Entry]) -> Result<Vec<PointData>, IoError> {
+        let path = self.path.as_path();
+        chunks
+            .par_iter()
+            .map_init(|| open_reader(path), |reader, chunk| decode_chunk(reader, chunk, path))
+            .collect()
+    }
 }
 
 fn open(path: &Path) -> Result<BufReader<File>, IoError> {

@@ -2,11 +2,15 @@
 //! ranges that scale colours, intensities and classifications (the whole file's, as the
 //! whole read takes them), a second the points with their attributes so scaled.
 
+use std::fs::File;
+use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use las::{PointData, PointDataBuilder};
 
+use super::copc::is_copc;
+use super::copc_chunks::CopcBatches;
 use super::intensity::IntensityRange;
 use super::las::{batch_points, color_shift, las_error, open_reader, survive_decoder};
 use crate::{AttributeBytes, IoError, PointCloud};
@@ -21,18 +25,30 @@ pub(crate) struct LasRanges {
 
 pub(crate) struct LasChunks {
     path: PathBuf,
-    reader: las::Reader,
-    batch: PointData,
+    decoder: Decoder,
     declared: u64,
     read: u64,
 }
 
+/// Where the batches come from.
+enum Decoder {
+    /// LAS and LAZ, decoded in order.
+    InOrder { reader: Box<las::Reader>, batch: PointData },
+    /// COPC, whose chunks are decoded in parallel.
+    Copc(CopcBatches),
+}
+
 impl LasChunks {
     pub(crate) fn open(path: &Path) -> Result<Self, IoError> {
-        let reader = open_reader(path)?;
-        let declared = reader.header().number_of_points();
-        let batch = PointDataBuilder::new().for_header(reader.header()).build();
-        Ok(Self { path: path.to_path_buf(), reader, batch, declared, read: 0 })
+        let decoder = if is_copc_file(path)? {
+            Decoder::Copc(CopcBatches::open(path)?)
+        } else {
+            let reader = open_reader(path)?;
+            let batch = PointDataBuilder::new().for_header(reader.header()).build();
+            Decoder::InOrder { reader: Box::new(reader), batch }
+        };
+        let declared = decoder.header().number_of_points();
+        Ok(Self { path: path.to_path_buf(), decoder, declared, read: 0 })
     }
 
     pub(crate) fn declared_points(&self) -> u64 {
@@ -42,7 +58,7 @@ impl LasChunks {
     /// The attributes the chunks may carry (intensities and classifications are dropped
     /// later when the file never fills them).
     pub(crate) fn attributes(&self) -> AttributeBytes {
-        let format = self.reader.header().point_format();
+        let format = self.decoder.header().point_format();
         AttributeBytes {
             colors: format.has_color,
             intensities: true,
@@ -58,21 +74,18 @@ impl LasChunks {
     }
 
     /// Up to `max` more points (fewer when the reader's batch is smaller), or `None` at the
-    /// end; `ranges` grows with them when `survey` is set, and scales them otherwise.
+    /// end; `ranges` grows with them when `survey` is
+    /// set, and scales them otherwise.
     pub(crate) fn next(
         &mut self,
         max: usize,
         ranges: &mut LasRanges,
         survey: bool,
     ) -> Result<Option<PointCloud>, IoError> {
-        let Self { path, reader, batch, .. } = self;
-        let wanted = batch_points(reader.header()).min(max.max(1) as u64);
-        let read =
-            survive_decoder(path, || reader.fill_points(wanted, batch).map_err(|e| las_error(path, e)))?;
-        self.read += read;
-        if read == 0 {
+        let Some(batch) = self.decoder.next(&self.path, max.max(1) as u64)? else {
             return self.check_count().map(|()| None);
-        }
+        };
+        self.read += batch.len() as u64;
         let positions: Vec<DVec3> =
             batch.x().zip(batch.y()).zip(batch.z()).map(|((x, y), z)| DVec3::new(x, y, z)).collect();
         if survey {
@@ -89,6 +102,35 @@ impl LasChunks {
         let problem = format!("header declares {} points but the data holds {}", self.declared, self.read);
         Err(IoError::malformed(&self.path, problem))
     }
+}
+
+impl Decoder {
+    fn header(&self) -> &las::Header {
+        match self {
+            Self::InOrder { reader, .. } => reader.header(),
+            Self::Copc(batches) => batches.header(),
+        }
+    }
+
+    /// The next batch of at most `max` points, `None` at the end.
+    fn next(&mut self, path: &Path, max: u64) -> Result<Option<&PointData>, IoError> {
+        match self {
+            Self::InOrder { reader, batch } => {
+                let wanted = batch_points(reader.header()).min(max);
+                let read = survive_decoder(path, || {
+                    reader.fill_points(wanted, batch).map_err(|e| las_error(path, e))
+                })?;
+                Ok((read > 0).then_some(&*batch))
+            }
+            Self::Copc(batches) => batches.next(max),
+        }
+    }
+}
+
+/// Whether the LAS file at `path` is COPC.
+fn is_copc_file(path: &Path) -> Result<bool, IoError> {
+    let file = File::open(path).map_err(|source| IoError::os(path, source))?;
+    Ok(is_copc(&mut BufReader::new(file)))
 }
 
 impl LasRanges {

@@ -3,6 +3,7 @@
 mod column_rows;
 pub mod columns;
 pub mod copc;
+mod copc_chunks;
 mod copc_hierarchy;
 pub mod detect;
 mod dispatch;

@@ -124,6 +124,16 @@ fn laz_in_chunks_reads_as_a_whole() {
     assert_eq!(chunked(&path, 37), whole);
 }
 
+#[test]
+fn copc_in_chunks_reads_as_a_whole() {
+    let path = pointray_test_support::data_file("scans/autzen_trim.copc.laz");
+    let whole = read_point_cloud(&path).unwrap();
+    // Smaller than most of its chunks, and larger than several together.
+    for chunk in [997, 40_000] {
+        assert_eq!(chunked(&path, chunk), whole, "chunks of {chunk}");
+    }
+}
+
 /// The points a read of `stream` in chunks of `chunk` hands out.
 fn points_read(stream: &mut PointStream, chunk: usize) -> usize {
     let mut count = 0;
