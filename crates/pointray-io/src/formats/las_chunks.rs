@@ -33,19 +33,19 @@ pub(crate) struct LasChunks {
 /// Where the batches come from.
 enum Decoder {
     /// LAS and LAZ, decoded in order.
-    InOrder { reader: Box<las::Reader>, batch: PointData },
+    InOrder { reader: las::Reader, batch: PointData },
     /// COPC, whose chunks are decoded in parallel.
-    Copc(CopcBatches),
+    Copc(Box<CopcBatches>),
 }
 
 impl LasChunks {
     pub(crate) fn open(path: &Path) -> Result<Self, IoError> {
         let decoder = if is_copc_file(path)? {
-            Decoder::Copc(CopcBatches::open(path)?)
+            Decoder::Copc(Box::new(CopcBatches::open(path)?))
         } else {
             let reader = open_reader(path)?;
             let batch = PointDataBuilder::new().for_header(reader.header()).build();
-            Decoder::InOrder { reader: Box::new(reader), batch }
+            Decoder::InOrder { reader, batch }
         };
         let declared = decoder.header().number_of_points();
         Ok(Self { path: path.to_path_buf(), decoder, declared, read: 0 })
