@@ -68,11 +68,17 @@ fn root_page(header: &las::Header, origin: &Path) -> Result<RootPage, IoError> {
 
 fn walk_pages(data: &[u8], hierarchy_at: u64, root: RootPage, origin: &Path) -> Result<Vec<Entry>, IoError> {
     let mut chunks = Vec::new();
-    let mut seen_pages = HashSet::new();
+    // The `las` crate's readers find pages by node, so a node may own one page only; and a
+    // page reached twice would be walked forever.
+    let (mut seen_offsets, mut seen_nodes) = (HashSet::new(), HashSet::new());
     let mut pending = vec![(VoxelKey::ROOT, root.offset, root.size)];
     while let Some((key, offset, size)) = pending.pop() {
-        if !seen_pages.insert(offset) {
-            let problem = format!("COPC hierarchy page of node {} is reached twice (a cycle)", name(&key));
+        if !seen_offsets.insert(offset) || !seen_nodes.insert(key) {
+            let problem = format!(
+                "COPC hierarchy page of node {} at byte {offset} is reached twice, or its node owns \
+                 another page (a cycle)",
+                name(&key)
+            );
             return Err(IoError::malformed(origin, problem));
         }
         for entry in

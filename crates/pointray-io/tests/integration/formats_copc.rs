@@ -131,6 +131,22 @@ fn hierarchy_page_referring_back_to_the_root_is_refused() {
 }
 
 #[test]
+fn second_page_of_one_node_is_refused() {
+    // Turn a chunk entry into a reference, keyed by the root node, to the page's last entry:
+    // the `las` crate finds pages by node and would walk the root page again.
+    let mut bytes = copc_bytes();
+    let root_size = u64_at(&bytes, ROOT_PAGE_OFFSET_AT + 8) as usize;
+    let last_entry = (root_page_at(&bytes) + root_size - ENTRY_BYTES) as u64;
+    let entry = entry_field_at(&bytes, 1, 0);
+    bytes[entry..entry + 16].fill(0);
+    bytes[entry + 16..entry + 24].copy_from_slice(&last_entry.to_le_bytes());
+    bytes[entry + 24..entry + 28].copy_from_slice(&(ENTRY_BYTES as i32).to_le_bytes());
+    bytes[entry + 28..entry + 32].copy_from_slice(&(-1i32).to_le_bytes());
+    let (_dir, path, error) = refused("twice.copc.laz", &bytes);
+    assert_names_file(&path, &error, "owns another page");
+}
+
+#[test]
 fn point_count_the_header_does_not_declare_is_refused() {
     let mut bytes = copc_bytes();
     let at = entry_field_at(&bytes, 0, 28);
