@@ -8,6 +8,7 @@ mod patch_args;
 mod point_arg;
 mod prep_settings_args;
 mod progress;
+mod sample_parts;
 mod scene_input;
 mod setting_flag;
 mod view_args;
