@@ -115,17 +115,24 @@ fn root_page_offset_outside_the_hierarchy_is_refused() {
     assert_names_file(&path, &error, "COPC hierarchy page");
 }
 
+/// Makes the root page's `index`th entry a reference, keyed `key` (16 bytes), to the page of
+/// `size` bytes at file offset `page`.
+fn make_page_reference(bytes: &mut [u8], index: usize, key: &[u8], page: usize, size: usize) {
+    let entry = entry_field_at(bytes, index, 0);
+    bytes[entry..entry + 16].copy_from_slice(key);
+    bytes[entry + 16..entry + 24].copy_from_slice(&(page as u64).to_le_bytes());
+    bytes[entry + 24..entry + 28].copy_from_slice(&(size as i32).to_le_bytes());
+    bytes[entry + 28..entry + 32].copy_from_slice(&(-1i32).to_le_bytes());
+}
+
 #[test]
 fn hierarchy_page_referring_back_to_the_root_is_refused() {
     // Turn a chunk entry into a reference to the root page: a cycle the `las` crate would
     // follow forever.
     let mut bytes = copc_bytes();
-    let root = root_page_at(&bytes) as u64;
-    let root_size = u64_at(&bytes, ROOT_PAGE_OFFSET_AT + 8) as i32;
-    let entry = entry_field_at(&bytes, 1, 0);
-    bytes[entry + 16..entry + 24].copy_from_slice(&root.to_le_bytes());
-    bytes[entry + 24..entry + 28].copy_from_slice(&root_size.to_le_bytes());
-    bytes[entry + 28..entry + 32].copy_from_slice(&(-1i32).to_le_bytes());
+    let (root, root_size) = (root_page_at(&bytes), u64_at(&bytes, ROOT_PAGE_OFFSET_AT + 8) as usize);
+    let first_chunk_key = bytes[root + ENTRY_BYTES..root + ENTRY_BYTES + 16].to_vec();
+    make_page_reference(&mut bytes, 1, &first_chunk_key, root, root_size);
     let (_dir, path, error) = refused("cycle.copc.laz", &bytes);
     assert_names_file(&path, &error, "cycle");
 }
@@ -136,12 +143,8 @@ fn second_page_of_one_node_is_refused() {
     // the `las` crate finds pages by node and would walk the root page again.
     let mut bytes = copc_bytes();
     let root_size = u64_at(&bytes, ROOT_PAGE_OFFSET_AT + 8) as usize;
-    let last_entry = (root_page_at(&bytes) + root_size - ENTRY_BYTES) as u64;
-    let entry = entry_field_at(&bytes, 1, 0);
-    bytes[entry..entry + 16].fill(0);
-    bytes[entry + 16..entry + 24].copy_from_slice(&last_entry.to_le_bytes());
-    bytes[entry + 24..entry + 28].copy_from_slice(&(ENTRY_BYTES as i32).to_le_bytes());
-    bytes[entry + 28..entry + 32].copy_from_slice(&(-1i32).to_le_bytes());
+    let last_entry = root_page_at(&bytes) + root_size - ENTRY_BYTES;
+    make_page_reference(&mut bytes, 1, &[0; 16], last_entry, ENTRY_BYTES);
     let (_dir, path, error) = refused("twice.copc.laz", &bytes);
     assert_names_file(&path, &error, "owns another page");
 }
