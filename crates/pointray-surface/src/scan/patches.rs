@@ -124,8 +124,12 @@ fn scan_patch(
     fitted_normals: &[Vec3],
     chooser: Vec3,
 ) -> ScanPatch {
-    let candidates = candidates(scan, i);
     let toward_sensor = (scan.sensor[i] - points[i]).normalize_or(Vec3::Z);
+    // The lines' angles span no distance at the sensor itself.
+    if scan.sensor[i].distance(points[i]) < scan.range_noise {
+        return footprint_patch(points, scan, i, toward_sensor);
+    }
+    let candidates = candidates(scan, i);
     let spans_surface = |neighborhood: &ScanNeighborhood| {
         let seen_face_on = neighborhood.normal.dot(toward_sensor).abs() >= EDGE_ON_COSINE;
         neighborhood.crosses_lines && neighborhood.members.len() >= 3 && seen_face_on
@@ -339,7 +343,9 @@ fn line_patch(
 /// these cells tile what it saw without gaps. Each radius is `FOOTPRINT_COVER` steps, so
 /// that the cell's corners are covered too.
 fn footprint_patch(points: &[Vec3], scan: &ScanLines, i: usize, toward_sensor: Vec3) -> ScanPatch {
-    let range = scan.sensor[i].distance(points[i]);
+    // A return nearer its sensor than the range noise (one at the sensor itself) still covers
+    // a footprint: the store refuses patches of no size.
+    let range = scan.sensor[i].distance(points[i]).max(scan.range_noise);
     let across = scan.beam_spacing(i).or(scan.azimuth_step(i)).unwrap_or(0.0);
     let along = scan.azimuth_step(i).unwrap_or(across);
     let radii = Vec2::new(across, along) * FOOTPRINT_COVER * range;

@@ -202,3 +202,24 @@ fn a_kerbs_face_is_a_face_and_the_sidewalk_stops_at_its_edge() {
     assert!(on_face.len() > 20, "only {} patches on the kerb's face", on_face.len());
     assert!(upright * 4 >= on_face.len() * 3, "{upright} of {} face patches upright", on_face.len());
 }
+
+/// A return at the sensor itself (a KITTI sweep of gently waving ground whose corner is the
+/// sensor) is a patch of some size, which the store can hold, not one of no size that it
+/// refuses.
+#[test]
+fn a_return_at_its_sensor_makes_a_patch_of_some_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sweep.bin");
+    let bytes: Vec<u8> = (0..1600)
+        .flat_map(|i| {
+            let (x, y) = ((i % 40) as f32 * 0.25, (i / 40) as f32 * 0.25);
+            [x, y, 0.2 * (x * 0.7).sin(), 0.5].into_iter().flat_map(f32::to_le_bytes)
+        })
+        .collect();
+    std::fs::write(&path, bytes).unwrap();
+    let cloud = pointray_io::formats::read_point_cloud(&path).expect("the sweep");
+    let (patches, report) = prep(&cloud, &PrepSettings::default(), &NoProgress).expect("prep");
+    assert!(report.scan.is_some(), "the sweep's lines were not used");
+    let stored = pointray_patches::patch_store::as_stored(&patches, &path.with_extension("patches"));
+    assert!(stored.is_ok_and(|stored| stored.check().is_ok()), "the store refused the patches");
+}
