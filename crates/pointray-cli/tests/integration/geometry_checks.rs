@@ -3,9 +3,9 @@
 //! entries like them (which are regenerated, not kept), procedural objects and transforms
 //! beyond the f32 range, and clouds too small to resolve.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use pointray_patches::{PatchSet, patch_store};
+use pointray_patches::patch_store;
 
 use crate::common::{cached_store, pointray_in, write_grid_ply, write_points_scene};
 
@@ -19,31 +19,56 @@ fn render(dir: &Path, scene: &str) -> (bool, String) {
 }
 
 /// `grid.patches` in `dir`, prepped from a grid.
-fn grid_store(dir: &Path) -> PatchSet {
+fn grid_store(dir: &Path) -> PathBuf {
     write_grid_ply(&dir.join("grid.ply"));
     let (ok, _, stderr) = pointray_in(dir, &["prep", "grid.ply", "-o", "grid.patches"]);
     assert!(ok, "{stderr}");
-    patch_store::read(&dir.join("grid.patches")).unwrap()
+    dir.join("grid.patches")
+}
+
+/// Where section `i` of a store begins (0: the block frames, 1: the patches).
+fn section(bytes: &[u8], i: usize) -> usize {
+    u64::from_le_bytes(bytes[72 + 16 * i..80 + 16 * i].try_into().unwrap()) as usize
+}
+
+/// A NaN where a block's box begins.
+fn nan_block_box(bytes: &mut [u8]) {
+    let at = section(bytes, 0) + 4;
+    bytes[at..at + 4].copy_from_slice(&f32::NAN.to_le_bytes());
+}
+
+/// Two half-float infinities as patch 3's radii.
+fn infinite_radii(bytes: &mut [u8]) {
+    let at = section(bytes, 1) + 28 * 3 + 16;
+    bytes[at..at + 4].copy_from_slice(&0x7c00_7c00u32.to_le_bytes());
+}
+
+fn nan_offset(bytes: &mut [u8]) {
+    bytes[32..40].copy_from_slice(&f64::NAN.to_le_bytes());
+}
+
+/// `store` with `damage` done to its bytes and its checksum made again, so that only the
+/// checks of its numbers can refuse it.
+fn damaged(store: &Path, damage: fn(&mut [u8])) {
+    let mut bytes = std::fs::read(store).unwrap();
+    damage(&mut bytes);
+    let body = bytes.len() - 4;
+    let checksum = crc32fast::hash(&bytes[..body]);
+    bytes[body..].copy_from_slice(&checksum.to_le_bytes());
+    std::fs::write(store, bytes).unwrap();
 }
 
 #[test]
 fn stores_with_bad_numbers_and_a_good_checksum_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let good = grid_store(dir.path());
+    let store = grid_store(dir.path());
+    let good = std::fs::read(&store).unwrap();
     write_points_scene(dir.path(), "scene.toml", "grid.patches");
-    let mut damaged: Vec<(&str, PatchSet)> = Vec::new();
-    let mut nan_box = good.clone();
-    nan_box.aabbs[3].min[1] = f32::NAN;
-    damaged.push(("NaN box", nan_box));
-    let mut huge_box = good.clone();
-    huge_box.aabbs[0].min = [-1e38; 3];
-    huge_box.aabbs[0].max = [1e38; 3];
-    damaged.push(("1e38 box", huge_box));
-    let mut nan_offset = good.clone();
-    nan_offset.offset.x = f64::NAN;
-    damaged.push(("NaN offset", nan_offset));
-    for (what, patches) in damaged {
-        patch_store::write(&dir.path().join("grid.patches"), &patches).unwrap();
+    let damages: [(&str, fn(&mut [u8])); 3] =
+        [("NaN block box", nan_block_box), ("infinite radii", infinite_radii), ("NaN offset", nan_offset)];
+    for (what, damage) in damages {
+        std::fs::write(&store, &good).unwrap();
+        damaged(&store, damage);
         let (ok, stderr) = render(dir.path(), "scene.toml");
         assert!(!ok, "a store with a {what} must be refused");
         assert!(
@@ -60,9 +85,8 @@ fn a_poisoned_cache_entry_is_regenerated_not_kept() {
     write_points_scene(dir.path(), "scene.toml", "grid.ply");
     assert!(render(dir.path(), "scene.toml").0, "the first render succeeds");
     let cache = cached_store(dir.path());
-    let mut poisoned = patch_store::read(&cache).unwrap();
-    poisoned.aabbs[0].max = [f32::INFINITY; 3];
-    patch_store::write(&cache, &poisoned).unwrap();
+    damaged(&cache, nan_block_box);
+    assert!(patch_store::read(&cache).is_err(), "the entry is poisoned");
     for _ in 0..2 {
         let (ok, stderr) = render(dir.path(), "scene.toml");
         assert!(ok, "a bad cache entry must not fail the render: {stderr}");
