@@ -103,8 +103,7 @@ fn cell_of(origin: DVec3) -> IVec3 {
 /// Whether `a` and `b` are one patch up to rounding: the same colour, origins within the
 /// rounding, radii within 1% and normals within 0.8 degrees, either way round (prep settles
 /// the side of a normal over the neighbour graph, in point order). Tighter bounds (0.6 mm,
-/// 0.1% and 0.08 degrees)
-/// left 0.5% of the Autzen tile's patches unmatched.
+/// 0.1% and 0.08 degrees) left 0.5% of the Autzen tile's patches unmatched.
 fn same_patch(a: &WorldPatch, b: &WorldPatch) -> bool {
     a.color == b.color
         && a.origin.distance(b.origin) <= ORIGIN_ROUNDING
