@@ -37,6 +37,8 @@ pub(super) fn point_chunks(
         .ok_or_else(|| IoError::malformed(origin, "COPC hierarchy EVLR is missing"))?;
     let mut chunks = walk_pages(&pages.data, hierarchy_at, root, origin)?;
     chunks.iter().try_for_each(|chunk| check_chunk_within(chunk, room, origin))?;
+    let record_bytes = u64::from(header.point_format().len());
+    chunks.iter().try_for_each(|chunk| check_chunk_decodes(chunk, record_bytes, origin))?;
     check_points_declared(&chunks, header.number_of_points(), origin)?;
     chunks.sort_by_key(|chunk| chunk.offset);
     Ok(chunks)
@@ -153,6 +155,31 @@ fn check_chunk_within(chunk: &Entry, room: &ChunkRoom, origin: &Path) -> Result<
             Err(IoError::malformed(origin, problem))
         }
     }
+}
+
+/// Decoded bytes a chunk may always declare, whatever its compressed size: about a million
+/// points, more than COPC writers put in one node.
+const ALWAYS_DECODABLE_BYTES: u64 = 64 << 20;
+
+/// Decoded bytes per compressed byte past which a larger chunk is refused: far above what
+/// real tiles reach (the Autzen tile's COPC copy, 4.7). The bound is there because the
+/// decoder sizes its buffer by the declared count before reading, and a corrupt count would
+/// ask for gigabytes.
+const MAX_COMPRESSION_RATIO: u64 = 1024;
+
+fn check_chunk_decodes(chunk: &Entry, record_bytes: u64, origin: &Path) -> Result<(), IoError> {
+    let decoded = record_bytes.saturating_mul(chunk.point_count as u64);
+    let compressed = u64::try_from(chunk.byte_size).unwrap_or(0);
+    if decoded <= ALWAYS_DECODABLE_BYTES.max(compressed.saturating_mul(MAX_COMPRESSION_RATIO)) {
+        return Ok(());
+    }
+    let problem = format!(
+        "COPC chunk of node {} declares {} points ({decoded} bytes decoded) in {compressed} compressed bytes, \
+         more than LAZ holds",
+        name(&chunk.key),
+        chunk.point_count
+    );
+    Err(IoError::malformed(origin, problem))
 }
 
 fn check_points_declared(chunks: &[Entry], declared: u64, origin: &Path) -> Result<(), IoError> {

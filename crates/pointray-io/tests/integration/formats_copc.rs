@@ -160,6 +160,16 @@ fn point_count_the_header_does_not_declare_is_refused() {
 }
 
 #[test]
+fn point_count_beyond_what_the_chunk_holds_is_refused_before_decoding() {
+    // The decoder would size its buffer by the count first: tens of gigabytes.
+    let mut bytes = copc_bytes();
+    let at = entry_field_at(&bytes, 0, 28);
+    bytes[at..at + 4].copy_from_slice(&i32::MAX.to_le_bytes());
+    let (_dir, path, error) = refused("huge.copc.laz", &bytes);
+    assert_names_file(&path, &error, "more than LAZ holds");
+}
+
+#[test]
 fn every_truncation_is_refused_without_a_panic() {
     let bytes = copc_bytes();
     for keep in (0..bytes.len()).step_by(bytes.len() / 37) {
