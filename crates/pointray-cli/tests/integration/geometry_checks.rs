@@ -47,9 +47,12 @@ fn nan_offset(bytes: &mut [u8]) {
     bytes[32..40].copy_from_slice(&f64::NAN.to_le_bytes());
 }
 
+/// A change to a store's bytes.
+type Damage = fn(&mut [u8]);
+
 /// `store` with `damage` done to its bytes and its checksum made again, so that only the
 /// checks of its numbers can refuse it.
-fn damaged(store: &Path, damage: fn(&mut [u8])) {
+fn damaged(store: &Path, damage: Damage) {
     let mut bytes = std::fs::read(store).unwrap();
     damage(&mut bytes);
     let body = bytes.len() - 4;
@@ -64,7 +67,7 @@ fn stores_with_bad_numbers_and_a_good_checksum_are_refused() {
     let store = grid_store(dir.path());
     let good = std::fs::read(&store).unwrap();
     write_points_scene(dir.path(), "scene.toml", "grid.patches");
-    let damages: [(&str, fn(&mut [u8])); 3] =
+    let damages: [(&str, Damage); 3] =
         [("NaN block box", nan_block_box), ("infinite radii", infinite_radii), ("NaN offset", nan_offset)];
     for (what, damage) in damages {
         std::fs::write(&store, &good).unwrap();
