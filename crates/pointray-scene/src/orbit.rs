@@ -7,9 +7,15 @@ use glam::{Quat, Vec3};
 use crate::Camera;
 
 /// The camera of frame `index` (from 0) of `frames`: `start` turned by
-/// `arc_degrees * index / frames` about `start.up` through `start.look_at`.
+/// `arc_degrees * index / frames` about `start.up` through `start.look_at`. A frame that is
+/// not turned is `start` itself, so that one frame renders as the scene's camera does.
 pub fn orbit_camera(start: &Camera, index: u32, frames: u32, arc_degrees: f32) -> Camera {
     let fraction = if frames == 0 { 0.0 } else { index as f32 / frames as f32 };
+    if arc_degrees * fraction == 0.0 {
+        // `look_at + (position - look_at)` in f32 moves a camera that sits far from the
+        // render space's origin by a rounding step.
+        return *start;
+    }
     let turn = Quat::from_axis_angle(start.up.normalize_or(Vec3::Y), (arc_degrees * fraction).to_radians());
     Camera { position: start.look_at + turn * (start.position - start.look_at), ..*start }
 }
@@ -35,6 +41,19 @@ mod tests {
             assert!((camera.position.distance(camera.look_at) - 5.0).abs() < 1e-4);
             assert!((camera.position.y - 1.0).abs() < 1e-5, "turns about the up axis");
         }
+    }
+
+    #[test]
+    fn an_unturned_frame_is_the_start_to_the_bit() {
+        // Neither the position nor the look-at point survives `l + (p - l)` in f32.
+        let start = Camera {
+            position: Vec3::new(0.7, 1.1, 5.0),
+            look_at: Vec3::new(-899.3, -0.3, 0.0),
+            ..start()
+        };
+        assert_ne!(start.look_at + (start.position - start.look_at), start.position, "the case is a real one");
+        assert_eq!(orbit_camera(&start, 0, 1, 360.0), start);
+        assert_eq!(orbit_camera(&start, 5, 8, 0.0), start);
     }
 
     #[test]
