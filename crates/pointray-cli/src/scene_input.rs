@@ -6,7 +6,7 @@ use std::path::Path;
 use clap::Args;
 use glam::DVec3;
 use pointray_scene::material_spec::ColorSource;
-use pointray_scene::{PointsScene, SceneFile, UpAxis};
+use pointray_scene::{FileCamera, PointsScene, SceneFile, UpAxis};
 
 use crate::columns_arg::ColumnsArg;
 use crate::point_arg::parse_finite;
@@ -57,8 +57,13 @@ impl SceneInputArgs {
         };
         let mut file = self.columns.apply_to(file);
         if let (Some(from), Some(at)) = (self.look_from, self.look_at) {
-            let image_up = self.up.map(|up| up.to_array());
-            file.camera = Some(up.camera_from_file((from.to_array(), at.to_array()), image_up, self.fov));
+            let camera = FileCamera {
+                position: from.to_array(),
+                look_at: at.to_array(),
+                up: self.up.map(|up| up.to_array()),
+                vfov_degrees: self.fov,
+            };
+            file.camera = Some(up.camera_from_file(&camera));
             // A camera that cannot be is refused now, not after the points are prepped.
             file.recheck()?;
         }

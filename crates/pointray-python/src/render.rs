@@ -24,8 +24,8 @@ pub fn render<'py>(
     options: &RenderOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mut file = source.file.clone();
-    if let Some(spec) = options.camera.clone() {
-        file.camera = Some(source.up.camera_to_scene(spec));
+    if let Some(camera) = &options.camera {
+        file.camera = Some(source.up.camera_from_file(camera));
     }
     let mut settings = file.render_settings().map_err(|e| to_python(&e))?;
     options.image.apply(&mut settings);

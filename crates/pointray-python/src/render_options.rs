@@ -3,7 +3,7 @@
 
 use pointray_io::MemoryBudget;
 use pointray_render::{BackendChoice, DeviceSelector};
-use pointray_scene::scene_file::CameraSpec;
+use pointray_scene::FileCamera;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -24,7 +24,7 @@ pub struct RenderOptions {
     /// The GPU memory budget in bytes, never 0.
     #[pyo3(get)]
     pub gpu_memory: Option<u64>,
-    pub camera: Option<CameraSpec>,
+    pub camera: Option<FileCamera>,
     #[pyo3(get)]
     pub denoise: bool,
 }
@@ -47,7 +47,7 @@ impl RenderOptions {
             backend: backend.parse().map_err(PyValueError::new_err)?,
             device: device.parse().map_err(|e| PyValueError::new_err(format!("device: {e}")))?,
             gpu_memory: gpu_memory.map(memory_budget).transpose()?,
-            camera: camera.map(camera_spec).transpose()?,
+            camera: camera.map(file_camera).transpose()?,
             denoise,
         })
     }
@@ -65,8 +65,9 @@ fn memory_budget(value: &Bound<'_, PyAny>) -> PyResult<u64> {
     Ok(bytes)
 }
 
-/// A scene file's camera table, through the scene file's own parser.
-fn camera_spec(table: &Bound<'_, PyDict>) -> PyResult<CameraSpec> {
-    CameraSpec::deserialize(to_toml(table.as_any())?)
+/// A scene file's camera table in the file's coordinates, read as `render --look-from` reads
+/// its flags.
+fn file_camera(table: &Bound<'_, PyDict>) -> PyResult<FileCamera> {
+    FileCamera::deserialize(to_toml(table.as_any())?)
         .map_err(|e| PointrayError::new_err(format!("camera: {}", e.message())))
 }

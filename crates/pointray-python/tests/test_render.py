@@ -102,6 +102,24 @@ def test_a_camera_in_a_scans_coordinates_is_placed_as_the_command_line_places_it
     assert (image[..., 3] == 1.0).mean() > 0.2, "the tile is in view"
 
 
+def test_a_cameras_up_in_a_scans_coordinates_turns_the_image_as_the_command_lines_up_does(autzen, tmp_path):
+    centre = pointray.read(autzen).offset
+    look_from = centre + [0.0, -900.0, 700.0]
+    rolled_up = [0.5, 0.0, 1.0]  # the file's Z up, leaning east: stood upright, the image rolls
+    as_flag = lambda point: ",".join(f"{c:.3f}" for c in point)
+    pointray_cli("render", autzen, "-o", "cli.exr", "--backend", "cpu", "--width", 96, "--height", 72,
+                 "--look-from", as_flag(look_from), "--look-at", as_flag(centre), "--up", as_flag(rolled_up),
+                 cwd=tmp_path)
+    camera = dict(position=[float(f"{c:.3f}") for c in look_from], look_at=[float(f"{c:.3f}") for c in centre])
+    rolled = pointray.render(autzen, backend="cpu", camera=dict(camera, up=rolled_up), **SIZE)
+    rolled.save(tmp_path / "python.exr")
+    assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+    upright = pointray.render(autzen, backend="cpu", camera=camera, **SIZE)
+    assert np.array_equal(pointray.render(autzen, backend="cpu", camera=dict(camera, up=[0, 0, 1]), **SIZE), upright), \
+        "the file's Z is the default up"
+    assert not np.array_equal(rolled, upright), "the up given rolls the image"
+
+
 def test_a_sun_and_sky_lights_a_path_traced_scene_as_the_command_line_does(bunny, tmp_path):
     scene = (pointray.Scene()
              .background(sun_elevation_degrees=40.0, sun_azimuth_degrees=100.0)

@@ -21,6 +21,8 @@ pub mod color_ramp;
 pub mod demo;
 mod emissive_meshes;
 pub mod error;
+#[cfg(feature = "load")]
+pub mod file_camera;
 mod framing;
 pub mod ground;
 pub mod image_output;
@@ -56,6 +58,8 @@ pub use cache_folder::clean_cache;
 #[cfg(feature = "load")]
 pub use demo::{demo_scene, load_demo};
 pub use error::SceneError;
+#[cfg(feature = "load")]
+pub use file_camera::FileCamera;
 pub use image_output::{AovSelection, write_image};
 pub use integrator::Integrator;
 pub use light::Light;

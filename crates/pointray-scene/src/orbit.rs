@@ -46,12 +46,13 @@ mod tests {
     #[test]
     fn an_unturned_frame_is_the_start_to_the_bit() {
         // Neither the position nor the look-at point survives `l + (p - l)` in f32.
-        let start = Camera {
-            position: Vec3::new(0.7, 1.1, 5.0),
-            look_at: Vec3::new(-899.3, -0.3, 0.0),
-            ..start()
-        };
-        assert_ne!(start.look_at + (start.position - start.look_at), start.position, "the case is a real one");
+        let start =
+            Camera { position: Vec3::new(0.7, 1.1, 5.0), look_at: Vec3::new(-899.3, -0.3, 0.0), ..start() };
+        assert_ne!(
+            start.look_at + (start.position - start.look_at),
+            start.position,
+            "the case is a real one"
+        );
         assert_eq!(orbit_camera(&start, 0, 1, 360.0), start);
         assert_eq!(orbit_camera(&start, 5, 8, 0.0), start);
     }

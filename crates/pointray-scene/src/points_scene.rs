@@ -10,6 +10,7 @@ use glam::DVec3;
 use pointray_io::formats::detect::PointFormat;
 use pointray_io::formats::{FileFormat, detect_file_format};
 
+use crate::file_camera::FileCamera;
 use crate::material_spec::{ColorSource, MaterialSpec};
 use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::scene_file::{CameraSpec, LightSpec, RenderSpec, SceneFile};
@@ -39,29 +40,17 @@ impl UpAxis {
         }
     }
 
-    /// A camera placed in the file's coordinates, stood upright as the default scene stands
-    /// the cloud (its `up` is the scene's).
-    pub fn camera_to_scene(self, camera: CameraSpec) -> CameraSpec {
-        CameraSpec {
-            position: self.upright_vector(camera.position),
-            look_at: self.upright_vector(camera.look_at),
-            ..camera
-        }
-    }
-
     /// A camera placed in the file's coordinates, `up` included, in the scene's. Without `up`
     /// it is the file's up axis, unless the view runs along that axis (from straight above or
     /// below): then the top of the image is the file's north (+Y of a Z-up file, -Z of a
     /// Y-up one, the scene's -Z either way).
-    pub fn camera_from_file(
-        self,
-        (position, look_at): ([f64; 3], [f64; 3]),
-        up: Option<[f64; 3]>,
-        vfov_degrees: Option<f32>,
-    ) -> CameraSpec {
+    pub fn camera_from_file(self, camera: &FileCamera) -> CameraSpec {
+        let FileCamera { position, look_at, up, vfov_degrees } = *camera;
         let up = up.unwrap_or_else(|| self.up_for_view(position, look_at));
-        let camera = self.camera_to_scene(CameraSpec::looking(position, look_at, vfov_degrees));
-        CameraSpec { up: self.upright_vector(up).map(|c| c as f32), ..camera }
+        CameraSpec {
+            up: self.upright_vector(up).map(|c| c as f32),
+            ..CameraSpec::looking(self.upright_vector(position), self.upright_vector(look_at), vfov_degrees)
+        }
     }
 
     fn up_for_view(self, position: [f64; 3], look_at: [f64; 3]) -> [f64; 3] {
@@ -164,14 +153,29 @@ impl PointsScene {
 mod tests {
     use super::*;
 
+    fn looking(position: [f64; 3], look_at: [f64; 3]) -> FileCamera {
+        FileCamera { position, look_at, up: None, vfov_degrees: None }
+    }
+
     #[test]
     fn a_view_from_straight_above_has_north_at_the_top() {
-        let above = ([10.0, 20.0, 3000.0], [10.0, 20.0, 400.0]);
-        let camera = UpAxis::Z.camera_from_file(above, None, None);
+        let above = looking([10.0, 20.0, 3000.0], [10.0, 20.0, 400.0]);
+        let camera = UpAxis::Z.camera_from_file(&above);
         assert_eq!(camera.up, [0.0, 0.0, -1.0], "the file's +Y, in the scene");
-        let oblique = UpAxis::Z.camera_from_file(([0.0, -50.0, 30.0], [0.0; 3]), None, None);
+        let oblique = UpAxis::Z.camera_from_file(&looking([0.0, -50.0, 30.0], [0.0; 3]));
         assert_eq!(oblique.up, [0.0, 1.0, 0.0], "the file's +Z, in the scene");
-        let given = UpAxis::Z.camera_from_file(above, Some([1.0, 0.0, 0.0]), Some(30.0));
+        let given = FileCamera { up: Some([1.0, 0.0, 0.0]), vfov_degrees: Some(30.0), ..above };
+        let given = UpAxis::Z.camera_from_file(&given);
         assert_eq!((given.up, given.vfov_degrees), ([1.0, 0.0, 0.0], 30.0));
+    }
+
+    #[test]
+    fn a_given_up_is_stood_upright_with_the_position_and_look_at() {
+        let tilted = FileCamera { up: Some([0.0, 1.0, 1.0]), ..looking([1.0, -50.0, 30.0], [2.0, 3.0, 4.0]) };
+        let camera = UpAxis::Z.camera_from_file(&tilted);
+        assert_eq!(camera.position, [1.0, 30.0, 50.0]);
+        assert_eq!(camera.look_at, [2.0, 4.0, -3.0]);
+        assert_eq!(camera.up, [0.0, 1.0, -1.0], "the file's +Y+Z, in the scene");
+        assert_eq!(UpAxis::Y.camera_from_file(&tilted).up, [0.0, 1.0, 1.0], "a Y-up file is the scene");
     }
 }
