@@ -12,11 +12,12 @@ use std::time::Instant;
 use e57::{E57Writer, Record, RecordDataType, RecordName, RecordValue};
 use las::point::Format;
 use las::{Builder, Color, Transform, Vector};
-use pcd_rs::{DataKind, DynRecord, DynWriter, Field, Schema, ValueKind, WriterInit};
+use pcd_rs::{DataKind, DynRecord, Field};
 use pointray_io::PointCloud;
 use pointray_io::formats::{
     e57::read_e57, las::read_las, pcd::read_pcd, raw_bin::read_raw_bin, xyz::read_xyz,
 };
+use pointray_test_support::write_pcd_f32;
 
 const POINTS: usize = 1_000_000;
 const RUNS: usize = 3;
@@ -58,20 +59,7 @@ fn write_pcd(path: &Path, data_kind: DataKind) {
         let fields = [x - 500_000.0, y - 4_000_000.0, z].map(|c| Field::F32(vec![c as f32]));
         DynRecord(fields.into_iter().chain([Field::F32(vec![rgb])]).collect())
     });
-    let schema = Schema::from_iter(["x", "y", "z", "rgb"].map(|name| (name, ValueKind::F32, 1)));
-    let init = WriterInit {
-        width: POINTS as u64,
-        height: 1,
-        viewpoint: Default::default(),
-        data_kind,
-        schema: Some(schema),
-        version: None,
-    };
-    let mut writer: DynWriter<_> = init.create(path).unwrap();
-    for record in records {
-        writer.push(&record).unwrap();
-    }
-    writer.finish().unwrap();
+    write_pcd_f32(path, data_kind, &["x", "y", "z", "rgb"], records);
 }
 
 fn write_e57(path: &Path) {

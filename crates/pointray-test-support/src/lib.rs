@@ -1,6 +1,6 @@
 //! What the crates' tests share (a dev-dependency only): the checkout's data files, a Vulkan
-//! renderer or a clear failure under CI, image comparison, meshes, and Monte Carlo error
-//! bounds.
+//! renderer or a clear failure under CI, image comparison, meshes, PCD files, and Monte Carlo
+//! error bounds.
 
 mod data;
 mod device;
@@ -8,6 +8,8 @@ mod images;
 #[cfg(feature = "meshes")]
 mod meshes;
 mod monte_carlo;
+#[cfg(feature = "pcd")]
+mod pcd;
 
 pub use data::{data_dir, data_file};
 #[cfg(feature = "vulkan")]
@@ -19,3 +21,5 @@ pub use images::{largest_byte_difference, psnr_bytes};
 #[cfg(feature = "meshes")]
 pub use meshes::sphere_mesh;
 pub use monte_carlo::{Estimate, estimate};
+#[cfg(feature = "pcd")]
+pub use pcd::write_pcd_f32;

@@ -9,7 +9,7 @@ use pointray_io::formats::detect::{PointFormat, detect_format};
 use pointray_io::formats::pcd::read_pcd;
 use pointray_io::{IoError, PointCloud};
 
-use crate::common::write_pcd_f32;
+use pointray_test_support::write_pcd_f32;
 
 fn sample_records() -> Vec<DynRecord> {
     (0..40)

@@ -1,8 +1,6 @@
 //! Fixture files the reader tests write.
 
-use std::path::{Path, PathBuf};
-
-use pcd_rs::{DataKind, DynRecord, DynWriter, Schema, ValueKind, WriterInit};
+use std::path::PathBuf;
 
 /// Writes `bytes` to `name` in a fresh temporary directory (kept alive by the returned guard).
 pub fn fixture(name: &str, bytes: &[u8]) -> (tempfile::TempDir, PathBuf) {
@@ -10,27 +8,4 @@ pub fn fixture(name: &str, bytes: &[u8]) -> (tempfile::TempDir, PathBuf) {
     let path = dir.path().join(name);
     std::fs::write(&path, bytes).expect("write fixture");
     (dir, path)
-}
-
-/// Writes `records` as a PCD file of the f32 `fields`, one row.
-pub fn write_pcd_f32(
-    path: &Path,
-    data_kind: DataKind,
-    fields: &[&str],
-    records: impl ExactSizeIterator<Item = DynRecord>,
-) {
-    let schema = Schema::from_iter(fields.iter().map(|&name| (name, ValueKind::F32, 1)));
-    let init = WriterInit {
-        width: records.len() as u64,
-        height: 1,
-        viewpoint: Default::default(),
-        data_kind,
-        schema: Some(schema),
-        version: None,
-    };
-    let mut writer: DynWriter<_> = init.create(path).unwrap();
-    for record in records {
-        writer.push(&record).unwrap();
-    }
-    writer.finish().unwrap();
 }
