@@ -9,6 +9,7 @@ pub mod formats;
 pub mod huge_page_allocator;
 pub mod image_output;
 pub mod linear_image;
+pub mod median;
 pub mod memory_budget;
 mod owner_lock;
 pub mod point_cloud;
@@ -27,6 +28,7 @@ pub use file_roles::{
 };
 pub use huge_page_allocator::HugePageAllocator;
 pub use linear_image::{LinearImage, read_linear_image, read_linear_image_within};
+pub use median::median;
 pub use memory_budget::{MemoryBudget, MemoryShortfall};
 pub use point_cloud::{AttributeBytes, PointCloud};
 pub use point_stream::PointStream;

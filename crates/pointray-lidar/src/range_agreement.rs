@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
+use pointray_io::median;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -93,14 +94,6 @@ fn mean_nearest_distance(from: &[DVec3], to: &[DVec3]) -> Option<f64> {
     let nearest = |p: &DVec3| tree.query(&p.to_array()).nearest_one::<SquaredEuclidean<f64>>().execute();
     let total: f64 = from.par_iter().map(|p| nearest(p).distance.sqrt()).sum();
     Some(total / from.len() as f64)
-}
-
-fn median(mut values: Vec<f64>) -> Option<f64> {
-    if values.is_empty() {
-        return None;
-    }
-    let middle = values.len() / 2;
-    Some(*values.select_nth_unstable_by(middle, f64::total_cmp).1)
 }
 
 #[cfg(test)]

@@ -11,6 +11,8 @@ use std::f64::consts::TAU;
 
 use glam::DVec3;
 
+use crate::median::median;
+
 /// Fewer returns than this are not a sweep whose order can be trusted.
 const MIN_RETURNS: usize = 1_000;
 
@@ -85,14 +87,6 @@ fn split_into_turns(steps: &[f64], column_step: f64) -> (Vec<u16>, Vec<f64>) {
     }
     turns.push(turned);
     (lines, turns)
-}
-
-fn median(mut values: Vec<f64>) -> Option<f64> {
-    if values.is_empty() {
-        return None;
-    }
-    let middle = values.len() / 2;
-    Some(*values.select_nth_unstable_by(middle, f64::total_cmp).1)
 }
 
 #[cfg(test)]
