@@ -27,3 +27,10 @@ pub fn vulkan_renderer() -> Option<pointray_vulkan::VulkanRenderer> {
         Err(error) => panic!("creating the renderer failed: {error}"),
     }
 }
+
+/// Fails if the validation layer reported anything while `renderer` worked (the messages are
+/// printed as they come).
+#[cfg(feature = "vulkan")]
+pub fn assert_no_validation_messages(renderer: &pointray_vulkan::VulkanRenderer) {
+    assert_eq!(renderer.validation_messages(), 0, "the validation layer reported messages (printed above)");
+}

@@ -1,14 +1,10 @@
-//! The cpu crate's integration tests, in one binary so that CI links it once.
+//! The cpu crate's integration tests, in one binary so that CI links it once. Those that need
+//! prep (points prepped into patches, scene files loaded) are pointray-render's, so that this
+//! crate does not depend on pointray-surface, even for its tests.
 
 mod bad_input;
 mod camera_and_light_updates;
 mod common;
-mod compact_store_image;
 mod first_hit;
-mod hostile_coordinates;
-mod light_leaks;
-mod path_tracing;
 mod plane_and_sphere;
-mod point_colors;
 mod shadows_and_reflections;
-mod tiles;

@@ -1,3 +1,8 @@
-//! The render crate's integration tests, in one binary so that CI links it once.
+//! The render crate's integration tests, in one binary so that CI links it once. The
+//! renderers' tests that need prep (points prepped into patches, scene files loaded, the demo)
+//! live here too, in `cpu` and `vulkan`, so that pointray-cpu and pointray-vulkan do not depend
+//! on pointray-surface, even for their tests.
 
+mod cpu;
 mod map_casters;
+mod vulkan;

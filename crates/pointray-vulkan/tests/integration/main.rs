@@ -1,20 +1,15 @@
-//! The vulkan crate's integration tests, in one binary so that CI links it once.
+//! The vulkan crate's integration tests, in one binary so that CI links it once. Those that
+//! need prep (points prepped into patches, scene files loaded) are pointray-render's, so that
+//! this crate does not depend on pointray-surface, even for its tests.
 
-mod against_cpu;
 mod bad_geometry;
 mod bench_hooks;
 mod common;
-mod demo_scene;
 mod devices;
 mod hit_reordering;
-mod large_coordinates;
 mod layouts;
 mod path_tracing;
-mod point_colors;
 mod reflection;
 mod shadow;
-mod silhouette;
 mod sphere_normals;
-mod streamed_tiles;
-mod tiles;
 mod trace_target;

@@ -8,8 +8,8 @@ use pointray_scene::demo::DEMO_SCENE_TOML;
 use pointray_scene::object_spec::ShapeSpec;
 use pointray_scene::scene_file::LightSpec;
 use pointray_scene::{LoadOptions, SceneFile, load_scene_file};
-
-use crate::common::{assert_no_validation_messages, iou, renderer, settings};
+use pointray_test_support::floor_scenes::{iou, settings};
+use pointray_test_support::{assert_no_validation_messages, vulkan_renderer};
 
 /// A UTM-sized position (easting, northing, height).
 const UTM: [f64; 3] = [640_000.0, 5_000_000.0, 100.0];
@@ -34,7 +34,7 @@ fn moved_demo() -> SceneFile {
 
 #[test]
 fn a_utm_scene_renders_as_at_the_origin() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let at_origin = SceneFile::parse(DEMO_SCENE_TOML, Path::new("demo.toml")).unwrap();
     let [reference, moved] = [at_origin, moved_demo()].map(|file| {
         let scene = load_scene_file(&file, &LoadOptions::default()).expect("the scene loads").scene;

@@ -4,11 +4,9 @@
 
 use std::time::Duration;
 
-use crate::common;
-use crate::point_colors::{coloured_sphere, lit_on_floor};
-use crate::tiles::{assert_same_hits, bunny_object, patch_count};
+use super::point_colors::{coloured_sphere, lit_on_floor};
+use super::tiles::{assert_same_hits, bunny_object, patch_count};
 
-use common::{assert_no_validation_messages, model_on_floor, object, point_light, renderer, settings};
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -16,6 +14,8 @@ use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use pointray_patches::PatchSet;
 use pointray_scene::{Background, Geometry, Material};
 use pointray_scene::{Camera, RenderSettings, RenderedImage, Scene};
+use pointray_test_support::floor_scenes::{mesh, model_on_floor, object, point_light, settings};
+use pointray_test_support::{assert_no_validation_messages, vulkan_renderer};
 use pointray_vulkan::{PreparedScene, SceneLayout, TileResidency, VulkanError, VulkanRenderer};
 
 const SIZE: u32 = 96;
@@ -83,7 +83,7 @@ fn whole_image(renderer: &VulkanRenderer, whole: &mut PreparedScene, camera: Cam
 
 #[test]
 fn a_cloud_over_its_budget_streams_the_tiles_each_view_sees_and_draws_what_it_draws_whole() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let (scene, bounds) = bunny_scene();
     let mut whole = renderer.prepare(&scene).expect("prepares whole");
     let whole_bytes = whole.build_report().gpu_bytes();
@@ -111,7 +111,7 @@ fn a_cloud_over_its_budget_streams_the_tiles_each_view_sees_and_draws_what_it_dr
 
 #[test]
 fn turning_to_another_view_evicts_tiles_and_a_time_limit_loads_one_tile_a_call() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let (scene, bounds) = bunny_scene();
     let mut prepared = streamed_in_three_quarters(&renderer, &scene);
     let first = stream(&mut prepared, close_view(&bounds, -1.0), None);
@@ -131,7 +131,7 @@ fn turning_to_another_view_evicts_tiles_and_a_time_limit_loads_one_tile_a_call()
 
 #[test]
 fn the_first_update_reports_the_tiles_the_preparation_loaded() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let (scene, _) = bunny_scene();
     let mut prepared = streamed_in_three_quarters(&renderer, &scene);
     let first = stream(&mut prepared, scene.camera, None);
@@ -143,7 +143,7 @@ fn the_first_update_reports_the_tiles_the_preparation_loaded() {
 
 #[test]
 fn a_budget_without_room_for_one_tile_is_refused_and_a_roomy_one_uploads_the_set_whole() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let (scene, _) = bunny_scene();
     let error = streamed(&renderer, &scene, 64 * 1024, TILE).err().expect("64 KiB streams nothing");
     assert!(matches!(error, VulkanError::OverBudget(_)), "{error:?}");
@@ -180,7 +180,7 @@ fn grid_scene(side: u32) -> Scene {
 
 #[test]
 fn a_budget_too_small_for_a_sets_usual_tiles_streams_smaller_ones() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let scene = grid_scene(800);
     let streams_in = |budget: u64, tile: Option<u32>| {
         let layout = SceneLayout {
@@ -211,10 +211,10 @@ fn a_budget_too_small_for_a_sets_usual_tiles_streams_smaller_ones() {
 
 #[test]
 fn a_mesh_whose_build_does_not_fit_is_refused_by_name_not_built_past_the_budget() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let (mut scene, _) = bunny_scene();
     let sphere = pointray_test_support::sphere_mesh(1.0, 400, 800);
-    scene.objects.push(common::object("sphere", common::mesh(sphere), Default::default()));
+    scene.objects.push(object("sphere", mesh(sphere), Default::default()));
     let error = streamed(&renderer, &scene, 2 << 20, TILE).err().expect("2 MiB holds no 640,000 triangles");
     assert!(matches!(error, VulkanError::OverBudget(_)), "{error:?}");
     assert!(error.to_string().contains("a mesh's"), "{error}");
@@ -223,7 +223,7 @@ fn a_mesh_whose_build_does_not_fit_is_refused_by_name_not_built_past_the_budget(
 
 #[test]
 fn a_coloured_cloud_streams_with_its_colours_blended_across_its_tiles_as_whole() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let mut scene = lit_on_floor(coloured_sphere());
     scene.objects[1].material.reflectivity = 0.0;
     let mut whole = renderer.prepare(&scene).expect("prepares whole");

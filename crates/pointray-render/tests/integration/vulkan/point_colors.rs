@@ -3,13 +3,8 @@
 //! image as on the CPU, and shows the colour field without steps between patches, where one
 //! colour per patch shows them.
 
-use crate::common;
-
 use std::sync::Arc;
 
-use common::{
-    assert_no_validation_messages, floor, mesh, object, point_light, primary_ray, renderer, settings,
-};
 use glam::{Affine3A, DVec3, Quat, Vec3};
 use pointray_io::PointCloud;
 use pointray_patches::{PatchSet, PrepSettings};
@@ -17,6 +12,8 @@ use pointray_scene::{
     Background, Camera, Geometry, Material, RenderSettings, RenderedImage, Scene, SceneObject,
 };
 use pointray_surface::{NoProgress, prep};
+use pointray_test_support::floor_scenes::{floor, mesh, object, point_light, primary_ray, settings};
+use pointray_test_support::{assert_no_validation_messages, vulkan_renderer};
 
 /// The linear colour each point carries, from its input position: ramps along x and y.
 fn color_field(input: DVec3) -> Vec3 {
@@ -126,7 +123,7 @@ fn largest_step_beyond_the_field(image: &RenderedImage, patches: &PatchSet) -> f
 
 #[test]
 fn interpolated_colours_match_the_cpu_and_show_no_steps() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let patches = coloured_sphere();
     assert!(!patches.color_neighbors.is_empty(), "a coloured cloud keeps colour neighbours");
     let one_colour_per_patch = PatchSet { color_neighbors: Default::default(), ..patches.clone() };
@@ -157,7 +154,7 @@ fn interpolated_colours_match_the_cpu_and_show_no_steps() {
 
 #[test]
 fn lit_coloured_sphere_over_a_mirror_floor_matches_the_cpu() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let scene = lit_on_floor(coloured_sphere());
     let settings = settings(128);
     let gpu = renderer.render(&scene, &settings).expect("the Vulkan backend renders");
@@ -170,7 +167,7 @@ fn lit_coloured_sphere_over_a_mirror_floor_matches_the_cpu() {
 
 #[test]
 fn combined_buffers_colour_as_split_buffers_do() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let scene = lit_on_floor(coloured_sphere());
     let split = settings(96);
     let combined = RenderSettings { buffer_layout: pointray_scene::BufferLayout::Combined, ..split };

@@ -1,6 +1,6 @@
 //! Throughput of the CPU renderer on a scene file: frames per second and rays per second.
 //!
-//! `cargo run --release -p pointray-cpu --example bench_scene -- [SCENE.toml] [FRAMES] [OUT.png]`
+//! `cargo run --release -p pointray-render --example bench_scene -- [SCENE.toml] [FRAMES] [OUT.png]`
 //! (default: `scenes/bunny_floor.toml`, the bunny on a reflective floor at 640x640 with
 //! shadows and reflections, and 5 timed frames after one warm-up frame). With `OUT.png`,
 //! the warm-up frame is written there, to look at what was timed.

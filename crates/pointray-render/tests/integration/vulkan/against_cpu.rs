@@ -2,14 +2,10 @@
 //! hit masks agree on >= 99.9% of pixels, normals within 1 degree on >= 99% of the pixels
 //! both hit, and the shaded images reach PSNR >= 40 dB.
 
-use crate::common;
-
-use common::{
-    assert_no_validation_messages, model_on_floor, prepped_points_with_boxes, renderer, settings,
-    sphere_on_floor,
-};
 use pointray_patches::BoxKind;
 use pointray_scene::{Geometry, Material, PatchAcceptance, RenderSettings, RenderedImage, Scene, demo_scene};
+use pointray_test_support::floor_scenes::{model_on_floor, settings, sphere_on_floor};
+use pointray_test_support::{assert_no_validation_messages, prepped_points_with_boxes, vulkan_renderer};
 
 struct Agreement {
     mask: f64,
@@ -43,7 +39,7 @@ fn agreement(cpu: &RenderedImage, gpu: &RenderedImage) -> Agreement {
 }
 
 fn assert_backends_agree(name: &str, scene: &Scene, settings: &RenderSettings) {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let gpu = renderer.render(scene, settings).expect("the Vulkan backend renders");
     assert_images_agree(name, &pointray_cpu::render(scene, settings), &gpu);
     assert_no_validation_messages(&renderer);

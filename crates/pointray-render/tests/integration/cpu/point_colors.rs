@@ -1,15 +1,13 @@
 //! Point colours are interpolated at the hit: a plane coloured by two crossing
 //! gradients shows no steps between adjacent pixels, where one colour per patch does.
 
-use crate::common;
-
-use common::*;
 use glam::{Affine3A, DVec3, Vec3};
 use pointray_cpu::render;
 use pointray_io::PointCloud;
 use pointray_patches::{PatchSet, PrepSettings, RadiusMode};
 use pointray_scene::{Camera, Light, Material, RenderSettings, RenderedImage};
 use pointray_surface::{NoProgress, prep};
+use pointray_test_support::analytic_scenes::*;
 
 /// A deterministic value in [-0.5, 0.5).
 fn jitter(i: u64) -> f64 {

@@ -4,15 +4,13 @@
 //! store), on the CPU renderer at 160x160: PSNR >= 50 dB, object ids equal on >= 99.9% of
 //! pixels.
 
-use crate::common;
-
-use common::*;
 use glam::{Affine3A, Vec3};
 use pointray_cpu::render;
 use pointray_io::formats::read_point_cloud;
 use pointray_patches::{PatchSet, PrepSettings, patch_store};
 use pointray_scene::{Light, Material, RenderSettings, RenderedImage};
 use pointray_surface::{NoProgress, prep};
+use pointray_test_support::analytic_scenes::*;
 use pointray_test_support::data_file;
 
 const SIZE: u32 = 160;

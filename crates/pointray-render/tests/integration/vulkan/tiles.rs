@@ -2,17 +2,15 @@
 //! into many small tiles draws exactly the image it draws whole, on the GPU and on the CPU,
 //! and the two backends agree; a scene over its GPU memory budget is refused before upload.
 
-use crate::against_cpu::assert_images_agree;
-use crate::common;
-use crate::point_colors::{coloured_sphere, lit_on_floor};
+use super::against_cpu::assert_images_agree;
+use super::point_colors::{coloured_sphere, lit_on_floor};
 
-use common::{
-    assert_no_validation_messages, model_on_floor, prepped_points, renderer, settings, sphere_on_floor,
-};
 use glam::Vec3;
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::Aabb;
 use pointray_scene::{Geometry, Material, RenderedImage, Scene, SceneObject};
+use pointray_test_support::floor_scenes::{model_on_floor, settings, sphere_on_floor};
+use pointray_test_support::{assert_no_validation_messages, prepped_points, vulkan_renderer};
 use pointray_vulkan::{DeviceOptions, DeviceSelector, SceneLayout, VulkanError, VulkanRenderer};
 
 /// Small enough that every point set here splits into dozens of tiles, and not a divisor of
@@ -88,7 +86,7 @@ pub(crate) fn assert_same_hits(name: &str, tiled: &RenderedImage, whole: &Render
 
 #[test]
 fn a_cloud_in_many_tiles_draws_the_untiled_image() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let bunny = pointray_test_support::data_file("points/bunny.ply");
     // Prepped clouds: the patches of an exact sphere (`sphere_on_floor`) tie at equal depths,
     // which either backend may break either way.
@@ -122,7 +120,7 @@ fn a_cloud_in_many_tiles_draws_the_untiled_image() {
 
 #[test]
 fn a_scene_over_its_gpu_budget_is_refused_with_the_numbers() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let scene = sphere_on_floor(0.5, 1.0);
     let budget = 64 * 1024;
     let layout = SceneLayout { memory_budget: Some(budget), ..SceneLayout::default() };
@@ -140,7 +138,7 @@ fn a_scene_over_its_gpu_budget_is_refused_with_the_numbers() {
 
 #[test]
 fn a_budget_below_one_build_splits_the_cloud_into_tiles_that_fit() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let bunny = pointray_test_support::data_file("points/bunny.ply");
     let scene = bunny_on_floor(&bunny);
     let settings = settings(128);
@@ -164,7 +162,7 @@ fn a_budget_below_one_build_splits_the_cloud_into_tiles_that_fit() {
 
 #[test]
 fn a_device_gpu_memory_option_budgets_every_scene_unless_a_layout_names_one() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let scene = sphere_on_floor(0.5, 1.0);
     let used = renderer.prepare(&scene).expect("prepares without a budget").build_report().gpu_bytes();
     let options = DeviceOptions { gpu_memory: Some(64 * 1024), ..DeviceOptions::VALIDATED };

@@ -5,10 +5,6 @@
 //! `first_light --data DIR --out DIR [--reference DIR] [--frames N]`
 //! (`DIR` of `--data` holds `points/bunny.ply` and `meshes/bunny.ply`.)
 
-#[allow(dead_code, unused_imports)] // the example needs only a few of the tests' helpers
-#[path = "../tests/integration/common/mod.rs"]
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -17,6 +13,8 @@ use pointray_io::formats::ply::read_triangle_mesh;
 use pointray_io::image_output::write_png_srgb;
 use pointray_io::write_atomically;
 use pointray_scene::{BufferLayout, Material, RenderSettings, RenderedImage, Scene, demo_scene};
+use pointray_test_support::floor_scenes::{mesh, model_on_floor, object};
+use pointray_test_support::prepped_points;
 use pointray_vulkan::{BlasLayout, DeviceSelector, PreparedScene, SceneLayout, VulkanRenderer};
 
 type Error = Box<dyn std::error::Error>;
@@ -46,13 +44,13 @@ fn parse_args() -> Result<Args, Error> {
 }
 
 fn bunny_scenes(data: &Path) -> Result<Vec<(&'static str, Scene)>, Error> {
-    let mesh = read_triangle_mesh(&data.join("meshes/bunny.ply"))?;
-    let mesh = common::object("bunny mesh", common::mesh(mesh), Material::default());
+    let triangles = read_triangle_mesh(&data.join("meshes/bunny.ply"))?;
+    let mesh = object("bunny mesh", mesh(triangles), Material::default());
     let bounds = mesh.world_bounds().ok_or("the bunny mesh is empty")?;
-    let points = common::prepped_points("bunny points", &data.join("points/bunny.ply"), Material::default());
+    let points = prepped_points("bunny points", &data.join("points/bunny.ply"), Material::default());
     Ok(vec![
-        ("bunny_points", common::model_on_floor(points, bounds, 0.3)),
-        ("bunny_mesh", common::model_on_floor(mesh, bounds, 0.3)),
+        ("bunny_points", model_on_floor(points, bounds, 0.3)),
+        ("bunny_mesh", model_on_floor(mesh, bounds, 0.3)),
     ])
 }
 

@@ -1,13 +1,12 @@
 //! The procedural demo scene renders with no data file.
 
-use crate::common;
-
-use common::{assert_no_validation_messages, renderer, settings};
 use pointray_scene::demo_scene;
+use pointray_test_support::floor_scenes::settings;
+use pointray_test_support::{assert_no_validation_messages, vulkan_renderer};
 
 #[test]
 fn the_procedural_demo_renders() {
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let scene = demo_scene().expect("the demo scene builds");
     let image = renderer.render(&scene, &settings(128)).expect("the demo renders");
     assert!(

@@ -4,8 +4,6 @@
 //! not slip out through a nearby wall, at any angle: the sky reaches every wall at every
 //! incidence, grazing included.
 
-use crate::common::*;
-
 use glam::{Affine3A, Vec3};
 use pointray_cpu::CpuRenderer;
 use pointray_io::PointCloud;
@@ -14,6 +12,7 @@ use pointray_patches::{PatchSet, PrepSettings};
 use pointray_scene::procedural::sphere_points;
 use pointray_scene::{Background, Camera, Integrator, Material, RenderSettings, RenderedImage, SurfaceKind};
 use pointray_surface::{NoProgress, prep, sample_mesh};
+use pointray_test_support::analytic_scenes::*;
 
 /// A unit cube's six faces, wound to face out.
 fn cube_mesh() -> TriangleMesh {

@@ -5,9 +5,6 @@
 
 use std::sync::Arc;
 
-use crate::common;
-
-use common::*;
 use glam::{Affine3A, Quat, Vec3};
 use pointray_cpu::CpuRenderer;
 use pointray_kernels::EnvironmentMap;
@@ -17,7 +14,8 @@ use pointray_scene::{
     Background, Integrator, Material, RenderSettings, RenderedImage, Scene, SunSky, SurfaceKind,
 };
 use pointray_surface::{NoProgress, prep};
-use pointray_test_support::estimate;
+use pointray_test_support::analytic_scenes::*;
+use pointray_test_support::{estimate, sphere_mesh};
 
 /// Standard errors a mean may stray: a false failure once in 1.7 million runs.
 const SIGMAS: f64 = 5.0;

@@ -5,13 +5,10 @@
 //! pixel, none a hole). The disk test is the one METHOD.md §3 step 3 keeps for having fewer
 //! false surfaces, so it carries the 0.98 requirement; the box test is held to 0.97.
 
-use crate::common;
-
-use common::{
-    assert_no_validation_messages, iou, mesh, model_on_floor, object, prepped_points, renderer, settings,
-};
 use pointray_io::formats::ply::read_triangle_mesh;
 use pointray_scene::{Material, PatchAcceptance, RenderSettings, RenderedImage};
+use pointray_test_support::floor_scenes::{iou, mesh, model_on_floor, object, settings};
+use pointray_test_support::{assert_no_validation_messages, prepped_points, vulkan_renderer};
 
 const MODEL: u32 = 0;
 
@@ -23,7 +20,7 @@ fn model_mask(frame: &RenderedImage) -> Vec<bool> {
 fn bunny_points_and_bunny_mesh_have_the_same_silhouette() {
     let points_path = pointray_test_support::data_file("points/bunny.ply");
     let mesh_path = pointray_test_support::data_file("meshes/bunny.ply");
-    let Some(renderer) = renderer() else { return };
+    let Some(renderer) = vulkan_renderer() else { return };
     let bunny_mesh = read_triangle_mesh(&mesh_path).expect("the bunny mesh loads");
     let mesh_object = object("bunny mesh", mesh(bunny_mesh), Material::default());
     let bounds = mesh_object.world_bounds().expect("the mesh has vertices");
