@@ -98,11 +98,14 @@ impl ScaleBackend<'_> {
     ) -> Result<(), BenchError> {
         if let Some(tiles) = ready.stream_tiles(settings).map_err(|source| backend_error(case, source))? {
             println!(
-                "{case}: {} of {} tiles on the GPU ({:.2} GB), {} of the {} in view",
+                "{case}: {} of {} tiles on the GPU in full and {} coarse ({:.2} GB), {} in full and {} coarse of the \
+                 {} in view",
                 tiles.resident,
                 tiles.tiles,
+                tiles.coarse,
                 tiles.resident_bytes as f64 / 1e9,
                 tiles.in_view_resident,
+                tiles.in_view_coarse,
                 tiles.in_view
             );
         }

@@ -5,6 +5,7 @@
 //!
 //! It may use `pointray-kernels` (the record types) and `pointray-io` (files), nothing above.
 
+pub mod coarse_level;
 pub mod compact_patches;
 pub mod geometry_range;
 mod parallel_checksum;

@@ -151,7 +151,7 @@ def test_denoise_filters_as_the_command_line_does(bunny, tmp_path):
     assert not np.array_equal(image, pointray.render(scene, backend="cpu"))
 
 
-def test_a_render_over_its_gpu_budget_streams_and_warns_of_the_tiles_it_lacks(bunny):
-    with pytest.warns(UserWarning, match="tiles in or beside the view do not fit the GPU memory budget"):
+def test_a_render_over_its_gpu_budget_streams_and_warns_of_the_tiles_it_draws_coarse(bunny):
+    with pytest.warns(UserWarning, match="are drawn from their coarse level"):
         image = pointray.render(bunny, width=48, height=48, backend="vulkan", gpu_memory="2M")
     assert image.shape == (48, 48, 4) and image[..., 3].any()

@@ -87,7 +87,11 @@ impl Backend {
         Ok(match self {
             Backend::Vulkan(renderer) => {
                 let stream_tiles_for = Some((settings.width, settings.height));
-                let layout = SceneLayout { stream_tiles_for, ..SceneLayout::for_settings(settings) };
+                let layout = SceneLayout {
+                    stream_tiles_for,
+                    coarse_tiles: true,
+                    ..SceneLayout::for_settings(settings)
+                };
                 ReadyScene::Vulkan(Box::new(renderer.prepare_with_layout(scene, layout)?))
             }
             Backend::Cpu => ReadyScene::Cpu(Box::new(CpuRenderer::new(scene))),

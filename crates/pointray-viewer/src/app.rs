@@ -151,7 +151,9 @@ impl App {
                 Presentation::Direct => "direct",
                 Presentation::HostCopy => "host copy",
             };
-            let tiles = self.residency.map(|tiles| format!(", {} of {} tiles", tiles.resident, tiles.tiles));
+            let tiles = self.residency.map(|tiles| {
+                format!(", {} of {} tiles in full, {} coarse", tiles.resident, tiles.tiles, tiles.coarse)
+            });
             let title = format!(
                 "pointray view: {fps:.1} fps, {:.1} ms/frame, {} spp, {}, {path}{}",
                 mean.as_secs_f64() * 1e3,

@@ -250,9 +250,10 @@ impl FrameSource {
 }
 
 /// Point sets over the GPU memory budget stream, their tiles following the camera of an
-/// image of `view_size` pixels; the others upload whole.
+/// image of `view_size` pixels, those it does not hold in full drawn coarse; the others
+/// upload whole.
 fn streaming_layout(view_size: (u32, u32)) -> SceneLayout {
-    SceneLayout { stream_tiles_for: Some(view_size), ..SceneLayout::default() }
+    SceneLayout { stream_tiles_for: Some(view_size), coarse_tiles: true, ..SceneLayout::default() }
 }
 
 /// The host path: the frame's bytes, scaled to the swapchain, uploaded and presented.

@@ -1,6 +1,6 @@
 //! The viewer on a GPU memory budget that the demo's point sets do not fit: a scripted orbit
-//! streams their tiles frame by frame, under the validation layer, and its last frame is the
-//! image a scene streamed for the final camera alone draws.
+//! streams their tiles frame by frame, in full or coarse, under the validation layer, and its
+//! last frame is the image a scene streamed for the final camera alone draws.
 
 mod common;
 
@@ -40,15 +40,21 @@ fn a_scripted_orbit_over_the_gpu_budget_streams_tiles_and_ends_on_the_streamed_i
     let mut final_scene = scene.clone();
     final_scene.camera = summary.final_camera;
     let size = (run.settings.width, run.settings.height);
-    let layout = SceneLayout { stream_tiles_for: Some(size), ..SceneLayout::for_settings(&run.settings) };
+    let layout = SceneLayout {
+        stream_tiles_for: Some(size),
+        coarse_tiles: true,
+        ..SceneLayout::for_settings(&run.settings)
+    };
     let mut streamed = renderer.prepare_with_layout(&final_scene, layout).expect("the demo streams");
     let aspect = run.settings.width as f32 / run.settings.height as f32;
     let mut stream = || streamed.stream_tiles(aspect, None).expect("streams").expect("the demo streams here");
     let residency = stream();
     eprintln!("{budget} of {whole_bytes} bytes: {residency:?}");
-    assert!(residency.resident < residency.tiles, "{residency:?}: the budget holds some tiles only");
+    assert!(residency.resident < residency.tiles, "{residency:?}: the budget holds some tiles only in full");
+    assert_eq!(residency.missing(), 0, "{residency:?}: the others are drawn coarse");
     assert_eq!(
-        residency.loaded, residency.resident,
+        residency.loaded,
+        residency.resident + residency.coarse,
         "{residency:?}: preparing loaded the final camera's tiles"
     );
     let again = stream();

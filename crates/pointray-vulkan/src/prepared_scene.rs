@@ -2,11 +2,12 @@
 //! TLAS, the instance (material) records and the lights. Built once, traced many times.
 
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use ash::vk;
 use glam::{Affine3A, Vec3, Vec4};
 use pointray_io::TriangleMesh;
+use pointray_patches::coarse_level::CoarseLevel;
 use pointray_patches::geometry_range::{box_in_range, first_vertex_out_of_range};
 use pointray_scene::{Background, BufferLayout, Camera, Geometry, Light, RenderSettings, Scene};
 use rayon::prelude::*;
@@ -104,6 +105,9 @@ pub struct SceneLayout {
     /// the order a camera rendering an image of this size needs them, first for the scene's
     /// camera and then for each `PreparedScene::stream_tiles`.
     pub stream_tiles_for: Option<(u32, u32)>,
+    /// Where tiles stream, draw those the budget cannot hold in full from their coarse level
+    /// (`tile_stream`) rather than leave them out. `render`, `view` and `bench` do.
+    pub coarse_tiles: bool,
 }
 
 impl SceneLayout {
@@ -444,9 +448,10 @@ fn start_streaming(
     instances: &[vk::AccelerationStructureInstanceKHR],
     records: &[ObjectRecord],
 ) -> Result<Streaming, VulkanError> {
+    let coarse = if layout.coarse_tiles { coarse_levels(scene) } else { Vec::new() };
     let mut max_tile = layout.tile_limit(context);
     loop {
-        let (tiles, largest_build) = TileStream::new(context, scene, layout, max_tile)?;
+        let (tiles, largest_build) = TileStream::new(context, scene, layout, max_tile, &coarse)?;
         let largest = tiles.largest_tile_patches();
         match stream_within_budget(context, (tiles, largest_build), ledger, instances, records) {
             // Smaller tiles take less room to build and to hold one of.
@@ -456,6 +461,21 @@ fn start_streaming(
             started => return started,
         }
     }
+}
+
+/// The coarse level of each of `scene`'s point sets, in order, made once for whichever
+/// tiles they are cut into: their blocks' (`pointray_patches::coarse_level`).
+fn coarse_levels(scene: &Scene) -> Vec<Arc<CoarseLevel>> {
+    let started = Instant::now();
+    let levels: Vec<Arc<CoarseLevel>> = (scene.objects.iter())
+        .filter_map(|object| match &object.geometry {
+            Geometry::Patches(patches) => Some(Arc::new(CoarseLevel::of(patches))),
+            Geometry::Mesh(_) => None,
+        })
+        .collect();
+    let coarse: usize = levels.iter().map(|level| level.patches.len()).sum();
+    tracing::info!("made the point sets' coarse levels ({coarse} patches) in {:.2?}", started.elapsed());
+    levels
 }
 
 /// `tiles` streamed beside the scene's other holdings, or why the budget cannot hold them.

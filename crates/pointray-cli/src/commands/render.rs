@@ -165,13 +165,16 @@ fn cache_dir_for(output: &Path) -> PathBuf {
 fn report_residency(residency: &TileResidency, took: Duration) {
     let mib = |bytes: u64| bytes as f64 / f64::from(1 << 20);
     println!(
-        "streamed tiles: {} of {} on the GPU ({:.1} of {:.1} MiB), {} of the {} in view (loaded {}, evicted {} \
-         since the last frame or the scene's preparation; updated in {took:.2?})",
+        "streamed tiles: {} of {} on the GPU in full and {} coarse ({:.1} of {:.1} MiB), {} in full and {} coarse \
+         of the {} in view (loaded {}, evicted {} since the last frame or the scene's preparation; updated in \
+         {took:.2?})",
         residency.resident,
         residency.tiles,
+        residency.coarse,
         mib(residency.resident_bytes),
         mib(residency.budget_bytes),
         residency.in_view_resident,
+        residency.in_view_coarse,
         residency.in_view,
         residency.loaded,
         residency.evicted

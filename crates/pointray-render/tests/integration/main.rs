@@ -3,6 +3,7 @@
 //! live here too, in `cpu` and `vulkan`, so that pointray-cpu and pointray-vulkan do not depend
 //! on pointray-surface, even for their tests.
 
+mod coarse_tiles;
 mod cpu;
 mod map_casters;
 mod vulkan;
