@@ -7,10 +7,10 @@
 //! finds its coarse patches by the blocks it touches whatever its length. A block is cut in
 //! two at the middle of its patches' longest side, again and again, until each part holds
 //! at most `CLUSTER_PATCHES`: the parts are compact in space even where the Morton order
-//! jumps within a block. Each part becomes one round patch through the area-weighted mean of
-//! its origins, facing their mean normal, whose radius reaches over every part's patch
-//! projected onto it (the coarse disks cover what the fine ones covered), and whose quadratic
-//! fits their origins and normals.
+//! jumps within a block. Each part becomes one patch through the area-weighted mean of its
+//! origins, facing their mean normal, on an ellipse along their spread that holds every
+//! part's patch projected onto it (the coarse patches cover what the fine ones covered), and
+//! whose quadratic fits their origins and normals.
 
 use std::ops::Range;
 
@@ -136,30 +136,76 @@ fn cut_at_middle(origins: &[Vec3], members: &mut [usize]) -> usize {
     if near == 0 || near == members.len() { members.len() / 2 } else { near }
 }
 
-/// One round patch over `part`'s patches: through their mean origin, facing their mean
-/// normal (each weighted by its support's area), with a radius that reaches over each
-/// patch's support projected onto it, and the quadratic that fits their origins and normals
-/// (`fitted_surface`), so that its shading turns as theirs did.
+/// One patch over `part`'s patches: through their mean origin, facing their mean normal
+/// (each weighted by its support's area), on an ellipse along their spread (`spread`) just
+/// large enough to hold each patch's support projected onto it, and with the quadratic that
+/// fits their origins and normals (`fitted_surface`), so that its shading turns as theirs
+/// did.
 fn merged_patch<'a>(part: impl Iterator<Item = &'a PatchHot> + Clone) -> PatchHot {
     let area = |patch: &PatchHot| patch.radius() * patch.radius();
     let total = part.clone().map(area).sum::<f32>().max(f32::MIN_POSITIVE);
     let centre = part.clone().map(|patch| area(patch) * patch.origin()).sum::<Vec3>() / total;
     let normal = mean_normal(part.clone().map(|patch| (patch.normal(), area(patch))));
-    let packed = PackedTangentFrame::new(normal, normal_basis(normal).0);
+    let plane = PackedTangentFrame::new(normal, normal_basis(normal).0).decode();
+    let (major, _) =
+        spread(part.clone().map(|patch| (plane.to_local(patch.origin() - centre), patch.radius())));
+    let packed = PackedTangentFrame::new(normal, major.x * plane.t1 + major.y * plane.t2);
     // Measured in the frame as stored, which the renderers see.
     let frame = packed.decode();
-    let reach = |patch: &PatchHot| {
-        let offset = patch.origin() - centre;
-        (offset - offset.dot(frame.n) * frame.n).length() + patch.radius()
-    };
-    let radius = part.clone().map(reach).fold(0.0f32, f32::max);
+    let (_, shape) =
+        spread(part.clone().map(|patch| (frame.to_local(patch.origin() - centre), patch.radius())));
+    let radii = covering_radii(
+        part.clone().map(|patch| (frame.to_local(patch.origin() - centre), patch.radius())),
+        shape,
+    );
     let samples = part.map(|patch| {
         let local = frame.to_local(patch.origin() - centre);
         let normal = frame.to_local(patch.normal());
         (local, normal * normal.z.signum(), area(patch))
     });
-    PatchHot::new(centre, packed, Vec2::splat(radius), fitted_surface(samples, radius))
+    PatchHot::new(centre, packed, radii, fitted_surface(samples, radii.x))
 }
+
+/// The least `d_v / d_u` a coarse patch takes: a part cut at its middles is seldom longer.
+const MIN_ASPECT: f32 = 0.25;
+
+/// The direction in the plane along which the disks of `disks` (local offsets from the
+/// centre, radii) spread most, and their spread (the root of the second moment of the union
+/// of the disks, each weighted by its area) along it and across it, the latter at least
+/// `MIN_ASPECT` of the former.
+fn spread(disks: impl Iterator<Item = (Vec3, f32)>) -> (Vec2, Vec2) {
+    let (mut uu, mut uv, mut vv, mut total) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
+    for (offset, radius) in disks {
+        let (weight, own) = (radius * radius, 0.25 * radius * radius);
+        uu += weight * (offset.x * offset.x + own);
+        uv += weight * offset.x * offset.y;
+        vv += weight * (offset.y * offset.y + own);
+        total += weight;
+    }
+    let total = total.max(f32::MIN_POSITIVE);
+    let (uu, uv, vv) = (uu / total, uv / total, vv / total);
+    let angle = 0.5 * (2.0 * uv).atan2(uu - vv);
+    let middle = 0.5 * (uu + vv);
+    let half_gap = (0.25 * (uu - vv) * (uu - vv) + uv * uv).sqrt();
+    let along = (middle + half_gap).max(f32::MIN_POSITIVE).sqrt();
+    let across = (middle - half_gap).max(0.0).sqrt().clamp(MIN_ASPECT * along, along);
+    (Vec2::new(angle.cos(), angle.sin()), Vec2::new(along, across))
+}
+
+/// The radii `(d_u, d_v)` of the ellipse of `shape`'s proportions that holds every disk of
+/// `disks` (local offsets, radii): in units of the shape, a disk's centre lies within its
+/// norm, and its rim within `radius / shape.y` more, as `shape.y <= shape.x`. `d_v` is
+/// rounded up past what the stored ratio to `d_u` loses.
+fn covering_radii(disks: impl Iterator<Item = (Vec3, f32)>, shape: Vec2) -> Vec2 {
+    let reach = |(offset, radius): (Vec3, f32)| (offset.truncate() / shape).length() + radius / shape.y;
+    let scale = disks.map(reach).fold(0.0f32, f32::max);
+    let radii = scale * shape;
+    Vec2::new(radii.x, (radii.y * (1.0 + ASPECT_ROUNDING)).min(radii.x))
+}
+
+/// More than the relative error of `d_v` stored as a unorm16 ratio to `d_u` of at least
+/// `MIN_ASPECT`.
+const ASPECT_ROUNDING: f32 = 1.0 / 8192.0;
 
 /// The height field `f(u,v) = c0 + c1 u + c2 v + c3 u² + c4 uv + c5 v²` (in a frame whose
 /// normal is the samples' mean) that fits each sample's position and the slope of its
@@ -298,13 +344,18 @@ mod tests {
         assert!(coarse.check().is_ok(), "{:?}", coarse.check());
         for patch in coarse.hot.iter() {
             assert!(patch.normal().dot(Vec3::Z).abs() > 0.9999, "{:?}", patch.normal());
-            assert!(patch.origin().z.abs() < 1e-6 && patch.radius() < 6.0, "{patch:?}");
+            assert!(patch.origin().z.abs() < 1e-6 && patch.radius() < 8.0, "{patch:?}");
+            let radii = patch.decode().radii;
+            assert!(radii.y >= MIN_ASPECT * radii.x * 0.999, "{radii}");
         }
         // Points on the rim of every fine disk lie within a coarse disk.
         for patch in fine.hot.iter() {
             for angle in (0..8).map(|k| k as f32 * std::f32::consts::FRAC_PI_4) {
                 let rim = patch.origin() + patch.radius() * 0.999 * Vec3::new(angle.cos(), angle.sin(), 0.0);
-                let covered = coarse.hot.iter().any(|c| (rim - c.origin()).truncate().length() <= c.radius());
+                let covered = coarse.hot.iter().map(PatchHot::decode).any(|c| {
+                    let local = c.frame.to_local(rim - c.origin);
+                    local.z.abs() < 1e-4 && c.supports(local.truncate())
+                });
                 assert!(covered, "{rim} is on no coarse disk");
             }
         }
