@@ -1,4 +1,4 @@
-//! A point set's coarse level (METHOD.md §2.8): its patches merged about twenty to one, so
+//! A point set's coarse level (METHOD.md §2.9): its patches merged about sixteen to one, so
 //! that a renderer whose GPU memory cannot hold a tile in full draws the tile from these
 //! instead of leaving it out.
 //!
@@ -24,15 +24,17 @@ use crate::patch_bounds::patch_box;
 use crate::patch_set::PatchSet;
 
 /// The most patches one coarse patch stands for. Cutting at the middle leaves parts of
-/// about two thirds of this on average: a coarse level of about 5% of the patches.
-pub const CLUSTER_PATCHES: usize = 32;
+/// about two thirds of this on average: a coarse level of about 6% of the patches. Under a
+/// budget that holds a tenth of a set in full, finer parts draw a close view better though
+/// fewer of its tiles fit in full, coarser ones worse (bench/RESULTS.md).
+pub const CLUSTER_PATCHES: usize = 24;
 
 /// The coarse patches of a set, block after block, and where each block's begin.
 #[derive(Clone, Debug, Default)]
 pub struct CoarseLevel {
     /// The coarse patches, with the fine set's settings and offset and no colour neighbours:
     /// a hit on one takes its own colour, the mean of its part's. Made on every core at about
-    /// 240 ns a fine patch of one core.
+    /// 300 ns a fine patch of one core.
     pub patches: PatchSet,
     /// The first coarse patch of each block, and one past the last of the last block.
     block_starts: Vec<usize>,

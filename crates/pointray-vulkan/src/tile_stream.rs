@@ -1,7 +1,7 @@
 //! Point sets larger than the GPU memory budget, streamed: split into tiles (runs of
 //! patches in Morton order, so compact regions), each kept on the GPU with its records and
 //! its own bottom level, in full or from its coarse level (`pointray_patches::coarse_level`:
-//! about 5% of its patches). Every tile is drawn coarse where the budget holds that, and
+//! about 6% of its patches). Every tile is drawn coarse where the budget holds that, and
 //! those the camera needs most (`tile_view`) in full as far as the budget allows. As the
 //! camera moves, tiles it no longer needs in full go back to coarse and the ones it now
 //! needs are loaded in full, most needed first.
