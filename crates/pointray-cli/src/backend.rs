@@ -28,8 +28,9 @@ pub struct BackendArgs {
 pub struct GpuMemoryArg {
     /// GPU memory a scene may take, building included, e.g. `40G` (default: the device's).
     /// A large point set is split into more tiles to fit. Where point sets still do not fit,
-    /// `render`, `view` and `bench scale` stream their tiles (those the camera sees first, as
-    /// many as fit); the other commands refuse the scene.
+    /// `render`, `view` and `bench scale` stream their tiles: every tile from a coarse level,
+    /// and those the camera sees, largest on screen first, in full as far as the budget allows;
+    /// the other commands refuse the scene.
     #[arg(long = "gpu-memory", value_name = "SIZE", value_parser = MemoryBudget::from_str)]
     pub budget: Option<MemoryBudget>,
 }
