@@ -53,9 +53,10 @@ const PROGRESS_CHUNK: usize = 16_384;
 /// laser origins; in revision 12 the store holds the compact record, so a cache entry decodes
 /// to quantised positions and radii; in revision 13 a ray passing a scan's patch cuts its edge
 /// back to part of the way to the ray, not to the ray, and a cloud is recentred on its
-/// trimmed centre, not its box's), so that caches keyed on the settings also key on this and
+/// trimmed centre, not its box's; in revision 14 a scan's plane seen obliquely stretches its patch
+/// only where its neighbours' planes agree), so that caches keyed on the settings also key on this and
 /// never serve patches of an older rule.
-pub const PREP_REVISION: u32 = 13;
+pub const PREP_REVISION: u32 = 14;
 
 /// Turns `cloud` into one patch per distinct point, in Morton order.
 pub fn prep(

@@ -63,6 +63,19 @@ const IN_FRONT_REACH: f32 = 0.5;
 /// cover the corners of its cells up to the next ray, which met the occluder.
 const BEHIND_REACH: f32 = 1.5;
 
+/// A plane the sensor sees more obliquely than this (|cos(incidence)| below it, past about 75°)
+/// stretches its patch across the lines to four footprints or more (`stretch_confirmed`).
+const OBLIQUE_COSINE: f32 = 0.25;
+
+/// An oblique plane's members confirm it where at least this share of their own planes lie
+/// within `AGREEMENT_COSINE` (about 25°) of it: the range noise tilts the planes of close
+/// returns by less.
+const AGREEMENT_SHARE: f32 = 0.5;
+const AGREEMENT_COSINE: f32 = 0.9;
+
+/// A plane is level where its normal lies within about 18° of the spinning sensor's axis (+z).
+const LEVEL_COSINE: f32 = 0.95;
+
 /// A scan patch before packing: its oriented normal, stored frame, radii `(d_u, d_v)` with
 /// `d_u >= d_v`, and fit.
 #[derive(Clone, Copy, Debug)]
@@ -146,7 +159,7 @@ fn scan_patch(
         }
     }
     let neighborhood = ScanNeighborhood { normal, ..fitted };
-    if spans_surface(&neighborhood) {
+    if spans_surface(&neighborhood) && stretch_confirmed(&neighborhood, fitted_normals, toward_sensor) {
         let ellipse = surface_patch(points, scan, i, &neighborhood, toward_sensor);
         let cut = ellipse
             .cut_by_passing_rays(points, scan, i, &neighborhood.members, MAX_RISE)
@@ -155,6 +168,26 @@ fn scan_patch(
     } else {
         footprint_patch(points, scan, i, toward_sensor)
     }
+}
+
+/// Whether the returns around a point confirm the plane of its neighbourhood where the sensor
+/// sees that plane so obliquely (`OBLIQUE_COSINE`) that its patch would stretch across the
+/// lines to several footprints. A road seen far off is one plane, which the returns all along
+/// it fit: `AGREEMENT_SHARE` of the members fitted planes of their own within about 25° of it.
+/// A few returns in a bush or a tree top also span some plane through the point, seen edge-on
+/// by chance, which each of them fits differently; stretched, such planes are the metre-long
+/// shards a chase camera sees, so the return gets a footprint instead. A level plane stretches
+/// regardless: a car's roof or a sidewalk beside a kerb bends its members' planes, and from
+/// above a footprint facing the sensor leaves it open.
+fn stretch_confirmed(neighborhood: &ScanNeighborhood, fitted_normals: &[Vec3], toward_sensor: Vec3) -> bool {
+    let normal = neighborhood.normal;
+    if normal.dot(toward_sensor).abs() >= OBLIQUE_COSINE || normal.z.abs() >= LEVEL_COSINE {
+        return true;
+    }
+    let members = &neighborhood.members;
+    let agreeing =
+        members.iter().filter(|&&j| fitted_normals[j as usize].dot(normal).abs() >= AGREEMENT_COSINE);
+    agreeing.count() as f32 >= AGREEMENT_SHARE * members.len() as f32
 }
 
 /// A patch over the surface its neighbours agree on: the plane through the return that fits
@@ -367,6 +400,27 @@ fn footprint_patch(points: &[Vec3], scan: &ScanLines, i: usize, toward_sensor: V
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A neighbourhood of `members` 0..n on a plane of `normal`, whose own fitted planes are
+    /// `fitted`, seen from the sensor along `toward_sensor`.
+    fn stretch(normal: Vec3, fitted: &[Vec3], toward_sensor: Vec3) -> bool {
+        let members = (0..fitted.len() as u32).collect();
+        let neighborhood = ScanNeighborhood { members, normal: normal.normalize(), crosses_lines: true };
+        stretch_confirmed(&neighborhood, fitted, toward_sensor.normalize())
+    }
+
+    #[test]
+    fn an_oblique_plane_stretches_only_where_its_members_planes_agree_or_it_is_level() {
+        let wall_along_the_ray = Vec3::Y;
+        let grazing = Vec3::new(-1.0, 0.1, 0.0);
+        let agreeing = [Vec3::Y, Vec3::new(0.2, 1.0, 0.0).normalize(), -Vec3::Y];
+        let scattered = [Vec3::X, Vec3::Z, Vec3::Y];
+        assert!(stretch(wall_along_the_ray, &agreeing, grazing));
+        assert!(!stretch(wall_along_the_ray, &scattered, grazing), "a bush's chance plane");
+        assert!(stretch(wall_along_the_ray, &scattered, Vec3::new(-1.0, 1.0, 0.0)), "seen face-on");
+        let road_far_off = Vec3::new(-1.0, 0.0, 0.05);
+        assert!(stretch(Vec3::Z, &scattered, road_far_off), "level planes stretch regardless");
+    }
 
     #[test]
     fn returns_within_the_noise_do_not_set_the_gap_to_the_next_lines() {
