@@ -73,7 +73,8 @@ const OBLIQUE_COSINE: f32 = 0.25;
 const AGREEMENT_SHARE: f32 = 0.5;
 const AGREEMENT_COSINE: f32 = 0.9;
 
-/// A plane is level where its normal lies within about 18° of the spinning sensor's axis (+z).
+/// A plane is level where its normal lies within about 18° of the spinning sensor's axis (+z),
+/// which the scan lines take for up.
 const LEVEL_COSINE: f32 = 0.95;
 
 /// A scan patch before packing: its oriented normal, stored frame, radii `(d_u, d_v)` with
@@ -176,12 +177,14 @@ fn scan_patch(
 /// it fit: `AGREEMENT_SHARE` of the members fitted planes of their own within about 25° of it.
 /// A few returns in a bush or a tree top also span some plane through the point, seen edge-on
 /// by chance, which each of them fits differently; stretched, such planes are the metre-long
-/// shards a chase camera sees, so the return gets a footprint instead. A level plane stretches
-/// regardless: a car's roof or a sidewalk beside a kerb bends its members' planes, and from
-/// above a footprint facing the sensor leaves it open.
+/// shards a chase camera sees, so the return gets a footprint instead. A level plane below the
+/// sensor stretches regardless: a car's roof or a sidewalk beside a kerb bends its members'
+/// planes, and from above a footprint facing the sensor leaves it open. Above the sensor, a
+/// level plane seen edge-on from below is far more often a tree's crown than a ceiling.
 fn stretch_confirmed(neighborhood: &ScanNeighborhood, fitted_normals: &[Vec3], toward_sensor: Vec3) -> bool {
     let normal = neighborhood.normal;
-    if normal.dot(toward_sensor).abs() >= OBLIQUE_COSINE || normal.z.abs() >= LEVEL_COSINE {
+    let level_below_sensor = normal.z.abs() >= LEVEL_COSINE && toward_sensor.z > 0.0;
+    if normal.dot(toward_sensor).abs() >= OBLIQUE_COSINE || level_below_sensor {
         return true;
     }
     let members = &neighborhood.members;
@@ -410,7 +413,7 @@ mod tests {
     }
 
     #[test]
-    fn an_oblique_plane_stretches_only_where_its_members_planes_agree_or_it_is_level() {
+    fn an_oblique_plane_stretches_only_where_its_members_planes_agree_or_it_is_level_below_the_sensor() {
         let wall_along_the_ray = Vec3::Y;
         let grazing = Vec3::new(-1.0, 0.1, 0.0);
         let agreeing = [Vec3::Y, Vec3::new(0.2, 1.0, 0.0).normalize(), -Vec3::Y];
@@ -419,7 +422,9 @@ mod tests {
         assert!(!stretch(wall_along_the_ray, &scattered, grazing), "a bush's chance plane");
         assert!(stretch(wall_along_the_ray, &scattered, Vec3::new(-1.0, 1.0, 0.0)), "seen face-on");
         let road_far_off = Vec3::new(-1.0, 0.0, 0.05);
-        assert!(stretch(Vec3::Z, &scattered, road_far_off), "level planes stretch regardless");
+        assert!(stretch(Vec3::Z, &scattered, road_far_off), "level planes below stretch regardless");
+        let crown_overhead = Vec3::new(-1.0, 0.0, -0.05);
+        assert!(!stretch(Vec3::Z, &scattered, crown_overhead), "a level plane above is no road");
     }
 
     #[test]
