@@ -26,13 +26,14 @@ const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
 ];
 
 /// Entry points compiled again with defines (separated by spaces), as `(source, defines,
-/// output name)`: the benchmark's ray-counting ray generation, the hit-reordering one, and the
-/// path integrator's with and without ray counting.
+/// output name)`: the benchmark's ray-counting ray generation, the hit-reordering one, the
+/// path integrator's with and without ray counting, and the counting pipeline's intersection.
 const VARIANTS: &[(&str, ShaderStage, &str, &str)] = &[
     ("primary.rgen", ShaderStage::RayGeneration, "COUNT_RAYS", "primary_counting.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "REORDER_HITS", "primary_reordering.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "PATH_TRACING", "path.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "PATH_TRACING COUNT_RAYS", "path_counting.rgen"),
+    ("patch.rint", ShaderStage::Intersect, "COUNT_RAYS", "patch_counting.rint"),
 ];
 
 /// Resolves `#include "NAME"` against the given folders, in order.

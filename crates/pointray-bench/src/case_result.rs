@@ -75,6 +75,10 @@ pub struct CaseResult {
     pub rays_per_frame: u64,
     /// rays_per_frame / trace_median.
     pub rays_per_second: f64,
+    pub intersection_calls_per_frame: u64,
+    /// intersection_calls_per_frame / rays_per_frame: patch boxes each ray's traversal
+    /// reported to the intersection shader (0 for meshes, which have none).
+    pub intersection_calls_per_ray: f64,
     pub blas_build_ms: f64,
     pub tlas_build_ms: f64,
     pub blas_bytes: u64,
@@ -98,11 +102,8 @@ impl CaseResult {
     pub fn new(label: CaseLabel, width: u32, height: u32, frames: u32, m: &Measurement) -> Self {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
         let fps = if m.frame_median.is_zero() { 0.0 } else { 1.0 / m.frame_median.as_secs_f64() };
-        let rays_per_second = if m.trace_median.is_zero() {
-            0.0
-        } else {
-            m.rays_per_frame as f64 / m.trace_median.as_secs_f64()
-        };
+        let rays_per_second =
+            if m.trace_median.is_zero() { 0.0 } else { m.counts.rays as f64 / m.trace_median.as_secs_f64() };
         Self {
             model: label.model.to_string(),
             stand_in: label.stand_in,
@@ -117,8 +118,10 @@ impl CaseResult {
             frame_p90_ms: ms(m.frame_p90),
             wall_ms_per_frame: ms(m.wall_per_frame),
             fps,
-            rays_per_frame: m.rays_per_frame,
+            rays_per_frame: m.counts.rays,
             rays_per_second,
+            intersection_calls_per_frame: m.counts.intersection_calls,
+            intersection_calls_per_ray: m.counts.intersection_calls_per_ray(),
             blas_build_ms: ms(m.build.blas_build),
             tlas_build_ms: ms(m.build.tlas_build),
             blas_bytes: m.build.blas_bytes,

@@ -46,12 +46,13 @@ fn frames_table(out: &mut String, report: &Report) {
     let _ = writeln!(
         out,
         "| model | points | size | paper FPS | our FPS | ours / paper | frame ms (median / p90) | \
-         trace ms (median / p90) | rays / frame | G rays/s |\n|---|---|---|---|---|---|---|---|---|---|"
+         trace ms (median / p90) | rays / frame | intersection calls / ray | G rays/s |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|"
     );
     for case in report.cases.iter().filter(|c| c.variant == Variant::Points) {
         let _ = writeln!(
             out,
-            "| {} | {} | {}x{} | {} | {:.0} | {} | {:.3} / {:.3} | {:.3} / {:.3} | {} | {:.2} |",
+            "| {} | {} | {}x{} | {} | {:.0} | {} | {:.3} / {:.3} | {:.3} / {:.3} | {} | {:.2} | {:.2} |",
             model_name(case),
             case.primitives,
             case.width,
@@ -64,6 +65,7 @@ fn frames_table(out: &mut String, report: &Report) {
             case.trace_median_ms,
             case.trace_p90_ms,
             case.rays_per_frame,
+            case.intersection_calls_per_ray,
             case.rays_per_second / 1e9
         );
     }

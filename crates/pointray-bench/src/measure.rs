@@ -1,11 +1,11 @@
 //! Timing one scene at one setting: prepare (build), warm up, time the frame loop, count
-//! the rays.
+//! the rays and the intersection-shader calls.
 
 use std::time::{Duration, Instant};
 
 use pointray_scene::{RenderSettings, Scene};
 use pointray_vulkan::{
-    BlasLayout, BuildReport, PixelOutput, PreparedScene, SceneLayout, VulkanError, VulkanRenderer,
+    BlasLayout, BuildReport, PixelOutput, PreparedScene, RayCounts, SceneLayout, VulkanError, VulkanRenderer,
 };
 
 use crate::stats::{median, p90};
@@ -34,8 +34,8 @@ pub struct Measurement {
     pub frame_p90: Duration,
     /// Host wall time of the timed loop divided by its frames.
     pub wall_per_frame: Duration,
-    /// Every ray one frame traces, counted on the GPU.
-    pub rays_per_frame: u64,
+    /// Every ray and every patch intersection-shader call of one frame, counted on the GPU.
+    pub counts: RayCounts,
     pub build: BuildReport,
 }
 
@@ -69,14 +69,13 @@ pub fn measure_prepared(
         }
     }
     let times = renderer.trace_frames(prepared, settings, frames.timed, output)?;
-    let rays_per_frame = renderer.count_rays(prepared, settings)?;
     Ok(Measurement {
         trace_median: median(&times.trace),
         trace_p90: p90(&times.trace),
         frame_median: median(&times.frame),
         frame_p90: p90(&times.frame),
         wall_per_frame: times.wall / frames.timed,
-        rays_per_frame,
+        counts: renderer.count_rays(prepared, settings)?,
         build: prepared.build_report(),
     })
 }

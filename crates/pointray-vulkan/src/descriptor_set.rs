@@ -12,9 +12,7 @@ use crate::buffer::Buffer;
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::gpu_records::FrameUniforms;
-use crate::pipeline::{
-    BINDING_FRAME, BINDING_OBJECTS, BINDING_TLAS, RayTracingPipeline, STORAGE_BINDING_COUNT,
-};
+use crate::pipeline::{BINDING_FRAME, BINDING_OBJECTS, BINDING_TLAS, RayTracingPipeline};
 use crate::prepared_scene::PreparedScene;
 
 pub(crate) struct TraceDescriptors {
@@ -47,7 +45,7 @@ impl TraceDescriptors {
             vk::DescriptorPoolSize::default().ty(vk::DescriptorType::UNIFORM_BUFFER).descriptor_count(1),
             vk::DescriptorPoolSize::default()
                 .ty(vk::DescriptorType::STORAGE_BUFFER)
-                .descriptor_count(STORAGE_BINDING_COUNT),
+                .descriptor_count(pipeline.storage_binding_count()),
         ];
         let pool_info = vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes);
         let device = &context.device;

@@ -63,6 +63,7 @@ pub use memory_report::BuildReport;
 pub use prepared_scene::{PreparedScene, SceneLayout};
 pub use present_device::PresentDevice;
 pub use present_loop::{PresentLoop, Presented};
+pub use ray_counter::RayCounts;
 pub use ray_list::RayListTarget;
 pub use renderer::{TraceTiming, VulkanRenderer};
 pub use swapchain::{Swapchain, SwapchainDevice, record_copy_to_present_image};

@@ -1,6 +1,7 @@
 //! The ray-tracing pipeline: ray generation, two miss shaders (background, shadow) and two
 //! hit groups (0: patch intersection + closest hit, 1: triangle closest hit), with the
-//! descriptor layout of `shaders/bindings.glsl`.
+//! descriptor layout of `shaders/bindings.glsl`. The benchmark's counting pipeline has one
+//! binding more, the intersection calls per pixel that `patch.rint` counts with `COUNT_RAYS`.
 
 use std::sync::Arc;
 
@@ -22,9 +23,12 @@ pub(crate) const BINDING_ACCUMULATION: u32 = 6;
 pub(crate) const BINDING_RAY_LIST: u32 = 7;
 pub(crate) const BINDING_RAY_HITS: u32 = 8;
 pub(crate) const BINDING_RAY_POSES: u32 = 9;
-/// The storage buffers among the bindings: the objects, lights, the three pixel outputs and
-/// the ray list's three.
-pub(crate) const STORAGE_BINDING_COUNT: u32 = 8;
+/// The counting pipeline's intersection calls per pixel (`patch.rint` with `COUNT_RAYS`); the
+/// timed pipeline's layout has no such binding.
+pub(crate) const BINDING_INTERSECTION_CALLS: u32 = 10;
+/// The storage buffers among the timed pipeline's bindings: the objects, lights, the three
+/// pixel outputs and the ray list's three.
+const STORAGE_BINDING_COUNT: u32 = 8;
 
 /// Shader groups in pipeline order; the shader binding table follows it.
 pub(crate) const GROUP_RAYGEN: u32 = 0;
@@ -43,6 +47,8 @@ pub(crate) struct RayTracingPipeline {
     pub(crate) pipeline: vk::Pipeline,
     /// The integrator its ray generation shader implements.
     pub(crate) integrator: Integrator,
+    /// Its intersection shader counts its calls at `BINDING_INTERSECTION_CALLS`.
+    pub(crate) counts_intersections: bool,
 }
 
 impl RayTracingPipeline {
@@ -53,14 +59,34 @@ impl RayTracingPipeline {
         raygen: &[u8],
         integrator: Integrator,
     ) -> Result<Self, VulkanError> {
+        Self::new(context, raygen, integrator, false)
+    }
+
+    /// As `with_raygen`, with the intersection shader that counts its calls per pixel: for a
+    /// `COUNT_RAYS` ray generation shader.
+    pub(crate) fn counting(
+        context: &Arc<GpuContext>,
+        raygen: &[u8],
+        integrator: Integrator,
+    ) -> Result<Self, VulkanError> {
+        Self::new(context, raygen, integrator, true)
+    }
+
+    fn new(
+        context: &Arc<GpuContext>,
+        raygen: &[u8],
+        integrator: Integrator,
+        counts_intersections: bool,
+    ) -> Result<Self, VulkanError> {
         let device = &context.device;
-        let set_layout = create_set_layout(device)?;
+        let set_layout = create_set_layout(device, counts_intersections)?;
         let mut owned = Self {
             context: context.clone(),
             set_layout,
             layout: vk::PipelineLayout::null(),
             pipeline: vk::Pipeline::null(),
             integrator,
+            counts_intersections,
         };
         let push_constants = [vk::PushConstantRange::default()
             .stage_flags(all_ray_stages())
@@ -72,8 +98,15 @@ impl RayTracingPipeline {
         // SAFETY: the device is alive; handles are destroyed in Drop.
         owned.layout =
             unsafe { device.create_pipeline_layout(&info, None) }.during("creating the pipeline layout")?;
-        owned.pipeline = create_pipeline(context, owned.layout, raygen)?;
+        let intersection =
+            if counts_intersections { shaders::PATCH_COUNTING_RINT } else { shaders::PATCH_RINT };
+        owned.pipeline = create_pipeline(context, owned.layout, raygen, intersection)?;
         Ok(owned)
+    }
+
+    /// The storage buffers its set layout binds.
+    pub(crate) fn storage_binding_count(&self) -> u32 {
+        STORAGE_BINDING_COUNT + u32::from(self.counts_intersections)
     }
 }
 
@@ -96,7 +129,10 @@ pub(crate) fn all_ray_stages() -> vk::ShaderStageFlags {
         | vk::ShaderStageFlags::CLOSEST_HIT_KHR
 }
 
-fn create_set_layout(device: &ash::Device) -> Result<vk::DescriptorSetLayout, VulkanError> {
+fn create_set_layout(
+    device: &ash::Device,
+    counts_intersections: bool,
+) -> Result<vk::DescriptorSetLayout, VulkanError> {
     let binding = |index, ty, stages| {
         vk::DescriptorSetLayoutBinding::default()
             .binding(index)
@@ -105,7 +141,7 @@ fn create_set_layout(device: &ash::Device) -> Result<vk::DescriptorSetLayout, Vu
             .stage_flags(stages)
     };
     let raygen = vk::ShaderStageFlags::RAYGEN_KHR;
-    let bindings = [
+    let mut bindings = vec![
         binding(BINDING_TLAS, vk::DescriptorType::ACCELERATION_STRUCTURE_KHR, raygen),
         binding(BINDING_FRAME, vk::DescriptorType::UNIFORM_BUFFER, raygen | vk::ShaderStageFlags::MISS_KHR),
         binding(BINDING_OBJECTS, vk::DescriptorType::STORAGE_BUFFER, all_ray_stages()),
@@ -117,6 +153,10 @@ fn create_set_layout(device: &ash::Device) -> Result<vk::DescriptorSetLayout, Vu
         binding(BINDING_RAY_HITS, vk::DescriptorType::STORAGE_BUFFER, raygen),
         binding(BINDING_RAY_POSES, vk::DescriptorType::STORAGE_BUFFER, raygen),
     ];
+    if counts_intersections {
+        let intersection = vk::ShaderStageFlags::INTERSECTION_KHR;
+        bindings.push(binding(BINDING_INTERSECTION_CALLS, vk::DescriptorType::STORAGE_BUFFER, intersection));
+    }
     let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
     // SAFETY: the device is alive.
     unsafe { device.create_descriptor_set_layout(&info, None) }.during("creating the descriptor set layout")
@@ -153,6 +193,7 @@ fn create_pipeline(
     context: &GpuContext,
     layout: vk::PipelineLayout,
     raygen: &[u8],
+    intersection: &[u8],
 ) -> Result<vk::Pipeline, VulkanError> {
     let mut modules = Modules { device: &context.device, handles: Vec::new() };
     let stage = |stage, module| {
@@ -162,7 +203,7 @@ fn create_pipeline(
         stage(vk::ShaderStageFlags::RAYGEN_KHR, modules.add(raygen)?),
         stage(vk::ShaderStageFlags::MISS_KHR, modules.add(shaders::BACKGROUND_RMISS)?),
         stage(vk::ShaderStageFlags::MISS_KHR, modules.add(shaders::SHADOW_RMISS)?),
-        stage(vk::ShaderStageFlags::INTERSECTION_KHR, modules.add(shaders::PATCH_RINT)?),
+        stage(vk::ShaderStageFlags::INTERSECTION_KHR, modules.add(intersection)?),
         stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::PATCH_RCHIT)?),
         stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::TRIANGLE_RCHIT)?),
     ];
@@ -226,5 +267,13 @@ mod tests {
         ] {
             assert_eq!(probe.binding_of(glsl_name), (0, binding), "{glsl_name}: (set, binding)");
         }
+    }
+
+    #[test]
+    fn only_the_counting_intersection_shader_binds_its_calls() {
+        let counting = Reflection::of(crate::shaders::PATCH_COUNTING_RINT);
+        assert_eq!(counting.binding_of("IntersectionCalls"), (0, BINDING_INTERSECTION_CALLS));
+        let timed = Reflection::of(crate::shaders::PATCH_RINT);
+        assert!(!timed.has_binding("IntersectionCalls"), "the timed pipeline binds no counter");
     }
 }

@@ -20,6 +20,8 @@ pub(crate) const RAY_LIST_RGEN: &[u8] = spirv!("ray_list.rgen");
 pub(crate) const BACKGROUND_RMISS: &[u8] = spirv!("background.rmiss");
 pub(crate) const SHADOW_RMISS: &[u8] = spirv!("shadow.rmiss");
 pub(crate) const PATCH_RINT: &[u8] = spirv!("patch.rint");
+/// `patch.rint` with `COUNT_RAYS`: each call adds one to its pixel's `intersection_calls`.
+pub(crate) const PATCH_COUNTING_RINT: &[u8] = spirv!("patch_counting.rint");
 pub(crate) const PATCH_RCHIT: &[u8] = spirv!("patch.rchit");
 pub(crate) const TRIANGLE_RCHIT: &[u8] = spirv!("triangle.rchit");
 /// Never run: the interface tests reflect on it.

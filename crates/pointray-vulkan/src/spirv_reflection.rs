@@ -104,12 +104,19 @@ impl Reflection {
             .expect("arrays carry a stride")
     }
 
+    /// The bound variable called `name` (a variable or a block's type), if the module has one.
+    fn bound_variable(&self, name: &str) -> Option<Word> {
+        self.variables_named(name).into_iter().find(|&id| self.decoration(id, Decoration::Binding).is_some())
+    }
+
+    /// Whether the module binds a resource called `name`.
+    pub(crate) fn has_binding(&self, name: &str) -> bool {
+        self.bound_variable(name).is_some()
+    }
+
     /// `(set, binding)` of the resource called `name` (a variable or a block's type).
     pub(crate) fn binding_of(&self, name: &str) -> (u32, u32) {
-        let variable = self
-            .variables_named(name)
-            .into_iter()
-            .find(|&id| self.decoration(id, Decoration::Binding).is_some());
+        let variable = self.bound_variable(name);
         let variable = variable.unwrap_or_else(|| panic!("no bound variable `{name}` in the module"));
         let set = self.decoration(variable, Decoration::DescriptorSet).expect("bound variables carry a set");
         (set, self.decoration(variable, Decoration::Binding).expect("checked above"))

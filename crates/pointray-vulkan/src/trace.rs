@@ -69,6 +69,15 @@ pub(crate) fn record(
             pool.record_traced(command);
         }
         record_copy_out(context, command, target);
+        if target.intersection_calls.is_some() {
+            // The counts are read straight from their buffer, not copied out.
+            record_memory_barrier(
+                &context.device,
+                command,
+                (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE),
+                (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ),
+            );
+        }
     }
 }
 

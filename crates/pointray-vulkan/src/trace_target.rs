@@ -17,7 +17,8 @@ use crate::error::VulkanError;
 use crate::gpu_records::PixelRecord;
 use crate::kept_buffers::kept_or_made;
 use crate::pipeline::{
-    BINDING_ACCUMULATION, BINDING_DISPLAY_PIXELS, BINDING_LIGHTS, BINDING_PIXELS, RayTracingPipeline,
+    BINDING_ACCUMULATION, BINDING_DISPLAY_PIXELS, BINDING_INTERSECTION_CALLS, BINDING_LIGHTS, BINDING_PIXELS,
+    RayTracingPipeline,
 };
 use crate::prepared_scene::PreparedScene;
 use crate::timestamp_pool::TimestampPool;
@@ -71,6 +72,8 @@ pub(crate) struct TargetBuffers {
     unused: Buffer,
     /// The display outputs' running sums (`unused` for the AOV output, which has none).
     accumulation: Option<Buffer>,
+    /// Intersection-shader calls per pixel, for a counting pipeline only.
+    pub(crate) intersection_calls: Option<Buffer>,
     pub(crate) readback: Buffer,
     pub(crate) descriptors: TraceDescriptors,
     pub(crate) timestamps: Option<TimestampPool>,
@@ -106,6 +109,14 @@ impl TraceTarget {
         }
     }
 
+    /// The intersection-shader calls of the last trace, summed over its pixels; `None` unless
+    /// its pipeline counts them (`RayTracingPipeline::counting`).
+    pub(crate) fn intersection_calls(&self) -> Option<u64> {
+        let calls = self.buffers.as_ref()?.intersection_calls.as_ref()?;
+        let per_pixel: Vec<u32> = bytemuck::pod_collect_to_vec(calls.read());
+        Some(per_pixel.iter().map(|&calls| u64::from(calls)).sum())
+    }
+
     /// The raw bytes the last trace copied out.
     pub(crate) fn read_back(&self) -> Result<&[u8], VulkanError> {
         match &self.buffers {
@@ -138,9 +149,15 @@ impl TraceTarget {
         height: u32,
     ) -> Result<&mut TargetBuffers, VulkanError> {
         let output = self.output;
+        // A counting pipeline's set layout has one binding more than the others'.
+        let counting = pipeline.counts_intersections;
         kept_or_made(
             &mut self.buffers,
-            |b| Arc::ptr_eq(&b.context, context) && (b.width, b.height) == (width, height),
+            |b| {
+                Arc::ptr_eq(&b.context, context)
+                    && (b.width, b.height) == (width, height)
+                    && b.intersection_calls.is_some() == counting
+            },
             || TargetBuffers::new(context, pipeline, width, height, output),
         )
     }
@@ -167,6 +184,14 @@ impl TargetBuffers {
                 Some(Buffer::new(context, "display sums", bytes, usage, MemoryLocation::GpuOnly)?)
             }
         };
+        // Host-visible: each trace's counts start from zeros written here and are read here.
+        let intersection_calls = if pipeline.counts_intersections {
+            let bytes = u64::from(width) * u64::from(height) * 4;
+            let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
+            Some(Buffer::new(context, "intersection calls", bytes, usage, MemoryLocation::CpuToGpu)?)
+        } else {
+            None
+        };
         let readback = Buffer::new(
             context,
             "pixel read-back",
@@ -182,6 +207,7 @@ impl TargetBuffers {
             written,
             unused,
             accumulation,
+            intersection_calls,
             readback,
             descriptors: TraceDescriptors::new(context, pipeline)?,
             timestamps: TimestampPool::around_trace(context)?,
@@ -194,12 +220,16 @@ impl TargetBuffers {
             PixelOutput::Aovs => (&self.written, &self.unused),
             PixelOutput::Display | PixelOutput::DisplayBgra => (&self.unused, &self.written),
         };
-        let storage = [
+        let mut storage = vec![
             StorageRange::whole(BINDING_LIGHTS, &scene.lights),
             StorageRange::whole(BINDING_PIXELS, pixels),
             StorageRange::whole(BINDING_DISPLAY_PIXELS, display),
             StorageRange::whole(BINDING_ACCUMULATION, self.accumulation.as_ref().unwrap_or(&self.unused)),
         ];
+        if let Some(calls) = &mut self.intersection_calls {
+            calls.write(&vec![0; calls.size as usize]);
+            storage.push(StorageRange::whole(BINDING_INTERSECTION_CALLS, calls));
+        }
         self.descriptors.write(scene, &storage);
     }
 }

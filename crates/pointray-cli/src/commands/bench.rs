@@ -114,7 +114,8 @@ impl Target {
 fn print_case(case: &CaseResult) {
     let paper = case.paper_fps.map(|p| format!(" (paper {p:.0}, x{:.2})", case.fps / p)).unwrap_or_default();
     println!(
-        "{} {}x{} {}: {:.3} ms/frame (p90 {:.3}), trace {:.3} ms, {:.0} FPS{paper}, {:.2} G rays/s",
+        "{} {}x{} {}: {:.3} ms/frame (p90 {:.3}), trace {:.3} ms, {:.0} FPS{paper}, {:.2} G rays/s, \
+         {:.2} intersection calls/ray",
         case.model,
         case.width,
         case.height,
@@ -123,7 +124,8 @@ fn print_case(case: &CaseResult) {
         case.frame_p90_ms,
         case.trace_median_ms,
         case.fps,
-        case.rays_per_second / 1e9
+        case.rays_per_second / 1e9,
+        case.intersection_calls_per_ray
     );
 }
 
