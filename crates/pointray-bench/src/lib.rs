@@ -1,8 +1,8 @@
 //! `pointray bench`: the paper's Table 1 (and any scene) timed on the Vulkan renderer: GPU
-//! timestamps per frame (trace and whole frame), rays counted on the GPU, build times and
-//! memory, the mesh limit and the ablations; the scale suite (1M to 1B points: prep,
-//! memory, store, load and frame rate, on either backend); and LiDAR re-simulation on the
-//! GPU (sweeps per second); reports as JSON and markdown.
+//! timestamps per frame (trace and whole frame), rays and intersection-shader calls counted
+//! on the GPU, build times and memory, the mesh limit and the ablations; the scale suite (1M
+//! to 1B points: prep, memory, store, load and frame rate, on either backend); and LiDAR
+//! re-simulation on the GPU (sweeps per second); reports as JSON and markdown.
 
 pub mod case_result;
 pub mod data;

@@ -16,7 +16,8 @@ pub fn markdown(report: &Report) -> String {
         "Driver {}, Vulkan {}; warm-up in rounds of {} frames for at least {} s, then {} timed frames per \
          case. FPS = 1 / median GPU \
          time of a whole frame (trace, then the copy of its sRGB8 display colour to host memory; \
-         timestamps); rays counted on the GPU (primary, shadow and reflection).\n",
+         timestamps); rays counted on the GPU (primary, shadow and reflection), and the patch \
+         intersection shader's calls by those rays, per ray.\n",
         report.driver,
         report.vulkan_api,
         report.warmup_frames,
