@@ -30,11 +30,11 @@ use crate::patch_set::PatchSet;
 pub const CLUSTER_PATCHES: usize = 24;
 
 /// The coarse patches of a set, block after block, and where each block's begin.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct CoarseLevel {
     /// The coarse patches, with the fine set's settings and offset and no colour neighbours:
     /// a hit on one takes its own colour, the mean of its part's. Made on every core at about
-    /// 300 ns a fine patch of one core.
+    /// 300 ns a fine patch of one core, which is why the patch store holds them.
     pub patches: PatchSet,
     /// The first coarse patch of each block, and one past the last of the last block.
     block_starts: Vec<usize>,
@@ -43,30 +43,23 @@ pub struct CoarseLevel {
 impl CoarseLevel {
     /// The coarse level of `fine`, made a block at a time on every core.
     pub fn of(fine: &PatchSet) -> Self {
-        let blocks: Vec<Vec<(Aabb, PatchHot, PatchCold)>> = (0..fine.len().div_ceil(BLOCK_PATCHES))
+        let blocks: Vec<Vec<(PatchHot, PatchCold)>> = (0..fine.len().div_ceil(BLOCK_PATCHES))
             .into_par_iter()
             .map(|block| {
                 let range = block * BLOCK_PATCHES..((block + 1) * BLOCK_PATCHES).min(fine.len());
-                coarse_block(fine, range)
+                coarse_block(&fine.hot[range.clone()], &fine.cold[range])
             })
             .collect();
-        let mut block_starts = Vec::with_capacity(blocks.len() + 1);
-        block_starts.push(0);
-        for block in &blocks {
-            block_starts.push(block_starts.last().copied().unwrap_or(0) + block.len());
-        }
-        let records = blocks.into_iter().flatten();
-        let (aabbs, (hot, cold)): (Vec<Aabb>, (Vec<PatchHot>, Vec<PatchCold>)) =
-            records.map(|(aabb, hot, cold)| (aabb, (hot, cold))).unzip();
-        let patches = PatchSet {
-            settings: fine.settings,
-            offset: fine.offset,
-            aabbs: aabbs.into(),
-            hot: hot.into(),
-            cold: cold.into(),
-            color_neighbors: Vec::new().into(),
-        };
-        Self { patches, block_starts }
+        let counts: Vec<u32> = blocks.iter().map(|block| block.len() as u32).collect();
+        let (hot, cold) = blocks.into_iter().flatten().unzip();
+        Self { patches: coarse_set(fine, hot, cold), block_starts: block_starts(&counts) }
+    }
+
+    /// The level of `patches`, of which each block of the fine set has the next `counts`;
+    /// `None` where the counts do not add up to the patches.
+    pub fn of_blocks(patches: PatchSet, counts: &[u32]) -> Option<Self> {
+        let block_starts = block_starts(counts);
+        (block_starts.last() == Some(&patches.len())).then_some(Self { patches, block_starts })
     }
 
     /// The coarse patches that stand for the fine patches in `fine`: those of every block it
@@ -83,10 +76,35 @@ impl CoarseLevel {
     }
 }
 
-/// The coarse patches of the fine patches in `range`, one a part.
-fn coarse_block(fine: &PatchSet, range: Range<usize>) -> Vec<(Aabb, PatchHot, PatchCold)> {
-    let hot = &fine.hot[range.clone()];
-    let cold = &fine.cold[range];
+/// The first coarse patch of each block of `counts` coarse patches, and one past the last
+/// (saturated: a sum past `usize` is no set's length).
+fn block_starts(counts: &[u32]) -> Vec<usize> {
+    let mut starts = Vec::with_capacity(counts.len() + 1);
+    starts.push(0usize);
+    for &count in counts {
+        starts.push(starts[starts.len() - 1].saturating_add(count as usize));
+    }
+    starts
+}
+
+/// The set of the coarse patches `hot` and `cold` of `fine`: its settings and offset, boxes
+/// made from the patches (as the compact store's are), and no colour neighbours, since a
+/// hit on a coarse patch takes its own colour.
+pub fn coarse_set(fine: &PatchSet, hot: Vec<PatchHot>, cold: Vec<PatchCold>) -> PatchSet {
+    let aabbs: Vec<Aabb> = hot.par_iter().map(|patch| patch_box(patch, fine.settings.boxes)).collect();
+    let (settings, offset) = (fine.settings, fine.offset);
+    PatchSet {
+        settings,
+        offset,
+        aabbs: aabbs.into(),
+        hot: hot.into(),
+        cold: cold.into(),
+        ..PatchSet::default()
+    }
+}
+
+/// The coarse patches of one block's fine patches (`hot`, `cold`), one a part.
+pub fn coarse_block(hot: &[PatchHot], cold: &[PatchCold]) -> Vec<(PatchHot, PatchCold)> {
     let origins: Vec<Vec3> = hot.iter().map(PatchHot::origin).collect();
     let (order, parts) = parts(&origins);
     parts
@@ -95,7 +113,7 @@ fn coarse_block(fine: &PatchSet, range: Range<usize>) -> Vec<(Aabb, PatchHot, Pa
             let members = &order[part];
             let patch = merged_patch(members.iter().map(|&i| &hot[i]));
             let color = merged_color(members.iter().map(|&i| (&hot[i], &cold[i])), patch.radius);
-            (patch_box(&patch, fine.settings.boxes), patch, color)
+            (patch, color)
         })
         .collect()
 }

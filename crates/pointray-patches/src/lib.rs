@@ -19,6 +19,7 @@ mod patch_store_write;
 pub mod patch_tiles;
 pub mod prep_settings;
 pub mod scan_structure;
+pub mod stored_coarse;
 
 pub use patch_records::PatchRecords;
 pub use patch_set::PatchSet;

@@ -1,45 +1,49 @@
 //! The patch store: the versioned binary file that caches a `PatchSet`.
 //!
-//! All numbers are little-endian. Version 8 layout:
+//! All numbers are little-endian. Version 9 layout:
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRPATCH\0"` |
-//! | 8 | 4 | format version, u32 = 8 |
-//! | 12 | 4 | header size in bytes, u32 = 384 |
+//! | 8 | 4 | format version, u32 = 9 |
+//! | 12 | 4 | header size in bytes, u32 = 424 |
 //! | 16 | 8 | point (patch) count `n`, u64 |
 //! | 24 | 24 | offset, f64 x 3 (`input = local + offset`) |
 //! | 48 | 24 | bounds of the origins as stored (of the boxes, for full records): min xyz, max xyz, f32 x 6 (local) |
-//! | 72 | 64 | section table: (byte offset u64, byte length u64) for each of the four sections |
-//! | 136 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
-//! | 140 | 68 | the `PrepSettings` the patches were made with (below) |
-//! | 208 | 4 | record encoding, u32: 0 compact, 1 full |
-//! | 212 | 4 | patches a block, u32 = `BLOCK_PATCHES` (compact), 0 (full) |
-//! | 216 | 4 | colour columns, u32: 1 when the compact colour section is there, else 0 |
-//! | 220 | 4 | scan structure, u32: 0 not recorded, 1 none sought, 2 lines, 3 unstructured |
-//! | 224 | 32 | lines, returns on lines, patches, surface patches, u64 x 4 (scan structure 2) |
-//! | 256 | 128 | the reason, UTF-8, zero-padded (scan structure 3) |
-//! | 384 | | the sections, each where the section table puts it |
+//! | 72 | 96 | section table: (byte offset u64, byte length u64) for each of the six sections |
+//! | 168 | 4 | colour neighbours per patch `m`, u32: 0 (no colours) or `COLOR_NEIGHBORS` = 12 |
+//! | 172 | 68 | the `PrepSettings` the patches were made with (below) |
+//! | 240 | 4 | record encoding, u32: 0 compact, 1 full |
+//! | 244 | 4 | patches a block, u32 = `BLOCK_PATCHES` (compact), 0 (full) |
+//! | 248 | 4 | colour columns, u32: 1 when the compact colour section is there, else 0 |
+//! | 252 | 4 | scan structure, u32: 0 not recorded, 1 none sought, 2 lines, 3 unstructured |
+//! | 256 | 32 | lines, returns on lines, patches, surface patches, u64 x 4 (scan structure 2) |
+//! | 288 | 128 | the reason, UTF-8, zero-padded (scan structure 3) |
+//! | 416 | 8 | coarse patches `c`, u64 (0 for full records) |
+//! | 432 | | the sections, each where the section table puts it |
 //! | end - 4 | 4 | CRC-32 (IEEE) of every byte before it, u32 |
 //!
 //! The sections of the compact encoding (`compact_patches`), which `write` and prep write:
 //! block frames (32 bytes a block of `BLOCK_PATCHES` patches), compact patches (28 n),
 //! colours and intensities (6 n, or none without colour columns), colour neighbours (4 m n:
-//! `m` patch indices per patch, `NO_NEIGHBOR` = unused). The full encoding, which tile
-//! files embed so that a merge quantises the records once: `Aabb` (24 n), `PatchHot` (32 n),
-//! `PatchCold` (12 n), colour neighbours (4 m n), the records as the renderers take them.
+//! `m` patch indices per patch, `NO_NEIGHBOR` = unused), then the coarse level
+//! (`stored_coarse`): its patches a block (u32 a block) and its records (44 c). The full
+//! encoding, which tile files embed so that a merge quantises the records once: `Aabb`
+//! (24 n), `PatchHot` (32 n), `PatchCold` (12 n), colour neighbours (4 m n), the records as
+//! the renderers take them, and two empty sections where the coarse level would be.
 //!
 //! The settings: `k`, `normal_k` (u32), recompute normals (u32, 0 or 1), radius (u32: 0 paper,
 //! 1 adaptive, 2 cell), disk scale (f32), boxes (u32: 0 cube, 1 tight), scan (u32: 0 auto,
 //! 1 off), duplicate tolerance (f32, in f32 ulps at each point's coordinates), outlier filter `K`
-//! (u32, 0 = none) and `N` (f32), sensor given (u32, 0 or 1), then at 184 the sensor, f64 x 3
+//! (u32, 0 = none) and `N` (f32), sensor given (u32, 0 or 1), then at 216 the sensor, f64 x 3
 //! (zero when not given).
 //!
 //! Each section lies where the section table puts it: 16-aligned, in this order, at or after
 //! the end of the one before; the bytes between sections are zero. `write` leaves no room
-//! between them; prep in bounded memory leaves room for one patch per input point
-//! (`Layout::with_room`), since it writes each tile's records before the count is known. The
-//! file ends 4 bytes after the last section. `docs/PATCH_STORE.md` describes the same format.
+//! between them; prep in bounded memory leaves room for one patch per input point after each
+//! section before the colour neighbours (`Layout::with_room`), since it writes each tile's
+//! records before the count is known; the coarse level follows the colour neighbours, as it
+//! is written last. The file ends 4 bytes after the last section. `docs/PATCH_STORE.md` describes the same format.
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
@@ -61,12 +65,16 @@ use crate::patch_records::PatchRecords;
 use crate::patch_set::PatchSet;
 use crate::prep_settings::{BoxKind, OutlierFilter, PrepSettings, RadiusMode, ScanMode};
 use crate::scan_structure::{REASON_BYTES, ScanStructure};
+use crate::stored_coarse::{CoarseRecord, level_of_sections};
 
 pub use crate::patch_store_write::{StoreSummary, write, write_to, write_with_scan};
 
 pub const MAGIC: [u8; 8] = *b"PRPATCH\0";
-pub const FORMAT_VERSION: u32 = 8;
-pub(crate) const SECTION_COUNT: usize = 4;
+pub const FORMAT_VERSION: u32 = 9;
+pub(crate) const SECTION_COUNT: usize = 6;
+/// The section of colour neighbours, which name input points until prep in bounded memory
+/// finishes its store; the coarse level's sections follow it.
+pub(crate) const NEIGHBOR_SECTION: usize = 3;
 pub(crate) const HEADER_BYTES: usize = std::mem::size_of::<Header>();
 const CHECKSUM_BYTES: usize = 4;
 pub(crate) const SECTION_ALIGNMENT: usize = 16;
@@ -118,6 +126,7 @@ pub(crate) struct Header {
     pub scan_kind: u32,
     pub scan_counts: [u64; 4],
     pub scan_reason: [u8; REASON_BYTES],
+    pub coarse_patches: u64,
 }
 
 /// How a store holds its records.
@@ -150,20 +159,36 @@ impl RecordShape {
         Self { encoding: Encoding::Full, neighbor_slots, colors: false }
     }
 
-    /// The bytes of section `index` for `count` patches.
-    fn section_bytes(&self, index: usize, count: u64) -> Option<u64> {
+    /// The bytes of section `index` for `count` patches, of which `coarse` coarse ones.
+    fn section_bytes(&self, index: usize, Counts { patches: count, coarse }: Counts) -> Option<u64> {
         let per_patch = |bytes: usize| count.checked_mul(bytes as u64);
+        let per_block = |bytes: usize| count.div_ceil(BLOCK_PATCHES as u64).checked_mul(bytes as u64);
         match (self.encoding, index) {
-            (_, 3) => per_patch(size_of::<u32>() * self.neighbor_slots as usize),
+            (_, NEIGHBOR_SECTION) => per_patch(size_of::<u32>() * self.neighbor_slots as usize),
             (Encoding::Full, 0) => per_patch(size_of::<Aabb>()),
             (Encoding::Full, 1) => per_patch(size_of::<PatchHot>()),
-            (Encoding::Full, _) => per_patch(size_of::<PatchCold>()),
-            (Encoding::Compact, 0) => {
-                count.div_ceil(BLOCK_PATCHES as u64).checked_mul(size_of::<BlockFrame>() as u64)
-            }
+            (Encoding::Full, 2) => per_patch(size_of::<PatchCold>()),
+            (Encoding::Full, _) => Some(0),
+            (Encoding::Compact, 0) => per_block(size_of::<BlockFrame>()),
             (Encoding::Compact, 1) => per_patch(size_of::<CompactPatch>()),
-            (Encoding::Compact, _) => per_patch(if self.colors { size_of::<CompactColor>() } else { 0 }),
+            (Encoding::Compact, 2) => per_patch(if self.colors { size_of::<CompactColor>() } else { 0 }),
+            (Encoding::Compact, 4) => per_block(size_of::<u32>()),
+            (Encoding::Compact, _) => coarse.checked_mul(size_of::<CoarseRecord>() as u64),
         }
+    }
+}
+
+/// The records a store's sections hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Counts {
+    pub patches: u64,
+    /// The coarse level's patches: 0 for full records.
+    pub coarse: u64,
+}
+
+impl Counts {
+    pub fn new(patches: u64, coarse: u64) -> Self {
+        Self { patches, coarse }
     }
 }
 
@@ -192,31 +217,36 @@ pub struct Layout {
 }
 
 impl Layout {
-    /// The sections of `n` patches of `shape`, back to back.
-    pub fn new(n: u64, shape: RecordShape) -> Option<Self> {
-        Self::with_room(n, n, shape)
+    /// The sections of `counts`' records of `shape`, back to back.
+    pub fn new(counts: Counts, shape: RecordShape) -> Option<Self> {
+        Self::with_room(counts, counts.patches, shape)
     }
 
-    /// The sections of `n` patches, each placed with room for `room` patches, so that a
-    /// writer that knows only a bound on the count can write every section as it comes.
-    pub(crate) fn with_room(n: u64, room: u64, shape: RecordShape) -> Option<Self> {
+    /// The sections of `counts`' records, each before the colour neighbours placed with room
+    /// for `room` patches, so that a writer that knows only a bound on the count can write
+    /// each of those sections as it comes. The colour neighbours are written from their
+    /// start as they come, and the coarse level after them last, so it follows their end.
+    pub(crate) fn with_room(counts: Counts, room: u64, shape: RecordShape) -> Option<Self> {
         let mut cursor = HEADER_BYTES as u64;
         let mut sections = [Section::zeroed(); SECTION_COUNT];
+        let roomy = Counts { patches: room.max(counts.patches), ..counts };
         for (index, section) in sections.iter_mut().enumerate() {
             let offset = cursor.checked_next_multiple_of(SECTION_ALIGNMENT as u64)?;
-            *section = Section { offset, length: shape.section_bytes(index, n)? };
-            cursor = offset.checked_add(shape.section_bytes(index, room.max(n))?)?;
+            *section = Section { offset, length: shape.section_bytes(index, counts)? };
+            let room =
+                if index < NEIGHBOR_SECTION { shape.section_bytes(index, roomy)? } else { section.length };
+            cursor = offset.checked_add(room)?;
         }
-        Self::of_table(sections, n, shape)
+        Self::of_table(sections, counts, shape)
     }
 
     /// The layout of a header's section table, if its sections lie in order after the
-    /// header, at aligned offsets, each holding `n` records.
-    fn of_table(sections: [Section; SECTION_COUNT], n: u64, shape: RecordShape) -> Option<Self> {
+    /// header, at aligned offsets, each holding `counts`' records.
+    fn of_table(sections: [Section; SECTION_COUNT], counts: Counts, shape: RecordShape) -> Option<Self> {
         let mut cursor = HEADER_BYTES as u64;
         for (index, section) in sections.iter().enumerate() {
             let placed = section.offset >= cursor && section.offset % SECTION_ALIGNMENT as u64 == 0;
-            if !placed || section.length != shape.section_bytes(index, n)? {
+            if !placed || section.length != shape.section_bytes(index, counts)? {
                 return None;
             }
             cursor = section.offset.checked_add(section.length)?;
@@ -293,9 +323,17 @@ impl Header {
         Ok(structure)
     }
 
+    /// The records the sections hold.
+    fn counts(&self) -> Counts {
+        Counts::new(self.point_count, self.coarse_patches)
+    }
+
     /// The shape of the records, or which code this build does not know.
     fn shape(&self) -> Result<RecordShape, &'static str> {
         let neighbor_slots = self.neighbor_slots;
+        if self.encoding == 1 && self.coarse_patches != 0 {
+            return Err("full records with a coarse level");
+        }
         match (self.encoding, self.block_patches, self.color_columns) {
             (0, blocks, colors @ (0 | 1)) if blocks as usize == BLOCK_PATCHES => {
                 Ok(RecordShape::compact(neighbor_slots, colors == 1))
@@ -319,6 +357,8 @@ pub struct StoreDescription {
     /// patches; the union of the boxes for full records).
     pub bounds: Option<Aabb>,
     pub scan: ScanStructure,
+    /// The coarse level's patches (0 for full records).
+    pub coarse_patches: u64,
 }
 
 /// The header of the store at `path`, checked as `read` checks it but for the checksum and
@@ -343,6 +383,7 @@ pub fn describe(path: &Path) -> Result<StoreDescription, StoreError> {
         offset: DVec3::from_array(header.offset),
         bounds,
         scan: header.scan().map_err(malformed)?,
+        coarse_patches: header.coarse_patches,
     })
 }
 
@@ -386,8 +427,7 @@ pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
 /// check has passed: the same checks whether the bytes are mapped or read.
 fn checked_store(path: &Path, bytes: &[u8], map: Option<&Arc<Mmap>>) -> Result<PatchSet, StoreError> {
     let (header, shape) = checked_header_fields(path, bytes, bytes.len() as u64)?;
-    let layout =
-        Layout::of_table(header.sections, header.point_count, shape).expect("checked with the header");
+    let layout = Layout::of_table(header.sections, header.counts(), shape).expect("checked with the header");
     let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
     if stored != parallel_checksum::checksum(body).to_le_bytes() {
         return Err(StoreError::ChecksumMismatch { path: path.to_path_buf() });
@@ -399,7 +439,7 @@ fn checked_store(path: &Path, bytes: &[u8], map: Option<&Arc<Mmap>>) -> Result<P
     }
     let settings = header.settings.decode(header.sensor).map_err(malformed)?;
     header.scan().map_err(malformed)?;
-    let [first, second, third, neighbors] = layout.sections;
+    let [first, second, third, neighbors, coarse_counts, coarse_records] = layout.sections;
     let section = |s: Section| &bytes[s.offset as usize..(s.offset + s.length) as usize];
     let (aabbs, hot, cold) = match shape.encoding {
         Encoding::Full => (
@@ -414,9 +454,15 @@ fn checked_store(path: &Path, bytes: &[u8], map: Option<&Arc<Mmap>>) -> Result<P
     };
     let color_neighbors = records(section(neighbors), map, neighbors, path)?;
     let offset = DVec3::from_array(header.offset);
-    let patches = PatchSet { settings, offset, aabbs, hot, cold, color_neighbors };
+    let mut patches = PatchSet { settings, offset, aabbs, hot, cold, color_neighbors, coarse: None };
     // A store can pass its checksum and still hold numbers no renderer can build on.
     patches.check().map_err(|problem| malformed(&problem))?;
+    if shape.encoding == Encoding::Compact {
+        let counts = cast_or_copy::<u32>(section(coarse_counts));
+        let records = cast_or_copy::<CoarseRecord>(section(coarse_records));
+        patches.coarse =
+            Some(level_of_sections(&counts, &records, &patches).map_err(|problem| malformed(&problem))?);
+    }
     Ok(patches)
 }
 
@@ -499,7 +545,7 @@ pub fn as_stored(patches: &PatchSet, path: &Path) -> Result<PatchSet, StoreError
     let (aabbs, hot, cold) = decoded_records(&frames, &compact, colors.as_deref(), patches.settings.boxes);
     let (settings, offset, color_neighbors) =
         (patches.settings, patches.offset, patches.color_neighbors.clone());
-    Ok(PatchSet { settings, offset, aabbs, hot, cold, color_neighbors })
+    Ok(PatchSet { settings, offset, aabbs, hot, cold, color_neighbors, coarse: None })
 }
 
 /// The header and the shape of its records, once magic, version, colour neighbours, the
@@ -533,7 +579,7 @@ fn checked_header_fields(
         )));
     }
     let shape = header.shape().map_err(|problem| malformed(problem.into()))?;
-    let layout = Layout::of_table(header.sections, header.point_count, shape).ok_or_else(|| {
+    let layout = Layout::of_table(header.sections, header.counts(), shape).ok_or_else(|| {
         malformed("the section table does not hold the point count's records in order".into())
     })?;
     if layout.total_bytes != length {
@@ -551,37 +597,39 @@ mod tests {
     use super::*;
 
     #[test]
-    fn header_is_384_bytes_and_sections_are_aligned() {
-        assert_eq!(HEADER_BYTES, 384);
-        assert_eq!(std::mem::offset_of!(Header, settings), 140);
-        assert_eq!(std::mem::offset_of!(Header, sensor), 184);
-        assert_eq!(std::mem::offset_of!(Header, encoding), 208);
-        assert_eq!(std::mem::offset_of!(Header, scan_counts), 224);
-        assert_eq!(std::mem::offset_of!(Header, scan_reason), 256);
-        let layout = Layout::new(3, RecordShape::compact(COLOR_NEIGHBORS as u32, true)).unwrap();
+    fn header_is_424_bytes_and_sections_are_aligned() {
+        assert_eq!(HEADER_BYTES, 424);
+        assert_eq!(std::mem::offset_of!(Header, settings), 172);
+        assert_eq!(std::mem::offset_of!(Header, sensor), 216);
+        assert_eq!(std::mem::offset_of!(Header, encoding), 240);
+        assert_eq!(std::mem::offset_of!(Header, scan_counts), 256);
+        assert_eq!(std::mem::offset_of!(Header, scan_reason), 288);
+        assert_eq!(std::mem::offset_of!(Header, coarse_patches), 416);
+        let colored = RecordShape::compact(COLOR_NEIGHBORS as u32, true);
+        let layout = Layout::new(Counts::new(3, 2), colored).unwrap();
         let sections = layout.sections.map(|s| (s.offset, s.length));
-        assert_eq!(sections, [(384, 32), (416, 84), (512, 18), (544, 144)]);
-        assert_eq!(layout.total_bytes, 692);
-        let plain = Layout::new(3, RecordShape::compact(0, false)).unwrap();
-        assert_eq!(plain.sections.map(|s| (s.offset, s.length)), [(384, 32), (416, 84), (512, 0), (512, 0)]);
-        assert_eq!(plain.total_bytes, 516);
-        let full = Layout::new(3, RecordShape::full(COLOR_NEIGHBORS as u32)).unwrap();
-        assert_eq!(
-            full.sections.map(|s| (s.offset, s.length)),
-            [(384, 72), (464, 96), (560, 36), (608, 144)]
-        );
-        assert!(Layout::new(u64::MAX, RecordShape::compact(0, false)).is_none());
+        assert_eq!(sections, [(432, 32), (464, 84), (560, 18), (592, 144), (736, 4), (752, 88)]);
+        assert_eq!(layout.total_bytes, 844);
+        let plain = Layout::new(Counts::new(3, 0), RecordShape::compact(0, false)).unwrap();
+        let sections = plain.sections.map(|s| (s.offset, s.length));
+        assert_eq!(sections, [(432, 32), (464, 84), (560, 0), (560, 0), (560, 4), (576, 0)]);
+        assert_eq!(plain.total_bytes, 580);
+        let full = Layout::new(Counts::new(3, 0), RecordShape::full(COLOR_NEIGHBORS as u32)).unwrap();
+        let sections = full.sections.map(|s| (s.offset, s.length));
+        assert_eq!(sections, [(432, 72), (512, 96), (608, 36), (656, 144), (800, 0), (800, 0)]);
+        assert!(Layout::new(Counts::new(u64::MAX, 0), RecordShape::compact(0, false)).is_none());
     }
 
     #[test]
-    fn room_moves_the_sections_but_not_their_lengths() {
+    fn room_moves_the_sections_before_the_colour_neighbours_but_not_their_lengths() {
         let shape = RecordShape::compact(COLOR_NEIGHBORS as u32, true);
-        let layout = Layout::with_room(3, 5, shape).unwrap();
+        let layout = Layout::with_room(Counts::new(3, 1), 5, shape).unwrap();
         let sections = layout.sections.map(|s| (s.offset, s.length));
-        assert_eq!(sections, [(384, 32), (416, 84), (560, 18), (592, 144)]);
-        assert_eq!(layout.total_bytes, 740, "the last section's room is not kept");
-        assert_eq!(Layout::of_table(layout.sections, 3, shape).unwrap().total_bytes, 740);
-        assert!(Layout::of_table(layout.sections, 4, shape).is_none());
-        assert!(Layout::with_room(3, u64::MAX, shape).is_none());
+        assert_eq!(sections, [(432, 32), (464, 84), (608, 18), (640, 144), (784, 4), (800, 44)]);
+        assert_eq!(layout.total_bytes, 848, "the colour neighbours' room is not kept");
+        assert_eq!(Layout::of_table(layout.sections, Counts::new(3, 1), shape).unwrap().total_bytes, 848);
+        assert!(Layout::of_table(layout.sections, Counts::new(4, 1), shape).is_none());
+        assert!(Layout::of_table(layout.sections, Counts::new(3, 2), shape).is_none());
+        assert!(Layout::with_room(Counts::new(3, 0), u64::MAX, shape).is_none());
     }
 }

@@ -13,10 +13,12 @@ use crate::compact_patches::{
 };
 use crate::patch_set::PatchSet;
 use crate::patch_store::{
-    Encoding, FORMAT_VERSION, HEADER_BYTES, Header, Layout, MAGIC, RecordShape, StoreError, StoredSettings,
+    Counts, Encoding, FORMAT_VERSION, HEADER_BYTES, Header, Layout, MAGIC, NEIGHBOR_SECTION, RecordShape,
+    StoreError, StoredSettings,
 };
 use crate::prep_settings::PrepSettings;
 use crate::scan_structure::ScanStructure;
+use crate::stored_coarse::StoredCoarse;
 
 /// Blocks encoded at a time while writing a whole set: a few MiB of compact records.
 const CHUNK_BLOCKS: usize = 256;
@@ -138,26 +140,33 @@ fn write_contents(
     patches: &PatchSet,
 ) -> std::io::Result<()> {
     let mut writer = ChecksummedWriter::new(file);
-    let layout = Layout::with_room(summary.patches, summary.room, shape).ok_or_else(overflow)?;
-    let (frames, bounds) = match shape.encoding {
-        Encoding::Compact => (frames_of(&patches.hot, &patches.cold), stored_origin_bounds(&patches.hot)),
-        Encoding::Full => (Vec::new(), patches.bounds()),
+    let (frames, bounds, coarse) = match shape.encoding {
+        Encoding::Compact => {
+            let frames = frames_of(&patches.hot, &patches.cold);
+            let coarse = StoredCoarse::of_blocks(&frames, &patches.hot, &patches.cold, shape.colors);
+            (frames, stored_origin_bounds(&patches.hot), coarse)
+        }
+        Encoding::Full => (Vec::new(), patches.bounds(), StoredCoarse::default()),
     };
-    writer.write_all(bytemuck::bytes_of(&header_for(summary, &layout, shape, bounds)))?;
+    let counts = Counts::new(summary.patches, coarse.records.len() as u64);
+    let layout = Layout::with_room(counts, summary.room, shape).ok_or_else(overflow)?;
+    writer.write_all(bytemuck::bytes_of(&header_for(summary, &layout, shape, (bounds, counts.coarse))))?;
     let mut position = HEADER_BYTES as u64;
     for (index, section) in layout.sections.iter().enumerate() {
         writer.write_zeros(section.offset - position)?;
         match (shape.encoding, index) {
-            (_, 3) => writer.write_all(bytemuck::cast_slice(&patches.color_neighbors))?,
+            (_, NEIGHBOR_SECTION) => writer.write_all(bytemuck::cast_slice(&patches.color_neighbors))?,
             (Encoding::Full, 0) => writer.write_all(bytemuck::cast_slice(&patches.aabbs))?,
             (Encoding::Full, 1) => writer.write_all(bytemuck::cast_slice(&patches.hot))?,
-            (Encoding::Full, _) => writer.write_all(bytemuck::cast_slice(&patches.cold))?,
+            (Encoding::Full, 2) => writer.write_all(bytemuck::cast_slice(&patches.cold))?,
             (Encoding::Compact, 0) => writer.write_all(bytemuck::cast_slice(&frames))?,
             (Encoding::Compact, 1) => write_compact_records(&mut writer, patches, &frames, true)?,
-            (Encoding::Compact, _) if shape.colors => {
+            (Encoding::Compact, 2) if shape.colors => {
                 write_compact_records(&mut writer, patches, &frames, false)?
             }
-            (Encoding::Compact, _) => {}
+            (Encoding::Compact, 4) => writer.write_all(bytemuck::cast_slice(&coarse.counts))?,
+            (Encoding::Compact, 5) => writer.write_all(bytemuck::cast_slice(&coarse.records))?,
+            _ => {}
         }
         position = section.offset + section.length;
     }
@@ -186,12 +195,12 @@ fn write_compact_records<W: Write>(
 }
 
 /// The header of `summary`'s patches, of which `bounds` bounds the origins as stored (the
-/// boxes, for full records).
+/// boxes, for full records), and of their `coarse_patches`.
 pub(crate) fn header_for(
     summary: &StoreSummary,
     layout: &Layout,
     shape: RecordShape,
-    bounds: Option<Aabb>,
+    (bounds, coarse_patches): (Option<Aabb>, u64),
 ) -> Header {
     let bounds = bounds.unwrap_or_default();
     let (scan_kind, scan_counts, scan_reason) = Header::scan_fields(&summary.scan);
@@ -214,6 +223,7 @@ pub(crate) fn header_for(
         scan_kind,
         scan_counts,
         scan_reason,
+        coarse_patches,
     }
 }
 

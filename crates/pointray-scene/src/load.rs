@@ -208,7 +208,11 @@ fn load_object(
                 ColorSource::Height => heights(&patches, &transform),
                 _ => intensities(&patches).map_err(|problem| color_error(problem.into()))?,
             };
-            ramp.recolor(&mut Arc::make_mut(&mut patches).cold, values);
+            let recolored = Arc::make_mut(&mut patches);
+            ramp.recolor(&mut recolored.cold, values);
+            // The stored coarse level holds the points' own colours; the renderer makes one
+            // of the ramp's.
+            recolored.coarse = None;
             Geometry::Patches(patches)
         }
         (geometry, _) => geometry,

@@ -230,6 +230,7 @@ fn prep_with_context(
         hot: hot.into(),
         cold: cold.into(),
         color_neighbors: color_neighbors.into(),
+        coarse: None,
     };
     Ok((patches, report))
 }

@@ -463,18 +463,19 @@ fn start_streaming(
     }
 }
 
-/// The coarse level of each of `scene`'s point sets, in order, made once for whichever
-/// tiles they are cut into: their blocks' (`pointray_patches::coarse_level`).
+/// The coarse level of each of `scene`'s point sets, in order, for whichever tiles they are
+/// cut into: their blocks' (`pointray_patches::coarse_level`), as their stores hold it, or
+/// made now for a set made in memory.
 fn coarse_levels(scene: &Scene) -> Vec<Arc<CoarseLevel>> {
     let started = Instant::now();
     let levels: Vec<Arc<CoarseLevel>> = (scene.objects.iter())
         .filter_map(|object| match &object.geometry {
-            Geometry::Patches(patches) => Some(Arc::new(CoarseLevel::of(patches))),
+            Geometry::Patches(patches) => Some(patches.coarse_level()),
             Geometry::Mesh(_) => None,
         })
         .collect();
     let coarse: usize = levels.iter().map(|level| level.patches.len()).sum();
-    tracing::info!("made the point sets' coarse levels ({coarse} patches) in {:.2?}", started.elapsed());
+    tracing::info!("took the point sets' coarse levels ({coarse} patches) in {:.2?}", started.elapsed());
     levels
 }
 

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use clap::Args;
 use pointray_patches::patch_store::{self, Encoding, StoreDescription};
 
-/// Describe a patch store: its patches, bytes a patch, records, prep settings and the scan
-/// structure prep found.
+/// Describe a patch store: its patches, bytes a patch, records, coarse patches, prep settings
+/// and the scan structure prep found.
 #[derive(Args)]
 pub struct InfoArgs {
     /// The store (`.patches`), as `pointray prep` writes it.
@@ -22,6 +22,7 @@ pub fn run(args: InfoArgs) -> anyhow::Result<()> {
 /// The lines `info` prints for the store `name`.
 fn described(name: &str, store: &StoreDescription) -> String {
     let per_patch = store.file_bytes as f64 / store.patches.max(1) as f64;
+    let coarse_share = 100.0 * store.coarse_patches as f64 / store.patches.max(1) as f64;
     let records = match store.shape.encoding {
         Encoding::Compact if store.shape.colors => "compact, with colours and intensities",
         Encoding::Compact => "compact, without colours or intensities",
@@ -33,6 +34,7 @@ fn described(name: &str, store: &StoreDescription) -> String {
         format!("{name}: patch store version {}", patch_store::FORMAT_VERSION),
         format!("patches: {} ({} bytes, {per_patch:.2} a patch)", store.patches, store.file_bytes),
         format!("records: {records}; {} colour neighbours a patch", store.shape.neighbor_slots),
+        format!("coarse patches: {} ({coarse_share:.1}% of the patches)", store.coarse_patches),
         format!("offset (input = local + offset): {}, {}, {}", offset.x, offset.y, offset.z),
         format!("origins' bounds (local): {bounds}"),
         format!("prep settings: {:?}", store.settings),

@@ -24,7 +24,7 @@ fn info_shows_the_scan_lines_prep_found_in_a_real_sweep() {
         .unwrap_or_else(|| panic!("prep found no scan lines:\n{prepped}"));
     let info = succeeds(dir.path(), &["info", "sweep.patches"]);
     assert!(info.contains(&format!("scan structure: {lines} scan lines, ")), "{info}");
-    assert!(info.contains("patch store version 8"), "{info}");
+    assert!(info.contains("patch store version 9"), "{info}");
     assert!(info.contains("compact, with colours and intensities"), "{info}");
 }
 
@@ -42,6 +42,10 @@ fn info_says_no_scan_structure_was_sought_for_points_without_a_sensor() {
     let info = succeeds(dir.path(), &["info", "grid.patches"]);
     assert!(info.contains("scan structure: none sought"), "{info}");
     assert!(info.contains("patches: 400 ("), "{info}");
+    let coarse: u64 = (info.lines().find_map(|line| line.strip_prefix("coarse patches: ")))
+        .and_then(|rest| rest.split(' ').next()?.parse().ok())
+        .unwrap_or_else(|| panic!("info gives the coarse level's patches:\n{info}"));
+    assert!((10..100).contains(&coarse), "{info}");
 }
 
 #[test]
@@ -49,13 +53,13 @@ fn a_store_of_an_older_version_is_refused_with_the_way_out() {
     let dir = prepped_grid("old.patches");
     let store = dir.path().join("old.patches");
     let mut bytes = std::fs::read(&store).unwrap();
-    bytes[8..12].copy_from_slice(&7u32.to_le_bytes());
+    bytes[8..12].copy_from_slice(&8u32.to_le_bytes());
     std::fs::write(&store, bytes).unwrap();
     for args in [&["info", "old.patches"][..], &["render", "old.patches", "-o", "out.png"]] {
         let (ok, _, stderr) = pointray_in(dir.path(), args);
         assert!(!ok, "{args:?} read an old store");
         let refusal =
-            "old.patches: patch store version 7, this build reads version 8 only: re-run `pointray prep`";
+            "old.patches: patch store version 8, this build reads version 9 only: re-run `pointray prep`";
         assert!(stderr.contains(refusal), "{args:?}: {stderr}");
     }
 }

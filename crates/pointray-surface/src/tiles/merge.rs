@@ -12,7 +12,7 @@ use pointray_patches::patch_store_in_place::StoreInPlace;
 
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::tiles::patch_map::PatchMap;
-use crate::tiles::stream_budget::StreamBudget;
+use crate::tiles::stream_budget::{STORE_BYTES_PER_POINT, StreamBudget};
 use crate::tiles::stream_error::StreamError;
 use crate::tiles::tile_file::{read_tile_file, read_tile_header};
 
@@ -43,10 +43,10 @@ pub(crate) fn merge_ordered_tile_files(
     progress: &dyn PrepProgress,
 ) -> Result<MergeSummary, StreamError> {
     let first = read_tile_header(&ordered[0])?;
-    if !StreamBudget::new(memory, 0).holds_patch_map(first.input_points) {
+    if !StreamBudget::new(memory, 0).holds_store_writing(first.input_points) {
         let problem = format!(
-            "merging tiles of {} points maps each to its patch (4 bytes a point), which the memory \
-             budget cannot hold",
+            "merging tiles of {} points maps each to its patch and holds the coarse level \
+             ({STORE_BYTES_PER_POINT} bytes a point), which the memory budget cannot hold",
             first.input_points
         );
         return Err(StreamError::OverBudget { path: output.to_path_buf(), problem });

@@ -1,6 +1,6 @@
 //! How prep in bounded memory shares its budget: the reads, the sorted runs, one tile with
-//! its halo at a time (while the tile before it is written), and the map from points to
-//! patches that the store's writing keeps.
+//! its halo at a time (while the tile before it is written), and what the store's writing
+//! keeps until it finishes: the map from points to patches and the coarse level.
 
 use pointray_io::MemoryBudget;
 use pointray_patches::PrepSettings;
@@ -9,6 +9,14 @@ use crate::prep_memory::{PREP_FIXED_BYTES, prep_bytes_per_point};
 
 /// Each input point's patch, noted while the store is written.
 const PATCH_MAP_BYTES: u64 = 4;
+
+/// The coarse level, held until the store is finished: 44 bytes a coarse patch, of which a
+/// block has about one for 16 patches (6.1% on the dragon), and no more patches than input
+/// points; 4 bytes a point leaves room for one coarse patch for 11 points.
+const COARSE_LEVEL_BYTES: u64 = 4;
+
+/// What writing the store holds for each input point until it finishes.
+pub(crate) const STORE_BYTES_PER_POINT: u64 = PATCH_MAP_BYTES + COARSE_LEVEL_BYTES;
 
 /// A tile is planned to own at most one in this many of the points its prep's memory holds;
 /// the rest is left for its halo. Halos of 100M points sampled on the dragon held 1-2% of
@@ -87,22 +95,23 @@ impl StreamBudget {
         (self.usable / 10 / 64).max(4096) as usize
     }
 
-    /// Whether writing the store, which maps each input point to its patch, fits.
-    pub(crate) fn holds_patch_map(&self, points: u64) -> bool {
-        points.saturating_mul(PATCH_MAP_BYTES) <= self.usable / 2
+    /// Whether writing the store of `points` input points, which maps each to its patch and
+    /// holds the coarse level, fits.
+    pub(crate) fn holds_store_writing(&self, points: u64) -> bool {
+        points.saturating_mul(STORE_BYTES_PER_POINT) <= self.usable / 2
     }
 
-    /// What is left once the map from `points` input points to their patches is held
+    /// What is left once what writing the store of `points` input points holds is held
     /// through the tiles' prep.
-    pub(crate) fn with_patch_map(self, points: u64) -> Self {
-        Self { usable: self.usable.saturating_sub(points.saturating_mul(PATCH_MAP_BYTES)), ..self }
+    pub(crate) fn with_store_writing(self, points: u64) -> Self {
+        Self { usable: self.usable.saturating_sub(points.saturating_mul(STORE_BYTES_PER_POINT)), ..self }
     }
 
     /// The smallest memory budget whose tiles hold `MIN_TILE_POINTS` points of their own
-    /// (`core_capacity`) beside the map from `points` input points to their patches.
+    /// (`core_capacity`) beside what writing the store of `points` input points holds.
     pub(crate) fn memory_for_smallest_tile(&self, settings: &PrepSettings, points: u64) -> u64 {
         MIN_TILE_POINTS * (CORE_SHARE * self.tile_bytes_per_point(settings) + WRITTEN_PATCH_BYTES)
-            + points.saturating_mul(PATCH_MAP_BYTES)
+            + points.saturating_mul(STORE_BYTES_PER_POINT)
             + PREP_FIXED_BYTES
     }
 

@@ -27,7 +27,7 @@ use crate::tiles::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::tiles::halo_test::HaloTest;
 use crate::tiles::out_of_core_sort::{SortPlan, sort_points};
 use crate::tiles::sorted_points::SortedPoints;
-use crate::tiles::stream_budget::{MIN_TILE_POINTS, StreamBudget};
+use crate::tiles::stream_budget::{MIN_TILE_POINTS, STORE_BYTES_PER_POINT, StreamBudget};
 use crate::tiles::stream_error::StreamError;
 use crate::tiles::tiled_prep::{TilePatches, own_patches};
 use crate::trimmed_centre::CentreSample;
@@ -77,7 +77,7 @@ impl StreamPlan {
             return Err(prep_error(PrepError::TooLarge { problem }));
         }
         let tiles = tile_count(count, points, settings, &budget, &input)?;
-        let budget = budget.with_patch_map(points);
+        let budget = budget.with_store_writing(points);
         let offset = centre.centre();
         let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
         let frame = TileContext {
@@ -299,14 +299,15 @@ fn tile_count(
     input: &Path,
 ) -> Result<usize, StreamError> {
     let over = |problem: String| StreamError::OverBudget { path: input.to_path_buf(), problem };
-    if !budget.holds_patch_map(points) {
+    if !budget.holds_store_writing(points) {
         return Err(over(format!(
-            "{points} points: writing the store maps each to its patch (4 bytes a point), which \
-             the memory budget ({} MiB for the work) cannot hold",
+            "{points} points: writing the store maps each to its patch and holds the coarse level \
+             ({STORE_BYTES_PER_POINT} bytes a point), which the memory budget ({} MiB for the work) \
+             cannot hold",
             budget.usable() >> 20
         )));
     }
-    let budget = budget.with_patch_map(points);
+    let budget = budget.with_store_writing(points);
     let core = budget.core_capacity(settings);
     if core < MIN_TILE_POINTS {
         return Err(over(format!(

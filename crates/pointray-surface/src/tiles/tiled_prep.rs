@@ -150,6 +150,7 @@ pub(crate) fn own_patches(set: PatchSet, sources: &[u32], members: &[u32], core:
             hot: gather(&set.hot, &keep).into(),
             cold: gather(&set.cold, &keep).into(),
             color_neighbors: color_neighbors.into(),
+            coarse: None,
         },
     }
 }

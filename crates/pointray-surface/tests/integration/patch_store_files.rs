@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use pointray_kernels::COLOR_NEIGHBORS;
+use pointray_patches::coarse_level::CoarseLevel;
 use pointray_patches::patch_store::{self, Encoding, StoreError};
 use pointray_patches::{BoxKind, OutlierFilter, PatchSet, PrepSettings, RadiusMode, ScanMode};
 use pointray_surface::{NoProgress, prep};
@@ -53,6 +54,49 @@ fn round_trip_keeps_every_record_within_the_compact_bounds() {
     }
     let leftovers = std::fs::read_dir(directory.path()).unwrap().count();
     assert_eq!(leftovers, 1, "no temporary files left behind");
+}
+
+#[test]
+fn the_stored_coarse_level_is_the_one_made_from_the_stored_patches() {
+    let directory = tempfile::tempdir().unwrap();
+    let patches = sample_patches(BoxKind::Tight);
+    let loaded = patch_store::read(&written(directory.path(), &patches)).unwrap();
+    let stored = loaded.coarse.as_deref().expect("a compact store holds its coarse level");
+    let made = CoarseLevel::of(&loaded);
+    assert_eq!(*stored, made);
+    assert_eq!(stored.patches.aabbs, made.patches.aabbs);
+    assert_eq!(stored.covering(0..loaded.len()), 0..made.patches.len());
+    assert!((100..400).contains(&stored.patches.len()), "{} coarse patches", stored.patches.len());
+    let info = patch_store::describe(&written(directory.path(), &patches)).unwrap();
+    assert_eq!(info.coarse_patches, made.patches.len() as u64);
+    assert!(patch_store::as_stored(&patches, Path::new("model")).unwrap().coarse.is_none());
+}
+
+#[test]
+fn a_damaged_coarse_level_is_refused() {
+    let (_, error, _dir) = damaged(|bytes| {
+        let at = entry(bytes, 5).0 + 44 + 12;
+        bytes[at] ^= 0x10;
+    });
+    assert!(matches!(error, StoreError::ChecksumMismatch { .. }), "{error:?}");
+    let damages: [(&str, Damage); 2] = [
+        ("the coarse level: ", |b| {
+            let at = entry(b, 5).0 + 44 + 12; // the second coarse patch's radius
+            b[at..at + 4].copy_from_slice(&f32::NAN.to_le_bytes())
+        }),
+        ("the coarse level's block counts do not add up to its patches", |b| {
+            let at = entry(b, 4).0;
+            let count = u32::from_le_bytes(b[at..at + 4].try_into().unwrap());
+            b[at..at + 4].copy_from_slice(&(count + 1).to_le_bytes())
+        }),
+    ];
+    for (expected, damage) in damages {
+        let (path, _, _dir) = resealed_store(damage);
+        let error = patch_store::read(&path).unwrap_err();
+        assert!(matches!(error, StoreError::Malformed { .. }), "{expected}: {error:?}");
+        let message = error.to_string();
+        assert!(message.contains(expected) && message.contains(&path.display().to_string()), "{message}");
+    }
 }
 
 #[test]
@@ -127,9 +171,10 @@ fn a_cloud_without_colours_or_intensities_stores_no_neighbours() {
     let size = |p: &PatchSet| std::fs::metadata(written(directory.path(), p)).unwrap().len();
     let plain = PatchSet { color_neighbors: Default::default(), ..coloured.clone() };
     assert_eq!(size(&coloured) - size(&plain), neighbour_bytes);
+    // 28 bytes a compact record, and the coarse level's 44 bytes for about one patch in 16.
     let uncoloured = size(&patches);
     assert!(
-        uncoloured <= 29 * patches.len() as u64 + 1024,
+        uncoloured <= 32 * patches.len() as u64 + 1024,
         "{uncoloured} bytes for {} patches",
         patches.len()
     );
@@ -151,10 +196,10 @@ fn a_neighbour_list_of_the_wrong_length_is_not_written() {
 
 #[test]
 fn a_neighbour_beyond_the_patches_is_malformed() {
-    // The last neighbour entry sits just before the checksum; point it past the end so that
-    // only the range check can catch it.
+    // Point the last neighbour entry past the end so that only the range check can catch it.
     let (path, _, _dir) = resealed_store(|bytes| {
-        let last = bytes.len() - 8;
+        let (offset, length) = entry(bytes, 3);
+        let last = offset + length - 4;
         bytes[last..last + 4].copy_from_slice(&3000u32.to_le_bytes());
     });
     let error = patch_store::read(&path).unwrap_err();
@@ -207,12 +252,12 @@ fn damaged(damage: impl FnOnce(&mut Vec<u8>)) -> (PathBuf, StoreError, tempfile:
 
 #[test]
 fn another_version_is_refused_by_name() {
-    // Version 7 stores (the full records, 68 bytes a patch) are refused with the way out.
-    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&7u32.to_le_bytes()));
-    assert!(matches!(error, StoreError::WrongVersion { found: 7, .. }), "{error:?}");
+    // Version 8 stores (without the coarse level) are refused with the way out.
+    let (path, error, _dir) = damaged(|bytes| bytes[8..12].copy_from_slice(&8u32.to_le_bytes()));
+    assert!(matches!(error, StoreError::WrongVersion { found: 8, .. }), "{error:?}");
     let message = error.to_string();
     assert!(
-        message.contains("patch store version 7, this build reads version 8 only: re-run `pointray prep`"),
+        message.contains("patch store version 8, this build reads version 9 only: re-run `pointray prep`"),
         "{message}"
     );
     assert!(message.contains(&path.display().to_string()), "{message}");
@@ -243,7 +288,7 @@ fn resealed(bytes: &mut [u8]) {
 fn with_room(bytes: &mut Vec<u8>, room: usize) {
     let patches = entry(bytes, 1).0;
     bytes.splice(patches..patches, std::iter::repeat_n(0u8, room));
-    for i in 1..4 {
+    for i in 1..6 {
         let moved = (entry(bytes, i).0 + room) as u64;
         bytes[72 + 16 * i..80 + 16 * i].copy_from_slice(&moved.to_le_bytes());
     }

@@ -1,7 +1,7 @@
 //! Prep from a cloud read in chunks and sorted out of core writes the patches that the
 //! in-memory tiled prep writes, and the same store, byte for byte, whether one process preps
-//! every tile or each tile is prepped alone and the tile files merged; budgets too small are
-//! refused.
+//! every tile or each tile is prepped alone and the tile files merged, with the coarse level
+//! made from the stored patches; budgets too small are refused.
 
 use std::path::{Path, PathBuf};
 
@@ -9,6 +9,7 @@ use pointray_io::formats::ply::write_point_cloud;
 use pointray_io::formats::read_point_cloud;
 use pointray_io::{MemoryBudget, PointStream};
 use pointray_patches::PrepSettings;
+use pointray_patches::coarse_level::CoarseLevel;
 use pointray_patches::patch_store;
 use pointray_surface::NoProgress;
 use pointray_surface::tiles::merge::merge_tile_files;
@@ -88,7 +89,10 @@ fn streamed_tiles_that_merge_points_write_the_in_memory_tiled_patches() {
         prep_streamed(&mut open(&path), &settings, cut, &streamed, &NoProgress).unwrap();
         let in_memory_store = dir.path().join("in_memory.patches");
         patch_store::write(&in_memory_store, &in_memory).unwrap();
-        assert_eq!(patch_store::read(&streamed).unwrap(), patch_store::read(&in_memory_store).unwrap());
+        let streamed = patch_store::read(&streamed).unwrap();
+        assert_eq!(streamed, patch_store::read(&in_memory_store).unwrap());
+        let made = CoarseLevel::of(&streamed);
+        assert_eq!(streamed.coarse.as_deref(), Some(&made), "the coarse level written as the tiles came");
         assert_no_scratch(dir.path(), 3);
     }
 }
