@@ -7,7 +7,9 @@ use glam::{Affine3A, Vec3};
 use pointray_io::TriangleMesh;
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use pointray_patches::PatchSet;
-use pointray_scene::{Background, Camera, Geometry, Light, Material, Scene, SceneObject};
+use pointray_scene::{
+    Background, Camera, Geometry, Integrator, Light, Material, RenderSettings, Scene, SceneObject,
+};
 
 pub const BACKGROUND: Vec3 = Vec3::new(0.1, 0.2, 0.3);
 
@@ -106,4 +108,18 @@ pub fn pixel_ray(camera: &Camera, width: u32, height: u32, x: u32, y: u32) -> po
         glam::UVec2::new(x, y),
         pointray_kernels::sample_jitter(0),
     )
+}
+
+/// Square path-traced renders of `size` pixels, `spp` samples a pixel and paths of up to
+/// `max_depth` segments, from `seed`.
+pub fn path_settings(size: u32, spp: u32, max_depth: u32, seed: u32) -> RenderSettings {
+    RenderSettings {
+        width: size,
+        height: size,
+        samples_per_pixel: spp,
+        max_depth,
+        integrator: Integrator::Path,
+        seed,
+        ..RenderSettings::default()
+    }
 }

@@ -13,19 +13,8 @@ use pointray_scene::{
     Background, Camera, Geometry, Integrator, Light, Material, RenderSettings, RenderedImage, Scene, SunSky,
     SurfaceKind,
 };
+use pointray_test_support::analytic_scenes::path_settings;
 use pointray_test_support::estimate;
-
-fn path_settings(size: u32, spp: u32, max_depth: u32, seed: u32) -> RenderSettings {
-    RenderSettings {
-        width: size,
-        height: size,
-        samples_per_pixel: spp,
-        max_depth,
-        integrator: Integrator::Path,
-        seed,
-        ..RenderSettings::default()
-    }
-}
 
 fn material(surface: SurfaceKind, color: Vec3, roughness: f32) -> Material {
     Material { surface, diffuse: color, roughness, ..Material::default() }

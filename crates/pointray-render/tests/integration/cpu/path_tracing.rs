@@ -20,17 +20,8 @@ use pointray_test_support::{estimate, sphere_mesh};
 /// Standard errors a mean may stray: a false failure once in 1.7 million runs.
 const SIGMAS: f64 = 5.0;
 
-fn path_settings(size: u32, spp: u32, max_depth: u32) -> RenderSettings {
-    RenderSettings {
-        width: size,
-        height: size,
-        samples_per_pixel: spp,
-        max_depth,
-        integrator: Integrator::Path,
-        seed: 7,
-        ..RenderSettings::default()
-    }
-}
+/// The seed of every render here.
+const SEED: u32 = 7;
 
 fn diffuse(albedo: f32) -> Material {
     Material { surface: SurfaceKind::Diffuse, diffuse: Vec3::splat(albedo), ..Material::default() }
@@ -65,7 +56,7 @@ fn hit_values(image: &RenderedImage) -> Vec<f64> {
 /// paths that leak inside the surface never see the sky and are cut by `max_depth`.
 fn assert_furnace(object: pointray_scene::SceneObject, sky: Background, what: &str) {
     let scene = under_sky(vec![object], sky, Vec3::new(0.0, 0.5, 3.0), 45.0);
-    let image = CpuRenderer::new(&scene).render(&path_settings(32, 16, 6));
+    let image = CpuRenderer::new(&scene).render(&path_settings(32, 16, 6, SEED));
     let values = hit_values(&image);
     let e = estimate(values.iter().copied());
     e.assert_near(1.0, SIGMAS, 1e-4, what);
@@ -139,7 +130,7 @@ fn a_diffuse_plane_under_a_sun_and_sky_reflects_the_irradiance_the_map_holds() {
     let expected = f64::from(albedo) * irradiance_from_above(&map) / std::f64::consts::PI;
     let plane = patches_object("plane", plane_patches(1.0, 41), Affine3A::IDENTITY, diffuse(albedo));
     let scene = under_sky(vec![plane], Background::Map(map), Vec3::new(0.2, 2.0, 0.6), 30.0);
-    let image = CpuRenderer::new(&scene).render(&path_settings(24, 8, 3));
+    let image = CpuRenderer::new(&scene).render(&path_settings(24, 8, 3, SEED));
     let values = hit_values(&image);
     let e = estimate(values.iter().copied());
     e.assert_near(expected, SIGMAS, 1e-4, "plane under the sun and sky");
@@ -163,7 +154,7 @@ fn a_diffuse_plane_under_a_uniform_sky_shows_its_albedo() {
         (mesh_object("plane", floor_mesh(1.0), diffuse(albedo)), "mesh plane"),
     ] {
         let renderer = CpuRenderer::new(&under_sky(vec![object], sky.clone(), from, 30.0));
-        let image = renderer.render(&path_settings(24, 8, 4));
+        let image = renderer.render(&path_settings(24, 8, 4, SEED));
         estimate(hit_values(&image)).assert_near(f64::from(albedo), SIGMAS, 1e-4, what);
         // The albedo AOV is the plane's colour where it was hit, zero elsewhere.
         let aov = image.albedo.as_ref().expect("the path integrator writes the albedo");
@@ -171,7 +162,7 @@ fn a_diffuse_plane_under_a_uniform_sky_shows_its_albedo() {
             let expected = if id == RenderedImage::MISS { Vec3::ZERO } else { Vec3::splat(albedo) };
             assert_eq!(aov[index], expected, "{what}: albedo at pixel {index}");
         }
-        let whitted = RenderSettings { integrator: Integrator::Whitted, ..path_settings(4, 1, 2) };
+        let whitted = RenderSettings { integrator: Integrator::Whitted, ..path_settings(4, 1, 2, SEED) };
         assert_eq!(renderer.render(&whitted).albedo, None);
     }
 }
@@ -209,7 +200,7 @@ fn a_glass_slab_head_on_transmits_as_fresnel_says() {
             })
             .sum::<f64>()
             / f64::from(size * size);
-        let image = CpuRenderer::new(&scene).render(&path_settings(size, 64, 24));
+        let image = CpuRenderer::new(&scene).render(&path_settings(size, 64, 24, SEED));
         // The slack: Fresnel's change over the 4 degrees from the axis, and the jitter's.
         estimate(hit_values(&image)).assert_near(transmittance * sky, SIGMAS, 1e-4, what);
     }
@@ -220,7 +211,7 @@ fn one_seed_gives_one_image_and_another_seed_another() {
     let sphere = patches_object("sphere", sphere_patches(1.0, 2000), Affine3A::IDENTITY, diffuse(0.7));
     let scene = under_sky(vec![sphere], Background::Solid(Vec3::ONE), Vec3::new(0.0, 0.5, 3.0), 45.0);
     let renderer = CpuRenderer::new(&scene);
-    let settings = path_settings(16, 2, 4);
+    let settings = path_settings(16, 2, 4, SEED);
     assert_eq!(renderer.render(&settings), renderer.render(&settings));
     assert_ne!(
         renderer.render(&settings).color,
@@ -234,7 +225,7 @@ fn renders_that_continue_one_another_average_to_one_render_of_all_their_samples(
     let scene = under_sky(vec![sphere], Background::Solid(Vec3::ONE), Vec3::new(0.0, 0.5, 3.0), 45.0);
     let renderer = CpuRenderer::new(&scene);
     let pass = |first_sample, samples_per_pixel| {
-        renderer.render(&RenderSettings { first_sample, samples_per_pixel, ..path_settings(16, 1, 4) })
+        renderer.render(&RenderSettings { first_sample, samples_per_pixel, ..path_settings(16, 1, 4, SEED) })
     };
     let (early, late, all) = (pass(0, 4), pass(4, 8), pass(0, 12));
     for ((a, b), whole) in early.color.iter().zip(&late.color).zip(&all.color) {
@@ -265,7 +256,7 @@ fn an_emissive_mesh_lights_the_floor_as_a_quad_light_of_its_radiance() {
         };
         Scene { background: Background::Solid(Vec3::ZERO), ..scene(camera, lights, objects) }
     };
-    let settings = path_settings(24, 64, 3);
+    let settings = path_settings(24, 64, 3, SEED);
     let by_light = CpuRenderer::new(&view(vec![floor()], vec![quad])).render(&settings);
     let by_mesh = CpuRenderer::new(&view(vec![floor(), mesh_object("panel", panel, glowing)], vec![]))
         .render(&settings);
