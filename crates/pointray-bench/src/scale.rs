@@ -201,7 +201,9 @@ fn prep_rung(
     if route == PrepRoute::Streamed {
         let peaks = StagePeaks::new(progress);
         let count = (TileCount::AtLeast(1), budget);
-        let (prepped, prep) = timed(|| prep_streamed(&mut stream, &settings, count, store, &peaks));
+        let (prepped, prep) = timed(|| {
+            prep_streamed(&mut stream, &settings, count, (store, pointray_io::folder_of(store)), &peaks)
+        });
         prepped.map_err(|source| BenchError::StreamedPrep { case: label.into(), source })?;
         let (read, store_write) = (Duration::ZERO, Duration::ZERO);
         return Ok(RungPrep { route: "streamed", read, prep, store_write, peak: peaks.overall() });

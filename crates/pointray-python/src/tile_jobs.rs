@@ -42,7 +42,15 @@ pub fn prep_tile(
         .map_err(|e| to_python(&e))?;
         let mut stream =
             PointStream::open(&points_path, columns.as_ref(), memory).map_err(|e| to_python(&e))?;
-        prep_one_tile(&mut stream, &settings, cut, memory, &output, &NoProgress).map_err(|e| to_python(&e))
+        prep_one_tile(
+            &mut stream,
+            &settings,
+            cut,
+            memory,
+            (&output, pointray_io::folder_of(&output)),
+            &NoProgress,
+        )
+        .map_err(|e| to_python(&e))
     })
 }
 

@@ -232,7 +232,8 @@ struct Run<'a> {
 impl<'a> Run<'a> {
     fn open(path: &'a Path, record_bytes: usize) -> Result<Self, StreamError> {
         let scratch = |e| StreamError::scratch(path, e);
-        let file = File::open(path).map_err(scratch)?;
+        // Writable, so that what the merge has read can be given back.
+        let file = std::fs::OpenOptions::new().read(true).write(true).open(path).map_err(scratch)?;
         let records = file.metadata().map_err(scratch)?.len() / record_bytes as u64;
         Ok(Self { path, file, record_bytes, records })
     }
@@ -241,6 +242,14 @@ impl<'a> Run<'a> {
         self.file
             .read_exact_at(buffer, record * self.record_bytes as u64)
             .map_err(|e| StreamError::scratch(self.path, e))
+    }
+
+    /// Gives the disk (or memory) of the bytes `bytes` back: the merge reads each record once,
+    /// so the runs shrink as the sorted file grows and the scratch peaks near one copy of the
+    /// points, not two. Where the file system cannot, the runs keep their room until removed.
+    fn release(&self, bytes: Range<u64>) {
+        let flags = rustix::fs::FallocateFlags::PUNCH_HOLE | rustix::fs::FallocateFlags::KEEP_SIZE;
+        let _ = rustix::fs::fallocate(&self.file, flags, bytes.start, bytes.end - bytes.start);
     }
 
     fn key_at(&self, record: u64) -> Result<RecordKey, StreamError> {
@@ -262,11 +271,17 @@ impl<'a> Run<'a> {
     }
 }
 
-/// A stretch of a run read a buffer at a time.
+/// File systems free whole blocks of this size or its multiples; a hole punched across part
+/// of one only zeroes it.
+const RELEASE_ALIGN: u64 = 4096;
+
+/// A stretch of a run read a buffer at a time, its bytes given back as they are read.
 struct RunCursor<'a> {
     run: &'a Run<'a>,
     /// The records not yet read into the buffer.
     unread: Range<u64>,
+    /// The byte up to which the stretch was given back.
+    released: u64,
     buffer: Vec<u8>,
     /// Where the current record starts in the buffer.
     at: usize,
@@ -276,7 +291,8 @@ struct RunCursor<'a> {
 impl<'a> RunCursor<'a> {
     fn new(run: &'a Run<'a>, records: Range<u64>, buffer_bytes: usize) -> Result<Self, StreamError> {
         let capacity = (buffer_bytes / run.record_bytes).max(1) as u64;
-        let mut cursor = Self { run, unread: records, buffer: Vec::new(), at: 0, capacity };
+        let released = records.start * run.record_bytes as u64;
+        let mut cursor = Self { run, unread: records, released, buffer: Vec::new(), at: 0, capacity };
         cursor.refill()?;
         Ok(cursor)
     }
@@ -299,7 +315,48 @@ impl<'a> RunCursor<'a> {
         self.buffer.resize(records as usize * self.run.record_bytes, 0);
         self.run.read_at(&mut self.buffer, self.unread.start)?;
         self.unread.start += records;
+        // Whole blocks as they are read, and the stretch's last bytes at its end: a block
+        // shared with the next stretch is zeroed only in the part already read.
+        let read_to = self.unread.start * self.run.record_bytes as u64;
+        let release_to =
+            if self.unread.is_empty() { read_to } else { read_to / RELEASE_ALIGN * RELEASE_ALIGN };
+        if release_to > self.released {
+            self.run.release(self.released..release_to);
+            self.released = release_to;
+        }
         self.at = 0;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::os::unix::fs::MetadataExt;
+
+    use super::*;
+
+    /// Bytes the file system holds for `path`.
+    fn allocated(path: &Path) -> u64 {
+        std::fs::metadata(path).unwrap().blocks() * 512
+    }
+
+    #[test]
+    fn a_run_read_to_its_end_gives_its_room_back() {
+        let dir = tempfile::tempdir().unwrap();
+        let (path, record_bytes, records) = (dir.path().join("run-0"), 36, 100_000u64);
+        let bytes: Vec<u8> = (0..record_bytes as u64 * records).map(|i| (i % 251) as u8).collect();
+        std::fs::write(&path, &bytes).unwrap();
+        let held = allocated(&path);
+        assert!(held >= bytes.len() as u64, "{held} bytes held for {}", bytes.len());
+        let run = Run::open(&path, record_bytes).unwrap();
+        let mut cursor = RunCursor::new(&run, 0..records, 64 << 10).unwrap();
+        let mut read = cursor.current().unwrap().to_vec();
+        while let Some(record) = cursor.advance().unwrap() {
+            read.extend_from_slice(record);
+        }
+        assert!(read == bytes, "every record read as written");
+        let left = allocated(&path);
+        assert!(left <= held / 100, "{left} of {held} bytes still held");
+        assert_eq!(std::fs::metadata(&path).unwrap().len(), bytes.len() as u64, "the run keeps its length");
     }
 }

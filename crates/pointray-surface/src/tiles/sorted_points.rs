@@ -109,7 +109,7 @@ impl SortedPoints {
     ) -> Result<(), StreamError> {
         let meeting: Vec<usize> = (0..self.blocks.len())
             .into_par_iter()
-            .filter(|&block| region.may_reach_box(self.blocks[block]))
+            .filter(|&block| !self.block_within(block, skip) && region.may_reach_box(self.blocks[block]))
             .collect();
         let (mut points, mut records) = (Vec::new(), Vec::new());
         for group in meeting.chunks(BLOCKS_AT_A_TIME * rayon::current_num_threads()) {
@@ -131,6 +131,13 @@ impl SortedPoints {
             batch(&points, &records);
         }
         Ok(())
+    }
+
+    /// Whether every record of `block` lies in `range`: a tile's own blocks hold no halo,
+    /// and reading them again cost as much as the halo's own blocks.
+    fn block_within(&self, block: usize, range: &Range<u64>) -> bool {
+        let first = block as u64 * BLOCK_POINTS;
+        range.start <= first && (first + BLOCK_POINTS).min(self.count) <= range.end
     }
 
     /// The points of `block` in `region`, outside `skip`, with their records.

@@ -1,5 +1,6 @@
 //! Prep in bounded memory, from a cloud read in chunks: sorted out of core and prepped tile
-//! by tile (`tiles::streamed_tiles`) in a scratch folder beside the output, which is removed when
+//! by tile (`tiles::streamed_tiles`) in a scratch folder made in the folder the caller names
+//! (the output's, unless the disk there cannot hold the sorted points), which is removed when
 //! done or interrupted. One process preps every tile and merges them; or a job preps one
 //! tile of a cut into a tile file, and a merge of all the tile files writes the same store.
 
@@ -20,16 +21,17 @@ use crate::tiles::streamed_tiles::{Gathered, StreamPlan, TileCount};
 use crate::tiles::tile_file::write_tile_file;
 use crate::tiles::tiled_prep::TilePatches;
 
-/// Preps the whole of `stream` within `memory` and writes the store `output`. A tile whose
-/// halo would not fit is split in two (jobs of a fixed cut refuse instead).
+/// Preps the whole of `stream` within `memory` and writes the store `output`, sorting the
+/// points in a scratch folder made in `scratch_parent`. A tile whose halo would not fit is
+/// split in two (jobs of a fixed cut refuse instead).
 pub fn prep_streamed(
     stream: &mut PointStream,
     settings: &PrepSettings,
     (count, memory): (TileCount, MemoryBudget),
-    output: &Path,
+    (output, scratch_parent): (&Path, &Path),
     progress: &dyn PrepProgress,
 ) -> Result<MergeSummary, StreamError> {
-    let scratch = TemporaryFolder::new_in(pointray_io::folder_of(output))?;
+    let scratch = TemporaryFolder::new_in(scratch_parent)?;
     let plan = StreamPlan::new(stream, settings, (count, memory), scratch.path(), progress)?;
     progress.stage_started(Stage::PrepTiles, plan.points());
     let started = std::time::Instant::now();
@@ -96,16 +98,17 @@ fn joined<T>(thread: std::thread::ScopedJoinHandle<'_, T>) -> T {
 }
 
 /// Preps tile `index` of `count` of `stream` within `memory` and writes it alone to the
-/// tile file `output`; returns the points the tile owns.
+/// tile file `output`, sorting the points in a scratch folder made in `scratch_parent`;
+/// returns the points the tile owns.
 pub fn prep_one_tile(
     stream: &mut PointStream,
     settings: &PrepSettings,
     (index, count): (usize, usize),
     memory: MemoryBudget,
-    output: &Path,
+    (output, scratch_parent): (&Path, &Path),
     progress: &dyn PrepProgress,
 ) -> Result<u64, StreamError> {
-    let scratch = TemporaryFolder::new_in(pointray_io::folder_of(output))?;
+    let scratch = TemporaryFolder::new_in(scratch_parent)?;
     let plan =
         StreamPlan::new(stream, settings, (TileCount::Exactly(count), memory), scratch.path(), progress)?;
     progress.stage_started(Stage::PrepTiles, plan.tile_points(index));

@@ -135,7 +135,14 @@ fn prep_streamed_file(relative: &str, output: &Path) -> PatchSet {
     let settings = PrepSettings::default();
     let budget = MemoryBudget { bytes: 1 << 30 };
     let mut stream = PointStream::open(&pointray_test_support::data_file(relative), None, budget).unwrap();
-    prep_streamed(&mut stream, &settings, (TileCount::Exactly(4), budget), output, &NoProgress).unwrap();
+    prep_streamed(
+        &mut stream,
+        &settings,
+        (TileCount::Exactly(4), budget),
+        (output, pointray_io::folder_of(output)),
+        &NoProgress,
+    )
+    .unwrap();
     patch_store::read(output).unwrap()
 }
 

@@ -53,6 +53,11 @@ fn open(path: &Path) -> PointStream {
     PointStream::open(path, None, PLENTY).unwrap()
 }
 
+/// The store `output` with its scratch folder made beside it.
+fn places(output: &Path) -> (&Path, &Path) {
+    (output, output.parent().expect("a file in a folder"))
+}
+
 /// Only the store and the input are left: scratch folders are gone.
 fn assert_no_scratch(dir: &Path, expected: usize) {
     let names: Vec<_> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name()).collect();
@@ -67,12 +72,15 @@ fn streamed_tiles_write_the_in_memory_tiled_store() {
     let in_memory = dir.path().join("in_memory.patches");
     patch_store::write(&in_memory, &prep_tiled(&cloud, &settings, 8, &NoProgress).unwrap()).unwrap();
     let streamed = dir.path().join("streamed.patches");
+    // The points sorted in a folder of their own, as on another disk.
+    let scratch = tempfile::tempdir().unwrap();
+    let cut = (TileCount::Exactly(8), PLENTY);
     let summary =
-        prep_streamed(&mut open(&path), &settings, (TileCount::Exactly(8), PLENTY), &streamed, &NoProgress)
-            .unwrap();
+        prep_streamed(&mut open(&path), &settings, cut, (&streamed, scratch.path()), &NoProgress).unwrap();
     assert_eq!((summary.tiles, summary.input_points), (8, cloud.len() as u64));
     assert!(std::fs::read(&streamed).unwrap() == std::fs::read(&in_memory).unwrap(), "same bytes");
     assert_no_scratch(dir.path(), 3);
+    assert_no_scratch(scratch.path(), 0);
 }
 
 #[test]
@@ -86,7 +94,7 @@ fn streamed_tiles_that_merge_points_write_the_in_memory_tiled_patches() {
         assert_eq!(in_memory.color_neighbors.is_empty(), !coloured);
         let streamed = dir.path().join("streamed.patches");
         let cut = (TileCount::Exactly(8), PLENTY);
-        prep_streamed(&mut open(&path), &settings, cut, &streamed, &NoProgress).unwrap();
+        prep_streamed(&mut open(&path), &settings, cut, places(&streamed), &NoProgress).unwrap();
         let in_memory_store = dir.path().join("in_memory.patches");
         patch_store::write(&in_memory_store, &in_memory).unwrap();
         let streamed = patch_store::read(&streamed).unwrap();
@@ -102,10 +110,11 @@ fn tiles_prepped_alone_merge_into_the_single_process_store() {
     let dir = tempfile::tempdir().unwrap();
     let (path, settings) = sheet_with_duplicates_file(dir.path(), true);
     let whole = dir.path().join("whole.patches");
-    prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(4), PLENTY), &whole, &NoProgress).unwrap();
+    prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(4), PLENTY), places(&whole), &NoProgress)
+        .unwrap();
     let tiles: Vec<PathBuf> = (0..4).rev().map(|i| dir.path().join(format!("tile{i}.tile"))).collect();
     for (i, tile) in tiles.iter().rev().enumerate() {
-        prep_one_tile(&mut open(&path), &settings, (i, 4), PLENTY, tile, &NoProgress).unwrap();
+        prep_one_tile(&mut open(&path), &settings, (i, 4), PLENTY, places(tile), &NoProgress).unwrap();
     }
     let merged = dir.path().join("merged.patches");
     merge_tile_files(&tiles, &merged, PLENTY, &NoProgress).unwrap();
@@ -129,9 +138,14 @@ fn budgets_too_small_are_refused_with_what_would_fit() {
     let (path, settings) = sheet_file(dir.path());
     let output = dir.path().join("out.patches");
     let tiny = MemoryBudget { bytes: (32 << 20) + (512 << 10) };
-    let error =
-        prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(1), tiny), &output, &NoProgress)
-            .unwrap_err();
+    let error = prep_streamed(
+        &mut open(&path),
+        &settings,
+        (TileCount::AtLeast(1), tiny),
+        places(&output),
+        &NoProgress,
+    )
+    .unwrap_err();
     assert!(matches!(error, StreamError::OverBudget { .. }), "{error}");
     assert!(error.to_string().contains("cannot hold one tile"), "{error}");
     let advised: u64 = error
@@ -143,8 +157,13 @@ fn budgets_too_small_are_refused_with_what_would_fit() {
     // A lower bound: tiles that small may still find halos beyond it, but the budget holds the
     // patch map and one tile.
     let advised = MemoryBudget { bytes: advised << 20 };
-    let result =
-        prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(1), advised), &output, &NoProgress);
+    let result = prep_streamed(
+        &mut open(&path),
+        &settings,
+        (TileCount::AtLeast(1), advised),
+        places(&output),
+        &NoProgress,
+    );
     assert!(
         result.as_ref().err().is_none_or(|error| !error.to_string().contains("cannot hold")),
         "{:?}",
@@ -152,7 +171,8 @@ fn budgets_too_small_are_refused_with_what_would_fit() {
     );
     let _ = std::fs::remove_file(&output);
     let small = MemoryBudget { bytes: 38 << 20 };
-    let error = prep_one_tile(&mut open(&path), &settings, (0, 1), small, &output, &NoProgress).unwrap_err();
+    let error =
+        prep_one_tile(&mut open(&path), &settings, (0, 1), small, places(&output), &NoProgress).unwrap_err();
     assert!(error.to_string().contains("cut the cloud into at least"), "{error}");
     assert!(!output.exists());
     assert_no_scratch(dir.path(), 1);
@@ -164,7 +184,13 @@ fn a_streamed_prep_called_from_a_thread_pool_writes_the_same_store() {
     let (path, settings) = sheet_file(dir.path());
     let (alone, within) = (dir.path().join("alone.patches"), dir.path().join("within.patches"));
     let prep = |output: &Path| {
-        prep_streamed(&mut open(&path), &settings, (TileCount::Exactly(4), PLENTY), output, &NoProgress)
+        prep_streamed(
+            &mut open(&path),
+            &settings,
+            (TileCount::Exactly(4), PLENTY),
+            places(output),
+            &NoProgress,
+        )
     };
     prep(&alone).unwrap();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
