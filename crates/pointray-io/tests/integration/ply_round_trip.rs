@@ -53,6 +53,31 @@ fn geo_referenced_coordinates_are_written_as_double_and_kept_exactly() {
 }
 
 #[test]
+fn positions_alone_survive_each_encoding_as_float_and_as_double() {
+    let dir = tempfile::tempdir().unwrap();
+    for offset in [0.0, 636_000.123_456_789] {
+        let positions = full_cloud(offset).positions;
+        let cloud = PointCloud::from_positions(positions);
+        let bodies: Vec<Vec<u8>> = ENCODINGS
+            .iter()
+            .map(|&encoding| {
+                let path = dir.path().join(format!("positions-{offset}-{encoding}.ply"));
+                ply::write_point_cloud_as(&path, &cloud, encoding).unwrap();
+                assert_eq!(ply::read_point_cloud(&path).unwrap(), cloud, "{encoding}, offset {offset}");
+                let bytes = std::fs::read(&path).unwrap();
+                let end = bytes.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+                bytes[end..].to_vec()
+            })
+            .collect();
+        // The little-endian body, written straight from the positions, is the big-endian one
+        // byte-swapped value by value.
+        let value_bytes = if offset == 0.0 { 4 } else { 8 };
+        let swapped: Vec<u8> = bodies[2].chunks(value_bytes).flat_map(|v| v.iter().rev().copied()).collect();
+        assert!(bodies[1] == swapped, "offset {offset}: little-endian body");
+    }
+}
+
+#[test]
 fn small_coordinates_are_written_as_float() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("small.ply");
