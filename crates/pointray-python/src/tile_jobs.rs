@@ -6,8 +6,9 @@ use std::path::PathBuf;
 use pointray_io::formats::ColumnSpec;
 use pointray_io::{MemoryBudget, PointStream};
 use pointray_surface::NoProgress;
+use pointray_surface::tiles::kept_sort::is_kept_sort;
 use pointray_surface::tiles::merge::merge_tile_files;
-use pointray_surface::tiles::streamed_prep::prep_one_tile;
+use pointray_surface::tiles::streamed_prep::{prep_one_kept_tile, prep_one_tile};
 use pyo3::prelude::*;
 
 use crate::errors::{PointrayError, to_python};
@@ -18,7 +19,8 @@ const MOST_TILES: usize = 65_536;
 
 /// Preps tile I of the N tiles (`cut`: (I, N)) `points_path` is cut into and writes the tile file
 /// `output`; returns the points the tile owns. Every job of one cut reads and sorts the
-/// input the same way, so separate processes or machines agree on the cut.
+/// input the same way, so separate processes or machines agree on the cut; a folder that
+/// `pointray prep --keep-sort` wrote spares each job that sort.
 #[pyfunction]
 #[pyo3(signature = (points_path, cut, output, options, memory=None, columns=None))]
 pub fn prep_tile(
@@ -40,6 +42,10 @@ pub fn prep_tile(
             std::slice::from_ref(&output),
         )
         .map_err(|e| to_python(&e))?;
+        if is_kept_sort(&points_path) {
+            return prep_one_kept_tile(&points_path, &settings, cut, memory, &output, &NoProgress)
+                .map_err(|e| to_python(&e));
+        }
         let mut stream =
             PointStream::open(&points_path, columns.as_ref(), memory).map_err(|e| to_python(&e))?;
         prep_one_tile(

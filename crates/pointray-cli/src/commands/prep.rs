@@ -10,8 +10,9 @@ use pointray_io::{MemoryBudget, PointStream, SweepPoses};
 use pointray_patches::PrepSettings;
 use pointray_surface::peak_memory::peak_rss;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
+use pointray_surface::tiles::kept_sort::{is_kept_sort, keep_sort};
 use pointray_surface::tiles::merge::{MergeSummary, merge_tile_files};
-use pointray_surface::tiles::streamed_prep::{prep_one_tile, prep_streamed};
+use pointray_surface::tiles::streamed_prep::{prep_one_kept_tile, prep_one_tile, prep_streamed};
 use pointray_surface::tiles::streamed_tiles::TileCount;
 use pointray_surface::{PrepError, prep_owned};
 
@@ -48,6 +49,11 @@ pub struct PrepArgs {
     /// The number of tiles the cloud is cut into, with `--tile`.
     #[arg(long, value_name = "N", requires = "tile", value_parser = clap::value_parser!(u32).range(1..=65_536))]
     of: Option<u32>,
+    /// Sort the cloud along its curve once and keep the sort in the new folder `--output`:
+    /// tile jobs given that folder as their points (`--tile I --of N`) then read only their
+    /// tiles, where each would otherwise read and sort the whole cloud.
+    #[arg(long, conflicts_with_all = ["tiles", "tile", "merge", "poses"])]
+    keep_sort: bool,
     /// Merge these tile files (every tile of one cut) into the store `--output`.
     #[arg(long, value_name = "TILE_FILES", num_args = 1.., conflicts_with = "points")]
     merge: Vec<PathBuf>,
@@ -86,14 +92,12 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     };
     let settings = args.settings.settings()?;
     if let (Some(tile), Some(of)) = (args.tile, args.of) {
+        return prep_tile_job(points, &settings, (tile, of), memory, &args, &bar);
+    }
+    if args.keep_sort {
         let mut stream = args.columns.open_stream(points, memory)?;
-        let cut = (tile as usize, of as usize);
-        let owned = prep_one_tile(&mut stream, &settings, cut, memory, (&args.output, args.scratch()), &bar)?;
-        println!(
-            "wrote tile {tile} of {of} ({owned} of {} points) to {}",
-            stream.len(),
-            args.output.display()
-        );
+        let sorted = keep_sort(&mut stream, &settings, memory, &args.output, &bar)?;
+        println!("sorted {sorted} points into {} for tile jobs", args.output.display());
         return Ok(());
     }
     let started = Instant::now();
@@ -114,6 +118,26 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         println!("  {:<22} {:>8.3} s", stage.name(), elapsed.as_secs_f64());
     }
     report_store(&merged, &args.output);
+    Ok(())
+}
+
+/// Preps tile `tile` of `of` of the cloud `points`, or of the sort kept in that folder.
+fn prep_tile_job(
+    points: &Path,
+    settings: &PrepSettings,
+    (tile, of): (u32, u32),
+    memory: MemoryBudget,
+    args: &PrepArgs,
+    bar: &PrepBar,
+) -> anyhow::Result<()> {
+    let cut = (tile as usize, of as usize);
+    let owned = if is_kept_sort(points) {
+        prep_one_kept_tile(points, settings, cut, memory, &args.output, bar)?
+    } else {
+        let mut stream = args.columns.open_stream(points, memory)?;
+        prep_one_tile(&mut stream, settings, cut, memory, (&args.output, args.scratch()), bar)?
+    };
+    println!("wrote tile {tile} of {of} ({owned} points of its own) to {}", args.output.display());
     Ok(())
 }
 

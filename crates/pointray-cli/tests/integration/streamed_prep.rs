@@ -68,6 +68,18 @@ fn tiles_prepped_by_parallel_processes_merge_into_the_single_process_store() {
     let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(left.len(), 7, "no scratch folder is left: {left:?}");
 
+    // The same jobs on one sort kept for them write the same tiles.
+    let keep = [&["prep", "sheet.ply", "--keep-sort", "-o", "sheet.sorted"][..], &sensor].concat();
+    let (ok, stdout, stderr) = pointray_in(dir.path(), &keep);
+    assert!(ok && stdout.contains("sorted 22500 points into sheet.sorted"), "{stdout}{stderr}");
+    for i in 0..4 {
+        let (tile, index) = (format!("kept{i}.tile"), i.to_string());
+        let job = [&["prep", "sheet.sorted", "-o", &tile, "--tile", &index, "--of", "4"][..], &sensor];
+        let (ok, _, stderr) = pointray_in(dir.path(), &job.concat());
+        assert!(ok, "{stderr}");
+        assert!(read(&tile) == read(&format!("tile{i}.tile")), "tile {i} from the kept sort");
+    }
+
     let (ok, _, stderr) = pointray_in(dir.path(), &["prep", "--merge", "tile0.tile", "-o", "part.patches"]);
     assert!(!ok && stderr.contains("tile 1 of 4 is missing"), "{stderr}");
     let (ok, _, stderr) = pointray_in(dir.path(), &["prep", "--merge", "tile0.tile", "-o", "tile0.tile"]);

@@ -5,7 +5,8 @@
 //! in bounded memory: the out-of-core sort (`point_records`, `sorted_points`,
 //! `out_of_core_sort`), the plan of tiles within a budget (`streamed_tiles`,
 //! `stream_budget`), the spool of patches (`spool`) and the whole run (`streamed_prep`).
-//! A tile job of a cluster writes a tile file (`tile_file`), and `merge` joins them.
+//! A tile job of a cluster writes a tile file (`tile_file`), and `merge` joins them; jobs may
+//! share one sort kept in a folder (`kept_sort`).
 //!
 //! It may use the core pipeline at the crate root (`prep` on one tile, its checks, Morton
 //! codes and neighbours, progress), `pointray-patches` (the patch set and its store),
@@ -15,6 +16,7 @@ mod cloud_subset;
 mod curve_span;
 mod halo_reach;
 mod halo_test;
+pub mod kept_sort;
 pub mod merge;
 mod out_of_core_sort;
 mod patch_map;

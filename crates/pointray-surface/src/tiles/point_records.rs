@@ -34,6 +34,42 @@ impl RecordLayout {
         }
     }
 
+    /// The attributes as bits, in the order of the fields, for a kept sort's index.
+    pub(crate) fn flags(&self) -> u8 {
+        [self.normals, self.colors, self.intensities, self.classifications, self.rings, self.sensor_origins]
+            .iter()
+            .enumerate()
+            .map(|(bit, &has)| u8::from(has) << bit)
+            .sum()
+    }
+
+    /// The layout of `flags`; none when a bit past the six attributes is set.
+    pub(crate) fn of_flags(flags: u8) -> Option<Self> {
+        let has = |bit: u8| flags & (1 << bit) != 0;
+        (flags < 1 << 6).then(|| Self {
+            normals: has(0),
+            colors: has(1),
+            intensities: has(2),
+            classifications: has(3),
+            rings: has(4),
+            sensor_origins: has(5),
+        })
+    }
+
+    /// The bytes a point's attributes take in a `PointCloud`, as the stream that was sorted
+    /// counted them.
+    pub(crate) fn attribute_bytes(&self) -> u64 {
+        pointray_io::AttributeBytes {
+            normals: self.normals,
+            colors: self.colors,
+            intensities: self.intensities,
+            classifications: self.classifications,
+            rings: self.rings,
+            sensor_origins: self.sensor_origins,
+        }
+        .per_point()
+    }
+
     pub(crate) fn bytes(&self) -> usize {
         KEY_BYTES
             + 24

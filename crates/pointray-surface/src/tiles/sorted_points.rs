@@ -36,6 +36,43 @@ pub(crate) struct SortedPoints {
 }
 
 impl SortedPoints {
+    /// The sorted records of `path`, laid out as `layout` and recentred by `offset`, with the
+    /// bounds of their blocks: a sort kept by `tiles::kept_sort`. The file must hold `count`
+    /// whole records, and the bounds one entry per block.
+    pub(crate) fn reopen(
+        path: &Path,
+        (layout, offset, count): (RecordLayout, DVec3, u64),
+        blocks: Vec<BlockBounds>,
+        sensor_position: Option<DVec3>,
+    ) -> Result<Self, String> {
+        let file = File::open(path).map_err(|e| e.to_string())?;
+        let length = file.metadata().map_err(|e| e.to_string())?.len();
+        let expected = count.checked_mul(layout.bytes() as u64);
+        if expected != Some(length) {
+            return Err(format!("{length} bytes of records, not the {count} points its index counts"));
+        }
+        if blocks.len() as u64 != count.div_ceil(BLOCK_POINTS) {
+            return Err(format!("{} block bounds for {count} points", blocks.len()));
+        }
+        Ok(Self { path: path.to_path_buf(), file, layout, offset, count, blocks, sensor_position })
+    }
+
+    pub(crate) fn path(&self) -> &Path {
+        &self.path
+    }
+
+    pub(crate) fn layout(&self) -> RecordLayout {
+        self.layout
+    }
+
+    pub(crate) fn blocks(&self) -> &[BlockBounds] {
+        &self.blocks
+    }
+
+    pub(crate) fn sensor_position(&self) -> Option<DVec3> {
+        self.sensor_position
+    }
+
     pub(crate) fn len(&self) -> u64 {
         self.count
     }

@@ -13,6 +13,7 @@ use pointray_io::{MemoryBudget, PointStream};
 use pointray_patches::PrepSettings;
 
 use crate::prep_progress::{PrepProgress, Stage};
+use crate::tiles::kept_sort::open_kept;
 use crate::tiles::merge::MergeSummary;
 use crate::tiles::spool::TileSpool;
 use crate::tiles::stream_budget::MIN_TILE_POINTS;
@@ -111,6 +112,31 @@ pub fn prep_one_tile(
     let scratch = TemporaryFolder::new_in(scratch_parent)?;
     let plan =
         StreamPlan::new(stream, settings, (TileCount::Exactly(count), memory), scratch.path(), progress)?;
+    prep_planned_tile(&plan, settings, (index, count), output, progress)
+}
+
+/// Preps tile `index` of `count` of the cloud whose sort `tiles::kept_sort` kept in
+/// `folder`, within `memory`, and writes it alone to the tile file `output`: the tile file
+/// `prep_one_tile` writes from the cloud itself, without reading and sorting the whole cloud.
+pub fn prep_one_kept_tile(
+    folder: &Path,
+    settings: &PrepSettings,
+    (index, count): (usize, usize),
+    memory: MemoryBudget,
+    output: &Path,
+    progress: &dyn PrepProgress,
+) -> Result<u64, StreamError> {
+    let plan = open_kept(folder, settings, (TileCount::Exactly(count), memory))?;
+    prep_planned_tile(&plan, settings, (index, count), output, progress)
+}
+
+fn prep_planned_tile(
+    plan: &StreamPlan,
+    settings: &PrepSettings,
+    (index, count): (usize, usize),
+    output: &Path,
+    progress: &dyn PrepProgress,
+) -> Result<u64, StreamError> {
     progress.stage_started(Stage::PrepTiles, plan.tile_points(index));
     let started = std::time::Instant::now();
     let tile = plan.prep_tile(settings, index)?;

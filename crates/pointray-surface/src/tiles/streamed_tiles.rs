@@ -42,6 +42,70 @@ pub enum TileCount {
     Exactly(usize),
 }
 
+/// The box of a cloud's points (min, max), the offset it is recentred by and how many
+/// points it holds: what a first read finds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct CloudBox {
+    pub bounds: (DVec3, DVec3),
+    pub offset: DVec3,
+    pub points: u64,
+}
+
+/// What a cloud's box and the settings give, checked: the tiles' shared context, the curve,
+/// the number of tiles and the budget.
+struct Cut {
+    frame: TileContext,
+    grid: MortonGrid,
+    tiles: usize,
+    budget: StreamBudget,
+}
+
+impl Cut {
+    fn new(
+        input: &Path,
+        cloud: &CloudBox,
+        settings: &PrepSettings,
+        (count, memory, attribute_bytes): (TileCount, MemoryBudget, u64),
+    ) -> Result<Self, StreamError> {
+        let budget = StreamBudget::new(memory, attribute_bytes);
+        let (points, (min, max)) = (cloud.points, cloud.bounds);
+        let prep_error = |source| StreamError::Prep { path: input.to_path_buf(), source };
+        let k = settings.k.max(settings.normal_k) as usize;
+        if points <= k as u64 {
+            return Err(prep_error(PrepError::TooFewPoints { found: points as usize, k }));
+        }
+        validate_bounds(min, max, points as usize).map_err(prep_error)?;
+        if points > u64::from(u32::MAX) {
+            let problem = format!("{points} points: prep numbers points with 32 bits, at most {}", u32::MAX);
+            return Err(prep_error(PrepError::TooLarge { problem }));
+        }
+        let tiles = tile_count(count, points, settings, &budget, input)?;
+        let budget = budget.with_store_writing(points);
+        let offset = cloud.offset;
+        let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
+        let frame = TileContext {
+            offset,
+            duplicate_distance: largest_merge_distance(
+                low.abs().max(high.abs()).max_element(),
+                settings.duplicate_tolerance,
+            ),
+            bounds: (min, max),
+            points: points as usize,
+        };
+        Ok(Self { frame, grid: MortonGrid::over(low, high), tiles, budget })
+    }
+
+    /// The plan over `sorted`, the cloud of `input` sorted along this cut's curve.
+    fn over(self, input: PathBuf, sorted: SortedPoints) -> StreamPlan {
+        let Self { frame, grid, tiles, budget } = self;
+        let tiles = even_ranges(sorted.len() as usize, tiles)
+            .into_iter()
+            .map(|range| range.start as u64..range.end as u64)
+            .collect();
+        StreamPlan { input, frame, grid, sorted, tiles, budget }
+    }
+}
+
 /// A cloud sorted along its curve in scratch files, cut into tiles.
 pub struct StreamPlan {
     input: PathBuf,
@@ -63,46 +127,42 @@ impl StreamPlan {
         progress: &dyn PrepProgress,
     ) -> Result<Self, StreamError> {
         let input = stream.path().to_path_buf();
-        let budget = StreamBudget::new(memory, stream.attribute_bytes_per_point());
-        let (min, max, centre) = survey_bounds(stream, budget.chunk_points(), progress)?;
-        let points = stream.len();
-        let prep_error = |source| StreamError::Prep { path: input.clone(), source };
-        let k = settings.k.max(settings.normal_k) as usize;
-        if points <= k as u64 {
-            return Err(prep_error(PrepError::TooFewPoints { found: points as usize, k }));
-        }
-        validate_bounds(min, max, points as usize).map_err(prep_error)?;
-        if points > u64::from(u32::MAX) {
-            let problem = format!("{points} points: prep numbers points with 32 bits, at most {}", u32::MAX);
-            return Err(prep_error(PrepError::TooLarge { problem }));
-        }
-        let tiles = tile_count(count, points, settings, &budget, &input)?;
-        let budget = budget.with_store_writing(points);
-        let offset = centre.centre();
-        let (low, high) = ((min - offset).as_vec3(), (max - offset).as_vec3());
-        let frame = TileContext {
-            offset,
-            duplicate_distance: largest_merge_distance(
-                low.abs().max(high.abs()).max_element(),
-                settings.duplicate_tolerance,
-            ),
-            bounds: (min, max),
-            points: points as usize,
-        };
-        let grid = MortonGrid::over(low, high);
+        let attribute_bytes = stream.attribute_bytes_per_point();
+        let chunk_points = StreamBudget::new(memory, attribute_bytes).chunk_points();
+        let (min, max, centre) = survey_bounds(stream, chunk_points, progress)?;
+        let cloud = CloudBox { bounds: (min, max), offset: centre.centre(), points: stream.len() };
+        let cut = Cut::new(&input, &cloud, settings, (count, memory, attribute_bytes))?;
         let plan = SortPlan {
-            grid,
-            offset,
-            chunk_points: budget.chunk_points(),
-            run_bytes: budget.run_bytes(),
+            grid: cut.grid,
+            offset: cloud.offset,
+            chunk_points: cut.budget.chunk_points(),
+            run_bytes: cut.budget.run_bytes(),
             folder: scratch,
         };
         let sorted = sort_points(stream, &plan, progress)?;
-        let tiles = even_ranges(sorted.len() as usize, tiles)
-            .into_iter()
-            .map(|range| range.start as u64..range.end as u64)
-            .collect();
-        Ok(Self { input, frame, grid, sorted, tiles, budget })
+        Ok(cut.over(input, sorted))
+    }
+
+    /// The plan over a cloud sorted once and kept (`tiles::kept_sort`), read from `folder`.
+    pub(crate) fn of_kept(
+        folder: &Path,
+        (cloud, sorted): (CloudBox, SortedPoints),
+        settings: &PrepSettings,
+        (count, memory): (TileCount, MemoryBudget),
+    ) -> Result<Self, StreamError> {
+        let attribute_bytes = sorted.layout().attribute_bytes();
+        let cut = Cut::new(folder, &cloud, settings, (count, memory, attribute_bytes))?;
+        Ok(cut.over(folder.to_path_buf(), sorted))
+    }
+
+    /// The box, recentring and point count of the whole cloud.
+    pub(crate) fn cloud_box(&self) -> CloudBox {
+        CloudBox { bounds: self.frame.bounds, offset: self.frame.offset, points: self.frame.points as u64 }
+    }
+
+    /// The sorted points, for keeping.
+    pub(crate) fn into_sorted(self) -> SortedPoints {
+        self.sorted
     }
 
     pub fn tile_count(&self) -> usize {

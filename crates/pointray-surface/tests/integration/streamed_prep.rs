@@ -12,9 +12,10 @@ use pointray_patches::PrepSettings;
 use pointray_patches::coarse_level::CoarseLevel;
 use pointray_patches::patch_store;
 use pointray_surface::NoProgress;
+use pointray_surface::tiles::kept_sort::{is_kept_sort, keep_sort};
 use pointray_surface::tiles::merge::merge_tile_files;
 use pointray_surface::tiles::stream_error::StreamError;
-use pointray_surface::tiles::streamed_prep::{prep_one_tile, prep_streamed};
+use pointray_surface::tiles::streamed_prep::{prep_one_kept_tile, prep_one_tile, prep_streamed};
 use pointray_surface::tiles::streamed_tiles::TileCount;
 use pointray_surface::tiles::tiled_prep::prep_tiled;
 
@@ -130,6 +131,41 @@ fn tiles_prepped_alone_merge_into_the_single_process_store() {
         merge_tile_files(std::slice::from_ref(&path), &dir.path().join("m.patches"), PLENTY, &NoProgress)
             .unwrap_err();
     assert!(error.to_string().contains("sheet.ply: not a pointray tile file"), "{error}");
+}
+
+#[test]
+fn tile_jobs_on_a_kept_sort_merge_into_the_single_process_store() {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, settings) = sheet_with_duplicates_file(dir.path(), true);
+    let whole = dir.path().join("whole.patches");
+    prep_streamed(&mut open(&path), &settings, (TileCount::AtLeast(4), PLENTY), places(&whole), &NoProgress)
+        .unwrap();
+    let kept = dir.path().join("sheet.sorted");
+    let points = keep_sort(&mut open(&path), &settings, PLENTY, &kept, &NoProgress).unwrap();
+    assert_eq!(points, read_point_cloud(&path).unwrap().len() as u64);
+    assert!(is_kept_sort(&kept) && !is_kept_sort(&path));
+    let tiles: Vec<PathBuf> = (0..4).map(|i| dir.path().join(format!("tile{i}.tile"))).collect();
+    for (i, tile) in tiles.iter().enumerate() {
+        prep_one_kept_tile(&kept, &settings, (i, 4), PLENTY, tile, &NoProgress).unwrap();
+    }
+    let merged = dir.path().join("merged.patches");
+    merge_tile_files(&tiles, &merged, PLENTY, &NoProgress).unwrap();
+    assert!(std::fs::read(&merged).unwrap() == std::fs::read(&whole).unwrap(), "same bytes");
+    // The input, the store, the kept sort, the tiles and their merge: no scratch is left.
+    assert_no_scratch(dir.path(), 4 + tiles.len());
+
+    let error = keep_sort(&mut open(&path), &settings, PLENTY, &kept, &NoProgress).unwrap_err();
+    assert!(error.to_string().contains("already exists"), "{error}");
+    let records = kept.join("points");
+    let length = std::fs::metadata(&records).unwrap().len();
+    std::fs::OpenOptions::new().write(true).open(&records).unwrap().set_len(length - 1).unwrap();
+    let error = prep_one_kept_tile(&kept, &settings, (0, 4), PLENTY, &dir.path().join("t.tile"), &NoProgress)
+        .unwrap_err();
+    assert!(error.to_string().contains("not the"), "{error}");
+    std::fs::write(kept.join("index"), b"PRSORT01").unwrap();
+    let error = prep_one_kept_tile(&kept, &settings, (0, 4), PLENTY, &dir.path().join("t.tile"), &NoProgress)
+        .unwrap_err();
+    assert!(error.to_string().contains("sheet.sorted: not a sort"), "{error}");
 }
 
 #[test]
