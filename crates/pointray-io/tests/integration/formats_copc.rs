@@ -53,6 +53,11 @@ fn u64_at(bytes: &[u8], at: usize) -> u64 {
     u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap())
 }
 
+/// Writes `value` as the little-endian u64 at byte `at`.
+fn set_u64_at(bytes: &mut [u8], at: usize, value: u64) {
+    bytes[at..at + 8].copy_from_slice(&value.to_le_bytes());
+}
+
 fn root_page_at(bytes: &[u8]) -> usize {
     u64_at(bytes, ROOT_PAGE_OFFSET_AT) as usize
 }
@@ -90,9 +95,9 @@ fn truncated_chunk_is_refused() {
     let mut truncated = bytes[..evlr_start - cut].to_vec();
     truncated.extend_from_slice(&bytes[evlr_start..]);
     let moved_evlr = (evlr_start - cut) as u64;
-    truncated[EVLR_START_AT..EVLR_START_AT + 8].copy_from_slice(&moved_evlr.to_le_bytes());
+    set_u64_at(&mut truncated, EVLR_START_AT, moved_evlr);
     let root = root_page_at(&bytes) - cut;
-    truncated[ROOT_PAGE_OFFSET_AT..ROOT_PAGE_OFFSET_AT + 8].copy_from_slice(&(root as u64).to_le_bytes());
+    set_u64_at(&mut truncated, ROOT_PAGE_OFFSET_AT, root as u64);
     let (_dir, path, error) = refused("cut.copc.laz", &truncated);
     assert_names_file(&path, &error, "outside the point data");
 }
@@ -101,7 +106,7 @@ fn truncated_chunk_is_refused() {
 fn chunk_offset_past_the_file_is_refused() {
     let mut bytes = copc_bytes();
     let at = entry_field_at(&bytes, 0, 16);
-    bytes[at..at + 8].copy_from_slice(&(1u64 << 40).to_le_bytes());
+    set_u64_at(&mut bytes, at, 1 << 40);
     let (_dir, path, error) = refused("far.copc.laz", &bytes);
     assert_names_file(&path, &error, "outside the point data");
 }
@@ -110,7 +115,7 @@ fn chunk_offset_past_the_file_is_refused() {
 fn root_page_offset_outside_the_hierarchy_is_refused() {
     let mut bytes = copc_bytes();
     let wrong = (root_page_at(&bytes) + 7) as u64;
-    bytes[ROOT_PAGE_OFFSET_AT..ROOT_PAGE_OFFSET_AT + 8].copy_from_slice(&wrong.to_le_bytes());
+    set_u64_at(&mut bytes, ROOT_PAGE_OFFSET_AT, wrong);
     let (_dir, path, error) = refused("root.copc.laz", &bytes);
     assert_names_file(&path, &error, "COPC hierarchy page");
 }
@@ -120,7 +125,7 @@ fn root_page_offset_outside_the_hierarchy_is_refused() {
 fn make_page_reference(bytes: &mut [u8], index: usize, key: &[u8], page: usize, size: usize) {
     let entry = entry_field_at(bytes, index, 0);
     bytes[entry..entry + 16].copy_from_slice(key);
-    bytes[entry + 16..entry + 24].copy_from_slice(&(page as u64).to_le_bytes());
+    set_u64_at(bytes, entry + 16, page as u64);
     bytes[entry + 24..entry + 28].copy_from_slice(&(size as i32).to_le_bytes());
     bytes[entry + 28..entry + 32].copy_from_slice(&(-1i32).to_le_bytes());
 }
