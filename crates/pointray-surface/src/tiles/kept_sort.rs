@@ -12,6 +12,7 @@ use pointray_io::{IoError, MemoryBudget, PointStream};
 use pointray_patches::PrepSettings;
 
 use crate::prep_progress::PrepProgress;
+use crate::tiles::disk_room::{ensure_room, sorted_points_need};
 use crate::tiles::point_records::RecordLayout;
 use crate::tiles::sorted_points::{BlockBounds, SortedPoints};
 use crate::tiles::stream_error::StreamError;
@@ -41,7 +42,9 @@ pub fn keep_sort(
     if output.exists() {
         return Err(IoError::unwritable(output, "already exists; a sort is kept in a new folder").into());
     }
-    let scratch = TemporaryFolder::new_in(pointray_io::folder_of(output))?;
+    let folder = pointray_io::folder_of(output);
+    ensure_room(&[sorted_points_need(stream, folder)])?;
+    let scratch = TemporaryFolder::new_in(folder)?;
     let plan = StreamPlan::new(stream, settings, (TileCount::AtLeast(1), memory), scratch.path(), progress)?;
     let cloud = plan.cloud_box();
     let sorted = plan.into_sorted();

@@ -14,6 +14,7 @@
 
 mod cloud_subset;
 mod curve_span;
+mod disk_room;
 mod halo_reach;
 mod halo_test;
 pub mod kept_sort;

@@ -13,6 +13,7 @@ use pointray_io::{MemoryBudget, PointStream};
 use pointray_patches::PrepSettings;
 
 use crate::prep_progress::{PrepProgress, Stage};
+use crate::tiles::disk_room::{ensure_room, sorted_points_need, store_need};
 use crate::tiles::kept_sort::open_kept;
 use crate::tiles::merge::MergeSummary;
 use crate::tiles::spool::TileSpool;
@@ -32,6 +33,8 @@ pub fn prep_streamed(
     (output, scratch_parent): (&Path, &Path),
     progress: &dyn PrepProgress,
 ) -> Result<MergeSummary, StreamError> {
+    let store_folder = pointray_io::folder_of(output);
+    ensure_room(&[sorted_points_need(stream, scratch_parent), store_need(stream, store_folder)])?;
     let scratch = TemporaryFolder::new_in(scratch_parent)?;
     let plan = StreamPlan::new(stream, settings, (count, memory), scratch.path(), progress)?;
     progress.stage_started(Stage::PrepTiles, plan.points());
@@ -109,6 +112,7 @@ pub fn prep_one_tile(
     (output, scratch_parent): (&Path, &Path),
     progress: &dyn PrepProgress,
 ) -> Result<u64, StreamError> {
+    ensure_room(&[sorted_points_need(stream, scratch_parent)])?;
     let scratch = TemporaryFolder::new_in(scratch_parent)?;
     let plan =
         StreamPlan::new(stream, settings, (TileCount::Exactly(count), memory), scratch.path(), progress)?;
