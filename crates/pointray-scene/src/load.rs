@@ -1,13 +1,13 @@
 //! From a scene file to a `Scene`: read meshes, prep (or load from the cache) point sets,
 //! build grounds and procedural objects, and place everything.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::{DAffine3, DVec3, Vec3};
 use pointray_kernels::{Aabb, PatchCold};
-use pointray_patches::PatchSet;
 use pointray_patches::geometry_range::{self, SCENE_EXTENTS, extent_problem};
+use pointray_patches::{PatchSet, PrepSettings};
 use pointray_surface::{NoProgress, PrepProgress};
 
 use crate::checks;
@@ -71,8 +71,10 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
     let is_ground = |spec: &ObjectSpec| matches!(spec.shape, ShapeSpec::Ground { .. });
     let mut slots: Vec<Option<(SceneObject, DAffine3)>> = vec![None; file.objects.len()];
     let mut point_sets = Vec::new();
+    let mut loaded = LoadedPointSets::default();
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| !is_ground(spec)) {
-        let (object, placement, origin) = load_object(file, index, spec, options, (None, RenderSpace::FILE))?;
+        let (object, placement, origin) =
+            load_object(file, (index, spec), options, &mut loaded, (None, RenderSpace::FILE))?;
         point_sets.extend(origin.map(|origin| (index, origin)));
         slots[index] = Some((object, placement));
     }
@@ -90,7 +92,8 @@ pub fn load_scene_file(file: &SceneFile, options: &LoadOptions) -> Result<Loaded
     let others =
         slots.iter().flatten().filter_map(|(object, _)| object.world_bounds()).reduce(|a, b| a.union(&b));
     for (index, spec) in file.objects.iter().enumerate().filter(|(_, spec)| is_ground(spec)) {
-        let (mut ground, placement, _) = load_object(file, index, spec, options, (others.as_ref(), space))?;
+        let (mut ground, placement, _) =
+            load_object(file, (index, spec), options, &mut loaded, (others.as_ref(), space))?;
         ground.transform = space.transform(&placement);
         slots[index] = Some((ground, placement));
     }
@@ -124,14 +127,30 @@ fn default_camera(bounds: Option<&Aabb>, settings: &RenderSettings) -> Camera {
     Scene::framing_camera(bounds.unwrap_or(&unit_box), DEFAULT_VIEW_DIRECTION, DEFAULT_VFOV_DEGREES, aspect)
 }
 
+/// The point sets a scene has read, so that objects naming one points file, prepped and read
+/// alike, share one copy in memory: three copies of a billion-point store in a scene hold its
+/// records once on the host.
+#[derive(Default)]
+struct LoadedPointSets(Vec<(PointSetKey, Arc<PatchSet>, PointSetOrigin)>);
+
+/// What makes a points file's patches: the file, its prep and how it is read.
+type PointSetKey = (PathBuf, Option<PrepSettings>, point_sets::ReadRequest);
+
+impl LoadedPointSets {
+    fn get(&self, key: &PointSetKey) -> Option<(Arc<PatchSet>, PointSetOrigin)> {
+        let found = self.0.iter().find(|(loaded, ..)| loaded == key);
+        found.map(|(_, patches, origin)| (patches.clone(), origin.clone()))
+    }
+}
+
 /// Loads one object, with its local-to-file placement in f64, and says where a point set's
 /// patches came from. A ground is fitted to `others`, the bounds of every other object in the
-/// render space, the second member.
+/// render space, the last member.
 fn load_object(
     file: &SceneFile,
-    index: usize,
-    spec: &ObjectSpec,
+    (index, spec): (usize, &ObjectSpec),
     options: &LoadOptions,
+    loaded: &mut LoadedPointSets,
     (others, space): (Option<&Aabb>, RenderSpace),
 ) -> Result<(SceneObject, DAffine3, Option<PointSetOrigin>), SceneError> {
     let key = object_key(index, spec);
@@ -169,9 +188,19 @@ fn load_object(
                 columns: columns.clone(),
                 classification_colors: source == ColorSource::Classification,
             };
-            let (patches, origin) = point_sets::load_points_file(&path, prep.as_ref(), &read, options)
-                .map_err(|e| e.in_scene(&file.path, &key))?;
-            (Geometry::Patches(Arc::new(patches)), Some(origin), file_stem(&path))
+            let point_set = (path.clone(), *prep, read);
+            let (patches, origin) = match loaded.get(&point_set) {
+                Some(shared) => shared,
+                None => {
+                    let (patches, origin) =
+                        point_sets::load_points_file(&path, prep.as_ref(), &point_set.2, options)
+                            .map_err(|e| e.in_scene(&file.path, &key))?;
+                    let patches = Arc::new(patches);
+                    loaded.0.push((point_set, patches.clone(), origin.clone()));
+                    (patches, origin)
+                }
+            };
+            (Geometry::Patches(patches), Some(origin), file_stem(&path))
         }
         ShapeSpec::SpherePoints { center, radius, count } => {
             procedural_fits(*count).map_err(|e| e.in_scene(&file.path, &key))?;

@@ -225,3 +225,27 @@ fn a_different_cloud_of_the_same_size_and_time_gets_its_own_cache_file() {
     let center = pointray_scene::bounds::center(&second.scene.objects[0].world_bounds().unwrap());
     assert!((center - glam::Vec3::new(-4.0, 5.0, 0.0)).length() < 1e-3, "the new cloud: {center}");
 }
+
+#[test]
+fn objects_naming_one_points_file_alike_share_its_patches() {
+    let copies = "[objects.transform]\ntranslate = [0.0, 0.0, 0.0]\n\
+                  [[objects]]\ntype = \"points\"\npath = \"ball.ply\"\n\
+                  [objects.transform]\ntranslate = [3.0, 0.0, 0.0]\n\
+                  [[objects]]\ntype = \"points\"\npath = \"ball.ply\"\n[objects.prep]\nk = 12\n";
+    let fixture = fixture(copies);
+    let runs = PrepRuns::default();
+    let loaded = load(&fixture, &runs);
+    assert_eq!(runs.count(), 2, "prepped once for the default settings and once for k = 12");
+    let patches: Vec<_> = loaded
+        .scene
+        .objects
+        .iter()
+        .map(|object| match &object.geometry {
+            Geometry::Patches(patches) => patches.clone(),
+            Geometry::Mesh(_) => panic!("a point set"),
+        })
+        .collect();
+    assert!(std::sync::Arc::ptr_eq(&patches[0], &patches[1]), "the two copies share one set");
+    assert!(!std::sync::Arc::ptr_eq(&patches[0], &patches[2]), "another prep is another set");
+    assert_ne!(loaded.scene.objects[0].transform, loaded.scene.objects[1].transform);
+}
