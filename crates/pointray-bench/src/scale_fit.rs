@@ -11,16 +11,18 @@ use pointray_patches::PrepSettings;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
 use pointray_vulkan::DeviceInfo;
 
-/// Host memory per point of loading the store for the GPU, with a margin: the store is
-/// mapped, so its records are the page cache's, which the system reclaims as it needs
-/// (100M points loaded in 212-227 MiB of the process's own memory). Prep needs no limit here:
-/// a cloud whose single pass does not fit the budget is prepped in tiles.
-pub const GPU_LOAD_BYTES_PER_POINT: u64 = 4;
+/// Host memory per point of loading the store for the GPU, with a margin: a compact store's
+/// records are decoded into the process's own memory (boxes, hot and cold records; a billion
+/// points loaded at a peak of 96.3 GiB, the mapped 30.7 GB store included). Prep needs no
+/// limit here: a cloud whose single pass does not fit the budget is prepped in tiles.
+pub fn gpu_load_bytes_per_point() -> u64 {
+    decoded_bytes_per_point() + 4
+}
 
 /// Scratch disk per point of prep in tiles at its largest, beside the points file and the
-/// store: the tile files (each patch's records, input point and a margin) while the store
-/// is written from them; the sorted runs and file before them take less.
-pub const STREAMED_SCRATCH_BYTES_PER_POINT: u64 = 96;
+/// store: the points sorted along the curve (the sorted runs give their room back as the
+/// merge reads them).
+pub const STREAMED_SCRATCH_BYTES_PER_POINT: u64 = 36;
 
 /// Peak memory of the process's own per point of loading the store and rendering on the CPU
 /// backend, with a margin: the BVH build over the mapped store's patches; measured at 296
@@ -30,8 +32,12 @@ pub const CPU_RENDER_BYTES_PER_POINT: u64 = 320;
 /// A stand-in's points file: binary PLY with float positions.
 pub const POINTS_FILE_BYTES_PER_POINT: u64 = 12;
 
-/// What a patch store holds per patch when the cloud has no colours.
-pub fn store_bytes_per_point() -> u64 {
+/// A patch store's bytes per point when the cloud has no colours, with a margin: the compact
+/// records and the coarse level (30.71 at 100M and at 1B points).
+pub const STORE_BYTES_PER_POINT: u64 = 32;
+
+/// What a point set's decoded records take per patch: its boxes, hot and cold records.
+fn decoded_bytes_per_point() -> u64 {
     (size_of::<Aabb>() + size_of::<PatchHot>() + size_of::<PatchCold>()) as u64
 }
 
@@ -103,7 +109,7 @@ impl MachineLimits {
         let streamed =
             prep_route(points, &PrepSettings::default(), 0, self.prep_budget) == PrepRoute::Streamed;
         let scratch = if streamed { STREAMED_SCRATCH_BYTES_PER_POINT } else { 0 };
-        let files = points.saturating_mul(POINTS_FILE_BYTES_PER_POINT + store_bytes_per_point() + scratch);
+        let files = points.saturating_mul(POINTS_FILE_BYTES_PER_POINT + STORE_BYTES_PER_POINT + scratch);
         let disk = files.saturating_sub(cached_bytes);
         if let Some(free) = self.free_disk.filter(|&free| disk > free) {
             return Some(format!(
@@ -127,7 +133,7 @@ impl MachineLimits {
 }
 
 fn memory_per_point(gpu: bool) -> u64 {
-    if gpu { GPU_LOAD_BYTES_PER_POINT } else { CPU_RENDER_BYTES_PER_POINT }
+    if gpu { gpu_load_bytes_per_point() } else { CPU_RENDER_BYTES_PER_POINT }
 }
 
 fn available_memory() -> Option<u64> {
@@ -168,17 +174,17 @@ mod tests {
             None,
             "prep fits, the GPU renders"
         );
-        // A mapped store loads in little memory of the process's own: prep streams 1B points
-        // within 12 GB, and the GPU takes them; 2 GB cannot hold 4 bytes a point.
-        assert_eq!(machine(24e9 as u64, 1 << 40, gpu).why_not(1_000_000_000, 0), None);
-        let reason = machine(2e9 as u64, 1 << 40, gpu).why_not(1_000_000_000, 0).expect("too little memory");
-        assert!(reason.contains("loading the store needs about 4.0 GB"), "{reason}");
-        // Prep in tiles needs scratch disk: 250M points take 21 GB prepped in memory (a
-        // 128 GiB machine), 45 GB in tiles (a 64 GiB one).
-        assert_eq!(machine(128 << 30, 40e9 as u64, gpu).why_not(250_000_000, 0), None);
-        let reason = machine(64 << 30, 40e9 as u64, gpu).why_not(250_000_000, 0).expect("scratch");
+        // A compact store's records are decoded on loading: a billion points take 72 GB,
+        // which a 128 GiB machine holds and a 64 GB one does not.
+        assert_eq!(machine(128 << 30, 1 << 40, gpu).why_not(1_000_000_000, 0), None);
+        let reason = machine(64e9 as u64, 1 << 40, gpu).why_not(1_000_000_000, 0).expect("too little memory");
+        assert!(reason.contains("loading the store needs about 72.0 GB"), "{reason}");
+        // Prep in tiles needs scratch disk: 250M points take 11 GB prepped in memory (a
+        // 128 GiB machine), 20 GB in tiles (a 64 GiB one).
+        assert_eq!(machine(128 << 30, 15e9 as u64, gpu).why_not(250_000_000, 0), None);
+        let reason = machine(64 << 30, 15e9 as u64, gpu).why_not(250_000_000, 0).expect("scratch");
         assert!(reason.contains("scratch"), "{reason}");
-        let reason = machine(1 << 40, 64e9 as u64, None).why_not(1_000_000_000, 0).expect("too little disk");
+        let reason = machine(1 << 40, 40e9 as u64, None).why_not(1_000_000_000, 0).expect("too little disk");
         assert!(reason.contains("disk"), "{reason}");
         let cached = 1_000_000_000 * POINTS_FILE_BYTES_PER_POINT;
         let small_blas = DeviceLimits { device_local_bytes: 1 << 40, max_blas_primitives: 16_777_215 };
