@@ -17,6 +17,16 @@ def test_tile_jobs_merge_to_the_command_lines_store(bunny, tmp_path):
     assert (tmp_path / "python.patches").read_bytes() == (tmp_path / "cli.patches").read_bytes()
 
 
+def test_tile_jobs_on_a_sort_the_command_line_kept_write_the_same_tiles(bunny, tmp_path):
+    pointray_cli("prep", bunny, "--keep-sort", "--k", "12", "-o", "bunny.sorted", cwd=tmp_path)
+    for index in range(3):
+        from_input = tmp_path / f"input{index}.tile"
+        from_sort = tmp_path / f"sorted{index}.tile"
+        pointray.prep_tile(bunny, index, 3, from_input, k=12)
+        pointray.prep_tile(tmp_path / "bunny.sorted", index, 3, from_sort, k=12)
+        assert from_sort.read_bytes() == from_input.read_bytes()
+
+
 def test_a_cut_missing_a_tile_or_naming_no_tile_is_refused(bunny, tmp_path):
     pointray.prep_tile(bunny, 0, 2, tmp_path / "0.tile")
     with pytest.raises(pointray.PointrayError, match="tile 1 of 2 is missing"):
