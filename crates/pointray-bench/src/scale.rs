@@ -56,6 +56,8 @@ pub struct ScaleOptions<'a> {
     pub data: PathBuf,
     /// Where the points files, patch stores and scene files go; never the repository.
     pub cache: PathBuf,
+    /// Where prep in tiles sorts the points; the cache folder when `None`.
+    pub scratch: Option<PathBuf>,
     /// The rungs to run (`chosen_rungs`) and the sizes to render each at (`SCALE_SIZES`).
     pub rungs: Vec<Rung>,
     pub sizes: Vec<(u32, u32)>,
@@ -105,7 +107,8 @@ pub fn run_scale(backend: ScaleBackend, options: &ScaleOptions) -> Result<ScaleR
             .ok()
             .and_then(|path| std::fs::metadata(path).ok())
             .map_or(0, |metadata| metadata.len());
-        let limits = MachineLimits::now(&options.cache, backend.device_limits());
+        let limits =
+            MachineLimits::now((&options.cache, options.scratch.as_deref()), backend.device_limits());
         let outcome = match limits.why_not(points, cached) {
             Some(reason) => RungOutcome::Skipped { reason },
             None => RungOutcome::Measured(measure_rung(backend, &label, &spec, options, &mut first_image)?),
@@ -131,7 +134,8 @@ fn measure_rung(
 ) -> Result<RungMeasurement, BenchError> {
     let points_file = stand_in_points(&options.data, spec, &options.cache)?;
     let store = options.cache.join(format!("scale-{label}.patches"));
-    let prepped = prep_rung(label, &points_file, &store, options.progress)?;
+    let scratch = options.scratch.as_deref().unwrap_or(&options.cache);
+    let prepped = prep_rung(label, &points_file, (&store, scratch), options.progress)?;
     let store_bytes = std::fs::metadata(&store).map_or(0, |metadata| metadata.len());
     let started = Instant::now();
     let table: toml::Table = toml::from_str(SCENE).map_err(|e| BenchError::ParseSuite {
@@ -191,7 +195,7 @@ struct RungPrep {
 fn prep_rung(
     label: &str,
     points_file: &Path,
-    store: &Path,
+    (store, scratch): (&Path, &Path),
     progress: &dyn PrepProgress,
 ) -> Result<RungPrep, BenchError> {
     let settings = PrepSettings::default();
@@ -201,9 +205,8 @@ fn prep_rung(
     if route == PrepRoute::Streamed {
         let peaks = StagePeaks::new(progress);
         let count = (TileCount::AtLeast(1), budget);
-        let (prepped, prep) = timed(|| {
-            prep_streamed(&mut stream, &settings, count, (store, pointray_io::folder_of(store)), &peaks)
-        });
+        let (prepped, prep) =
+            timed(|| prep_streamed(&mut stream, &settings, count, (store, scratch), &peaks));
         prepped.map_err(|source| BenchError::StreamedPrep { case: label.into(), source })?;
         let (read, store_write) = (Duration::ZERO, Duration::ZERO);
         return Ok(RungPrep { route: "streamed", read, prep, store_write, peak: peaks.overall() });

@@ -3,6 +3,7 @@
 //! cannot hold it). A rung that does not fit
 //! is skipped with the reason, before anything is generated.
 
+use std::os::unix::fs::MetadataExt;
 use std::path::Path;
 
 use pointray_io::MemoryBudget;
@@ -63,6 +64,8 @@ pub struct MachineLimits {
     pub prep_budget: MemoryBudget,
     /// Free bytes on the cache folder's file system.
     pub free_disk: Option<u64>,
+    /// Free bytes on the scratch folder's file system, where it is not the cache's.
+    pub free_scratch: Option<u64>,
     /// The Vulkan device, when the suite renders on one.
     pub device: Option<DeviceLimits>,
 }
@@ -80,14 +83,18 @@ impl From<&DeviceInfo> for DeviceLimits {
 }
 
 impl MachineLimits {
-    /// This machine's limits now, for a suite caching in `cache` (which must exist) and
-    /// rendering on `device`, or on the CPU when there is none.
-    pub fn now(cache: &Path, device: Option<DeviceLimits>) -> Self {
+    /// This machine's limits now, for a suite caching in `cache` (which must exist), sorting
+    /// prep's points in `scratch` (the cache when `None`) and rendering on `device`, or on the
+    /// CPU when there is none.
+    pub fn now((cache, scratch): (&Path, Option<&Path>), device: Option<DeviceLimits>) -> Self {
+        let file_system = |folder: &Path| std::fs::metadata(folder).ok().map(|metadata| metadata.dev());
+        let apart = scratch.filter(|&scratch| file_system(scratch) != file_system(cache));
         Self {
             available_memory: available_memory(),
             memory_per_point: memory_per_point(device.is_some()),
             prep_budget: MemoryBudget::half_of_this_machine(),
             free_disk: free_disk(cache),
+            free_scratch: apart.and_then(free_disk),
             device,
         }
     }
@@ -108,9 +115,17 @@ impl MachineLimits {
         }
         let streamed =
             prep_route(points, &PrepSettings::default(), 0, self.prep_budget) == PrepRoute::Streamed;
-        let scratch = if streamed { STREAMED_SCRATCH_BYTES_PER_POINT } else { 0 };
-        let files = points.saturating_mul(POINTS_FILE_BYTES_PER_POINT + STORE_BYTES_PER_POINT + scratch);
-        let disk = files.saturating_sub(cached_bytes);
+        let scratch = points.saturating_mul(if streamed { STREAMED_SCRATCH_BYTES_PER_POINT } else { 0 });
+        if let Some(free) = self.free_scratch.filter(|&free| scratch > free) {
+            return Some(format!(
+                "prep's scratch files need {:.1} GB in the scratch folder, {:.1} GB is free",
+                gigabytes(scratch),
+                gigabytes(free)
+            ));
+        }
+        let beside = if self.free_scratch.is_some() { 0 } else { scratch };
+        let files = points.saturating_mul(POINTS_FILE_BYTES_PER_POINT + STORE_BYTES_PER_POINT);
+        let disk = files.saturating_add(beside).saturating_sub(cached_bytes);
         if let Some(free) = self.free_disk.filter(|&free| disk > free) {
             return Some(format!(
                 "its points file, patch store and prep's scratch files need {:.1} GB more disk in the cache folder, {:.1} GB is free",
@@ -158,6 +173,7 @@ mod tests {
             memory_per_point: memory_per_point(device.is_some()),
             prep_budget: MemoryBudget { bytes: memory / 2 },
             free_disk: Some(disk),
+            free_scratch: None,
             device,
         }
     }
@@ -186,6 +202,17 @@ mod tests {
         assert!(reason.contains("scratch"), "{reason}");
         let reason = machine(1 << 40, 40e9 as u64, None).why_not(1_000_000_000, 0).expect("too little disk");
         assert!(reason.contains("disk"), "{reason}");
+        // A billion points on a 128 GiB machine with 64 GB of disk: streamed, their 44 GB of
+        // points and store fit the disk, and their 36 GB of scratch fit a scratch folder
+        // elsewhere with room, but not one without.
+        let h200 = Some(DeviceLimits { device_local_bytes: 139 << 30, max_blas_primitives: (1 << 29) - 1 });
+        let disk_only = machine(128 << 30, 64e9 as u64, h200);
+        assert!(disk_only.why_not(1_000_000_000, 0).is_some_and(|reason| reason.contains("disk")));
+        let in_memory_scratch = MachineLimits { free_scratch: Some(100e9 as u64), ..disk_only.clone() };
+        assert_eq!(in_memory_scratch.why_not(1_000_000_000, 0), None);
+        let small_scratch = MachineLimits { free_scratch: Some(30e9 as u64), ..disk_only };
+        let reason = small_scratch.why_not(1_000_000_000, 0).expect("too little scratch");
+        assert!(reason.contains("scratch folder"), "{reason}");
         let cached = 1_000_000_000 * POINTS_FILE_BYTES_PER_POINT;
         let small_blas = DeviceLimits { device_local_bytes: 1 << 40, max_blas_primitives: 16_777_215 };
         assert_eq!(
@@ -203,7 +230,7 @@ mod tests {
 
     #[test]
     fn this_machine_reports_its_memory_and_disk() {
-        let limits = MachineLimits::now(Path::new("."), None);
+        let limits = MachineLimits::now((Path::new("."), None), None);
         assert!(limits.available_memory.is_some_and(|bytes| bytes > 0), "{limits:?}");
         assert!(limits.free_disk.is_some(), "{limits:?}");
     }

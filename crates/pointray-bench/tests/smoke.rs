@@ -130,6 +130,7 @@ fn scale_options<'a>(data: PathBuf, cache: &Path, rungs: &[(&str, u64)]) -> Scal
     ScaleOptions {
         data,
         cache: cache.to_path_buf(),
+        scratch: None,
         rungs: rungs.iter().map(|&(label, points)| Rung { label: label.into(), points }).collect(),
         sizes: vec![(48, 27), (16, 16)],
         frames: FrameCounts { warmup: 1, timed: 2 },

@@ -65,6 +65,10 @@ pub struct BenchArgs {
     /// 100M, 300M and 1B; a rung that does not fit the machine is skipped with the reason).
     #[arg(long, value_delimiter = ',')]
     rungs: Vec<String>,
+    /// `scale` only: where prep in tiles sorts a rung's points (default: the cache folder),
+    /// such as /dev/shm where the cache's disk cannot hold them beside the points and store.
+    #[arg(long, value_name = "DIR")]
+    scratch: Option<PathBuf>,
     #[arg(long)]
     json: Option<PathBuf>,
     #[arg(long)]
@@ -208,6 +212,7 @@ fn run_scale_suite(args: &BenchArgs) -> anyhow::Result<()> {
     let options = ScaleOptions {
         data: args.data.clone().unwrap_or_else(data_dir),
         cache: args.cache.clone(),
+        scratch: args.scratch.clone(),
         rungs: pointray_bench::scale::chosen_rungs(&args.rungs).map_err(anyhow::Error::msg)?,
         sizes: pointray_bench::scale::SCALE_SIZES.to_vec(),
         frames: FrameCounts { warmup: args.warmup, timed: args.frames },
