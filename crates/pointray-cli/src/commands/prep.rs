@@ -52,7 +52,7 @@ pub struct PrepArgs {
     /// Sort the cloud along its curve once and keep the sort in the new folder `--output`:
     /// tile jobs given that folder as their points (`--tile I --of N`) then read only their
     /// tiles, where each would otherwise read and sort the whole cloud.
-    #[arg(long, conflicts_with_all = ["tiles", "tile", "merge", "poses"])]
+    #[arg(long, conflicts_with_all = ["tiles", "tile", "merge", "poses", "scratch"])]
     keep_sort: bool,
     /// Merge these tile files (every tile of one cut) into the store `--output`.
     #[arg(long, value_name = "TILE_FILES", num_args = 1.., conflicts_with = "points")]
