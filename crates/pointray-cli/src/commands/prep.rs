@@ -12,7 +12,9 @@ use pointray_surface::peak_memory::peak_rss;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
 use pointray_surface::tiles::kept_sort::{is_kept_sort, keep_sort};
 use pointray_surface::tiles::merge::{MergeSummary, merge_tile_files};
-use pointray_surface::tiles::streamed_prep::{prep_one_kept_tile, prep_one_tile, prep_streamed};
+use pointray_surface::tiles::streamed_prep::{
+    prep_kept_streamed, prep_one_kept_tile, prep_one_tile, prep_streamed,
+};
 use pointray_surface::tiles::streamed_tiles::TileCount;
 use pointray_surface::{PrepError, prep_owned};
 
@@ -51,7 +53,8 @@ pub struct PrepArgs {
     of: Option<u32>,
     /// Sort the cloud along its curve once and keep the sort in the new folder `--output`:
     /// tile jobs given that folder as their points (`--tile I --of N`) then read only their
-    /// tiles, where each would otherwise read and sort the whole cloud.
+    /// tiles, where each would otherwise read and sort the whole cloud; prep given the folder
+    /// alone preps every tile, as `--tiles` does, without sorting again.
     #[arg(long, conflicts_with_all = ["tiles", "tile", "merge", "poses", "scratch"])]
     keep_sort: bool,
     /// Merge these tile files (every tile of one cut) into the store `--output`.
@@ -101,14 +104,18 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     let started = Instant::now();
-    let mut stream = args.columns.open_stream(points, memory)?;
-    let route = prep_route(stream.len(), &settings, stream.attribute_bytes_per_point(), memory);
-    if args.tiles.is_none() && route == PrepRoute::InMemory {
-        return prep_in_memory(stream, started, &args, &settings, &bar);
-    }
     let count = TileCount::AtLeast(args.tiles.unwrap_or(1) as usize);
-    let places = (args.output.as_path(), args.scratch());
-    let merged = prep_streamed(&mut stream, &settings, (count, memory), places, &bar)?;
+    let merged = if is_kept_sort(points) {
+        prep_kept_streamed(points, &settings, (count, memory), &args.output, &bar)?
+    } else {
+        let mut stream = args.columns.open_stream(points, memory)?;
+        let route = prep_route(stream.len(), &settings, stream.attribute_bytes_per_point(), memory);
+        if args.tiles.is_none() && route == PrepRoute::InMemory {
+            return prep_in_memory(stream, started, &args, &settings, &bar);
+        }
+        let places = (args.output.as_path(), args.scratch());
+        prep_streamed(&mut stream, &settings, (count, memory), places, &bar)?
+    };
     // The process's own high-water mark, which tests and job scripts read back.
     let peak =
         peak_rss().map_or_else(String::new, |bytes| format!(" (peak resident memory {} KiB)", bytes >> 10));

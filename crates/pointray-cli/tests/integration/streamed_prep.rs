@@ -79,6 +79,10 @@ fn tiles_prepped_by_parallel_processes_merge_into_the_single_process_store() {
         assert!(ok, "{stderr}");
         assert!(read(&tile) == read(&format!("tile{i}.tile")), "tile {i} from the kept sort");
     }
+    let whole = [&["prep", "sheet.sorted", "-o", "kept.patches", "--tiles", "4"][..], &sensor].concat();
+    let (ok, _, stderr) = pointray_in(dir.path(), &whole);
+    assert!(ok, "{stderr}");
+    assert!(read("kept.patches") == read("single.patches"), "the whole store from the kept sort");
 
     let (ok, _, stderr) = pointray_in(dir.path(), &["prep", "--merge", "tile0.tile", "-o", "part.patches"]);
     assert!(!ok && stderr.contains("tile 1 of 4 is missing"), "{stderr}");

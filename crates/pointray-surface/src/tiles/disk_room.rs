@@ -29,9 +29,9 @@ pub(crate) fn sorted_points_need<'a>(stream: &PointStream, folder: &'a Path) -> 
     Need { folder, what: "the sorted points", bytes }
 }
 
-/// The least room the store of `stream`'s points takes in `folder`.
-pub(crate) fn store_need<'a>(stream: &PointStream, folder: &'a Path) -> Need<'a> {
-    Need { folder, what: "the store", bytes: stream.len().saturating_mul(STORE_POINT_BYTES) }
+/// The least room the store of `points` points takes in `folder`.
+pub(crate) fn store_need(points: u64, folder: &Path) -> Need<'_> {
+    Need { folder, what: "the store", bytes: points.saturating_mul(STORE_POINT_BYTES) }
 }
 
 /// Refuses, naming the folder, where the file system of some folders has less room free than

@@ -34,9 +34,34 @@ pub fn prep_streamed(
     progress: &dyn PrepProgress,
 ) -> Result<MergeSummary, StreamError> {
     let store_folder = pointray_io::folder_of(output);
-    ensure_room(&[sorted_points_need(stream, scratch_parent), store_need(stream, store_folder)])?;
+    ensure_room(&[sorted_points_need(stream, scratch_parent), store_need(stream.len(), store_folder)])?;
     let scratch = TemporaryFolder::new_in(scratch_parent)?;
     let plan = StreamPlan::new(stream, settings, (count, memory), scratch.path(), progress)?;
+    prep_planned(&plan, settings, output, progress)
+}
+
+/// Preps the whole cloud whose sort `tiles::kept_sort` kept in `folder`, within `memory`,
+/// and writes the store `output`: the store `prep_streamed` writes from the cloud itself,
+/// without reading and sorting it again (as when prepping it once more with other settings).
+pub fn prep_kept_streamed(
+    folder: &Path,
+    settings: &PrepSettings,
+    (count, memory): (TileCount, MemoryBudget),
+    output: &Path,
+    progress: &dyn PrepProgress,
+) -> Result<MergeSummary, StreamError> {
+    let plan = open_kept(folder, settings, (count, memory))?;
+    ensure_room(&[store_need(plan.points(), pointray_io::folder_of(output))])?;
+    prep_planned(&plan, settings, output, progress)
+}
+
+/// Preps every tile of `plan` and writes the store `output`.
+fn prep_planned(
+    plan: &StreamPlan,
+    settings: &PrepSettings,
+    output: &Path,
+    progress: &dyn PrepProgress,
+) -> Result<MergeSummary, StreamError> {
     progress.stage_started(Stage::PrepTiles, plan.points());
     let started = std::time::Instant::now();
     let mut spool = TileSpool::new(output, plan.points(), (*settings, plan.frame.offset))?;

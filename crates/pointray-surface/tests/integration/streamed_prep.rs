@@ -15,7 +15,9 @@ use pointray_surface::NoProgress;
 use pointray_surface::tiles::kept_sort::{is_kept_sort, keep_sort};
 use pointray_surface::tiles::merge::merge_tile_files;
 use pointray_surface::tiles::stream_error::StreamError;
-use pointray_surface::tiles::streamed_prep::{prep_one_kept_tile, prep_one_tile, prep_streamed};
+use pointray_surface::tiles::streamed_prep::{
+    prep_kept_streamed, prep_one_kept_tile, prep_one_tile, prep_streamed,
+};
 use pointray_surface::tiles::streamed_tiles::TileCount;
 use pointray_surface::tiles::tiled_prep::prep_tiled;
 
@@ -151,8 +153,12 @@ fn tile_jobs_on_a_kept_sort_merge_into_the_single_process_store() {
     let merged = dir.path().join("merged.patches");
     merge_tile_files(&tiles, &merged, PLENTY, &NoProgress).unwrap();
     assert!(std::fs::read(&merged).unwrap() == std::fs::read(&whole).unwrap(), "same bytes");
-    // The input, the store, the kept sort, the tiles and their merge: no scratch is left.
-    assert_no_scratch(dir.path(), 4 + tiles.len());
+    // The whole cloud prepped from the kept sort, in one process.
+    let from_kept = dir.path().join("from_kept.patches");
+    prep_kept_streamed(&kept, &settings, (TileCount::AtLeast(4), PLENTY), &from_kept, &NoProgress).unwrap();
+    assert!(std::fs::read(&from_kept).unwrap() == std::fs::read(&whole).unwrap(), "same bytes");
+    // The input, the stores, the kept sort, the tiles: no scratch is left.
+    assert_no_scratch(dir.path(), 5 + tiles.len());
 
     let error = keep_sort(&mut open(&path), &settings, PLENTY, &kept, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("already exists"), "{error}");
