@@ -7,10 +7,8 @@ use std::path::Path;
 
 use pointray_io::{IoError, PointStream};
 
+use crate::tiles::point_records::KEYED_POSITION_BYTES;
 use crate::tiles::stream_error::StreamError;
-
-/// Bytes of a sorted point's record before its attributes: its key and f64 position.
-pub(crate) const SORTED_POINT_BYTES: u64 = 36;
 
 /// The fewest bytes a point takes in a store (the compact record, before the coarse level
 /// and any colours): a store's room is checked at this, so that no prep that fits is refused.
@@ -25,7 +23,7 @@ pub(crate) struct Need<'a> {
 
 /// The scratch the points of `stream` take, sorted.
 pub(crate) fn sorted_points_need<'a>(stream: &PointStream, folder: &'a Path) -> Need<'a> {
-    let bytes = stream.len().saturating_mul(SORTED_POINT_BYTES + stream.attribute_bytes_per_point());
+    let bytes = stream.len().saturating_mul(KEYED_POSITION_BYTES + stream.attribute_bytes_per_point());
     Need { folder, what: "the sorted points", bytes }
 }
 

@@ -8,6 +8,10 @@ use pointray_io::PointCloud;
 /// Bytes of the key: the Morton code (u64) and the input index (u32).
 const KEY_BYTES: usize = 12;
 
+/// Bytes of a record before its attributes: the key and the f64 position. Each attribute
+/// then takes the bytes it takes in a `PointCloud` (`pointray_io::AttributeBytes`).
+pub(crate) const KEYED_POSITION_BYTES: u64 = (KEY_BYTES + 24) as u64;
+
 /// Which attributes the records carry, the same for every point of a cloud.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct RecordLayout {
@@ -56,8 +60,7 @@ impl RecordLayout {
         })
     }
 
-    /// The bytes a point's attributes take in a `PointCloud`, as the stream that was sorted
-    /// counted them.
+    /// The bytes a point's attributes take in a `PointCloud`, and in a record.
     pub(crate) fn attribute_bytes(&self) -> u64 {
         pointray_io::AttributeBytes {
             normals: self.normals,
@@ -71,14 +74,7 @@ impl RecordLayout {
     }
 
     pub(crate) fn bytes(&self) -> usize {
-        KEY_BYTES
-            + 24
-            + 12 * usize::from(self.normals)
-            + 3 * usize::from(self.colors)
-            + 4 * usize::from(self.intensities)
-            + usize::from(self.classifications)
-            + 2 * usize::from(self.rings)
-            + 24 * usize::from(self.sensor_origins)
+        (KEYED_POSITION_BYTES + self.attribute_bytes()) as usize
     }
 
     /// Appends point `i` of `cloud` (whose layout this is) with its key to `out`.

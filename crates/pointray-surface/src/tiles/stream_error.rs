@@ -19,7 +19,7 @@ pub enum StreamError {
     /// The memory budget cannot hold what the work needs.
     #[error("{path}: {problem}")]
     OverBudget { path: PathBuf, problem: String },
-    /// A tile file that is not one, or tile files that do not make one store.
+    /// A tile file or a kept sort that is not one, or tile files that do not make one store.
     #[error("{path}: {problem}")]
     BadTile { path: PathBuf, problem: String },
 }
