@@ -27,13 +27,17 @@ const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
 
 /// Entry points compiled again with defines (separated by spaces), as `(source, defines,
 /// output name)`: the benchmark's ray-counting ray generation, the hit-reordering one, the
-/// path integrator's with and without ray counting, and the counting pipeline's intersection.
+/// path integrator's with and without ray counting, the counting pipeline's intersection, and
+/// the hit group of boxes of several patches (`BlasLayout::PatchGroups`), counting or not.
 const VARIANTS: &[(&str, ShaderStage, &str, &str)] = &[
     ("primary.rgen", ShaderStage::RayGeneration, "COUNT_RAYS", "primary_counting.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "REORDER_HITS", "primary_reordering.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "PATH_TRACING", "path.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "PATH_TRACING COUNT_RAYS", "path_counting.rgen"),
     ("patch.rint", ShaderStage::Intersect, "COUNT_RAYS", "patch_counting.rint"),
+    ("patch.rint", ShaderStage::Intersect, "PATCH_GROUPS", "patch_groups.rint"),
+    ("patch.rint", ShaderStage::Intersect, "PATCH_GROUPS COUNT_RAYS", "patch_groups_counting.rint"),
+    ("patch.rchit", ShaderStage::ClosestHit, "PATCH_GROUPS", "patch_groups.rchit"),
 ];
 
 /// Resolves `#include "NAME"` against the given folders, in order.

@@ -8,12 +8,12 @@ use pointray_patches::{BoxKind, PrepSettings, RadiusMode};
 use pointray_scene::load::{LoadOptions, load_scene};
 use pointray_scene::{BufferLayout, Geometry, Integrator, PatchAcceptance, RenderSettings, Scene};
 use pointray_surface::NoProgress;
-use pointray_vulkan::{BlasLayout, PixelOutput, VulkanError, VulkanRenderer};
+use pointray_vulkan::{BlasLayout, PixelOutput, SceneLayout, VulkanError, VulkanRenderer};
 
 use crate::case_result::{CaseLabel, CaseResult, Variant};
 use crate::data::ensure_cache_dir;
 use crate::error::BenchError;
-use crate::measure::{FrameCounts, Measurement, measure};
+use crate::measure::{FrameCounts, Measurement, measure, measure_prepared};
 use crate::model_scene::{ModelGeometry, load_model_scene, model_points};
 use crate::report::{Report, limit_rows};
 use crate::stand_in::stand_in_label;
@@ -33,6 +33,8 @@ pub struct BenchOptions<'a> {
     /// Replaces every scene's integrator (one sample a pixel a frame under `Path`, so that
     /// frames per second are samples per second).
     pub integrator: Option<Integrator>,
+    /// Replaces every scene's patches a box (`RenderSettings::patches_per_box`).
+    pub patches_per_box: Option<u32>,
     /// Time the mesh twin of each model (the limit).
     pub limit: bool,
     pub ablations: bool,
@@ -80,18 +82,30 @@ pub fn run_scene_file(
     let loaded =
         load_scene(path, &LoadOptions { cache_dir: Some(&options.cache), ..LoadOptions::default() })?;
     let (width, height) = options.size.unwrap_or((loaded.settings.width, loaded.settings.height));
-    let integrator = options.integrator.unwrap_or(loaded.settings.integrator);
-    let settings = RenderSettings { width, height, integrator, ..loaded.settings };
+    let settings = options.applied(RenderSettings { width, height, ..loaded.settings });
     let name = path.display().to_string();
-    let measured = measure(
-        renderer,
-        &loaded.scene,
-        &settings,
-        BlasLayout::OneGeometry,
-        PixelOutput::Display,
-        options.frames,
-    )
-    .map_err(|source| BenchError::Vulkan { case: name.clone(), source })?;
+    let failed = |source| BenchError::Vulkan { case: name.clone(), source };
+    // As `render` makes it ready: grouped to fit, or streamed, where it does not fit whole.
+    let mut prepared =
+        renderer.prepare_with_layout(&loaded.scene, SceneLayout::for_frames(&settings)).map_err(failed)?;
+    if let Some(tiles) = prepared.stream_tiles(settings.aspect(), None).map_err(failed)? {
+        println!(
+            "{name}: streamed, {} of {} tiles on the GPU in full and {} coarse ({:.2} GB)",
+            tiles.resident,
+            tiles.tiles,
+            tiles.coarse,
+            tiles.resident_bytes as f64 / 1e9
+        );
+    }
+    let built = prepared.build_report();
+    println!(
+        "{name}: {} patches a box, {:.2} GB on the GPU ({} bottom levels)",
+        built.patches_per_box,
+        built.gpu_bytes() as f64 / 1e9,
+        built.blas_count
+    );
+    let measured = measure_prepared(renderer, &prepared, &settings, PixelOutput::Display, options.frames)
+        .map_err(failed)?;
     let label = CaseLabel {
         model: &name,
         stand_in: None,
@@ -142,11 +156,10 @@ impl ModelRun<'_> {
             })?;
         let mesh = if self.options.limit { self.load(ModelGeometry::Mesh)? } else { None };
         for (index, &(width, height)) in sizes.iter().enumerate() {
-            let integrator = self.options.integrator.unwrap_or(file_settings.integrator);
-            let settings = RenderSettings { width, height, integrator, ..file_settings };
-            self.time(&base, &settings, BlasLayout::OneGeometry, Variant::Points)?;
+            let settings = self.options.applied(RenderSettings { width, height, ..file_settings });
+            self.time(&base, &settings, grouping(&settings), Variant::Points)?;
             if let Some((mesh_scene, _)) = &mesh {
-                self.time(mesh_scene, &settings, BlasLayout::OneGeometry, Variant::Mesh)?;
+                self.time(mesh_scene, &settings, grouping(&settings), Variant::Mesh)?;
             }
             // Ablations at the first size only: they compare layouts, not sizes.
             if self.options.ablations && index == 0 {
@@ -163,30 +176,30 @@ impl ModelRun<'_> {
 
     fn ablations(&mut self, base: &Scene, settings: &RenderSettings) -> Result<(), BenchError> {
         let combined = RenderSettings { buffer_layout: BufferLayout::Combined, ..*settings };
-        self.time(base, &combined, BlasLayout::OneGeometry, Variant::CombinedBuffers)?;
+        self.time(base, &combined, grouping(settings), Variant::CombinedBuffers)?;
         let box_test = RenderSettings { acceptance: PatchAcceptance::Box, ..*settings };
-        self.time(base, &box_test, BlasLayout::OneGeometry, Variant::BoxAcceptance)?;
-        self.time(base, settings, BlasLayout::OneGeometry, Variant::AovOutput)?;
+        self.time(base, &box_test, grouping(settings), Variant::BoxAcceptance)?;
+        self.time(base, settings, grouping(settings), Variant::AovOutput)?;
         if let Some(reordering) = self.options.reordering {
             self.time_on(reordering, base, settings, Variant::HitReordering)?;
         }
         let smaller = self.reprepped(base, PrepSettings { disk_scale: 0.7, ..PrepSettings::default() })?;
-        self.time(&smaller, settings, BlasLayout::OneGeometry, Variant::SmallerDisks)?;
+        self.time(&smaller, settings, grouping(settings), Variant::SmallerDisks)?;
         let paper_radii = self.reprepped(base, paper_radius(PrepSettings::default()))?;
-        self.time(&paper_radii, settings, BlasLayout::OneGeometry, Variant::PaperRadius)?;
+        self.time(&paper_radii, settings, grouping(settings), Variant::PaperRadius)?;
         if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
             return Ok(());
         }
         self.time(base, settings, BlasLayout::GeometryPerAabb, Variant::GeometryPerAabb)?;
         let cubes = self.reprepped(base, PrepSettings { boxes: BoxKind::Cube, ..PrepSettings::default() })?;
-        self.time(&cubes, settings, BlasLayout::OneGeometry, Variant::CubeBoxes)?;
+        self.time(&cubes, settings, grouping(settings), Variant::CubeBoxes)?;
         let paper_cubes = self.reprepped(
             base,
             paper_radius(PrepSettings { boxes: BoxKind::Cube, ..PrepSettings::default() }),
         )?;
-        self.time(&paper_cubes, &box_test, BlasLayout::OneGeometry, Variant::PaperConfiguration)?;
+        self.time(&paper_cubes, &box_test, grouping(settings), Variant::PaperConfiguration)?;
         let six = self.reprepped(base, PrepSettings { k: 6, ..PrepSettings::default() })?;
-        self.time(&six, settings, BlasLayout::OneGeometry, Variant::SixNeighbours)
+        self.time(&six, settings, grouping(settings), Variant::SixNeighbours)
     }
 
     /// The scene with the model re-prepped with `options`.
@@ -222,7 +235,7 @@ impl ModelRun<'_> {
         settings: &RenderSettings,
         variant: Variant,
     ) -> Result<(), BenchError> {
-        let layout = BlasLayout::OneGeometry;
+        let layout = grouping(settings);
         let measured = measure(renderer, scene, settings, layout, PixelOutput::Display, self.options.frames);
         self.record(scene, settings, variant, measured)
     }
@@ -249,6 +262,23 @@ impl ModelRun<'_> {
         self.cases.push(result);
         Ok(())
     }
+}
+
+impl BenchOptions<'_> {
+    /// `settings` with this run's replacements.
+    fn applied(&self, settings: RenderSettings) -> RenderSettings {
+        RenderSettings {
+            integrator: self.integrator.unwrap_or(settings.integrator),
+            patches_per_box: self.patches_per_box.or(settings.patches_per_box),
+            ..settings
+        }
+    }
+}
+
+/// The bottom-level layout of `settings`' patches a box (one where it leaves the choice: the
+/// models all fit).
+fn grouping(settings: &RenderSettings) -> BlasLayout {
+    BlasLayout::grouping(settings.patches_per_box.unwrap_or(1))
 }
 
 fn paper_radius(settings: PrepSettings) -> PrepSettings {

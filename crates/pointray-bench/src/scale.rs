@@ -62,6 +62,8 @@ pub struct ScaleOptions<'a> {
     pub rungs: Vec<Rung>,
     pub sizes: Vec<(u32, u32)>,
     pub frames: FrameCounts,
+    /// Replaces the scene's patches a box (`RenderSettings::patches_per_box`).
+    pub patches_per_box: Option<u32>,
     /// Told about prep's stages (a progress bar).
     pub progress: &'a dyn PrepProgress,
     /// Called with each row as it completes.
@@ -144,20 +146,24 @@ fn measure_rung(
     })?;
     let scene_path = options.cache.join(format!("scale-{label}.toml"));
     let loaded = load_with_model(label, &table, "points", &store, &scene_path, &options.cache)?;
-    let (mut ready, costs) = backend.prepare(&loaded.scene, &loaded.settings, label)?;
+    let base = RenderSettings {
+        patches_per_box: options.patches_per_box.or(loaded.settings.patches_per_box),
+        ..loaded.settings
+    };
+    let (mut ready, costs) = backend.prepare(&loaded.scene, &base, label)?;
     let load = started.elapsed();
     let fps = options
         .sizes
         .iter()
         .map(|&(width, height)| {
-            let settings = RenderSettings { width, height, ..loaded.settings };
+            let settings = RenderSettings { width, height, ..base };
             let case = format!("{label} {width}x{height}");
             backend.stream_tiles(&mut ready, &settings, &case)?;
             let frame = backend.frame_time(&ready, &settings, options.frames, &case)?;
             Ok(SizeFps { width, height, fps: 1.0 / frame.as_secs_f64(), frame_ms: frame.as_secs_f64() * 1e3 })
         })
         .collect::<Result<_, BenchError>>()?;
-    let check = RenderSettings { width: CHECK_SIZE.0, height: CHECK_SIZE.1, ..loaded.settings };
+    let check = RenderSettings { width: CHECK_SIZE.0, height: CHECK_SIZE.1, ..base };
     backend.stream_tiles(&mut ready, &check, label)?;
     let image = backend.image(&ready, &check, label)?;
     let image_psnr_db = first_image.as_ref().map(|first| image.color_psnr(first));
@@ -174,6 +180,7 @@ fn measure_rung(
         load_seconds: load.as_secs_f64(),
         blas_build_seconds: costs.blas.as_secs_f64(),
         bottom_levels: costs.tiles,
+        patches_per_box: costs.patches_per_box,
         gpu_bytes_per_point: costs.gpu_bytes.map(|bytes| bytes as f64 / points),
         gpu_build_peak_bytes_per_point: costs.gpu_peak_bytes.map(|bytes| bytes as f64 / points),
         fps,

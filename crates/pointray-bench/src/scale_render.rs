@@ -31,6 +31,8 @@ pub struct BuildCosts {
     pub gpu_peak_bytes: Option<u64>,
     /// Bottom levels: one per mesh and per tile of a point set.
     pub tiles: usize,
+    /// Consecutive patches one box of the GPU's bottom levels bounds; 1 on the CPU backend.
+    pub patches_per_box: u32,
 }
 
 impl ScaleBackend<'_> {
@@ -76,6 +78,7 @@ impl ScaleBackend<'_> {
                     gpu_bytes: Some(report.gpu_bytes()),
                     gpu_peak_bytes: Some(report.peak_build_bytes),
                     tiles: report.blas_count,
+                    patches_per_box: report.patches_per_box,
                 }
             }
             ReadyScene::Cpu(renderer) => BuildCosts {
@@ -83,6 +86,7 @@ impl ScaleBackend<'_> {
                 gpu_bytes: None,
                 gpu_peak_bytes: None,
                 tiles: renderer.tile_count(),
+                patches_per_box: 1,
             },
         };
         Ok((ready, costs))

@@ -45,6 +45,8 @@ pub struct RungMeasurement {
     /// Bottom levels built: one per tile of the points (`maxPrimitiveCount` patches at
     /// most on the GPU) and one for the floor.
     pub bottom_levels: usize,
+    /// Consecutive patches one box of those bottom levels bounds.
+    pub patches_per_box: u32,
     /// Everything the scene keeps on the GPU, per patch; `None` on the CPU backend.
     pub gpu_bytes_per_point: Option<f64>,
     /// The most the scene held on the GPU at once while it was built, per patch.
@@ -84,7 +86,7 @@ impl ScaleRow {
                 let fps: Vec<String> =
                     m.fps.iter().map(|s| format!("{:.1} FPS at {}x{}", s.fps, s.width, s.height)).collect();
                 format!(
-                    "{}: prep {} {:.2} s ({:.2} M points/s, peak {}), store {:.1} MB, load {:.2} s, BLAS {:.2} s ({} bottom levels), GPU {}, {}{}",
+                    "{}: prep {} {:.2} s ({:.2} M points/s, peak {}), store {:.1} MB, load {:.2} s, BLAS {:.2} s ({} bottom levels, {} patches a box), GPU {}, {}{}",
                     self.label,
                     m.prep_route,
                     m.prep_seconds,
@@ -94,6 +96,7 @@ impl ScaleRow {
                     m.load_seconds,
                     m.blas_build_seconds,
                     m.bottom_levels,
+                    m.patches_per_box,
                     m.gpu_bytes_per_point.map_or("n/a".into(), |b| format!("{b:.0} B/point")),
                     fps.join(", "),
                     m.image_psnr_db

@@ -24,6 +24,7 @@ fn options<'a>(data: PathBuf, cache: &Path, size: Option<(u32, u32)>, ablations:
         frames: FrameCounts { warmup: 1, timed: 3 },
         size,
         integrator: None,
+        patches_per_box: None,
         limit: true,
         ablations,
         reordering: None,
@@ -134,6 +135,7 @@ fn scale_options<'a>(data: PathBuf, cache: &Path, rungs: &[(&str, u64)]) -> Scal
         rungs: rungs.iter().map(|&(label, points)| Rung { label: label.into(), points }).collect(),
         sizes: vec![(48, 27), (16, 16)],
         frames: FrameCounts { warmup: 1, timed: 2 },
+        patches_per_box: None,
         progress: &NoProgress,
         on_row: &|_| {},
     }

@@ -86,12 +86,7 @@ impl Backend {
     pub fn prepare(&self, scene: &Scene, settings: &RenderSettings) -> Result<ReadyScene, BackendError> {
         Ok(match self {
             Backend::Vulkan(renderer) => {
-                let stream_tiles_for = Some((settings.width, settings.height));
-                let layout = SceneLayout {
-                    stream_tiles_for,
-                    coarse_tiles: true,
-                    ..SceneLayout::for_settings(settings)
-                };
+                let layout = SceneLayout::for_frames(settings);
                 ReadyScene::Vulkan(Box::new(renderer.prepare_with_layout(scene, layout)?))
             }
             Backend::Cpu => ReadyScene::Cpu(Box::new(CpuRenderer::new(scene))),

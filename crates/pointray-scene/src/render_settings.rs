@@ -25,6 +25,12 @@ pub struct RenderSettings {
     pub shadows: bool,
     pub acceptance: PatchAcceptance,
     pub buffer_layout: BufferLayout,
+    /// How many consecutive patches one box of a point set's bottom level bounds on the GPU
+    /// (1 is the paper's box per patch). Larger boxes make a smaller BVH, and each
+    /// intersection call tests its box's patches in turn, which is slower. `None` chooses:
+    /// one, or more where the scene would not fit the GPU's memory whole with one
+    /// (`pointray_vulkan::SceneLayout::group_to_fit`).
+    pub patches_per_box: Option<u32>,
     pub integrator: Integrator,
     /// The path integrator's random sequence: one seed gives one image on every backend.
     pub seed: u32,
@@ -44,6 +50,7 @@ impl Default for RenderSettings {
             shadows: true,
             acceptance: PatchAcceptance::default(),
             buffer_layout: BufferLayout::default(),
+            patches_per_box: None,
             integrator: Integrator::default(),
             seed: 0,
             first_sample: 0,
@@ -59,12 +66,15 @@ pub enum RenderSetting {
     Height,
     SamplesPerPixel,
     MaxDepth,
+    PatchesPerBox,
 }
 
 /// The longest image side: beyond it the GPU's dispatch and the image formats run out.
 pub const MAX_IMAGE_SIDE: u32 = 1 << 16;
 /// Beyond this many samples a pixel no longer changes visibly, and a frame takes hours.
 pub const MAX_SAMPLES_PER_PIXEL: u32 = 1 << 16;
+/// Beyond this many patches a box's intersection call does a whole tile's work.
+pub const MAX_PATCHES_PER_BOX: u32 = 64;
 /// Beyond this many segments the reflection weights (< 1 each) leave nothing to see.
 pub const MAX_RAY_DEPTH: u32 = 64;
 
@@ -81,6 +91,7 @@ impl RenderSetting {
             Self::Height => "render.height",
             Self::SamplesPerPixel => "render.spp",
             Self::MaxDepth => "render.max_depth",
+            Self::PatchesPerBox => "render.patches_per_box",
         }
     }
 
@@ -90,6 +101,7 @@ impl RenderSetting {
             Self::Width | Self::Height => MAX_IMAGE_SIDE,
             Self::SamplesPerPixel => MAX_SAMPLES_PER_PIXEL,
             Self::MaxDepth => MAX_RAY_DEPTH,
+            Self::PatchesPerBox => MAX_PATCHES_PER_BOX,
         };
         if (1..=maximum).contains(&value) {
             Ok(value)

@@ -22,6 +22,8 @@
 //! height = 640
 //! spp = 1
 //! max_depth = 2
+//! patches_per_box = 1       # the GPU's boxes: one per run of this many patches (default:
+//!                           # 1, or 4 where the scene does not fit the GPU's memory with 1)
 //! integrator = "whitted"    # or "path"
 //! seed = 0                  # the path integrator's random sequence
 //! ```
@@ -113,6 +115,7 @@ pub struct RenderSpec {
     pub height: Option<u32>,
     pub spp: Option<u32>,
     pub max_depth: Option<u32>,
+    pub patches_per_box: Option<u32>,
     pub integrator: Option<Integrator>,
     pub seed: Option<u32>,
 }
@@ -378,6 +381,13 @@ impl RenderSpec {
             height: value(RenderSetting::Height, self.height, default.height)?,
             samples_per_pixel: value(RenderSetting::SamplesPerPixel, self.spp, default.samples_per_pixel)?,
             max_depth: value(RenderSetting::MaxDepth, self.max_depth, default.max_depth)?,
+            patches_per_box: self
+                .patches_per_box
+                .map(|value| {
+                    let setting = RenderSetting::PatchesPerBox;
+                    setting.check(value).map_err(|problem| InvalidValue::new(setting.file_key(), problem))
+                })
+                .transpose()?,
             integrator: self.integrator.unwrap_or(default.integrator),
             seed: self.seed.unwrap_or(default.seed),
             ..default

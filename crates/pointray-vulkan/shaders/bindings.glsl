@@ -38,6 +38,15 @@ struct ObjectRecord {
     uint bsdf_kind;                         // the path integrator's BSDF (BSDF_* of bsdf.glsl)
     float roughness;                        // its GGX alpha
     vec4 emission_ior;                      // rgb = emitted radiance, a = index of refraction
+    uint patch_end;                         // one past the tile's last patch
+    uint patches_per_box;                   // consecutive patches one box of its BLAS bounds
+};
+
+// What the patch intersection shader hands the closest-hit shader: which patch of the box
+// it hit (its index in the set) and the hit's (u, v) on it.
+struct PatchHit {
+    vec2 uv;
+    uint patch_index;
 };
 
 // Whitted: position_or_direction.xyz = a point light's position (w = 0) or a directional

@@ -1,6 +1,7 @@
 #version 460
-// Hit group 0, closest hit: the patch's gradient normal and the point colours interpolated
-// at the hit.
+// Hit groups 0 and 2 (compiled with PATCH_GROUPS), closest hit: the patch's gradient normal
+// and the point colours interpolated at the hit. Hit group 2's intersection shader names the
+// patch of its box that it hit; hit group 0's box is the patch.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -11,7 +12,11 @@
 #include "self_clearance.glsl"
 
 layout(location = HIT_PAYLOAD_LOCATION) rayPayloadInEXT HitPayload payload;
+#ifdef PATCH_GROUPS
+hitAttributeEXT PatchHit hit;
+#else
 hitAttributeEXT vec2 hit_uv;
+#endif
 
 // The point colours interpolated at the hit, where the material uses them (white otherwise,
 // which ray generation does not read). Blending reads the split hot and cold buffers, which
@@ -27,9 +32,15 @@ uint hit_color(ObjectRecord object, uint patch_index) {
 
 void main() {
     ObjectRecord object = objects[gl_InstanceCustomIndexEXT];
+#ifdef PATCH_GROUPS
+    uint patch_index = hit.patch_index;
+    vec2 uv = hit.uv;
+#else
     uint patch_index = object.first_patch + gl_PrimitiveID + gl_GeometryIndexEXT;
+    vec2 uv = hit_uv;
+#endif
     PatchHot patch_record = load_hot(object, patch_index);
-    vec3 object_normal = patch_normal(decode_patch(patch_record), hit_uv);
+    vec3 object_normal = patch_normal(decode_patch(patch_record), uv);
     // Normals go to world by the inverse transpose: n * WorldToObject.
     payload.normal_or_background = normalize((object_normal * gl_WorldToObjectEXT).xyz);
     payload.t = gl_HitTEXT;

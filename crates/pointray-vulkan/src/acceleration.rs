@@ -21,6 +21,30 @@ pub enum BlasLayout {
     OneGeometry,
     /// One geometry per box: the ablation the paper measured 3.3x slower.
     GeometryPerAabb,
+    /// One geometry whose boxes each bound this many consecutive patches (2 or more), which
+    /// one intersection call tests in turn: fewer, larger boxes, so a smaller and shallower
+    /// BVH. Prep stores patches along a Morton curve, so a run of them lies close together.
+    PatchGroups(u32),
+}
+
+impl BlasLayout {
+    /// The layout that groups `patches_per_box` patches a box (one geometry either way).
+    pub fn grouping(patches_per_box: u32) -> Self {
+        if patches_per_box > 1 { Self::PatchGroups(patches_per_box) } else { Self::OneGeometry }
+    }
+
+    /// How many consecutive patches one box bounds.
+    pub fn patches_per_box(self) -> u32 {
+        match self {
+            Self::PatchGroups(patches) => patches.max(1),
+            Self::OneGeometry | Self::GeometryPerAabb => 1,
+        }
+    }
+
+    /// Boxes in the bottom level of `patches` patches.
+    pub fn boxes(self, patches: usize) -> usize {
+        patches.div_ceil(self.patches_per_box() as usize)
+    }
 }
 
 /// Compaction is kept only when it saves at least this fraction of the memory.
@@ -59,8 +83,10 @@ pub(crate) struct BuildInput<'a> {
     pub(crate) ranges: Vec<vk::AccelerationStructureBuildRangeInfoKHR>,
 }
 
-/// A BLAS over `count` boxes (`VkAabbPositionsKHR`, 24 bytes each) at `aabbs`.
-pub(crate) fn aabb_input<'a>(aabbs: vk::DeviceAddress, count: u32, layout: BlasLayout) -> BuildInput<'a> {
+/// A BLAS over the boxes of `patches` patches in `layout` (`VkAabbPositionsKHR`, 24 bytes
+/// each) at `aabbs`.
+pub(crate) fn aabb_input<'a>(aabbs: vk::DeviceAddress, patches: usize, layout: BlasLayout) -> BuildInput<'a> {
+    let count = layout.boxes(patches) as u32;
     let geometry = |address| {
         let aabbs = vk::AccelerationStructureGeometryAabbsDataKHR::default()
             .data(vk::DeviceOrHostAddressConstKHR { device_address: address })
@@ -74,7 +100,9 @@ pub(crate) fn aabb_input<'a>(aabbs: vk::DeviceAddress, count: u32, layout: BlasL
         vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_offset(offset).primitive_count(count)
     };
     let (geometries, ranges) = match layout {
-        BlasLayout::OneGeometry => (vec![geometry(aabbs)], vec![range(0, count)]),
+        BlasLayout::OneGeometry | BlasLayout::PatchGroups(_) => {
+            (vec![geometry(aabbs)], vec![range(0, count)])
+        }
         // Every geometry reads the same buffer from its own box on.
         BlasLayout::GeometryPerAabb => (0..count).map(|i| (geometry(aabbs), range(i * 24, 1))).unzip(),
     };

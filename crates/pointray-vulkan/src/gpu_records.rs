@@ -1,10 +1,14 @@
 //! Records the shaders read, byte for byte as `shaders/bindings.glsl` declares them.
 
+use std::ops::Range;
+
 use bytemuck::{Pod, Zeroable};
 use glam::{Affine3A, Vec3};
 use pointray_kernels::{PatchAcceptance, PatchCold, PatchHot, Ray};
 use pointray_scene::light::WhittedLight;
 use pointray_scene::{BufferLayout, Light, Material, RenderSettings};
+
+use crate::acceleration::BlasLayout;
 
 /// Hot and cold data of one patch interleaved (`BufferLayout::Combined`): 44 bytes.
 #[repr(C)]
@@ -44,6 +48,12 @@ pub(crate) struct ObjectRecord {
     pub(crate) roughness: f32,
     /// Emitted radiance in rgb, the index of refraction in a.
     pub(crate) emission_ior: [f32; 4],
+    /// One past the tile's last patch index; 0 for meshes.
+    pub(crate) patch_end: u32,
+    /// How many consecutive patches one box of the tile's bottom level bounds (`BlasLayout`).
+    pub(crate) patches_per_box: u32,
+    /// The record's std430 size is a multiple of its vec4s' alignment.
+    pub(crate) padding: [u32; 2],
 }
 
 impl ObjectRecord {
@@ -67,9 +77,16 @@ impl ObjectRecord {
         }
     }
 
-    /// This record for the tile of object `object_index` whose first patch is `first_patch`.
-    pub(crate) fn for_tile(self, object_index: u32, first_patch: u32) -> Self {
-        Self { object_index, first_patch, ..self }
+    /// This record for the tile of object `object_index` that holds `patches`, whose bottom
+    /// level is in `layout`.
+    pub(crate) fn for_tile(self, object_index: u32, patches: Range<usize>, layout: BlasLayout) -> Self {
+        Self {
+            object_index,
+            first_patch: patches.start as u32,
+            patch_end: patches.end as u32,
+            patches_per_box: layout.patches_per_box(),
+            ..self
+        }
     }
 }
 
@@ -318,6 +335,8 @@ mod tests {
                 ("bsdf_kind", offset_of!(ObjectRecord, bsdf_kind)),
                 ("roughness", offset_of!(ObjectRecord, roughness)),
                 ("emission_ior", offset_of!(ObjectRecord, emission_ior)),
+                ("patch_end", offset_of!(ObjectRecord, patch_end)),
+                ("patches_per_box", offset_of!(ObjectRecord, patches_per_box)),
             ],
         );
         assert_members(

@@ -60,7 +60,7 @@ pub use error::VulkanError;
 pub use frame_loop::FrameLoopTimes;
 pub use gpu_records::{ListedRay, RayHit, RayPose};
 pub use memory_report::BuildReport;
-pub use prepared_scene::{PreparedScene, SceneLayout};
+pub use prepared_scene::{PATCHES_PER_BOX_TO_FIT, PreparedScene, SceneLayout};
 pub use present_device::PresentDevice;
 pub use present_loop::{PresentLoop, Presented};
 pub use ray_counter::RayCounts;

@@ -90,8 +90,8 @@ fn plan_with_sizes(
                 let tiles = patch_tiles(patches, max_tile);
                 need.bottom_levels += tiles.len();
                 for tile in &tiles {
-                    let (size, scratch) = sizes(&aabb_input(0, tile.len() as u32, layout.blas));
-                    need.build(tile_box_bytes(tile), size, scratch);
+                    let (size, scratch) = sizes(&aabb_input(0, tile.len(), layout.blas));
+                    need.build(tile_box_bytes(tile, layout.blas), size, scratch);
                 }
                 need.upload(record_bytes(patches, &object.material, layout.buffers));
             }

@@ -25,6 +25,8 @@ pub struct BuildReport {
     /// The most GPU memory the buffers and structures took at once while the scene was
     /// built (build inputs and scratch included; the frame's images are not).
     pub peak_build_bytes: u64,
+    /// Consecutive patches one box of the point sets' bottom levels bounds.
+    pub patches_per_box: u32,
 }
 
 impl BuildReport {
@@ -49,6 +51,7 @@ impl PreparedScene {
             tlas_build: self.tlas.build_time,
             blas_bytes: bottom_levels.iter().map(|b| b.size()).sum(),
             tlas_bytes: self.tlas.size(),
+            patches_per_box: self.blas_layout.patches_per_box(),
             peak_build_bytes: self.streaming.as_ref().map_or(self.build_peak, |streaming| {
                 self.build_peak.max(streaming.beside_tiles + streaming.tiles.peak)
             }),

@@ -1,11 +1,12 @@
 //! A point set onto the GPU: one BLAS per tile (`pointray_patches::patch_tiles`), then the
 //! per-patch records its traces read, all tiles sharing the set's buffers.
 
+use std::borrow::Cow;
 use std::ops::Range;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use pointray_kernels::{COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot};
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot};
 use pointray_patches::PatchSet;
 use pointray_patches::patch_tiles::tile_ranges;
 use pointray_scene::{BufferLayout, Material};
@@ -21,7 +22,7 @@ use crate::memory_plan::GpuLedger;
 use crate::prepared_scene::{PreparedObject, SceneLayout};
 
 /// Bytes of one patch box (`VkAabbPositionsKHR`).
-const BOX_BYTES: u64 = size_of::<pointray_kernels::Aabb>() as u64;
+const BOX_BYTES: u64 = size_of::<Aabb>() as u64;
 
 /// Whether a trace of a point set with `material` reads its cold records and colour
 /// neighbours: only to colour hits by the points, so for the others they stay in memory.
@@ -86,7 +87,7 @@ fn log_phase(what: &str, bytes: u64, elapsed: Duration) {
     tracing::info!("{what}: {gigabytes:.2} GB in {seconds:.2} s ({:.2} GB/s)", gigabytes / seconds.max(1e-9));
 }
 
-/// One BLAS per tile, each with its first patch, built before the set's `records` bytes are
+/// One BLAS per tile, each with its patches, built before the set's `records` bytes are
 /// uploaded. Each tile's boxes are uploaded for its build alone: the structure keeps its own
 /// copy and no shader reads them.
 fn tile_bottom_levels(
@@ -96,21 +97,20 @@ fn tile_bottom_levels(
     max_tile_patches: u32,
     records: u64,
     ledger: &mut GpuLedger,
-) -> Result<Vec<(AccelerationStructure, u32)>, VulkanError> {
+) -> Result<Vec<(AccelerationStructure, Range<usize>)>, VulkanError> {
     let tiles = patch_tiles(patches, max_tile_patches);
     let count = tiles.len();
     let mut bottom_levels = Vec::with_capacity(count);
     for (index, tile) in tiles.into_iter().enumerate() {
-        let primitives = tile.len() as u32;
-        let (size, scratch) = build_sizes(context, &aabb_input(0, primitives, layout.blas));
-        let transient = build_peak(tile_box_bytes(&tile), size, scratch);
+        let (size, scratch) = build_sizes(context, &aabb_input(0, tile.len(), layout.blas));
+        let transient = build_peak(tile_box_bytes(&tile, layout.blas), size, scratch);
         // The records come after the last build, so a build that leaves no room for them fails now.
         let step =
             format!("building bottom level {} of {count} (and the patch records after the last)", index + 1);
         ledger.check(transient.max(records), &step)?;
         let blas = tile_blas(context, patches, tile.clone(), layout.blas)?;
-        ledger.hold_structure(&blas, tile_box_bytes(&tile));
-        bottom_levels.push((blas, tile.start as u32));
+        ledger.hold_structure(&blas, tile_box_bytes(&tile, layout.blas));
+        bottom_levels.push((blas, tile));
     }
     Ok(bottom_levels)
 }
@@ -123,14 +123,25 @@ pub(crate) fn tile_blas(
     tile: Range<usize>,
     layout: BlasLayout,
 ) -> Result<AccelerationStructure, VulkanError> {
-    let primitives = tile.len() as u32;
-    let boxes = Buffer::device_with_data(
-        context,
-        "patch boxes",
-        bytemuck::cast_slice(&patches.aabbs[tile]),
-        build_input_usage(),
-    )?;
-    build(context, &aabb_input(boxes.device_address(), primitives, layout))
+    let count = tile.len();
+    let boxes = tile_boxes(&patches.aabbs[tile], layout);
+    let boxes =
+        Buffer::device_with_data(context, "patch boxes", bytemuck::cast_slice(&boxes), build_input_usage())?;
+    build(context, &aabb_input(boxes.device_address(), count, layout))
+}
+
+/// The boxes of a tile's bottom level: each patch's own, or in `BlasLayout::PatchGroups` the
+/// union of each run of patches, counted from the tile's first.
+fn tile_boxes(patch_boxes: &[Aabb], layout: BlasLayout) -> Cow<'_, [Aabb]> {
+    match layout.patches_per_box() as usize {
+        1 => Cow::Borrowed(patch_boxes),
+        run => Cow::Owned(
+            patch_boxes
+                .par_chunks(run)
+                .map(|group| group.iter().skip(1).fold(group[0], |bounds, patch| bounds.union(patch)))
+                .collect(),
+        ),
+    }
 }
 
 /// The per-patch records of the patches in `range` that the trace reads, in `buffers'`
@@ -220,9 +231,9 @@ pub(crate) fn range_record_bytes(
     neighbors + split + combined
 }
 
-/// The build input of one tile: its patches' boxes.
-pub(crate) fn tile_box_bytes(tile: &Range<usize>) -> u64 {
-    tile.len() as u64 * BOX_BYTES
+/// The build input of one tile: its boxes in `layout`.
+pub(crate) fn tile_box_bytes(tile: &Range<usize>, layout: BlasLayout) -> u64 {
+    layout.boxes(tile.len()) as u64 * BOX_BYTES
 }
 
 /// Refuses a patch set whose sections disagree, which the shaders would read past.

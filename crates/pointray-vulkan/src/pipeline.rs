@@ -1,5 +1,6 @@
-//! The ray-tracing pipeline: ray generation, two miss shaders (background, shadow) and two
-//! hit groups (0: patch intersection + closest hit, 1: triangle closest hit), with the
+//! The ray-tracing pipeline: ray generation, two miss shaders (background, shadow) and three
+//! hit groups (0: patch intersection + closest hit, 1: triangle closest hit, 2: the patch
+//! group for boxes of several patches each), with the
 //! descriptor layout of `shaders/bindings.glsl`. The benchmark's counting pipeline has one
 //! binding more, the intersection calls per pixel that `patch.rint` counts with `COUNT_RAYS`.
 
@@ -35,10 +36,16 @@ pub(crate) const GROUP_RAYGEN: u32 = 0;
 pub(crate) const GROUP_MISS_FIRST: u32 = 1;
 pub(crate) const MISS_GROUP_COUNT: u32 = 2;
 pub(crate) const GROUP_HIT_FIRST: u32 = 3;
-pub(crate) const HIT_GROUP_COUNT: u32 = 2;
+pub(crate) const HIT_GROUP_COUNT: u32 = 3;
 /// The instance SBT offsets (`instanceShaderBindingTableRecordOffset`).
 pub(crate) const HIT_GROUP_PATCHES: u32 = 0;
 pub(crate) const HIT_GROUP_TRIANGLES: u32 = 1;
+pub(crate) const HIT_GROUP_PATCH_GROUPS: u32 = 2;
+
+/// The hit group of a point set's tile whose boxes each bound `patches_per_box` patches.
+pub(crate) fn patch_hit_group(patches_per_box: u32) -> u32 {
+    if patches_per_box > 1 { HIT_GROUP_PATCH_GROUPS } else { HIT_GROUP_PATCHES }
+}
 
 pub(crate) struct RayTracingPipeline {
     context: Arc<GpuContext>,
@@ -98,9 +105,12 @@ impl RayTracingPipeline {
         // SAFETY: the device is alive; handles are destroyed in Drop.
         owned.layout =
             unsafe { device.create_pipeline_layout(&info, None) }.during("creating the pipeline layout")?;
-        let intersection =
-            if counts_intersections { shaders::PATCH_COUNTING_RINT } else { shaders::PATCH_RINT };
-        owned.pipeline = create_pipeline(context, owned.layout, raygen, intersection)?;
+        let intersections = if counts_intersections {
+            [shaders::PATCH_COUNTING_RINT, shaders::PATCH_GROUPS_COUNTING_RINT]
+        } else {
+            [shaders::PATCH_RINT, shaders::PATCH_GROUPS_RINT]
+        };
+        owned.pipeline = create_pipeline(context, owned.layout, raygen, intersections)?;
         Ok(owned)
     }
 
@@ -193,7 +203,7 @@ fn create_pipeline(
     context: &GpuContext,
     layout: vk::PipelineLayout,
     raygen: &[u8],
-    intersection: &[u8],
+    [intersection, group_intersection]: [&[u8]; 2],
 ) -> Result<vk::Pipeline, VulkanError> {
     let mut modules = Modules { device: &context.device, handles: Vec::new() };
     let stage = |stage, module| {
@@ -206,6 +216,8 @@ fn create_pipeline(
         stage(vk::ShaderStageFlags::INTERSECTION_KHR, modules.add(intersection)?),
         stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::PATCH_RCHIT)?),
         stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::TRIANGLE_RCHIT)?),
+        stage(vk::ShaderStageFlags::INTERSECTION_KHR, modules.add(group_intersection)?),
+        stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::PATCH_GROUPS_RCHIT)?),
     ];
     let group = |ty| {
         vk::RayTracingShaderGroupCreateInfoKHR::default()
@@ -224,6 +236,9 @@ fn create_pipeline(
             .intersection_shader(3)
             .closest_hit_shader(4),
         group(vk::RayTracingShaderGroupTypeKHR::TRIANGLES_HIT_GROUP).closest_hit_shader(5),
+        group(vk::RayTracingShaderGroupTypeKHR::PROCEDURAL_HIT_GROUP)
+            .intersection_shader(6)
+            .closest_hit_shader(7),
     ];
     // Ray generation shades and traces every bounce itself; hit shaders trace nothing.
     let info = vk::RayTracingPipelineCreateInfoKHR::default()
@@ -273,7 +288,11 @@ mod tests {
     fn only_the_counting_intersection_shader_binds_its_calls() {
         let counting = Reflection::of(crate::shaders::PATCH_COUNTING_RINT);
         assert_eq!(counting.binding_of("IntersectionCalls"), (0, BINDING_INTERSECTION_CALLS));
-        let timed = Reflection::of(crate::shaders::PATCH_RINT);
-        assert!(!timed.has_binding("IntersectionCalls"), "the timed pipeline binds no counter");
+        let grouped = Reflection::of(crate::shaders::PATCH_GROUPS_COUNTING_RINT);
+        assert_eq!(grouped.binding_of("IntersectionCalls"), (0, BINDING_INTERSECTION_CALLS));
+        for timed in [crate::shaders::PATCH_RINT, crate::shaders::PATCH_GROUPS_RINT] {
+            let timed = Reflection::of(timed);
+            assert!(!timed.has_binding("IntersectionCalls"), "the timed pipeline binds no counter");
+        }
     }
 }

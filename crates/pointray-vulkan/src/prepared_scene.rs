@@ -1,6 +1,7 @@
 //! A scene uploaded to the GPU: per-object buffers, per-object (or per-tile) BLASes, the
 //! TLAS, the instance (material) records and the lights. Built once, traced many times.
 
+use std::ops::Range;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -22,7 +23,7 @@ use crate::gpu_records::{FrameUniforms, LightRecord, ObjectRecord, vec4};
 use crate::light_table::LightTable;
 use crate::memory_plan::{self, GpuBudget, GpuLedger, INSTANCE_BYTES, mib};
 use crate::patch_upload::prepare_patches;
-use crate::pipeline::{HIT_GROUP_PATCHES, HIT_GROUP_TRIANGLES};
+use crate::pipeline::{HIT_GROUP_TRIANGLES, patch_hit_group};
 use crate::tile_stream::{MIN_STREAMED_TILE, TileResidency, TileStream};
 
 /// The most instances (meshes and point-set tiles) whose records an instance's 24-bit
@@ -47,6 +48,8 @@ pub struct PreparedScene {
     pub(crate) tlas: AccelerationStructure,
     /// Which per-patch buffers were uploaded; a trace must read those.
     pub(crate) buffer_layout: BufferLayout,
+    /// The point sets' bottom levels' layout, chosen or grouped to fit.
+    pub(crate) blas_layout: BlasLayout,
     /// The most GPU memory the scene's buffers and structures took at once while it was built.
     pub(crate) build_peak: u64,
     // Kept alive for the TLAS and the shaders' buffer addresses (and measured by
@@ -78,7 +81,8 @@ impl Streaming {
     fn top_level(&self, context: &Arc<GpuContext>) -> Result<(AccelerationStructure, Buffer), VulkanError> {
         let (mut instances, mut records): (Vec<_>, Vec<_>) = self.fixed.iter().copied().unzip();
         for tile in self.tiles.resident.values() {
-            instances.push(instance(&tile.transform, records.len() as u32, &tile.blas, HIT_GROUP_PATCHES));
+            let hit_group = patch_hit_group(tile.record.patches_per_box);
+            instances.push(instance(&tile.transform, records.len() as u32, &tile.blas, hit_group));
             records.push(tile.record);
         }
         top_level(context, &instances, &records)
@@ -108,12 +112,38 @@ pub struct SceneLayout {
     /// Where tiles stream, draw those the budget cannot hold in full from their coarse level
     /// (`tile_stream`) rather than leave them out. `render`, `view` and `bench` do.
     pub coarse_tiles: bool,
+    /// Where the scene does not fit the budget whole with `blas`, try it in boxes of
+    /// `PATCHES_PER_BOX_TO_FIT` patches before streaming or refusing it.
+    pub group_to_fit: bool,
 }
 
+/// The patches a box where one a box does not fit (`SceneLayout::group_to_fit`). Measured
+/// on an H200 (bench/RESULTS.md, "Boxes of several patches"): boxes of 4 take 37 GPU bytes a
+/// point against 52 with one, and trace Table 1's models 1.5-1.6 times slower; boxes of 2
+/// save too little (a BLAS of about 10 bytes a point) and of 8 cost twice the time.
+pub const PATCHES_PER_BOX_TO_FIT: u32 = 4;
+
 impl SceneLayout {
-    /// The layout whose buffers a trace with `settings` reads, with one BLAS geometry.
+    /// The layout whose buffers a trace with `settings` reads, with one BLAS geometry of
+    /// `settings`' patches a box, or where it leaves them open one, grouped to fit.
     pub fn for_settings(settings: &RenderSettings) -> Self {
-        Self { buffers: settings.buffer_layout, ..Self::default() }
+        Self {
+            buffers: settings.buffer_layout,
+            blas: BlasLayout::grouping(settings.patches_per_box.unwrap_or(1)),
+            group_to_fit: settings.patches_per_box.is_none(),
+            ..Self::default()
+        }
+    }
+
+    /// The layout of `for_settings` for frames of `settings`' size, as `render`, `view` and
+    /// `bench` make them: point sets that do not fit the budget whole stream their tiles,
+    /// drawing coarse those it cannot hold.
+    pub fn for_frames(settings: &RenderSettings) -> Self {
+        Self {
+            stream_tiles_for: Some((settings.width, settings.height)),
+            coarse_tiles: true,
+            ..Self::for_settings(settings)
+        }
     }
 
     /// The most patches one tile holds on `context`'s device.
@@ -124,11 +154,11 @@ impl SceneLayout {
 }
 
 /// One object's contribution: its record (addresses only), its bottom levels (none when
-/// it is empty, one per tile of a point set) with the index of each one's first primitive,
+/// it is empty, one per tile of a point set) with the patches of each (none for a mesh),
 /// and the buffers its traces read.
 pub(crate) struct PreparedObject {
     pub(crate) record: ObjectRecord,
-    pub(crate) bottom_levels: Vec<(AccelerationStructure, u32)>,
+    pub(crate) bottom_levels: Vec<(AccelerationStructure, Range<usize>)>,
     pub(crate) buffers: Vec<Buffer>,
 }
 
@@ -179,7 +209,7 @@ fn prepare_mesh(
         indices: indices.device_address(),
         ..ObjectRecord::default()
     };
-    let bottom_levels = blas.into_iter().map(|blas| (blas, 0)).collect();
+    let bottom_levels = blas.into_iter().map(|blas| (blas, 0..0)).collect();
     Ok(PreparedObject { record, bottom_levels, buffers: vec![vertices, indices] })
 }
 
@@ -337,6 +367,13 @@ pub(crate) fn prepare(
         return Err(VulkanError::InvalidScene(problem));
     }
     match upload(context, scene, layout, false) {
+        Err(VulkanError::OverBudget(why)) if layout.group_to_fit && has_point_sets(scene) => {
+            tracing::info!(
+                "boxes of {PATCHES_PER_BOX_TO_FIT} patches, as the scene does not fit whole in boxes of one: {why}"
+            );
+            let grouped = BlasLayout::PatchGroups(PATCHES_PER_BOX_TO_FIT);
+            prepare(context, scene, SceneLayout { blas: grouped, group_to_fit: false, ..layout })
+        }
         Err(VulkanError::OverBudget(why)) if layout.stream_tiles_for.is_some() && has_point_sets(scene) => {
             tracing::info!("streaming the point sets' tiles, as the scene does not fit whole: {why}");
             upload(context, scene, layout, true)
@@ -364,14 +401,14 @@ fn upload(
             (Geometry::Patches(_), None) => continue,
             (Geometry::Patches(patches), Some(max_tile)) => (
                 prepare_patches(context, patches, &object.material, layout, max_tile, &mut ledger)?,
-                HIT_GROUP_PATCHES,
+                patch_hit_group(layout.blas.patches_per_box()),
             ),
             (Geometry::Mesh(mesh), _) => (prepare_mesh(context, mesh, &mut ledger)?, HIT_GROUP_TRIANGLES),
         };
         let record = prepared.record.with_material(&object.material);
-        for (blas, first) in prepared.bottom_levels {
+        for (blas, tile) in prepared.bottom_levels {
             instances.push(instance(&object.transform, records.len() as u32, &blas, hit_group));
-            records.push(record.for_tile(index as u32, first));
+            records.push(record.for_tile(index as u32, tile, layout.blas));
             bottom_levels.push(blas);
         }
         geometry.extend(prepared.buffers);
@@ -399,6 +436,7 @@ fn upload(
         lights: light_buffer(context, &scene.lights)?,
         tlas,
         buffer_layout: layout.buffers,
+        blas_layout: layout.blas,
         build_peak: ledger.peak(),
         _bottom_levels: bottom_levels,
         _geometry: geometry,

@@ -23,6 +23,11 @@ pub(crate) const PATCH_RINT: &[u8] = spirv!("patch.rint");
 /// `patch.rint` with `COUNT_RAYS`: each call adds one to its pixel's `intersection_calls`.
 pub(crate) const PATCH_COUNTING_RINT: &[u8] = spirv!("patch_counting.rint");
 pub(crate) const PATCH_RCHIT: &[u8] = spirv!("patch.rchit");
+/// `patch.rint` and `patch.rchit` with `PATCH_GROUPS`: boxes of several patches each.
+pub(crate) const PATCH_GROUPS_RINT: &[u8] = spirv!("patch_groups.rint");
+/// `patch_groups.rint` with `COUNT_RAYS`.
+pub(crate) const PATCH_GROUPS_COUNTING_RINT: &[u8] = spirv!("patch_groups_counting.rint");
+pub(crate) const PATCH_GROUPS_RCHIT: &[u8] = spirv!("patch_groups.rchit");
 pub(crate) const TRIANGLE_RCHIT: &[u8] = spirv!("triangle.rchit");
 /// Never run: the interface tests reflect on it.
 #[cfg(test)]

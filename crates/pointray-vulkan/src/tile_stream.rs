@@ -189,9 +189,8 @@ impl TileStream {
                 .clamp(MIN_STREAMED_TILE, MAX_STREAMED_TILE)
                 .min(max_tile as usize);
             for range in tile_ranges(patches.len(), most) {
-                let (structure, scratch) =
-                    build_sizes(context, &aabb_input(0, range.len() as u32, layout.blas));
-                let build = build_peak(tile_box_bytes(&range), structure, scratch);
+                let (structure, scratch) = build_sizes(context, &aabb_input(0, range.len(), layout.blas));
+                let build = build_peak(tile_box_bytes(&range, layout.blas), structure, scratch);
                 largest_build = largest_build.max(build);
                 let colors =
                     reads_point_colors(&object.material).then(|| ColorHalo::new(patches, range.clone()));
@@ -213,7 +212,11 @@ impl TileStream {
                     colors,
                 });
             }
-            let record = ObjectRecord::default().with_material(&object.material).for_tile(index as u32, 0);
+            let record = ObjectRecord::default().with_material(&object.material).for_tile(
+                index as u32,
+                0..0,
+                layout.blas,
+            );
             let (patches, coarse) = (patches.clone(), coarse.cloned());
             stream.sets.push(StreamedSet { patches, coarse, transform: object.transform, record });
         }
@@ -389,8 +392,7 @@ impl TileStream {
             cold: addresses.cold,
             combined: addresses.combined,
             color_neighbors: addresses.color_neighbors,
-            first_patch: range.start as u32,
-            ..set.record
+            ..set.record.for_tile(set.record.object_index, range.clone(), self.layout.blas)
         };
         Ok(ResidentTile { blas, buffers, record, transform: set.transform, level })
     }
@@ -405,7 +407,7 @@ fn level_bytes(
     layout: SceneLayout,
     colors: Option<&ColorHalo>,
 ) -> u64 {
-    let (structure, _) = build_sizes(context, &aabb_input(0, range.len() as u32, layout.blas));
+    let (structure, _) = build_sizes(context, &aabb_input(0, range.len(), layout.blas));
     range_record_bytes(patches, range, layout.buffers, colors) + structure
 }
 

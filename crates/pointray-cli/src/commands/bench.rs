@@ -42,6 +42,10 @@ pub struct BenchArgs {
     /// samples per pixel; a frame of spp 1 is one sample a pixel, so FPS is spp/s).
     #[arg(long)]
     integrator: Option<Integrator>,
+    /// Replace every scene's patches a box of the GPU's bottom levels (1: a box per patch;
+    /// default: the scene's, else 1, or 4 where the scene does not fit the GPU's memory).
+    #[arg(long, value_parser = setting_flag(RenderSetting::PatchesPerBox))]
+    patches_per_box: Option<u32>,
     /// Only these models of the suite (repeatable).
     #[arg(long = "model")]
     models: Vec<String>,
@@ -163,6 +167,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         frames: FrameCounts { warmup: args.warmup, timed: args.frames },
         size: args.width.zip(args.height),
         integrator: args.integrator,
+        patches_per_box: args.patches_per_box,
         limit: !args.no_limit,
         ablations: args.ablations,
         reordering: reordering.as_ref(),
@@ -216,6 +221,7 @@ fn run_scale_suite(args: &BenchArgs) -> anyhow::Result<()> {
         rungs: pointray_bench::scale::chosen_rungs(&args.rungs).map_err(anyhow::Error::msg)?,
         sizes: pointray_bench::scale::SCALE_SIZES.to_vec(),
         frames: FrameCounts { warmup: args.warmup, timed: args.frames },
+        patches_per_box: args.patches_per_box,
         progress: &progress,
         on_row: &print_row,
     };

@@ -60,6 +60,11 @@ pub struct RenderArgs {
     /// Per-patch data in split hot/cold buffers or one combined buffer (Vulkan only).
     #[arg(long, value_enum, default_value_t = Buffers::Split)]
     buffers: Buffers,
+    /// Consecutive patches one box of the GPU's bottom levels bounds (Vulkan only; default:
+    /// the scene file's `patches_per_box`, else 1, or 4 where the scene does not fit the
+    /// GPU's memory with 1): more make a smaller BVH and slower frames.
+    #[arg(long, value_parser = setting_flag(RenderSetting::PatchesPerBox))]
+    patches_per_box: Option<u32>,
     #[command(flatten)]
     backend: BackendArgs,
     /// Also write depth, normal, instance id, primitive id and hit mask next to the image.
@@ -146,6 +151,7 @@ fn apply_flags(args: &RenderArgs, mut settings: RenderSettings) -> RenderSetting
     settings.max_depth = args.max_depth.unwrap_or(settings.max_depth);
     settings.integrator = args.integrator.unwrap_or(settings.integrator);
     settings.seed = args.seed.unwrap_or(settings.seed);
+    settings.patches_per_box = args.patches_per_box.or(settings.patches_per_box);
     settings.shadows &= !args.no_shadows;
     settings.acceptance = args.acceptance;
     settings.buffer_layout = match args.buffers {

@@ -87,6 +87,7 @@ fn a_full_scene_parses_into_the_expected_values() {
         [render]
         width = 320
         spp = 4
+        patches_per_box = 4
         [[lights]]
         type = "directional"
         direction = [0, -2, 0]
@@ -107,6 +108,7 @@ fn a_full_scene_parses_into_the_expected_values() {
     assert_eq!(file.render.width, Some(320));
     assert_eq!(file.render.height, None);
     assert_eq!(file.render.spp, Some(4));
+    assert_eq!(file.render.patches_per_box, Some(4));
     assert!(matches!(file.background, Some(BackgroundSpec::Gradient(_))));
     assert_eq!(
         file.lights[0],
@@ -190,6 +192,7 @@ fn bad_values_are_errors_naming_the_key() {
         ),
         ("[render]\nwidth = 0\n".to_string(), "render.width"),
         ("[render]\nmax_depth = 0\n".to_string(), "render.max_depth"),
+        ("[render]\npatches_per_box = 65\n".to_string(), "render.patches_per_box"),
         (object("[objects.material]\nreflectivity = 1.5\n"), "objects[0].material.reflectivity"),
         (object("[objects.material]\nambient = -0.1\n"), "objects[0].material.ambient"),
         (object("[objects.transform]\nscale = 0.0\n"), "objects[0].transform.scale"),

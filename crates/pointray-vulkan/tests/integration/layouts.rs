@@ -1,5 +1,6 @@
-//! The ablation switches change speed, not pictures: one geometry per box renders as one
-//! geometry for all, and the combined patch buffer as the hot/cold split. A scene holds only
+//! The layout switches change speed and memory, not pictures: one geometry per box, and boxes
+//! of several patches (in whole sets and in tiles), render as one box per patch in one
+//! geometry, and the combined patch buffer as the hot/cold split. A scene holds only
 //! the buffers of its layout on the GPU.
 
 use crate::common;
@@ -8,7 +9,7 @@ use common::{assert_no_validation_messages, renderer, settings, sphere_on_floor}
 use pointray_kernels::{PatchCold, PatchHot};
 use pointray_scene::{BufferLayout, Geometry, RenderSettings, Scene};
 use pointray_test_support::largest_color_difference;
-use pointray_vulkan::{BlasLayout, SceneLayout};
+use pointray_vulkan::{BlasLayout, PATCHES_PER_BOX_TO_FIT, SceneLayout, VulkanError};
 
 #[test]
 fn blas_and_buffer_layouts_render_the_same_image() {
@@ -21,10 +22,25 @@ fn blas_and_buffer_layouts_render_the_same_image() {
         renderer.prepare_with_layout(&scene, SceneLayout::for_settings(&combined)).expect("prepares");
     let per_box_layout = SceneLayout { blas: BlasLayout::GeometryPerAabb, ..SceneLayout::default() };
     let per_box = renderer.prepare_with_layout(&scene, per_box_layout).expect("prepares");
+    let grouped = |patches_per_box, max_tile_patches| {
+        let layout = SceneLayout {
+            blas: BlasLayout::PatchGroups(patches_per_box),
+            max_tile_patches,
+            ..SceneLayout::default()
+        };
+        renderer.prepare_with_layout(&scene, layout).expect("prepares")
+    };
+    // Three a box leaves a short last box; tiles of 37 patches start boxes anew in each.
+    let (fours, threes, tiled) = (grouped(4, None), grouped(3, None), grouped(4, Some(37)));
+    let (one_blas, fours_blas) = (one.build_report().blas_bytes, fours.build_report().blas_bytes);
+    assert!(fours_blas < one_blas / 2, "boxes of 4 patches take {fours_blas} bytes against {one_blas}");
     let reference = renderer.trace(&one, &split).expect("traces");
     for (name, image) in [
         ("combined buffer", renderer.trace(&one_combined, &combined).expect("traces")),
         ("geometry per box", renderer.trace(&per_box, &split).expect("traces")),
+        ("4 patches a box", renderer.trace(&fours, &split).expect("traces")),
+        ("3 patches a box", renderer.trace(&threes, &split).expect("traces")),
+        ("4 patches a box in tiles of 37", renderer.trace(&tiled, &split).expect("traces")),
     ] {
         assert_eq!(image.instance_id, reference.instance_id, "{name}: hit objects differ");
         assert_eq!(image.primitive_id, reference.primitive_id, "{name}: hit patches differ");
@@ -98,5 +114,31 @@ fn tracing_buffers_the_scene_lacks_is_an_error() {
     let error = renderer.trace(&prepared, &combined).expect_err("the combined buffer was not uploaded");
     assert!(error.to_string().contains("prepared with the split hot and cold ones only"), "{error}");
     assert!(renderer.render(&sphere_on_floor(0.0, 1.0), &combined).is_ok(), "render prepares what it traces");
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn a_scene_over_its_budget_in_boxes_of_one_is_grouped_to_fit() {
+    let Some(renderer) = renderer() else { return };
+    let scene = sphere_on_floor(0.5, 1.0);
+    let open = SceneLayout::for_settings(&settings(96));
+    assert!(open.group_to_fit, "settings that leave the patches a box open group to fit");
+    let ones = renderer.prepare_with_layout(&scene, open).expect("prepares").build_report();
+    assert_eq!(ones.patches_per_box, 1, "a scene that fits keeps a box per patch");
+    let grouped =
+        SceneLayout { blas: BlasLayout::PatchGroups(PATCHES_PER_BOX_TO_FIT), ..SceneLayout::default() };
+    let fours = renderer.prepare_with_layout(&scene, grouped).expect("prepares");
+    // Between what each layout keeps: smaller tiles cannot bring boxes of one under it.
+    let fours_need = fours.build_report().peak_build_bytes.max(fours.build_report().gpu_bytes());
+    let budget = Some((ones.gpu_bytes() + fours_need) / 2);
+    let fixed = SceneLayout { memory_budget: budget, group_to_fit: false, ..open };
+    let refused = renderer.prepare_with_layout(&scene, fixed).err();
+    assert!(matches!(refused, Some(VulkanError::OverBudget(_))), "boxes of one do not fit: {refused:?}");
+    let fitted =
+        renderer.prepare_with_layout(&scene, SceneLayout { memory_budget: budget, ..open }).expect("fits");
+    assert_eq!(fitted.build_report().patches_per_box, PATCHES_PER_BOX_TO_FIT);
+    let (image, reference) = (renderer.trace(&fitted, &settings(96)), renderer.trace(&fours, &settings(96)));
+    let (image, reference) = (image.expect("traces"), reference.expect("traces"));
+    assert_eq!(image.primitive_id, reference.primitive_id, "grouped to fit, the scene renders as grouped");
     assert_no_validation_messages(&renderer);
 }
