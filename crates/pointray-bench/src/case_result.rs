@@ -33,6 +33,9 @@ pub enum Variant {
     SmallerDisks,
     /// Ablation: the paper's support radius instead of the cell radius (`RadiusMode::Paper`).
     PaperRadius,
+    /// Ablation: each patch as two triangles traced as a mesh, its quadratic not solved
+    /// (`triangle_proxies`): a bound from below on a layout of triangle proxies.
+    TriangleProxies,
 }
 
 impl Variant {
@@ -50,6 +53,7 @@ impl Variant {
             Self::SixNeighbours => "k = 6 neighbours",
             Self::SmallerDisks => "disk scale 0.7",
             Self::PaperRadius => "paper's radius",
+            Self::TriangleProxies => "triangle proxies (unrefined)",
         }
     }
 }

@@ -21,6 +21,7 @@ pub mod scale_report;
 pub mod stand_in;
 pub mod stats;
 pub mod suite;
+pub mod triangle_proxies;
 
 pub use case_result::{CaseResult, Variant};
 pub use error::BenchError;

@@ -18,6 +18,7 @@ use crate::model_scene::{ModelGeometry, load_model_scene, model_points};
 use crate::report::{Report, limit_rows};
 use crate::stand_in::stand_in_label;
 use crate::suite::{ModelSpec, Suite};
+use crate::triangle_proxies::triangle_proxies;
 
 /// The ablations that rebuild per box or re-prep (one geometry per AABB, cube boxes, k = 6)
 /// only run on models up to this many points, to keep a suite run short.
@@ -187,6 +188,7 @@ impl ModelRun<'_> {
         self.time(&smaller, settings, grouping(settings), Variant::SmallerDisks)?;
         let paper_radii = self.reprepped(base, paper_radius(PrepSettings::default()))?;
         self.time(&paper_radii, settings, grouping(settings), Variant::PaperRadius)?;
+        self.time(&with_triangle_proxies(base), settings, grouping(settings), Variant::TriangleProxies)?;
         if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
             return Ok(());
         }
@@ -279,6 +281,17 @@ impl BenchOptions<'_> {
 /// models all fit).
 fn grouping(settings: &RenderSettings) -> BlasLayout {
     BlasLayout::grouping(settings.patches_per_box.unwrap_or(1))
+}
+
+/// `scene` with each point set replaced by its triangle proxies, traced as a mesh.
+fn with_triangle_proxies(scene: &Scene) -> Scene {
+    let mut proxied = scene.clone();
+    for object in &mut proxied.objects {
+        if let Geometry::Patches(patches) = &object.geometry {
+            object.geometry = Geometry::Mesh(Arc::new(triangle_proxies(patches)));
+        }
+    }
+    proxied
 }
 
 fn paper_radius(settings: PrepSettings) -> PrepSettings {

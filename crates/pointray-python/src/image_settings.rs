@@ -23,13 +23,16 @@ pub struct ImageSettings {
     pub integrator: Option<Integrator>,
     #[pyo3(get)]
     pub seed: Option<u32>,
+    #[pyo3(get)]
+    pub patches_per_box: Option<u32>,
 }
 
 #[pymethods]
 impl ImageSettings {
     /// Checks each setting as its flag is checked; a bad one raises `ValueError` naming it.
     #[new]
-    #[pyo3(signature = (*, width=None, height=None, spp=None, max_depth=None, shadows=None, integrator=None, seed=None))]
+    #[pyo3(signature = (*, width=None, height=None, spp=None, max_depth=None, shadows=None, integrator=None, seed=None, patches_per_box=None))]
+    #[allow(clippy::too_many_arguments, reason = "Python's keyword arguments, each a setting")]
     fn new(
         width: Option<u32>,
         height: Option<u32>,
@@ -38,6 +41,7 @@ impl ImageSettings {
         shadows: Option<bool>,
         integrator: Option<&str>,
         seed: Option<&Bound<'_, PyAny>>,
+        patches_per_box: Option<u32>,
     ) -> PyResult<Self> {
         Ok(Self {
             width: checked(RenderSetting::Width, "width", width)?,
@@ -54,6 +58,7 @@ impl ImageSettings {
                         .map_err(|_| PyValueError::new_err("seed: a whole number from 0 to 2^32 - 1"))
                 })
                 .transpose()?,
+            patches_per_box: checked(RenderSetting::PatchesPerBox, "patches_per_box", patches_per_box)?,
         })
     }
 }
@@ -75,6 +80,7 @@ impl ImageSettings {
         }
         settings.shadows = self.shadows.unwrap_or(settings.shadows);
         settings.integrator = self.integrator.unwrap_or(settings.integrator);
+        settings.patches_per_box = self.patches_per_box.or(settings.patches_per_box);
     }
 }
 

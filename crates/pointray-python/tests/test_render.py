@@ -152,6 +152,16 @@ def test_denoise_filters_as_the_command_line_does(bunny, tmp_path):
 
 
 def test_a_render_over_its_gpu_budget_streams_and_warns_of_the_tiles_it_draws_coarse(bunny):
+    # In boxes of one patch: in boxes of 4, which it would take where left to choose, it fits.
     with pytest.warns(UserWarning, match="are drawn from their coarse level"):
-        image = pointray.render(bunny, width=48, height=48, backend="vulkan", gpu_memory="2M")
+        image = pointray.render(bunny, width=48, height=48, backend="vulkan", gpu_memory="2M", patches_per_box=1)
     assert image.shape == (48, 48, 4) and image[..., 3].any()
+
+
+def test_boxes_of_several_patches_render_the_patches_one_a_box_renders(bunny):
+    one = pointray.render(bunny, width=48, height=48, backend="vulkan", aovs=True, patches_per_box=1)
+    fours = pointray.render(bunny, width=48, height=48, backend="vulkan", aovs=True, patches_per_box=4)
+    assert np.array_equal(one.aovs["primitive"], fours.aovs["primitive"])
+    assert np.abs(np.asarray(one) - np.asarray(fours)).max() < 1e-5
+    with pytest.raises(ValueError, match="patches_per_box: must be between 1 and 64"):
+        pointray.render(bunny, backend="vulkan", patches_per_box=0)

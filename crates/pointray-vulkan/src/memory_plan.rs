@@ -9,6 +9,8 @@
 //! sizes are known only once built, so a scene whose bound is over the budget but whose
 //! floor is not is built with the ledger checking each step against the sizes it has seen.
 
+use std::sync::Arc;
+
 use pointray_io::TriangleMesh;
 use pointray_scene::{Geometry, Scene};
 
@@ -18,7 +20,7 @@ use crate::acceleration::{
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::ObjectRecord;
-use crate::patch_upload::{patch_tiles, record_bytes, tile_box_bytes};
+use crate::patch_upload::{patch_tiles, record_bytes, tile_blas, tile_box_bytes};
 use crate::prepared_scene::SceneLayout;
 
 /// Bytes of one TLAS instance record (`VkAccelerationStructureInstanceKHR`).
@@ -44,10 +46,14 @@ pub(crate) struct MemoryNeed {
     pub(crate) bound: u64,
     /// Bottom levels: one per mesh and per tile of a point set.
     pub(crate) bottom_levels: usize,
+    /// The point sets' patches and their bottom levels' share of `structures`.
+    pub(crate) patches: u64,
+    pub(crate) patch_structures: u64,
 }
 
 impl MemoryNeed {
-    fn held(&self) -> u64 {
+    /// What the scene keeps once built, its structures uncompacted.
+    pub(crate) fn held(&self) -> u64 {
         self.buffers + self.structures
     }
 
@@ -92,7 +98,9 @@ fn plan_with_sizes(
                 for tile in &tiles {
                     let (size, scratch) = sizes(&aabb_input(0, tile.len(), layout.blas));
                     need.build(tile_box_bytes(tile, layout.blas), size, scratch);
+                    need.patch_structures += size;
                 }
+                need.patches += patches.len() as u64;
                 need.upload(record_bytes(patches, &object.material, layout.buffers));
             }
             Geometry::Mesh(mesh) => {
@@ -138,6 +146,36 @@ fn fit_tile(max_tile: u32, budget: u64, plan: impl Fn(u32) -> MemoryNeed) -> (u3
         }
         tile = (tile / 2).max(MIN_FITTED_TILE);
     }
+}
+
+/// Patches in the sample tile whose bottom level `compacted_need` builds.
+const SAMPLE_TILE_PATCHES: usize = 1 << 20;
+
+/// What `scene`, planned as `need` in `layout`, keeps on the GPU once built, its point sets'
+/// bottom levels at the bytes a patch of one sample tile of its largest set, built and
+/// compacted: the plan counts them uncompacted, which NVIDIA's driver shrinks to about two
+/// thirds, and the compacted size is known only once built. `None` for a scene without
+/// patches.
+pub(crate) fn compacted_need(
+    context: &Arc<GpuContext>,
+    scene: &Scene,
+    layout: SceneLayout,
+    need: &MemoryNeed,
+) -> Result<Option<u64>, VulkanError> {
+    let largest = scene
+        .objects
+        .iter()
+        .filter_map(|object| match &object.geometry {
+            Geometry::Patches(patches) => Some(patches),
+            Geometry::Mesh(_) => None,
+        })
+        .max_by_key(|patches| patches.len());
+    let Some(largest) = largest.filter(|patches| !patches.is_empty()) else { return Ok(None) };
+    let sample = 0..largest.len().min(SAMPLE_TILE_PATCHES);
+    let per_patch =
+        tile_blas(context, largest, sample.clone(), layout.blas)?.size() as f64 / sample.len() as f64;
+    let patch_structures = (need.patches as f64 * per_patch) as u64;
+    Ok(Some(need.held() - need.patch_structures + patch_structures))
 }
 
 /// Vertices as vec4 and u32 indices, as the trace reads them.

@@ -146,6 +146,11 @@ impl SceneLayout {
         }
     }
 
+    /// This layout in boxes of `PATCHES_PER_BOX_TO_FIT` patches, not to be grouped again.
+    fn grouped_to_fit(self) -> Self {
+        Self { blas: BlasLayout::PatchGroups(PATCHES_PER_BOX_TO_FIT), group_to_fit: false, ..self }
+    }
+
     /// The most patches one tile holds on `context`'s device.
     fn tile_limit(&self, context: &GpuContext) -> u32 {
         let device = u32::try_from(context.info.max_blas_primitives).unwrap_or(u32::MAX).max(1);
@@ -366,13 +371,19 @@ pub(crate) fn prepare(
     if let Some(problem) = scene.objects.iter().find_map(out_of_range) {
         return Err(VulkanError::InvalidScene(problem));
     }
+    if layout.group_to_fit && !fits_compacted(context, scene, layout)? {
+        tracing::info!(
+            "boxes of {PATCHES_PER_BOX_TO_FIT} patches, as the scene would not fit whole in boxes of one"
+        );
+        return prepare(context, scene, layout.grouped_to_fit());
+    }
     match upload(context, scene, layout, false) {
+        // The estimate before the upload can err: the ledger has the last word.
         Err(VulkanError::OverBudget(why)) if layout.group_to_fit && has_point_sets(scene) => {
             tracing::info!(
                 "boxes of {PATCHES_PER_BOX_TO_FIT} patches, as the scene does not fit whole in boxes of one: {why}"
             );
-            let grouped = BlasLayout::PatchGroups(PATCHES_PER_BOX_TO_FIT);
-            prepare(context, scene, SceneLayout { blas: grouped, group_to_fit: false, ..layout })
+            prepare(context, scene, layout.grouped_to_fit())
         }
         Err(VulkanError::OverBudget(why)) if layout.stream_tiles_for.is_some() && has_point_sets(scene) => {
             tracing::info!("streaming the point sets' tiles, as the scene does not fit whole: {why}");
@@ -449,6 +460,22 @@ fn upload(
         }
     }
     Ok(prepared)
+}
+
+/// Whether `scene` in `layout` fits its budget once built: surely where its structures fit
+/// uncompacted, else by the estimate of `memory_plan::compacted_need`.
+fn fits_compacted(
+    context: &Arc<GpuContext>,
+    scene: &Scene,
+    layout: SceneLayout,
+) -> Result<bool, VulkanError> {
+    let budget = GpuBudget::new(context, layout.memory_budget.or(context.gpu_memory));
+    let need = memory_plan::plan(context, scene, layout, layout.tile_limit(context));
+    if need.held() <= budget.bytes {
+        return Ok(true);
+    }
+    let compacted = memory_plan::compacted_need(context, scene, layout, &need)?;
+    Ok(compacted.is_none_or(|bytes| bytes <= budget.bytes))
 }
 
 /// The largest tile of the scene's point sets that fits `budget` (`memory_plan`), or why the

@@ -47,7 +47,8 @@ def png_bytes(image: np.ndarray) -> bytes:
 def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray, *,
            width: Optional[int] = None, height: Optional[int] = None, spp: Optional[int] = None,
            max_depth: Optional[int] = None, shadows: Optional[bool] = None,
-           integrator: Optional[str] = None, seed: Optional[int] = None, backend: str = "auto",
+           integrator: Optional[str] = None, seed: Optional[int] = None,
+           patches_per_box: Optional[int] = None, backend: str = "auto",
            device: str = "auto", gpu_memory: Optional[int | str] = None,
            camera: Optional[dict[str, Any]] = None, aovs: bool = False,
            denoise: bool = False, up: Optional[str] = None, floor: bool = True,
@@ -63,8 +64,9 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
     framed.
 
     ``width``, ``height``, ``spp``, ``max_depth``, ``integrator`` (``"whitted"`` or
-    ``"path"``) and ``seed`` (the path integrator's random sequence) override the scene's
-    ``[render]`` settings; ``backend`` is ``"auto"`` (a hardware ray-tracing GPU, else the CPU),
+    ``"path"``), ``seed`` (the path integrator's random sequence) and ``patches_per_box`` (the
+    GPU's boxes: one a run of this many patches; by default 1, or 4 where the scene does not
+    fit the GPU's memory with 1) override the scene's ``[render]`` settings; ``backend`` is ``"auto"`` (a hardware ray-tracing GPU, else the CPU),
     ``"vulkan"`` or ``"cpu"``; ``gpu_memory`` (bytes, or a size such as ``"40G"``) holds a
     scene to less GPU memory than the device has, as ``--gpu-memory`` does (point sets that do
     not fit stream: the tiles the camera sees are loaded first, and a ``UserWarning`` says what
@@ -74,7 +76,8 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
     unfiltered). The GIL is released while the scene loads and renders.
     """
     image_settings = _native.ImageSettings(width=width, height=height, spp=spp, max_depth=max_depth,
-                                           shadows=shadows, integrator=integrator, seed=seed)
+                                           shadows=shadows, integrator=integrator, seed=seed,
+                                           patches_per_box=patches_per_box)
     options = _native.RenderOptions(image_settings, backend=backend, device=device,
                                     gpu_memory=gpu_memory, camera=camera, denoise=denoise)
     result = _native.render(_source(source, up, floor, color), options)
