@@ -249,11 +249,12 @@ impl FrameSource {
     }
 }
 
-/// Point sets over the GPU memory budget stream, their tiles following the camera of an
-/// image of `view_size` pixels, those it does not hold in full drawn coarse; the others
-/// upload whole.
+/// As `render` prepares a scene: point sets over the GPU memory budget go to boxes of several
+/// patches, and where they still do not fit they stream, their tiles following the camera of
+/// an image of `view_size` pixels, those it does not hold in full drawn coarse.
 fn streaming_layout(view_size: (u32, u32)) -> SceneLayout {
-    SceneLayout { stream_tiles_for: Some(view_size), coarse_tiles: true, ..SceneLayout::default() }
+    let (width, height) = view_size;
+    SceneLayout::for_frames(&RenderSettings { width, height, ..RenderSettings::default() })
 }
 
 /// The host path: the frame's bytes, scaled to the swapchain, uploaded and presented.

@@ -7,7 +7,9 @@ mod common;
 use common::{Orbit, missing, psnr, read_png, scripted_run};
 use pointray_render::{BackendChoice, BackendError};
 use pointray_viewer::{ViewerError, run_viewer};
-use pointray_vulkan::{DeviceOptions, DeviceSelector, SceneLayout, VulkanRenderer};
+use pointray_vulkan::{
+    BlasLayout, DeviceOptions, DeviceSelector, PATCHES_PER_BOX_TO_FIT, SceneLayout, VulkanRenderer,
+};
 
 const FRAMES: u32 = 6;
 const MIN_PSNR_DB: f64 = 35.0;
@@ -20,7 +22,11 @@ fn a_scripted_orbit_over_the_gpu_budget_streams_tiles_and_ends_on_the_streamed_i
         return missing("no usable Vulkan device");
     };
     let scene = &run.demo.loaded.scene;
-    let whole_bytes = whole.prepare(scene).expect("the demo prepares whole").build_report().gpu_bytes();
+    // Under the demo's size in boxes of several patches, which a scene takes before it streams.
+    let grouped =
+        SceneLayout { blas: BlasLayout::PatchGroups(PATCHES_PER_BOX_TO_FIT), ..SceneLayout::default() };
+    let whole = whole.prepare_with_layout(scene, grouped).expect("the demo prepares whole");
+    let whole_bytes = whole.build_report().gpu_bytes();
     let budget = whole_bytes * 3 / 4;
     run.options.device_options = DeviceOptions { gpu_memory: Some(budget), ..DeviceOptions::VALIDATED };
     let summary = match run_viewer(scene.clone(), run.settings, run.options.clone()) {

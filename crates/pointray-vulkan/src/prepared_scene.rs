@@ -371,21 +371,26 @@ pub(crate) fn prepare(
     if let Some(problem) = scene.objects.iter().find_map(out_of_range) {
         return Err(VulkanError::InvalidScene(problem));
     }
-    if layout.group_to_fit && !fits_compacted(context, scene, layout)? {
-        tracing::info!(
-            "boxes of {PATCHES_PER_BOX_TO_FIT} patches, as the scene would not fit whole in boxes of one"
-        );
-        return prepare(context, scene, layout.grouped_to_fit());
+    let streams = layout.stream_tiles_for.is_some() && has_point_sets(scene);
+    if (layout.group_to_fit || streams) && !fits_compacted(context, scene, layout)? {
+        if layout.group_to_fit {
+            tracing::info!(
+                "boxes of {PATCHES_PER_BOX_TO_FIT} patches, as the scene would not fit whole in boxes of one"
+            );
+            return prepare(context, scene, layout.grouped_to_fit());
+        }
+        tracing::info!("streaming the point sets' tiles, as the scene would not fit whole");
+        return upload(context, scene, layout, true);
     }
+    // The estimates before the upload can err: the ledger has the last word.
     match upload(context, scene, layout, false) {
-        // The estimate before the upload can err: the ledger has the last word.
         Err(VulkanError::OverBudget(why)) if layout.group_to_fit && has_point_sets(scene) => {
             tracing::info!(
                 "boxes of {PATCHES_PER_BOX_TO_FIT} patches, as the scene does not fit whole in boxes of one: {why}"
             );
             prepare(context, scene, layout.grouped_to_fit())
         }
-        Err(VulkanError::OverBudget(why)) if layout.stream_tiles_for.is_some() && has_point_sets(scene) => {
+        Err(VulkanError::OverBudget(why)) if streams => {
             tracing::info!("streaming the point sets' tiles, as the scene does not fit whole: {why}");
             upload(context, scene, layout, true)
         }
