@@ -14,6 +14,7 @@ use pointray_bench::{
 use pointray_render::Backend;
 use pointray_scene::Integrator;
 use pointray_surface::NoProgress;
+use pointray_vulkan::{DeviceOptions, DeviceSelector, VulkanRenderer};
 
 use pointray_test_support::{data_dir, vulkan_renderer as renderer};
 
@@ -127,6 +128,35 @@ fn a_scene_file_times_the_path_integrator() {
     // Every pixel's path: a primary ray, and where it meets a surface a shadow ray and a bounce.
     assert!(case.rays_per_frame > 2 * 24 * 16, "{case:?}");
     assert_eq!(renderer.validation_messages(), 0, "the validation layer reported messages");
+}
+
+/// A scene file of the bunny on a floor, in `folder`.
+fn bunny_scene(folder: &Path) -> PathBuf {
+    let scene = folder.join("bunny.toml");
+    let bunny = data_dir().join("points/bunny.ply");
+    let text = format!(
+        "[render]\nwidth = 24\nheight = 16\n\
+         [[objects]]\ntype = \"points\"\npath = {bunny:?}\n[[objects]]\ntype = \"ground\"\nauto = true\n"
+    );
+    std::fs::write(&scene, text).expect("the scene is written");
+    scene
+}
+
+#[test]
+fn a_scene_file_over_its_gpu_budget_is_timed_as_render_prepares_it() {
+    let Some(renderer) = renderer() else { return };
+    let cache = tempfile::tempdir().expect("a temporary folder");
+    let scene = bunny_scene(cache.path());
+    let options = options(data_dir(), cache.path(), None, false);
+    let whole = run_scene_file(&renderer, &scene, &options).expect("runs").cases.remove(0);
+    // Under what a box a patch takes, over what boxes of 4 take: render groups the patches.
+    let budget = whole.blas_bytes + whole.geometry_bytes + whole.tlas_bytes - whole.blas_bytes / 2;
+    let device = DeviceOptions { gpu_memory: Some(budget), ..DeviceOptions::VALIDATED };
+    let tight = VulkanRenderer::new(DeviceSelector::Auto, device).expect("the renderer opens again");
+    let grouped = run_scene_file(&tight, &scene, &options).expect("runs within the budget").cases.remove(0);
+    assert!(grouped.blas_bytes < whole.blas_bytes / 2, "{grouped:?} against {whole:?}");
+    assert_eq!(grouped.rays_per_frame, whole.rays_per_frame, "the same picture's rays");
+    assert_eq!(tight.validation_messages(), 0, "the validation layer reported messages");
 }
 
 fn scale_options<'a>(data: PathBuf, cache: &Path, rungs: &[(&str, u64)]) -> ScaleOptions<'a> {
