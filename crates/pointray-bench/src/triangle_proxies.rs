@@ -8,6 +8,7 @@ use glam::{Vec2, Vec3};
 use pointray_io::TriangleMesh;
 use pointray_kernels::Patch;
 use pointray_patches::PatchSet;
+use pointray_patches::patch_bounds::evaluate;
 
 /// Two triangles a patch, four corners each in the patch's order.
 pub fn triangle_proxies(patches: &PatchSet) -> TriangleMesh {
@@ -27,10 +28,7 @@ pub fn triangle_proxies(patches: &PatchSet) -> TriangleMesh {
 
 /// The point of `patch`'s height field over local `uv`.
 fn corner(patch: &Patch, uv: Vec2) -> Vec3 {
-    let [c0, c1, c2, c3, c4, c5] = patch.coefficients;
-    let (u, v) = (uv.x, uv.y);
-    let height = c0 + c1 * u + c2 * v + c3 * u * u + c4 * u * v + c5 * v * v;
-    patch.to_world(uv.extend(height))
+    patch.to_world(uv.extend(evaluate(&patch.coefficients, uv.x, uv.y)))
 }
 
 #[cfg(test)]
