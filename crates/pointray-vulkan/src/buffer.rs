@@ -25,6 +25,9 @@ pub(crate) struct Buffer {
     pub(crate) size: u64,
 }
 
+/// The alignment of every buffer's start: what `patch_buffers.glsl` promises the driver.
+const RECORD_ALIGNMENT: u64 = 16;
+
 impl Buffer {
     /// A buffer of `size` bytes (at least 1) at `location`, with `usage`.
     pub(crate) fn new(
@@ -41,7 +44,11 @@ impl Buffer {
         // SAFETY: the device is alive; the buffer is destroyed in Drop.
         let handle = unsafe { device.create_buffer(&info, None) }.during(name)?;
         // SAFETY: `handle` was just created on this device.
-        let requirements = unsafe { device.get_buffer_memory_requirements(handle) };
+        let mut requirements = unsafe { device.get_buffer_memory_requirements(handle) };
+        // The shaders declare record buffers 16-byte aligned (`buffer_reference_align`), which
+        // lets the driver read a record in 128-bit loads; the device's own requirement may
+        // be smaller.
+        requirements.alignment = requirements.alignment.max(RECORD_ALIGNMENT);
         let allocation = context
             .allocator
             .lock()
