@@ -27,8 +27,9 @@ const ENTRY_POINTS: &[(&str, ShaderStage)] = &[
 
 /// Entry points compiled again with defines (separated by spaces), as `(source, defines,
 /// output name)`: the benchmark's ray-counting ray generation, the hit-reordering one, the
-/// path integrator's with and without ray counting, the counting pipeline's intersection, and
-/// the hit group of boxes of several patches (`BlasLayout::PatchGroups`), counting or not.
+/// path integrator's with and without ray counting, the counting pipeline's intersection, the
+/// hit group of boxes of several patches (`BlasLayout::PatchGroups`), counting or not, and
+/// that of unpacked hot records (`HotRecords::Unpacked`), counting or not.
 const VARIANTS: &[(&str, ShaderStage, &str, &str)] = &[
     ("primary.rgen", ShaderStage::RayGeneration, "COUNT_RAYS", "primary_counting.rgen"),
     ("primary.rgen", ShaderStage::RayGeneration, "REORDER_HITS", "primary_reordering.rgen"),
@@ -38,6 +39,9 @@ const VARIANTS: &[(&str, ShaderStage, &str, &str)] = &[
     ("patch.rint", ShaderStage::Intersect, "PATCH_GROUPS", "patch_groups.rint"),
     ("patch.rint", ShaderStage::Intersect, "PATCH_GROUPS COUNT_RAYS", "patch_groups_counting.rint"),
     ("patch.rchit", ShaderStage::ClosestHit, "PATCH_GROUPS", "patch_groups.rchit"),
+    ("patch.rint", ShaderStage::Intersect, "UNPACKED_RECORDS", "patch_unpacked.rint"),
+    ("patch.rint", ShaderStage::Intersect, "UNPACKED_RECORDS COUNT_RAYS", "patch_unpacked_counting.rint"),
+    ("patch.rchit", ShaderStage::ClosestHit, "UNPACKED_RECORDS", "patch_unpacked.rchit"),
 ];
 
 /// Resolves `#include "NAME"` against the given folders, in order.

@@ -23,6 +23,9 @@ pub enum Variant {
     CubeBoxes,
     /// Ablation: the paper's box test instead of the disk test.
     BoxAcceptance,
+    /// Ablation: hot records packed (32 bytes a patch) and decoded on every intersection
+    /// call, as a scene takes them where unpacked ones do not fit.
+    PackedRecords,
     /// Ablation: every pixel's AOV record (48 bytes) copied out instead of its display colour.
     AovOutput,
     /// Ablation: shader execution reordering of every path segment.
@@ -48,6 +51,7 @@ impl Variant {
             Self::CombinedBuffers => "combined buffers",
             Self::CubeBoxes => "cube boxes",
             Self::BoxAcceptance => "box acceptance",
+            Self::PackedRecords => "packed hot records",
             Self::AovOutput => "AOV output",
             Self::HitReordering => "hit reordering (SER)",
             Self::SixNeighbours => "k = 6 neighbours",

@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use pointray_scene::{RenderSettings, Scene};
 use pointray_vulkan::{
-    BlasLayout, BuildReport, PixelOutput, PreparedScene, RayCounts, SceneLayout, VulkanError, VulkanRenderer,
+    BuildReport, PixelOutput, PreparedScene, RayCounts, SceneLayout, VulkanError, VulkanRenderer,
 };
 
 use crate::stats::{median, p90};
@@ -43,11 +43,10 @@ pub fn measure(
     renderer: &VulkanRenderer,
     scene: &Scene,
     settings: &RenderSettings,
-    layout: BlasLayout,
+    layout: SceneLayout,
     output: PixelOutput,
     frames: FrameCounts,
 ) -> Result<Measurement, VulkanError> {
-    let layout = SceneLayout { blas: layout, buffers: settings.buffer_layout, ..SceneLayout::default() };
     measure_prepared(renderer, &renderer.prepare_with_layout(scene, layout)?, settings, output, frames)
 }
 

@@ -100,8 +100,9 @@ pub fn run_scene_file(
     }
     let built = prepared.build_report();
     println!(
-        "{name}: {} patches a box, {:.2} GB on the GPU ({} bottom levels)",
+        "{name}: {} patches a box, {} hot records, {:.2} GB on the GPU ({} bottom levels)",
         built.patches_per_box,
+        built.hot_records.name(),
         built.gpu_bytes() as f64 / 1e9,
         built.blas_count
     );
@@ -158,9 +159,9 @@ impl ModelRun<'_> {
         let mesh = if self.options.limit { self.load(ModelGeometry::Mesh)? } else { None };
         for (index, &(width, height)) in sizes.iter().enumerate() {
             let settings = self.options.applied(RenderSettings { width, height, ..file_settings });
-            self.time(&base, &settings, grouping(&settings), Variant::Points)?;
+            self.time(&base, &settings, Variant::Points)?;
             if let Some((mesh_scene, _)) = &mesh {
-                self.time(mesh_scene, &settings, grouping(&settings), Variant::Mesh)?;
+                self.time(mesh_scene, &settings, Variant::Mesh)?;
             }
             // Ablations at the first size only: they compare layouts, not sizes.
             if self.options.ablations && index == 0 {
@@ -177,31 +178,32 @@ impl ModelRun<'_> {
 
     fn ablations(&mut self, base: &Scene, settings: &RenderSettings) -> Result<(), BenchError> {
         let combined = RenderSettings { buffer_layout: BufferLayout::Combined, ..*settings };
-        self.time(base, &combined, grouping(settings), Variant::CombinedBuffers)?;
+        self.time(base, &combined, Variant::CombinedBuffers)?;
         let box_test = RenderSettings { acceptance: PatchAcceptance::Box, ..*settings };
-        self.time(base, &box_test, grouping(settings), Variant::BoxAcceptance)?;
-        self.time(base, settings, grouping(settings), Variant::AovOutput)?;
+        self.time(base, &box_test, Variant::BoxAcceptance)?;
+        self.time(base, settings, Variant::AovOutput)?;
+        self.time(base, settings, Variant::PackedRecords)?;
         if let Some(reordering) = self.options.reordering {
             self.time_on(reordering, base, settings, Variant::HitReordering)?;
         }
         let smaller = self.reprepped(base, PrepSettings { disk_scale: 0.7, ..PrepSettings::default() })?;
-        self.time(&smaller, settings, grouping(settings), Variant::SmallerDisks)?;
+        self.time(&smaller, settings, Variant::SmallerDisks)?;
         let paper_radii = self.reprepped(base, paper_radius(PrepSettings::default()))?;
-        self.time(&paper_radii, settings, grouping(settings), Variant::PaperRadius)?;
-        self.time(&with_triangle_proxies(base), settings, grouping(settings), Variant::TriangleProxies)?;
+        self.time(&paper_radii, settings, Variant::PaperRadius)?;
+        self.time(&with_triangle_proxies(base), settings, Variant::TriangleProxies)?;
         if model_primitives(base) > PER_BOX_ABLATION_MAX_POINTS {
             return Ok(());
         }
-        self.time(base, settings, BlasLayout::GeometryPerAabb, Variant::GeometryPerAabb)?;
+        self.time(base, settings, Variant::GeometryPerAabb)?;
         let cubes = self.reprepped(base, PrepSettings { boxes: BoxKind::Cube, ..PrepSettings::default() })?;
-        self.time(&cubes, settings, grouping(settings), Variant::CubeBoxes)?;
+        self.time(&cubes, settings, Variant::CubeBoxes)?;
         let paper_cubes = self.reprepped(
             base,
             paper_radius(PrepSettings { boxes: BoxKind::Cube, ..PrepSettings::default() }),
         )?;
-        self.time(&paper_cubes, &box_test, grouping(settings), Variant::PaperConfiguration)?;
+        self.time(&paper_cubes, &box_test, Variant::PaperConfiguration)?;
         let six = self.reprepped(base, PrepSettings { k: 6, ..PrepSettings::default() })?;
-        self.time(&six, settings, grouping(settings), Variant::SixNeighbours)
+        self.time(&six, settings, Variant::SixNeighbours)
     }
 
     /// The scene with the model re-prepped with `options`.
@@ -217,14 +219,9 @@ impl ModelRun<'_> {
         Ok(scene)
     }
 
-    fn time(
-        &mut self,
-        scene: &Scene,
-        settings: &RenderSettings,
-        layout: BlasLayout,
-        variant: Variant,
-    ) -> Result<(), BenchError> {
+    fn time(&mut self, scene: &Scene, settings: &RenderSettings, variant: Variant) -> Result<(), BenchError> {
         let output = if variant == Variant::AovOutput { PixelOutput::Aovs } else { PixelOutput::Display };
+        let layout = variant_layout(variant, settings);
         let measured = measure(self.renderer, scene, settings, layout, output, self.options.frames);
         self.record(scene, settings, variant, measured)
     }
@@ -237,7 +234,7 @@ impl ModelRun<'_> {
         settings: &RenderSettings,
         variant: Variant,
     ) -> Result<(), BenchError> {
-        let layout = grouping(settings);
+        let layout = variant_layout(variant, settings);
         let measured = measure(renderer, scene, settings, layout, PixelOutput::Display, self.options.frames);
         self.record(scene, settings, variant, measured)
     }
@@ -277,10 +274,15 @@ impl BenchOptions<'_> {
     }
 }
 
-/// The bottom-level layout of `settings`' patches a box (one where it leaves the choice: the
-/// models all fit).
-fn grouping(settings: &RenderSettings) -> BlasLayout {
-    BlasLayout::grouping(settings.patches_per_box.unwrap_or(1))
+/// How `variant` puts a scene traced with `settings` onto the GPU: as `render` would, but
+/// for the ablations of the layout itself.
+fn variant_layout(variant: Variant, settings: &RenderSettings) -> SceneLayout {
+    let layout = SceneLayout::for_settings(settings);
+    match variant {
+        Variant::GeometryPerAabb => SceneLayout { blas: BlasLayout::GeometryPerAabb, ..layout },
+        Variant::PackedRecords => SceneLayout { unpack_to_fit: false, ..layout },
+        _ => layout,
+    }
 }
 
 /// `scene` with each point set replaced by its triangle proxies, traced as a mesh.

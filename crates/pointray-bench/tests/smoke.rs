@@ -51,6 +51,7 @@ fn table1_bunny_runs_with_limit_and_ablations() {
             Variant::CombinedBuffers,
             Variant::BoxAcceptance,
             Variant::AovOutput,
+            Variant::PackedRecords,
             Variant::SmallerDisks,
             Variant::PaperRadius,
             Variant::TriangleProxies,
@@ -77,6 +78,11 @@ fn table1_bunny_runs_with_limit_and_ablations() {
     // Prep merges duplicate points, so there are at most as many patches as the file's points.
     assert!(points.primitives > 35_000 && points.primitives <= 35_947, "{} patches", points.primitives);
     assert_eq!(points.paper_fps, None, "the paper has no 32x24 row");
+    // The Bunny fits with unpacked hot records (64 bytes a patch); the ablation packs them (32).
+    let packed = report.cases.iter().find(|c| c.variant == Variant::PackedRecords).expect("packed case");
+    let unpacked_extra = 32 * points.primitives as u64;
+    assert_eq!(points.geometry_bytes, packed.geometry_bytes + unpacked_extra, "{points:?} {packed:?}");
+    assert_eq!(points.rays_per_frame, packed.rays_per_frame, "the same rays whatever the records' form");
     assert_eq!(report.limits.len(), 1, "one point-set case with a mesh twin");
     assert_eq!(renderer.validation_messages(), 0, "the validation layer reported messages");
 }

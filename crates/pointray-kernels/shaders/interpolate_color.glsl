@@ -48,7 +48,7 @@ ColorScan color_scan_around(vec3 position, uint centre, HotPatches hot, ColdPatc
         if (j == NO_NEIGHBOR) {
             continue;
         }
-        float distance_to_point = distance(position, patch_origin(hot_record(hot, j)));
+        float distance_to_point = distance(position, record_origin(hot, j));
         PatchCold record = cold_record(cold, j);
         float weight = color_weight(distance_to_point, record.color_reach);
         scan.weighted_color += weight * color_from_rgba8(record.color_rgba8);

@@ -8,6 +8,7 @@
 #extension GL_EXT_buffer_reference_uvec2 : require
 
 #include "layout.glsl"
+#include "unpacked_patch.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer HotPatches { PatchHot records[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer ColdPatches { PatchCold records[]; };
@@ -41,6 +42,23 @@ PatchHot hot_record(HotPatches records, uint index) {
     uvec4 second = at.words[1];
     return PatchHot(uintBitsToFloat(first.x), uintBitsToFloat(first.y), uintBitsToFloat(first.z),
                     uintBitsToFloat(first.w), second.x, second.y, second.z, second.w);
+}
+
+// An unpacked record (`HotRecords::Unpacked`): 64 bytes, in four 128-bit loads.
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer UnpackedPatchAt { PatchUnpacked record; };
+
+PatchUnpacked unpacked_record(HotPatches records, uint index) {
+    return UnpackedPatchAt(record_address(uvec2(records), index, PATCH_UNPACKED_BYTES)).record;
+}
+
+// The origin of patch `index`, whose hot records are unpacked where the including stage
+// defines UNPACKED_RECORDS: both forms begin with it.
+vec3 record_origin(HotPatches records, uint index) {
+#ifdef UNPACKED_RECORDS
+    return unpacked_record(records, index).origin_radius.xyz;
+#else
+    return patch_origin(hot_record(records, index));
+#endif
 }
 
 PatchCold cold_record(ColdPatches records, uint index) {

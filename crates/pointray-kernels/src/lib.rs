@@ -34,6 +34,7 @@ pub mod sampling;
 pub mod self_clearance;
 pub mod srgb_encode;
 pub mod tangent_frame;
+pub mod unpacked_patch;
 
 pub use background::background;
 pub use bsdf::{Bsdf, bsdf_eval, bsdf_is_two_sided, bsdf_pdf, bsdf_sample, bsdf_samples_lights};
@@ -59,6 +60,7 @@ pub use ray::Ray;
 pub use self_clearance::{path_ray_offset, self_clearance};
 pub use srgb_encode::{srgb_encode, srgb_encode_rgba8};
 pub use tangent_frame::TangentFrame;
+pub use unpacked_patch::PatchUnpacked;
 
 /// The folder of the GLSL twins, for the build scripts that compile shaders including them.
 pub const SHADER_FOLDER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/shaders");

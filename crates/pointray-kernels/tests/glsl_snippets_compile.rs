@@ -48,6 +48,11 @@ const MATHS_SNIPPETS: &[(&str, &str)] = &[
              result = patch_direction_to_world(hot_patch, patch_to_local(hot_patch, vec3(1.0)));",
     ),
     (
+        "unpacked_patch.glsl",
+        "Patch unpacked = unpacked_patch(PatchUnpacked(vec4(0.0, 0.0, 0.0, 1.0), vec4(1.0, 0.0, 0.0, 0.5), vec4(0.0, 0.0, 1.0, 0.0), vec4(0.5)));
+             result = patch_to_local(unpacked, vec3(1.0)) + vec3(unpacked.radii, unpacked.c5);",
+    ),
+    (
         "intersect_patch.glsl",
         "Patch hot_patch = decode_patch(PatchHot(0.0, 0.0, 0.0, 1.0, 0u, 0u, packHalf2x16(vec2(0.0, 0.5)), packHalf2x16(vec2(0.0, 0.5))));
              float t; vec2 uv;

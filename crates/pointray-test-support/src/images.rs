@@ -21,6 +21,14 @@ pub fn largest_color_difference(a: &pointray_scene::RenderedImage, b: &pointray_
     a.color.iter().zip(&b.color).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0, f32::max)
 }
 
+/// The peak signal-to-noise ratio of two images' linear colours, with a peak of 1, in dB.
+#[cfg(feature = "images")]
+pub fn psnr_colors(a: &pointray_scene::RenderedImage, b: &pointray_scene::RenderedImage) -> f64 {
+    assert_eq!(a.pixel_count(), b.pixel_count(), "images of different sizes");
+    let squared: f64 = a.color.iter().zip(&b.color).map(|(x, y)| f64::from((*x - *y).length_squared())).sum();
+    decibels(squared / (3 * a.pixel_count()) as f64, 1.0)
+}
+
 fn decibels(mean_squared_error: f64, peak: f64) -> f64 {
     if mean_squared_error == 0.0 { f64::INFINITY } else { 10.0 * (peak * peak / mean_squared_error).log10() }
 }

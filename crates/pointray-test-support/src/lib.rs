@@ -21,9 +21,9 @@ pub use data::{data_dir, data_file};
 #[cfg(feature = "vulkan")]
 pub use device::{assert_no_validation_messages, vulkan_renderer};
 pub use device::{in_ci, skip_without_device};
-#[cfg(feature = "images")]
-pub use images::largest_color_difference;
 pub use images::{largest_byte_difference, psnr_bytes};
+#[cfg(feature = "images")]
+pub use images::{largest_color_difference, psnr_colors};
 #[cfg(feature = "meshes")]
 pub use meshes::sphere_mesh;
 pub use monte_carlo::{Estimate, estimate};

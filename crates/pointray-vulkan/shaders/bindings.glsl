@@ -182,4 +182,15 @@ PatchHot load_hot(ObjectRecord object, uint patch_index) {
     return hot_record(object.hot, patch_index);
 }
 
+// Patch `patch_index` of the object, from its hot record in the form that the including hit
+// group reads: unpacked where it defines UNPACKED_RECORDS (`HotRecords::Unpacked`, which
+// only split buffers take), else packed.
+Patch load_patch(ObjectRecord object, uint patch_index) {
+#ifdef UNPACKED_RECORDS
+    return unpacked_patch(unpacked_record(object.hot, patch_index));
+#else
+    return decode_patch(load_hot(object, patch_index));
+#endif
+}
+
 #endif

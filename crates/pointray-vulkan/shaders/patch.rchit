@@ -1,7 +1,7 @@
 #version 460
-// Hit groups 0 and 2 (compiled with PATCH_GROUPS), closest hit: the patch's gradient normal
-// and the point colours interpolated at the hit. Hit group 2's intersection shader names the
-// patch of its box that it hit; hit group 0's box is the patch.
+// Hit groups 0, 2 (compiled with PATCH_GROUPS) and 3 (with UNPACKED_RECORDS), closest hit:
+// the patch's gradient normal and the point colours interpolated at the hit. Hit group 2's
+// intersection shader names the patch of its box that it hit; the others' box is the patch.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -39,8 +39,8 @@ void main() {
     uint patch_index = object.first_patch + gl_PrimitiveID + gl_GeometryIndexEXT;
     vec2 uv = hit_uv;
 #endif
-    PatchHot patch_record = load_hot(object, patch_index);
-    vec3 object_normal = patch_normal(decode_patch(patch_record), uv);
+    Patch surface = load_patch(object, patch_index);
+    vec3 object_normal = patch_normal(surface, uv);
     // Normals go to world by the inverse transpose: n * WorldToObject.
     payload.normal_or_background = normalize((object_normal * gl_WorldToObjectEXT).xyz);
     payload.t = gl_HitTEXT;
@@ -49,5 +49,5 @@ void main() {
     payload.color_rgba8 = hit_color(object, patch_index);
     // World lengths from the inverse transform's first column, as the CPU renderer does.
     float world_scale = 1.0 / length(gl_WorldToObjectEXT[0]);
-    payload.clearance = self_clearance(patch_record.radius * world_scale);
+    payload.clearance = self_clearance(surface.radii.x * world_scale);
 }

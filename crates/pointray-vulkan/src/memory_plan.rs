@@ -101,7 +101,7 @@ fn plan_with_sizes(
                     need.patch_structures += size;
                 }
                 need.patches += patches.len() as u64;
-                need.upload(record_bytes(patches, &object.material, layout.buffers));
+                need.upload(record_bytes(patches, &object.material, layout.buffers, layout.hot_records));
             }
             Geometry::Mesh(mesh) => {
                 need.upload(mesh_bytes(mesh));

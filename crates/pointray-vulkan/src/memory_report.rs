@@ -3,6 +3,7 @@
 use std::time::Duration;
 
 use crate::acceleration::AccelerationStructure;
+use crate::hot_records::HotRecords;
 use crate::prepared_scene::PreparedScene;
 
 /// Build times and memory of a prepared scene's acceleration structures and buffers.
@@ -27,6 +28,8 @@ pub struct BuildReport {
     pub peak_build_bytes: u64,
     /// Consecutive patches one box of the point sets' bottom levels bounds.
     pub patches_per_box: u32,
+    /// The form of the point sets' hot records.
+    pub hot_records: HotRecords,
 }
 
 impl BuildReport {
@@ -52,6 +55,7 @@ impl PreparedScene {
             blas_bytes: bottom_levels.iter().map(|b| b.size()).sum(),
             tlas_bytes: self.tlas.size(),
             patches_per_box: self.blas_layout.patches_per_box(),
+            hot_records: self.hot_records,
             peak_build_bytes: self.streaming.as_ref().map_or(self.build_peak, |streaming| {
                 self.build_peak.max(streaming.beside_tiles + streaming.tiles.peak)
             }),

@@ -6,7 +6,7 @@ use std::ops::Range;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use pointray_kernels::{Aabb, COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot};
+use pointray_kernels::{Aabb, COLOR_NEIGHBORS, NO_NEIGHBOR, PatchCold, PatchHot, PatchUnpacked};
 use pointray_patches::PatchSet;
 use pointray_patches::patch_tiles::tile_ranges;
 use pointray_scene::{BufferLayout, Material};
@@ -18,6 +18,7 @@ use crate::color_halo::{ColorHalo, NO_HALO};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::{ObjectRecord, PatchCombined};
+use crate::hot_records::HotRecords;
 use crate::memory_plan::GpuLedger;
 use crate::prepared_scene::{PreparedObject, SceneLayout};
 
@@ -66,14 +67,15 @@ pub(crate) fn prepare_patches(
     check_patch_set(patches)?;
     let count = patches.len();
     let colors = reads_point_colors(material).then_some(&NO_HALO);
-    let records = record_bytes(patches, material, layout.buffers);
+    let records = record_bytes(patches, material, layout.buffers, layout.hot_records);
     let started = Instant::now();
     let bottom_levels = tile_bottom_levels(context, patches, layout, max_tile_patches, records, ledger)?;
     let what = format!("built {} bottom levels over {count} patches (boxes uploaded)", bottom_levels.len());
     log_phase(&what, count as u64 * BOX_BYTES, started.elapsed());
     ledger.check(records, "uploading the patch records")?;
     let started = Instant::now();
-    let (record, buffers) = patch_records(context, patches, 0..count, layout.buffers, colors)?;
+    let (record, buffers) =
+        patch_records(context, patches, 0..count, layout.buffers, layout.hot_records, colors)?;
     let uploaded: u64 = buffers.iter().map(|buffer| buffer.size).sum();
     ledger.hold(uploaded, 0);
     log_phase(&format!("uploaded {count} patches' records"), uploaded, started.elapsed());
@@ -160,26 +162,33 @@ pub(crate) fn patch_records(
     patches: &PatchSet,
     range: Range<usize>,
     buffers: BufferLayout,
+    hot_records: HotRecords,
     colors: Option<&ColorHalo>,
 ) -> Result<(ObjectRecord, Vec<Buffer>), VulkanError> {
     let mut uploaded = Vec::new();
-    let mut upload = |name, bytes: &[u8], stride: usize| -> Result<u64, VulkanError> {
-        let buffer = Buffer::device_with_data(context, name, bytes, storage_usage())?;
+    let mut hold = |buffer: Buffer, stride: usize| {
         let address = buffer.device_address().wrapping_sub((range.start * stride) as u64);
         uploaded.push(buffer);
-        Ok(address)
+        address
     };
+    let upload = |name, bytes: &[u8]| Buffer::device_with_data(context, name, bytes, storage_usage());
     let halo = colors.unwrap_or(&NO_HALO);
     let colors = colors.is_some();
     let lists = colors && !patches.color_neighbors.is_empty();
     let mut record = ObjectRecord::default();
     if buffers == BufferLayout::Split || colors {
         let hot = halo.records(&patches.hot, range.clone());
-        record.hot = upload("hot patch records", bytemuck::cast_slice(&hot), size_of::<PatchHot>())?;
+        record.hot = match hot_records {
+            HotRecords::Packed => {
+                hold(upload("hot patch records", bytemuck::cast_slice(&hot))?, size_of::<PatchHot>())
+            }
+            HotRecords::Unpacked => hold(unpacked_records(context, &hot)?, size_of::<PatchUnpacked>()),
+        };
     }
     if colors {
         let cold = halo.records(&patches.cold, range.clone());
-        record.cold = upload("cold patch records", bytemuck::cast_slice(&cold), size_of::<PatchCold>())?;
+        record.cold =
+            hold(upload("cold patch records", bytemuck::cast_slice(&cold))?, size_of::<PatchCold>());
     }
     if buffers == BufferLayout::Combined {
         let combined: Vec<PatchCombined> = patches.hot[range.clone()]
@@ -188,21 +197,40 @@ pub(crate) fn patch_records(
             .map(|(&hot, &cold)| PatchCombined::new(hot, cold))
             .collect();
         let combined = bytemuck::cast_slice(&combined);
-        record.combined = upload("combined patch records", combined, size_of::<PatchCombined>())?;
+        record.combined = hold(upload("combined patch records", combined)?, size_of::<PatchCombined>());
     }
     // Only coloured clouds carry neighbour lists; the others keep address 0, which the
     // closest-hit shader never dereferences.
     if lists {
         let lists = halo.neighbor_lists(patches, range.clone());
         let stride = COLOR_NEIGHBORS * size_of::<u32>();
-        record.color_neighbors = upload("colour neighbour lists", bytemuck::cast_slice(&lists), stride)?;
+        record.color_neighbors =
+            hold(upload("colour neighbour lists", bytemuck::cast_slice(&lists))?, stride);
     }
     Ok((record, uploaded))
 }
 
+/// `hot` unpacked (`HotRecords::Unpacked`) into a new device buffer, a staging buffer's worth
+/// at a time: a large set's unpacked records would take twice its packed ones on the host.
+fn unpacked_records(context: &Arc<GpuContext>, hot: &[PatchHot]) -> Result<Buffer, VulkanError> {
+    const PIECE_RECORDS: usize = (32 << 20) / size_of::<PatchUnpacked>();
+    let pieces = hot.chunks(PIECE_RECORDS).map(|piece| {
+        let unpacked: Vec<PatchUnpacked> = piece.par_iter().map(PatchUnpacked::from).collect();
+        bytemuck::cast_slice(&unpacked).to_vec()
+    });
+    let size = (hot.len() * size_of::<PatchUnpacked>()) as u64;
+    Buffer::device_from_pieces(context, "unpacked hot patch records", size, storage_usage(), pieces)
+}
+
 /// The GPU bytes of the records a trace of `patches` with `material` reads.
-pub(crate) fn record_bytes(patches: &PatchSet, material: &Material, buffers: BufferLayout) -> u64 {
-    range_record_bytes(patches, 0..patches.len(), buffers, reads_point_colors(material).then_some(&NO_HALO))
+pub(crate) fn record_bytes(
+    patches: &PatchSet,
+    material: &Material,
+    buffers: BufferLayout,
+    hot_records: HotRecords,
+) -> u64 {
+    let colors = reads_point_colors(material).then_some(&NO_HALO);
+    range_record_bytes(patches, 0..patches.len(), buffers, hot_records, colors)
 }
 
 /// The GPU bytes of the records of the patches in `range` that a trace reads: with `colors`,
@@ -212,10 +240,11 @@ pub(crate) fn range_record_bytes(
     patches: &PatchSet,
     range: Range<usize>,
     buffers: BufferLayout,
+    hot_records: HotRecords,
     colors: Option<&ColorHalo>,
 ) -> u64 {
     let own = range.len() as u64;
-    let hot = size_of::<PatchHot>() as u64;
+    let hot = hot_records.bytes_per_patch() as u64;
     let cold = size_of::<PatchCold>() as u64;
     let count = own + colors.map_or(0, ColorHalo::len) as u64;
     let colors = colors.is_some();

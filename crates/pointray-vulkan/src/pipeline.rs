@@ -12,6 +12,7 @@ use pointray_scene::Integrator;
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::gpu_records::TraceSettings;
+use crate::hot_records::HotRecords;
 use crate::shaders;
 
 pub(crate) const BINDING_TLAS: u32 = 0;
@@ -36,15 +37,22 @@ pub(crate) const GROUP_RAYGEN: u32 = 0;
 pub(crate) const GROUP_MISS_FIRST: u32 = 1;
 pub(crate) const MISS_GROUP_COUNT: u32 = 2;
 pub(crate) const GROUP_HIT_FIRST: u32 = 3;
-pub(crate) const HIT_GROUP_COUNT: u32 = 3;
+pub(crate) const HIT_GROUP_COUNT: u32 = 4;
 /// The instance SBT offsets (`instanceShaderBindingTableRecordOffset`).
 pub(crate) const HIT_GROUP_PATCHES: u32 = 0;
 pub(crate) const HIT_GROUP_TRIANGLES: u32 = 1;
 pub(crate) const HIT_GROUP_PATCH_GROUPS: u32 = 2;
+pub(crate) const HIT_GROUP_UNPACKED_PATCHES: u32 = 3;
 
-/// The hit group of a point set's tile whose boxes each bound `patches_per_box` patches.
-pub(crate) fn patch_hit_group(patches_per_box: u32) -> u32 {
-    if patches_per_box > 1 { HIT_GROUP_PATCH_GROUPS } else { HIT_GROUP_PATCHES }
+/// The hit group of a point set's tile whose boxes each bound `patches_per_box` patches, with
+/// hot records in the form `hot_records`. Boxes of several patches read packed records only:
+/// a scene takes them to save memory, which unpacked records spend.
+pub(crate) fn patch_hit_group(patches_per_box: u32, hot_records: HotRecords) -> u32 {
+    match (patches_per_box > 1, hot_records) {
+        (true, _) => HIT_GROUP_PATCH_GROUPS,
+        (false, HotRecords::Packed) => HIT_GROUP_PATCHES,
+        (false, HotRecords::Unpacked) => HIT_GROUP_UNPACKED_PATCHES,
+    }
 }
 
 pub(crate) struct RayTracingPipeline {
@@ -106,9 +114,13 @@ impl RayTracingPipeline {
         owned.layout =
             unsafe { device.create_pipeline_layout(&info, None) }.during("creating the pipeline layout")?;
         let intersections = if counts_intersections {
-            [shaders::PATCH_COUNTING_RINT, shaders::PATCH_GROUPS_COUNTING_RINT]
+            [
+                shaders::PATCH_COUNTING_RINT,
+                shaders::PATCH_GROUPS_COUNTING_RINT,
+                shaders::PATCH_UNPACKED_COUNTING_RINT,
+            ]
         } else {
-            [shaders::PATCH_RINT, shaders::PATCH_GROUPS_RINT]
+            [shaders::PATCH_RINT, shaders::PATCH_GROUPS_RINT, shaders::PATCH_UNPACKED_RINT]
         };
         owned.pipeline = create_pipeline(context, owned.layout, raygen, intersections)?;
         Ok(owned)
@@ -203,7 +215,7 @@ fn create_pipeline(
     context: &GpuContext,
     layout: vk::PipelineLayout,
     raygen: &[u8],
-    [intersection, group_intersection]: [&[u8]; 2],
+    [intersection, group_intersection, unpacked_intersection]: [&[u8]; 3],
 ) -> Result<vk::Pipeline, VulkanError> {
     let mut modules = Modules { device: &context.device, handles: Vec::new() };
     let stage = |stage, module| {
@@ -218,6 +230,8 @@ fn create_pipeline(
         stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::TRIANGLE_RCHIT)?),
         stage(vk::ShaderStageFlags::INTERSECTION_KHR, modules.add(group_intersection)?),
         stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::PATCH_GROUPS_RCHIT)?),
+        stage(vk::ShaderStageFlags::INTERSECTION_KHR, modules.add(unpacked_intersection)?),
+        stage(vk::ShaderStageFlags::CLOSEST_HIT_KHR, modules.add(shaders::PATCH_UNPACKED_RCHIT)?),
     ];
     let group = |ty| {
         vk::RayTracingShaderGroupCreateInfoKHR::default()
@@ -239,6 +253,9 @@ fn create_pipeline(
         group(vk::RayTracingShaderGroupTypeKHR::PROCEDURAL_HIT_GROUP)
             .intersection_shader(6)
             .closest_hit_shader(7),
+        group(vk::RayTracingShaderGroupTypeKHR::PROCEDURAL_HIT_GROUP)
+            .intersection_shader(8)
+            .closest_hit_shader(9),
     ];
     // Ray generation shades and traces every bounce itself; hit shaders trace nothing.
     let info = vk::RayTracingPipelineCreateInfoKHR::default()

@@ -20,6 +20,7 @@ use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::gpu_records::{FrameUniforms, LightRecord, ObjectRecord, vec4};
+use crate::hot_records::HotRecords;
 use crate::light_table::LightTable;
 use crate::memory_plan::{self, GpuBudget, GpuLedger, INSTANCE_BYTES, mib};
 use crate::patch_upload::prepare_patches;
@@ -50,6 +51,8 @@ pub struct PreparedScene {
     pub(crate) buffer_layout: BufferLayout,
     /// The point sets' bottom levels' layout, chosen or grouped to fit.
     pub(crate) blas_layout: BlasLayout,
+    /// The form of the point sets' hot records, chosen to fit.
+    pub(crate) hot_records: HotRecords,
     /// The most GPU memory the scene's buffers and structures took at once while it was built.
     pub(crate) build_peak: u64,
     // Kept alive for the TLAS and the shaders' buffer addresses (and measured by
@@ -81,7 +84,7 @@ impl Streaming {
     fn top_level(&self, context: &Arc<GpuContext>) -> Result<(AccelerationStructure, Buffer), VulkanError> {
         let (mut instances, mut records): (Vec<_>, Vec<_>) = self.fixed.iter().copied().unzip();
         for tile in self.tiles.resident.values() {
-            let hit_group = patch_hit_group(tile.record.patches_per_box);
+            let hit_group = patch_hit_group(tile.record.patches_per_box, self.tiles.hot_records());
             instances.push(instance(&tile.transform, records.len() as u32, &tile.blas, hit_group));
             records.push(tile.record);
         }
@@ -115,6 +118,12 @@ pub struct SceneLayout {
     /// Where the scene does not fit the budget whole with `blas`, try it in boxes of
     /// `PATCHES_PER_BOX_TO_FIT` patches before streaming or refusing it.
     pub group_to_fit: bool,
+    /// The form of the point sets' hot records on the GPU.
+    pub hot_records: HotRecords,
+    /// Where the scene, in boxes of one patch and split buffers, fits the budget whole with
+    /// unpacked hot records, take them: measured on an H200 (bench/RESULTS.md, "Unpacked hot
+    /// records"), they trace Table 1 3-7% faster, for 32 more GPU bytes a patch.
+    pub unpack_to_fit: bool,
 }
 
 /// The patches a box where one a box does not fit (`SceneLayout::group_to_fit`). Measured
@@ -131,6 +140,8 @@ impl SceneLayout {
             buffers: settings.buffer_layout,
             blas: BlasLayout::grouping(settings.patches_per_box.unwrap_or(1)),
             group_to_fit: settings.patches_per_box.is_none(),
+            unpack_to_fit: settings.buffer_layout == BufferLayout::Split
+                && settings.patches_per_box.unwrap_or(1) == 1,
             ..Self::default()
         }
     }
@@ -146,9 +157,22 @@ impl SceneLayout {
         }
     }
 
+    /// This layout with unpacked hot records where it can take them (`unpack_to_fit`).
+    fn unpacked(self) -> Option<Self> {
+        let unpacks =
+            self.unpack_to_fit && self.buffers == BufferLayout::Split && self.blas.patches_per_box() == 1;
+        unpacks.then_some(Self { hot_records: HotRecords::Unpacked, unpack_to_fit: false, ..self })
+    }
+
     /// This layout in boxes of `PATCHES_PER_BOX_TO_FIT` patches, not to be grouped again.
     fn grouped_to_fit(self) -> Self {
-        Self { blas: BlasLayout::PatchGroups(PATCHES_PER_BOX_TO_FIT), group_to_fit: false, ..self }
+        Self {
+            blas: BlasLayout::PatchGroups(PATCHES_PER_BOX_TO_FIT),
+            group_to_fit: false,
+            hot_records: HotRecords::Packed,
+            unpack_to_fit: false,
+            ..self
+        }
     }
 
     /// The most patches one tile holds on `context`'s device.
@@ -371,6 +395,9 @@ pub(crate) fn prepare(
     if let Some(problem) = scene.objects.iter().find_map(out_of_range) {
         return Err(VulkanError::InvalidScene(problem));
     }
+    if let Some(unpacked) = layout.unpacked().filter(|_| has_point_sets(scene)) {
+        return prepare_unpacked_to_fit(context, scene, unpacked, layout);
+    }
     let streams = layout.stream_tiles_for.is_some() && has_point_sets(scene);
     if (layout.group_to_fit || streams) && !fits_compacted(context, scene, layout)? {
         if layout.group_to_fit {
@@ -398,6 +425,28 @@ pub(crate) fn prepare(
     }
 }
 
+/// `scene` whole in `unpacked`, where it fits so, else prepared in `layout` with packed hot
+/// records. Streaming, grouping and the coarse level all keep records packed: a scene that
+/// does not fit whole needs the memory more than the speed.
+fn prepare_unpacked_to_fit(
+    context: &Arc<GpuContext>,
+    scene: &Scene,
+    unpacked: SceneLayout,
+    layout: SceneLayout,
+) -> Result<PreparedScene, VulkanError> {
+    let packed = SceneLayout { unpack_to_fit: false, ..layout };
+    if !fits_compacted(context, scene, unpacked)? {
+        return prepare(context, scene, packed);
+    }
+    match upload(context, scene, unpacked, false) {
+        Err(VulkanError::OverBudget(why)) => {
+            tracing::info!("packed hot records, as the scene does not fit whole with unpacked ones: {why}");
+            prepare(context, scene, packed)
+        }
+        result => result,
+    }
+}
+
 /// Uploads `scene` whole, or with `streamed` its meshes alone and its point sets' tiles as
 /// the camera needs them.
 fn upload(
@@ -417,7 +466,7 @@ fn upload(
             (Geometry::Patches(_), None) => continue,
             (Geometry::Patches(patches), Some(max_tile)) => (
                 prepare_patches(context, patches, &object.material, layout, max_tile, &mut ledger)?,
-                patch_hit_group(layout.blas.patches_per_box()),
+                patch_hit_group(layout.blas.patches_per_box(), layout.hot_records),
             ),
             (Geometry::Mesh(mesh), _) => (prepare_mesh(context, mesh, &mut ledger)?, HIT_GROUP_TRIANGLES),
         };
@@ -453,6 +502,7 @@ fn upload(
         tlas,
         buffer_layout: layout.buffers,
         blas_layout: layout.blas,
+        hot_records: layout.hot_records,
         build_peak: ledger.peak(),
         _bottom_levels: bottom_levels,
         _geometry: geometry,

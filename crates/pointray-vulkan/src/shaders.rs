@@ -28,6 +28,11 @@ pub(crate) const PATCH_GROUPS_RINT: &[u8] = spirv!("patch_groups.rint");
 /// `patch_groups.rint` with `COUNT_RAYS`.
 pub(crate) const PATCH_GROUPS_COUNTING_RINT: &[u8] = spirv!("patch_groups_counting.rint");
 pub(crate) const PATCH_GROUPS_RCHIT: &[u8] = spirv!("patch_groups.rchit");
+/// `patch.rint` and `patch.rchit` with `UNPACKED_RECORDS`: hot records unpacked at upload.
+pub(crate) const PATCH_UNPACKED_RINT: &[u8] = spirv!("patch_unpacked.rint");
+/// `patch_unpacked.rint` with `COUNT_RAYS`.
+pub(crate) const PATCH_UNPACKED_COUNTING_RINT: &[u8] = spirv!("patch_unpacked_counting.rint");
+pub(crate) const PATCH_UNPACKED_RCHIT: &[u8] = spirv!("patch_unpacked.rchit");
 pub(crate) const TRIANGLE_RCHIT: &[u8] = spirv!("triangle.rchit");
 /// Never run: the interface tests reflect on it.
 #[cfg(test)]

@@ -25,6 +25,7 @@ use crate::color_halo::{ColorHalo, NO_HALO};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::ObjectRecord;
+use crate::hot_records::HotRecords;
 use crate::patch_upload::{
     check_patch_set, patch_records, range_record_bytes, reads_point_colors, tile_blas, tile_box_bytes,
 };
@@ -157,6 +158,11 @@ pub(crate) struct TileStream {
 }
 
 impl TileStream {
+    /// The form of the tiles' hot records.
+    pub(crate) fn hot_records(&self) -> HotRecords {
+        self.layout.hot_records
+    }
+
     /// The tiles of `scene`'s point sets, none loaded yet, with at most `max_tile` patches
     /// each, and the room that building the largest of them takes beside them. `coarse`
     /// holds the coarse level of each point set, in the scene's order, where the layout
@@ -194,7 +200,13 @@ impl TileStream {
                 largest_build = largest_build.max(build);
                 let colors =
                     reads_point_colors(&object.material).then(|| ColorHalo::new(patches, range.clone()));
-                let records = range_record_bytes(patches, range.clone(), layout.buffers, colors.as_ref());
+                let records = range_record_bytes(
+                    patches,
+                    range.clone(),
+                    layout.buffers,
+                    layout.hot_records,
+                    colors.as_ref(),
+                );
                 let bounds = world_bounds(patches, range.clone(), &object.transform);
                 let coarse_range = coarse.map_or(0..0, |coarse| coarse.covering(range.clone()));
                 let coarse_colors = colors.as_ref().map(|_| &NO_HALO);
@@ -385,8 +397,14 @@ impl TileStream {
             }
         };
         let blas = tile_blas(context, patches, range.clone(), self.layout.blas)?;
-        let (addresses, buffers) =
-            patch_records(context, patches, range.clone(), self.layout.buffers, colors)?;
+        let (addresses, buffers) = patch_records(
+            context,
+            patches,
+            range.clone(),
+            self.layout.buffers,
+            self.layout.hot_records,
+            colors,
+        )?;
         let record = ObjectRecord {
             hot: addresses.hot,
             cold: addresses.cold,
@@ -408,7 +426,7 @@ fn level_bytes(
     colors: Option<&ColorHalo>,
 ) -> u64 {
     let (structure, _) = build_sizes(context, &aabb_input(0, range.len(), layout.blas));
-    range_record_bytes(patches, range, layout.buffers, colors) + structure
+    range_record_bytes(patches, range, layout.buffers, layout.hot_records, colors) + structure
 }
 
 /// The world-space box of the patches in `range` of `patches`, placed by `transform`.

@@ -1,15 +1,15 @@
 //! The layout switches change speed and memory, not pictures: one geometry per box, and boxes
 //! of several patches (in whole sets and in tiles), render as one box per patch in one
-//! geometry, and the combined patch buffer as the hot/cold split. A scene holds only
-//! the buffers of its layout on the GPU.
+//! geometry, the combined patch buffer as the hot/cold split, and unpacked hot records as
+//! packed ones. A scene holds only the buffers of its layout on the GPU.
 
 use crate::common;
 
 use common::{assert_no_validation_messages, renderer, settings, sphere_on_floor};
 use pointray_kernels::{PatchCold, PatchHot};
 use pointray_scene::{BufferLayout, Geometry, RenderSettings, Scene};
-use pointray_test_support::largest_color_difference;
-use pointray_vulkan::{BlasLayout, PATCHES_PER_BOX_TO_FIT, SceneLayout, VulkanError};
+use pointray_test_support::{largest_color_difference, psnr_colors};
+use pointray_vulkan::{BlasLayout, HotRecords, PATCHES_PER_BOX_TO_FIT, SceneLayout, VulkanError};
 
 #[test]
 fn blas_and_buffer_layouts_render_the_same_image() {
@@ -77,14 +77,7 @@ fn mesh_bytes(scene: &Scene) -> u64 {
 fn only_the_traced_layout_stays_on_the_gpu() {
     let Some(renderer) = renderer() else { return };
     let scene = sphere_on_floor(0.5, 1.0);
-    let patches: u64 = scene
-        .objects
-        .iter()
-        .map(|object| match &object.geometry {
-            Geometry::Patches(set) => set.len() as u64,
-            Geometry::Mesh(_) => 0,
-        })
-        .sum();
+    let patches = patch_count(&scene);
     assert!(patches > 0);
     let hot_and_cold = (size_of::<PatchHot>() + size_of::<PatchCold>()) as u64;
     let split = renderer.prepare(&scene).expect("prepares").build_report();
@@ -121,7 +114,8 @@ fn tracing_buffers_the_scene_lacks_is_an_error() {
 fn a_scene_over_its_budget_in_boxes_of_one_is_grouped_to_fit() {
     let Some(renderer) = renderer() else { return };
     let scene = sphere_on_floor(0.5, 1.0);
-    let open = SceneLayout::for_settings(&settings(96));
+    // Packed records throughout: unpacking to fit has a test of its own.
+    let open = SceneLayout { unpack_to_fit: false, ..SceneLayout::for_settings(&settings(96)) };
     assert!(open.group_to_fit, "settings that leave the patches a box open group to fit");
     let ones = renderer.prepare_with_layout(&scene, open).expect("prepares").build_report();
     assert_eq!(ones.patches_per_box, 1, "a scene that fits keeps a box per patch");
@@ -141,4 +135,57 @@ fn a_scene_over_its_budget_in_boxes_of_one_is_grouped_to_fit() {
     let (image, reference) = (image.expect("traces"), reference.expect("traces"));
     assert_eq!(image.primitive_id, reference.primitive_id, "grouped to fit, the scene renders as grouped");
     assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn unpacked_hot_records_render_as_packed_ones_and_are_taken_where_they_fit() {
+    let Some(renderer) = renderer() else { return };
+    let scene = sphere_on_floor(0.5, 1.0);
+    let open = SceneLayout::for_settings(&settings(96));
+    assert!(open.unpack_to_fit, "split buffers in boxes of one unpack to fit");
+    let unpacked = renderer.prepare_with_layout(&scene, open).expect("prepares");
+    let packed_layout = SceneLayout { unpack_to_fit: false, ..open };
+    let packed = renderer.prepare_with_layout(&scene, packed_layout).expect("prepares");
+    let (unpacked_report, packed_report) = (unpacked.build_report(), packed.build_report());
+    assert_eq!(unpacked_report.hot_records, HotRecords::Unpacked);
+    assert_eq!(packed_report.hot_records, HotRecords::Packed);
+    let patches = patch_count(&scene);
+    let extra =
+        patches * (HotRecords::Unpacked.bytes_per_patch() - HotRecords::Packed.bytes_per_patch()) as u64;
+    assert_eq!(unpacked_report.geometry_bytes, packed_report.geometry_bytes + extra);
+    // The unpacked frame is the packed one decoded on the host, whose sine and cosine round
+    // otherwise than the device's: the same picture, but where two overlapping patches all but
+    // tie, a pixel may take the other.
+    let reference = renderer.trace(&packed, &settings(96)).expect("traces");
+    let image = renderer.trace(&unpacked, &settings(96)).expect("traces");
+    assert_eq!(image.instance_id, reference.instance_id, "hit objects differ");
+    let psnr = psnr_colors(&image, &reference);
+    assert!(psnr >= 50.0, "{psnr:.1} dB against packed records");
+    let moved = image.primitive_id.iter().zip(&reference.primitive_id).filter(|(a, b)| a != b).count();
+    assert!(moved * 100 <= image.primitive_id.len(), "{moved} pixels hit another patch");
+    // A budget between the two: the scene keeps boxes of one, with packed records. In small
+    // tiles, so that the records, not one large build, make each layout's peak.
+    let tiled = SceneLayout { max_tile_patches: Some(64), ..open };
+    let need = |layout| {
+        let report = renderer.prepare_with_layout(&scene, layout).expect("prepares").build_report();
+        report.peak_build_bytes.max(report.gpu_bytes())
+    };
+    let (unpacked_need, packed_need) = (need(tiled), need(SceneLayout { unpack_to_fit: false, ..tiled }));
+    assert!(unpacked_need > packed_need, "{unpacked_need} against {packed_need} bytes");
+    let budget = Some((unpacked_need + packed_need) / 2);
+    let fitted = renderer
+        .prepare_with_layout(&scene, SceneLayout { memory_budget: budget, ..tiled })
+        .expect("fits packed")
+        .build_report();
+    assert_eq!((fitted.hot_records, fitted.patches_per_box), (HotRecords::Packed, 1));
+    assert_eq!(fitted.geometry_bytes, packed_report.geometry_bytes);
+    assert_no_validation_messages(&renderer);
+}
+
+fn patch_count(scene: &Scene) -> u64 {
+    let count = |geometry: &Geometry| match geometry {
+        Geometry::Patches(set) => set.len() as u64,
+        Geometry::Mesh(_) => 0,
+    };
+    scene.objects.iter().map(|object| count(&object.geometry)).sum()
 }
