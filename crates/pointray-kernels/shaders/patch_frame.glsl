@@ -41,8 +41,8 @@ vec3 patch_direction_to_world(Patch surface, vec3 local) {
 }
 
 bool patch_supports(Patch surface, vec2 uv) {
-    vec2 scaled = uv / surface.radii;
-    return dot(scaled, scaled) <= 1.0;
+    vec2 squared = surface.radii * surface.radii;
+    return uv.x * uv.x * squared.y + uv.y * uv.y * squared.x <= squared.x * squared.y;
 }
 
 #endif

@@ -150,9 +150,12 @@ impl Patch {
         self.frame.to_world(local)
     }
 
-    /// Whether local `(u, v)` lies over the support ellipse.
+    /// Whether local `(u, v)` lies over the support ellipse: `(u / d_u)² + (v / d_v)² <= 1`,
+    /// multiplied out, so that the intersection test, which asks it on every call, divides
+    /// nothing.
     pub fn supports(&self, uv: Vec2) -> bool {
-        (uv / self.radii).length_squared() <= 1.0
+        let squared = self.radii * self.radii;
+        uv.x * uv.x * squared.y + uv.y * uv.y * squared.x <= squared.x * squared.y
     }
 }
 
