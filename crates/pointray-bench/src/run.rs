@@ -6,7 +6,9 @@ use std::sync::Arc;
 
 use pointray_patches::{BoxKind, PrepSettings, RadiusMode};
 use pointray_scene::load::{LoadOptions, load_scene};
-use pointray_scene::{BufferLayout, Geometry, Integrator, PatchAcceptance, RenderSettings, Scene};
+use pointray_scene::{
+    BufferLayout, Geometry, HotRecords, Integrator, PatchAcceptance, RenderSettings, Scene,
+};
 use pointray_surface::NoProgress;
 use pointray_vulkan::{BlasLayout, PixelOutput, SceneLayout, VulkanError, VulkanRenderer};
 
@@ -36,6 +38,8 @@ pub struct BenchOptions<'a> {
     pub integrator: Option<Integrator>,
     /// Replaces every scene's patches a box (`RenderSettings::patches_per_box`).
     pub patches_per_box: Option<u32>,
+    /// Replaces every scene's hot records (`RenderSettings::hot_records`).
+    pub hot_records: Option<HotRecords>,
     /// Time the mesh twin of each model (the limit).
     pub limit: bool,
     pub ablations: bool,
@@ -269,6 +273,7 @@ impl BenchOptions<'_> {
         RenderSettings {
             integrator: self.integrator.unwrap_or(settings.integrator),
             patches_per_box: self.patches_per_box.or(settings.patches_per_box),
+            hot_records: self.hot_records.or(settings.hot_records),
             ..settings
         }
     }

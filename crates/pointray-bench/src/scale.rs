@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use pointray_io::{MemoryBudget, PointStream};
 use pointray_patches::PrepSettings;
 use pointray_patches::patch_store;
-use pointray_scene::{RenderSettings, RenderedImage};
+use pointray_scene::{HotRecords, RenderSettings, RenderedImage};
 use pointray_surface::peak_memory::StagePeaks;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
 use pointray_surface::tiles::streamed_prep::prep_streamed;
@@ -64,6 +64,8 @@ pub struct ScaleOptions<'a> {
     pub frames: FrameCounts,
     /// Replaces the scene's patches a box (`RenderSettings::patches_per_box`).
     pub patches_per_box: Option<u32>,
+    /// Replaces the scene's hot records (`RenderSettings::hot_records`).
+    pub hot_records: Option<HotRecords>,
     /// Told about prep's stages (a progress bar).
     pub progress: &'a dyn PrepProgress,
     /// Called with each row as it completes.
@@ -148,6 +150,7 @@ fn measure_rung(
     let loaded = load_with_model(label, &table, "points", &store, &scene_path, &options.cache)?;
     let base = RenderSettings {
         patches_per_box: options.patches_per_box.or(loaded.settings.patches_per_box),
+        hot_records: options.hot_records.or(loaded.settings.hot_records),
         ..loaded.settings
     };
     let (mut ready, costs) = backend.prepare(&loaded.scene, &base, label)?;
@@ -181,6 +184,7 @@ fn measure_rung(
         blas_build_seconds: costs.blas.as_secs_f64(),
         bottom_levels: costs.tiles,
         patches_per_box: costs.patches_per_box,
+        hot_records: costs.hot_records,
         gpu_bytes_per_point: costs.gpu_bytes.map(|bytes| bytes as f64 / points),
         gpu_build_peak_bytes_per_point: costs.gpu_peak_bytes.map(|bytes| bytes as f64 / points),
         fps,

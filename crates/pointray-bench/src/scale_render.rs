@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use pointray_cpu::CpuRenderer;
 use pointray_render::{Backend, BackendError, ReadyScene, Tracer};
-use pointray_scene::{RenderSettings, RenderedImage, Scene};
+use pointray_scene::{HotRecords, RenderSettings, RenderedImage, Scene};
 use pointray_vulkan::{PixelOutput, VulkanError};
 
 use crate::error::BenchError;
@@ -33,6 +33,8 @@ pub struct BuildCosts {
     pub tiles: usize,
     /// Consecutive patches one box of the GPU's bottom levels bounds; 1 on the CPU backend.
     pub patches_per_box: u32,
+    /// The form of the point sets' hot records on the GPU; `None` on the CPU backend.
+    pub hot_records: Option<HotRecords>,
 }
 
 impl ScaleBackend<'_> {
@@ -79,6 +81,7 @@ impl ScaleBackend<'_> {
                     gpu_peak_bytes: Some(report.peak_build_bytes),
                     tiles: report.blas_count,
                     patches_per_box: report.patches_per_box,
+                    hot_records: Some(report.hot_records),
                 }
             }
             ReadyScene::Cpu(renderer) => BuildCosts {
@@ -87,6 +90,7 @@ impl ScaleBackend<'_> {
                 gpu_peak_bytes: None,
                 tiles: renderer.tile_count(),
                 patches_per_box: 1,
+                hot_records: None,
             },
         };
         Ok((ready, costs))

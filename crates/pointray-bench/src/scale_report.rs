@@ -3,6 +3,7 @@
 
 use std::fmt::Write as _;
 
+use pointray_scene::HotRecords;
 use serde::Serialize;
 
 /// One rung: what it measured, or why it was skipped.
@@ -47,6 +48,8 @@ pub struct RungMeasurement {
     pub bottom_levels: usize,
     /// Consecutive patches one box of those bottom levels bounds.
     pub patches_per_box: u32,
+    /// The form of the points' hot records on the GPU; `None` on the CPU backend.
+    pub hot_records: Option<HotRecords>,
     /// Everything the scene keeps on the GPU, per patch; `None` on the CPU backend.
     pub gpu_bytes_per_point: Option<f64>,
     /// The most the scene held on the GPU at once while it was built, per patch.
@@ -86,7 +89,7 @@ impl ScaleRow {
                 let fps: Vec<String> =
                     m.fps.iter().map(|s| format!("{:.1} FPS at {}x{}", s.fps, s.width, s.height)).collect();
                 format!(
-                    "{}: prep {} {:.2} s ({:.2} M points/s, peak {}), store {:.1} MB, load {:.2} s, BLAS {:.2} s ({} bottom levels, {} patches a box), GPU {}, {}{}",
+                    "{}: prep {} {:.2} s ({:.2} M points/s, peak {}), store {:.1} MB, load {:.2} s, BLAS {:.2} s ({} bottom levels, {} patches a box{}), GPU {}, {}{}",
                     self.label,
                     m.prep_route,
                     m.prep_seconds,
@@ -97,6 +100,7 @@ impl ScaleRow {
                     m.blas_build_seconds,
                     m.bottom_levels,
                     m.patches_per_box,
+                    m.hot_records.map_or(String::new(), |form| format!(", {} hot records", form.name())),
                     m.gpu_bytes_per_point.map_or("n/a".into(), |b| format!("{b:.0} B/point")),
                     fps.join(", "),
                     m.image_psnr_db

@@ -26,6 +26,7 @@ fn options<'a>(data: PathBuf, cache: &Path, size: Option<(u32, u32)>, ablations:
         size,
         integrator: None,
         patches_per_box: None,
+        hot_records: None,
         limit: true,
         ablations,
         reordering: None,
@@ -174,6 +175,7 @@ fn scale_options<'a>(data: PathBuf, cache: &Path, rungs: &[(&str, u64)]) -> Scal
         sizes: vec![(48, 27), (16, 16)],
         frames: FrameCounts { warmup: 1, timed: 2 },
         patches_per_box: None,
+        hot_records: None,
         progress: &NoProgress,
         on_row: &|_| {},
     }

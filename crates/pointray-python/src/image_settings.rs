@@ -2,7 +2,7 @@
 //! as its flag is.
 
 use pointray_scene::integrator::Integrator;
-use pointray_scene::{RenderSetting, RenderSettings};
+use pointray_scene::{HotRecords, RenderSetting, RenderSettings};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -25,13 +25,14 @@ pub struct ImageSettings {
     pub seed: Option<u32>,
     #[pyo3(get)]
     pub patches_per_box: Option<u32>,
+    pub hot_records: Option<HotRecords>,
 }
 
 #[pymethods]
 impl ImageSettings {
     /// Checks each setting as its flag is checked; a bad one raises `ValueError` naming it.
     #[new]
-    #[pyo3(signature = (*, width=None, height=None, spp=None, max_depth=None, shadows=None, integrator=None, seed=None, patches_per_box=None))]
+    #[pyo3(signature = (*, width=None, height=None, spp=None, max_depth=None, shadows=None, integrator=None, seed=None, patches_per_box=None, hot_records=None))]
     #[allow(clippy::too_many_arguments, reason = "Python's keyword arguments, each a setting")]
     fn new(
         width: Option<u32>,
@@ -42,6 +43,7 @@ impl ImageSettings {
         integrator: Option<&str>,
         seed: Option<&Bound<'_, PyAny>>,
         patches_per_box: Option<u32>,
+        hot_records: Option<&str>,
     ) -> PyResult<Self> {
         Ok(Self {
             width: checked(RenderSetting::Width, "width", width)?,
@@ -59,6 +61,9 @@ impl ImageSettings {
                 })
                 .transpose()?,
             patches_per_box: checked(RenderSetting::PatchesPerBox, "patches_per_box", patches_per_box)?,
+            hot_records: hot_records
+                .map(|name| name.parse().map_err(|e| PyValueError::new_err(format!("hot_records: {e}"))))
+                .transpose()?,
         })
     }
 }
@@ -81,6 +86,7 @@ impl ImageSettings {
         settings.shadows = self.shadows.unwrap_or(settings.shadows);
         settings.integrator = self.integrator.unwrap_or(settings.integrator);
         settings.patches_per_box = self.patches_per_box.or(settings.patches_per_box);
+        settings.hot_records = self.hot_records.or(settings.hot_records);
     }
 }
 

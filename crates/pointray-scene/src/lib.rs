@@ -25,6 +25,7 @@ pub mod error;
 pub mod file_camera;
 mod framing;
 pub mod ground;
+pub mod hot_records;
 pub mod image_output;
 pub mod integrator;
 pub mod light;
@@ -60,6 +61,7 @@ pub use demo::{demo_scene, load_demo};
 pub use error::SceneError;
 #[cfg(feature = "load")]
 pub use file_camera::FileCamera;
+pub use hot_records::HotRecords;
 pub use image_output::{AovSelection, write_image};
 pub use integrator::Integrator;
 pub use light::Light;

@@ -2,6 +2,7 @@
 
 use pointray_kernels::PatchAcceptance;
 
+use crate::hot_records::HotRecords;
 use crate::integrator::Integrator;
 
 /// How the per-patch data reaches the GPU (METHOD.md §2.7).
@@ -31,6 +32,11 @@ pub struct RenderSettings {
     /// one, or more where the scene would not fit the GPU's memory whole with one
     /// (`pointray_vulkan::SceneLayout::group_to_fit`).
     pub patches_per_box: Option<u32>,
+    /// The form of the point sets' hot records on the GPU. `None` chooses: unpacked for
+    /// point sets small enough to gain by it, where the scene fits the GPU's memory whole
+    /// with them in boxes of one patch, else packed
+    /// (`pointray_vulkan::SceneLayout::unpack_to_fit`).
+    pub hot_records: Option<HotRecords>,
     pub integrator: Integrator,
     /// The path integrator's random sequence: one seed gives one image on every backend.
     pub seed: u32,
@@ -51,6 +57,7 @@ impl Default for RenderSettings {
             acceptance: PatchAcceptance::default(),
             buffer_layout: BufferLayout::default(),
             patches_per_box: None,
+            hot_records: None,
             integrator: Integrator::default(),
             seed: 0,
             first_sample: 0,

@@ -24,6 +24,8 @@
 //! max_depth = 2
 //! patches_per_box = 1       # the GPU's boxes: one per run of this many patches (default:
 //!                           # 1, or 4 where the scene does not fit the GPU's memory with 1)
+//! hot_records = "packed"    # or "unpacked": 64 bytes a patch, read without decoding
+//!                           # (default: unpacked for small point sets that fit so)
 //! integrator = "whitted"    # or "path"
 //! seed = 0                  # the path integrator's random sequence
 //! ```
@@ -42,7 +44,7 @@ use crate::object_spec::{ObjectSpec, ShapeSpec};
 use crate::points_scene::PointsScene;
 use crate::render_settings::RenderSetting;
 use crate::render_space::RenderSpace;
-use crate::{Background, Camera, Integrator, Light, RenderSettings};
+use crate::{Background, Camera, HotRecords, Integrator, Light, RenderSettings};
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -116,6 +118,7 @@ pub struct RenderSpec {
     pub spp: Option<u32>,
     pub max_depth: Option<u32>,
     pub patches_per_box: Option<u32>,
+    pub hot_records: Option<HotRecords>,
     pub integrator: Option<Integrator>,
     pub seed: Option<u32>,
 }
@@ -388,6 +391,7 @@ impl RenderSpec {
                     setting.check(value).map_err(|problem| InvalidValue::new(setting.file_key(), problem))
                 })
                 .transpose()?,
+            hot_records: self.hot_records,
             integrator: self.integrator.unwrap_or(default.integrator),
             seed: self.seed.unwrap_or(default.seed),
             ..default

@@ -3,8 +3,8 @@
 use std::time::Duration;
 
 use crate::acceleration::AccelerationStructure;
-use crate::hot_records::HotRecords;
 use crate::prepared_scene::PreparedScene;
+use pointray_scene::HotRecords;
 
 /// Build times and memory of a prepared scene's acceleration structures and buffers.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -18,9 +18,9 @@ use crate::color_halo::{ColorHalo, NO_HALO};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::{ObjectRecord, PatchCombined};
-use crate::hot_records::HotRecords;
 use crate::memory_plan::GpuLedger;
 use crate::prepared_scene::{PreparedObject, SceneLayout};
+use pointray_scene::HotRecords;
 
 /// Bytes of one patch box (`VkAabbPositionsKHR`).
 const BOX_BYTES: u64 = size_of::<Aabb>() as u64;

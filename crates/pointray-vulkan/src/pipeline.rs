@@ -12,8 +12,8 @@ use pointray_scene::Integrator;
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::gpu_records::TraceSettings;
-use crate::hot_records::HotRecords;
 use crate::shaders;
+use pointray_scene::HotRecords;
 
 pub(crate) const BINDING_TLAS: u32 = 0;
 pub(crate) const BINDING_FRAME: u32 = 1;

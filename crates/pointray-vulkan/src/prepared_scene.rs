@@ -20,12 +20,12 @@ use crate::buffer::{Buffer, build_input_usage, storage_usage};
 use crate::context::GpuContext;
 use crate::error::{VkContext, VulkanError};
 use crate::gpu_records::{FrameUniforms, LightRecord, ObjectRecord, vec4};
-use crate::hot_records::HotRecords;
 use crate::light_table::LightTable;
 use crate::memory_plan::{self, GpuBudget, GpuLedger, INSTANCE_BYTES, mib};
 use crate::patch_upload::prepare_patches;
 use crate::pipeline::{HIT_GROUP_TRIANGLES, patch_hit_group};
 use crate::tile_stream::{MIN_STREAMED_TILE, TileResidency, TileStream};
+use pointray_scene::HotRecords;
 
 /// The most instances (meshes and point-set tiles) whose records an instance's 24-bit
 /// custom index can name.
@@ -118,13 +118,22 @@ pub struct SceneLayout {
     /// Where the scene does not fit the budget whole with `blas`, try it in boxes of
     /// `PATCHES_PER_BOX_TO_FIT` patches before streaming or refusing it.
     pub group_to_fit: bool,
-    /// The form of the point sets' hot records on the GPU.
+    /// The form of the point sets' hot records on the GPU. Unpacked records need boxes of
+    /// one patch and split buffers.
     pub hot_records: HotRecords,
-    /// Where the scene, in boxes of one patch and split buffers, fits the budget whole with
-    /// unpacked hot records, take them: measured on an H200 (bench/RESULTS.md, "Unpacked hot
-    /// records"), they trace Table 1 3-7% faster, for 32 more GPU bytes a patch.
+    /// Where the scene's point sets hold at most `UNPACKED_MOST_PATCHES` patches and the
+    /// scene, in boxes of one patch and split buffers, fits the budget whole with unpacked hot
+    /// records, take them.
     pub unpack_to_fit: bool,
 }
+
+/// The most patches a scene's point sets may hold to take unpacked hot records when the
+/// choice is left open. Measured on an H200 (bench/RESULTS.md, "Unpacked hot records"):
+/// unpacked records trace Table 1's models 2-8% faster, and the scale ladder's 1M to 100M
+/// rungs 4-6% faster, sparing every intersection call the decoding; but the 300M rung 4%
+/// slower at 1920x1080 and 18% at 640x640, where reading twice the bytes a record costs more
+/// than the decoding saved.
+pub const UNPACKED_MOST_PATCHES: usize = 100_000_000;
 
 /// The patches a box where one a box does not fit (`SceneLayout::group_to_fit`). Measured
 /// on an H200 (bench/RESULTS.md, "Boxes of several patches"): boxes of 4 take 37 GPU bytes a
@@ -139,8 +148,11 @@ impl SceneLayout {
         Self {
             buffers: settings.buffer_layout,
             blas: BlasLayout::grouping(settings.patches_per_box.unwrap_or(1)),
-            group_to_fit: settings.patches_per_box.is_none(),
-            unpack_to_fit: settings.buffer_layout == BufferLayout::Split
+            group_to_fit: settings.patches_per_box.is_none()
+                && settings.hot_records != Some(HotRecords::Unpacked),
+            hot_records: settings.hot_records.unwrap_or_default(),
+            unpack_to_fit: settings.hot_records.is_none()
+                && settings.buffer_layout == BufferLayout::Split
                 && settings.patches_per_box.unwrap_or(1) == 1,
             ..Self::default()
         }
@@ -157,11 +169,26 @@ impl SceneLayout {
         }
     }
 
-    /// This layout with unpacked hot records where it can take them (`unpack_to_fit`).
-    fn unpacked(self) -> Option<Self> {
-        let unpacks =
-            self.unpack_to_fit && self.buffers == BufferLayout::Split && self.blas.patches_per_box() == 1;
+    /// This layout with unpacked hot records, where it leaves them open (`unpack_to_fit`) and
+    /// `scene`'s point sets are small enough to gain by them.
+    fn unpacked_for(self, scene: &Scene) -> Option<Self> {
+        let patches = point_set_patches(scene);
+        let unpacks = self.unpack_to_fit
+            && self.buffers == BufferLayout::Split
+            && self.blas.patches_per_box() == 1
+            && (1..=UNPACKED_MOST_PATCHES).contains(&patches);
         unpacks.then_some(Self { hot_records: HotRecords::Unpacked, unpack_to_fit: false, ..self })
+    }
+
+    /// Unpacked records are read by the hit group of boxes of one patch, from split buffers.
+    fn check_hot_records(&self) -> Result<(), VulkanError> {
+        let fits = self.buffers == BufferLayout::Split && self.blas.patches_per_box() == 1;
+        if self.hot_records == HotRecords::Unpacked && !fits {
+            return Err(VulkanError::InvalidSettings(
+                "unpacked hot records need boxes of one patch (patches_per_box = 1) and split buffers".into(),
+            ));
+        }
+        Ok(())
     }
 
     /// This layout in boxes of `PATCHES_PER_BOX_TO_FIT` patches, not to be grouped again.
@@ -395,7 +422,8 @@ pub(crate) fn prepare(
     if let Some(problem) = scene.objects.iter().find_map(out_of_range) {
         return Err(VulkanError::InvalidScene(problem));
     }
-    if let Some(unpacked) = layout.unpacked().filter(|_| has_point_sets(scene)) {
+    layout.check_hot_records()?;
+    if let Some(unpacked) = layout.unpacked_for(scene) {
         return prepare_unpacked_to_fit(context, scene, unpacked, layout);
     }
     let streams = layout.stream_tiles_for.is_some() && has_point_sets(scene);
@@ -555,6 +583,15 @@ fn planned_tile(
 
 fn has_point_sets(scene: &Scene) -> bool {
     scene.objects.iter().any(|object| matches!(object.geometry, Geometry::Patches(_)))
+}
+
+/// The patches of all of `scene`'s point sets.
+fn point_set_patches(scene: &Scene) -> usize {
+    let patches = |object: &pointray_scene::SceneObject| match &object.geometry {
+        Geometry::Patches(patches) => patches.len(),
+        Geometry::Mesh(_) => 0,
+    };
+    scene.objects.iter().map(patches).sum()
 }
 
 /// The tiles of `scene`'s point sets, none loaded, with a budget of what `ledger`'s leaves

@@ -25,12 +25,12 @@ use crate::color_halo::{ColorHalo, NO_HALO};
 use crate::context::GpuContext;
 use crate::error::VulkanError;
 use crate::gpu_records::ObjectRecord;
-use crate::hot_records::HotRecords;
 use crate::patch_upload::{
     check_patch_set, patch_records, range_record_bytes, reads_point_colors, tile_blas, tile_box_bytes,
 };
 use crate::prepared_scene::SceneLayout;
 use crate::tile_view::TileView;
+use pointray_scene::HotRecords;
 
 /// Tiles a streamed set is split into, unless its tiles would be smaller than
 /// `MIN_STREAMED_TILE` or larger than `MAX_STREAMED_TILE` (or the device's limit, or what

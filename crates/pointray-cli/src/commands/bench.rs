@@ -11,7 +11,7 @@ use pointray_bench::{
 };
 use pointray_io::MemoryBudget;
 use pointray_render::{Backend, BackendChoice, DeviceSelector};
-use pointray_scene::{Integrator, RenderSetting, RenderSettings, SceneFile};
+use pointray_scene::{HotRecords, Integrator, RenderSetting, RenderSettings, SceneFile};
 use pointray_vulkan::VulkanRenderer;
 
 use crate::backend::{GpuMemoryArg, backend_choice, device_options, open_backend};
@@ -46,6 +46,10 @@ pub struct BenchArgs {
     /// default: the scene's, else 1, or 4 where the scene does not fit the GPU's memory).
     #[arg(long, value_parser = setting_flag(RenderSetting::PatchesPerBox))]
     patches_per_box: Option<u32>,
+    /// Replace every scene's hot records on the GPU: `packed` or `unpacked` (default: the
+    /// scene's, else unpacked for small point sets where the scene fits the GPU's memory so).
+    #[arg(long)]
+    hot_records: Option<HotRecords>,
     /// Only these models of the suite (repeatable).
     #[arg(long = "model")]
     models: Vec<String>,
@@ -168,6 +172,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         size: args.width.zip(args.height),
         integrator: args.integrator,
         patches_per_box: args.patches_per_box,
+        hot_records: args.hot_records,
         limit: !args.no_limit,
         ablations: args.ablations,
         reordering: reordering.as_ref(),
@@ -222,6 +227,7 @@ fn run_scale_suite(args: &BenchArgs) -> anyhow::Result<()> {
         sizes: pointray_bench::scale::SCALE_SIZES.to_vec(),
         frames: FrameCounts { warmup: args.warmup, timed: args.frames },
         patches_per_box: args.patches_per_box,
+        hot_records: args.hot_records,
         progress: &progress,
         on_row: &print_row,
     };

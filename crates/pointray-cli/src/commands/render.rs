@@ -11,7 +11,7 @@ use pointray_render::missing_tiles;
 use pointray_scene::image_output::{AovSelection, check_image_outputs, write_image};
 use pointray_scene::load::{LoadOptions, LoadedScene, load_scene_file};
 use pointray_scene::{
-    BufferLayout, Integrator, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera,
+    BufferLayout, HotRecords, Integrator, PatchAcceptance, RenderSetting, RenderSettings, orbit_camera,
 };
 use pointray_vulkan::TileResidency;
 
@@ -65,6 +65,12 @@ pub struct RenderArgs {
     /// GPU's memory with 1): more make a smaller BVH and slower frames.
     #[arg(long, value_parser = setting_flag(RenderSetting::PatchesPerBox))]
     patches_per_box: Option<u32>,
+    /// The point sets' hot records on the GPU: `packed` (32 bytes a patch, decoded on every
+    /// intersection call) or `unpacked` (64, read as they are; boxes of one patch only).
+    /// Default: the scene file's `hot_records`, else unpacked for small point sets where the
+    /// scene fits the GPU's memory so, packed otherwise (Vulkan only).
+    #[arg(long)]
+    hot_records: Option<HotRecords>,
     #[command(flatten)]
     backend: BackendArgs,
     /// Also write depth, normal, instance id, primitive id and hit mask next to the image.
@@ -152,6 +158,7 @@ fn apply_flags(args: &RenderArgs, mut settings: RenderSettings) -> RenderSetting
     settings.integrator = args.integrator.unwrap_or(settings.integrator);
     settings.seed = args.seed.unwrap_or(settings.seed);
     settings.patches_per_box = args.patches_per_box.or(settings.patches_per_box);
+    settings.hot_records = args.hot_records.or(settings.hot_records);
     settings.shadows &= !args.no_shadows;
     settings.acceptance = args.acceptance;
     settings.buffer_layout = match args.buffers {

@@ -45,7 +45,8 @@ class ImageSettings:
     def __init__(self, *, width: int | None = None, height: int | None = None,
                  spp: int | None = None, max_depth: int | None = None,
                  shadows: bool | None = None, integrator: str | None = None,
-                 seed: int | None = None, patches_per_box: int | None = None) -> None: ...
+                 seed: int | None = None, patches_per_box: int | None = None,
+                 hot_records: str | None = None) -> None: ...
     @property
     def width(self) -> int | None: ...
     @property

@@ -48,7 +48,8 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
            width: Optional[int] = None, height: Optional[int] = None, spp: Optional[int] = None,
            max_depth: Optional[int] = None, shadows: Optional[bool] = None,
            integrator: Optional[str] = None, seed: Optional[int] = None,
-           patches_per_box: Optional[int] = None, backend: str = "auto",
+           patches_per_box: Optional[int] = None, hot_records: Optional[str] = None,
+           backend: str = "auto",
            device: str = "auto", gpu_memory: Optional[int | str] = None,
            camera: Optional[dict[str, Any]] = None, aovs: bool = False,
            denoise: bool = False, up: Optional[str] = None, floor: bool = True,
@@ -66,7 +67,10 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
     ``width``, ``height``, ``spp``, ``max_depth``, ``integrator`` (``"whitted"`` or
     ``"path"``), ``seed`` (the path integrator's random sequence) and ``patches_per_box`` (the
     GPU's boxes: one a run of this many patches; by default 1, or 4 where the scene does not
-    fit the GPU's memory with 1) override the scene's ``[render]`` settings; ``backend`` is ``"auto"`` (a hardware ray-tracing GPU, else the CPU),
+    fit the GPU's memory with 1) and ``hot_records`` (``"packed"`` or ``"unpacked"``: the point
+    sets' records on the GPU; by default unpacked for small point sets where the scene fits the
+    GPU's memory so) override the scene's ``[render]`` settings; ``backend`` is ``"auto"`` (a
+    hardware ray-tracing GPU, else the CPU),
     ``"vulkan"`` or ``"cpu"``; ``gpu_memory`` (bytes, or a size such as ``"40G"``) holds a
     scene to less GPU memory than the device has, as ``--gpu-memory`` does (point sets that do
     not fit stream: the tiles the camera sees are loaded first, and a ``UserWarning`` says what
@@ -77,7 +81,8 @@ def render(source: Scene | str | os.PathLike | PointCloud | Patches | np.ndarray
     """
     image_settings = _native.ImageSettings(width=width, height=height, spp=spp, max_depth=max_depth,
                                            shadows=shadows, integrator=integrator, seed=seed,
-                                           patches_per_box=patches_per_box)
+                                           patches_per_box=patches_per_box,
+                                           hot_records=hot_records)
     options = _native.RenderOptions(image_settings, backend=backend, device=device,
                                     gpu_memory=gpu_memory, camera=camera, denoise=denoise)
     result = _native.render(_source(source, up, floor, color), options)

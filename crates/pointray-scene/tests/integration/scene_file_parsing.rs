@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use pointray_patches::PrepSettings;
 use pointray_scene::object_spec::ShapeSpec;
 use pointray_scene::scene_file::{BackgroundSpec, LightSpec};
-use pointray_scene::{Integrator, SceneError, SceneFile};
+use pointray_scene::{HotRecords, Integrator, SceneError, SceneFile};
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
@@ -88,6 +88,7 @@ fn a_full_scene_parses_into_the_expected_values() {
         width = 320
         spp = 4
         patches_per_box = 4
+        hot_records = "packed"
         [[lights]]
         type = "directional"
         direction = [0, -2, 0]
@@ -109,6 +110,7 @@ fn a_full_scene_parses_into_the_expected_values() {
     assert_eq!(file.render.height, None);
     assert_eq!(file.render.spp, Some(4));
     assert_eq!(file.render.patches_per_box, Some(4));
+    assert_eq!(file.render.hot_records, Some(HotRecords::Packed));
     assert!(matches!(file.background, Some(BackgroundSpec::Gradient(_))));
     assert_eq!(
         file.lights[0],
