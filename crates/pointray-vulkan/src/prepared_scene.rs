@@ -130,9 +130,8 @@ pub struct SceneLayout {
 /// The most patches a scene's point sets may hold to take unpacked hot records when the
 /// choice is left open. Measured on an H200 (bench/RESULTS.md, "Unpacked hot records"):
 /// unpacked records trace Table 1's models 2-8% faster, and the scale ladder's 1M to 100M
-/// rungs 4-6% faster, sparing every intersection call the decoding; but the 300M rung 4%
-/// slower at 1920x1080 and 18% at 640x640, where reading twice the bytes a record costs more
-/// than the decoding saved.
+/// rungs 4-6% faster, sparing every intersection call the decoding; but the 300M rung, the
+/// first cut into bottom levels of 16M patches, 4% slower at 1920x1080 and 18% at 640x640.
 pub const UNPACKED_MOST_PATCHES: usize = 100_000_000;
 
 /// The patches a box where one a box does not fit (`SceneLayout::group_to_fit`). Measured
