@@ -7,6 +7,7 @@ use std::os::unix::fs::MetadataExt;
 use std::path::Path;
 
 use pointray_io::MemoryBudget;
+use pointray_io::disk_space::free_bytes;
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use pointray_patches::PrepSettings;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
@@ -90,11 +91,11 @@ impl MachineLimits {
         let file_system = |folder: &Path| std::fs::metadata(folder).ok().map(|metadata| metadata.dev());
         let apart = scratch.filter(|&scratch| file_system(scratch) != file_system(cache));
         Self {
-            available_memory: available_memory(),
+            available_memory: pointray_io::available_memory(),
             memory_per_point: memory_per_point(device.is_some()),
             prep_budget: MemoryBudget::half_of_this_machine(),
-            free_disk: free_disk(cache),
-            free_scratch: apart.and_then(free_disk),
+            free_disk: free_bytes(cache),
+            free_scratch: apart.and_then(free_bytes),
             device,
         }
     }
@@ -149,18 +150,6 @@ impl MachineLimits {
 
 fn memory_per_point(gpu: bool) -> u64 {
     if gpu { gpu_load_bytes_per_point() } else { CPU_RENDER_BYTES_PER_POINT }
-}
-
-fn available_memory() -> Option<u64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|line| line.starts_with("MemAvailable:"))?;
-    let kib: u64 = line["MemAvailable:".len()..].trim().strip_suffix("kB")?.trim().parse().ok()?;
-    Some(kib * 1024)
-}
-
-fn free_disk(folder: &Path) -> Option<u64> {
-    let stats = rustix::fs::statvfs(folder).ok()?;
-    Some(stats.f_bavail.saturating_mul(stats.f_frsize))
 }
 
 #[cfg(test)]

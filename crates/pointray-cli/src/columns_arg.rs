@@ -24,6 +24,11 @@ impl ColumnsArg {
         pointray_io::formats::read_point_cloud_with(path, self.columns.as_ref())
     }
 
+    /// The columns given, if any.
+    pub fn columns(&self) -> Option<&ColumnSpec> {
+        self.columns.as_ref()
+    }
+
     /// The file opened for reading in chunks, or whole where `budget` allows.
     pub fn open_stream(&self, path: &Path, budget: MemoryBudget) -> Result<PointStream, IoError> {
         PointStream::open(path, self.columns.as_ref(), budget)

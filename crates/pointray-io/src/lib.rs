@@ -2,6 +2,7 @@
 //! meshes and images. Each file format lives in `formats/`, one module per format.
 
 pub mod atomic_write;
+pub mod disk_space;
 pub mod environment_image;
 pub mod error;
 pub mod file_roles;
@@ -29,7 +30,7 @@ pub use file_roles::{
 pub use huge_page_allocator::HugePageAllocator;
 pub use linear_image::{LinearImage, read_linear_image, read_linear_image_within};
 pub use median::median;
-pub use memory_budget::{MemoryBudget, MemoryShortfall};
+pub use memory_budget::{MemoryBudget, MemoryShortfall, available_memory};
 pub use point_cloud::{AttributeBytes, PointCloud};
 pub use point_stream::PointStream;
 pub use sweep_map::sweep_map;

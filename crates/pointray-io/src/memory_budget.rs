@@ -29,7 +29,7 @@ pub struct MemoryShortfall {
 impl MemoryBudget {
     /// The memory the system reports available now (Linux: `MemAvailable`), else 8 GiB.
     pub fn of_this_machine() -> Self {
-        Self { bytes: meminfo("MemAvailable:").unwrap_or(FALLBACK_BYTES) }
+        Self { bytes: available_memory().unwrap_or(FALLBACK_BYTES) }
     }
 
     /// Half the memory the machine has (Linux: `MemTotal`), else half of 8 GiB: a default
@@ -83,6 +83,12 @@ impl FromStr for MemoryBudget {
 }
 
 /// A `/proc/meminfo` field, in bytes.
+/// The memory the system reports available now (Linux: `MemAvailable`), in bytes; `None`
+/// where it does not say.
+pub fn available_memory() -> Option<u64> {
+    meminfo("MemAvailable:")
+}
+
 fn meminfo(field: &str) -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
     let line = text.lines().find(|line| line.starts_with(field))?;

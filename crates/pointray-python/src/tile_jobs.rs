@@ -3,12 +3,11 @@
 
 use std::path::PathBuf;
 
+use pointray_io::MemoryBudget;
 use pointray_io::formats::ColumnSpec;
-use pointray_io::{MemoryBudget, PointStream};
 use pointray_surface::NoProgress;
-use pointray_surface::tiles::kept_sort::is_kept_sort;
 use pointray_surface::tiles::merge::merge_tile_files;
-use pointray_surface::tiles::streamed_prep::{prep_one_kept_tile, prep_one_tile};
+use pointray_surface::tiles::streamed_prep::prep_tile_job;
 use pyo3::prelude::*;
 
 use crate::errors::{PointrayError, to_python};
@@ -42,21 +41,9 @@ pub fn prep_tile(
             std::slice::from_ref(&output),
         )
         .map_err(|e| to_python(&e))?;
-        if is_kept_sort(&points_path) {
-            return prep_one_kept_tile(&points_path, &settings, cut, memory, &output, &NoProgress)
-                .map_err(|e| to_python(&e));
-        }
-        let mut stream =
-            PointStream::open(&points_path, columns.as_ref(), memory).map_err(|e| to_python(&e))?;
-        prep_one_tile(
-            &mut stream,
-            &settings,
-            cut,
-            memory,
-            (&output, pointray_io::folder_of(&output)),
-            &NoProgress,
-        )
-        .map_err(|e| to_python(&e))
+        let places = (output.as_path(), pointray_io::folder_of(&output));
+        prep_tile_job(&points_path, columns.as_ref(), &settings, cut, memory, places, &NoProgress)
+            .map_err(|e| to_python(&e))
     })
 }
 

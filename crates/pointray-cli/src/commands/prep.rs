@@ -12,9 +12,7 @@ use pointray_surface::peak_memory::peak_rss;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
 use pointray_surface::tiles::kept_sort::{is_kept_sort, keep_sort};
 use pointray_surface::tiles::merge::{MergeSummary, merge_tile_files};
-use pointray_surface::tiles::streamed_prep::{
-    prep_kept_streamed, prep_one_kept_tile, prep_one_tile, prep_streamed,
-};
+use pointray_surface::tiles::streamed_prep::{prep_kept_streamed, prep_streamed, prep_tile_job};
 use pointray_surface::tiles::streamed_tiles::TileCount;
 use pointray_surface::{PrepError, prep_owned};
 
@@ -95,7 +93,7 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     };
     let settings = args.settings.settings()?;
     if let (Some(tile), Some(of)) = (args.tile, args.of) {
-        return prep_tile_job(points, &settings, (tile, of), memory, &args, &bar);
+        return run_tile_job(points, &settings, (tile, of), memory, &args, &bar);
     }
     if args.keep_sort {
         let mut stream = args.columns.open_stream(points, memory)?;
@@ -129,7 +127,7 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
 }
 
 /// Preps tile `tile` of `of` of the cloud `points`, or of the sort kept in that folder.
-fn prep_tile_job(
+fn run_tile_job(
     points: &Path,
     settings: &PrepSettings,
     (tile, of): (u32, u32),
@@ -138,12 +136,8 @@ fn prep_tile_job(
     bar: &PrepBar,
 ) -> anyhow::Result<()> {
     let cut = (tile as usize, of as usize);
-    let owned = if is_kept_sort(points) {
-        prep_one_kept_tile(points, settings, cut, memory, &args.output, bar)?
-    } else {
-        let mut stream = args.columns.open_stream(points, memory)?;
-        prep_one_tile(&mut stream, settings, cut, memory, (&args.output, args.scratch()), bar)?
-    };
+    let places = (args.output.as_path(), args.scratch());
+    let owned = prep_tile_job(points, args.columns.columns(), settings, cut, memory, places, bar)?;
     println!("wrote tile {tile} of {of} ({owned} points of its own) to {}", args.output.display());
     Ok(())
 }

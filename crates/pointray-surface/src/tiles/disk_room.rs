@@ -5,6 +5,7 @@
 use std::os::unix::fs::MetadataExt;
 use std::path::Path;
 
+use pointray_io::disk_space::free_bytes;
 use pointray_io::{IoError, PointStream};
 
 use crate::tiles::point_records::KEYED_POSITION_BYTES;
@@ -72,8 +73,7 @@ fn gigabytes(bytes: u64) -> String {
 /// The folder's file system and the bytes free on it for this user.
 fn device_and_free(folder: &Path) -> Option<(u64, u64)> {
     let device = std::fs::metadata(folder).ok()?.dev();
-    let stats = rustix::fs::statvfs(folder).ok()?;
-    Some((device, stats.f_bavail.saturating_mul(stats.f_frsize)))
+    Some((device, free_bytes(folder)?))
 }
 
 #[cfg(test)]

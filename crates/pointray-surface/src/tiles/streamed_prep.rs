@@ -8,13 +8,14 @@ use std::collections::VecDeque;
 use std::ops::Range;
 use std::path::Path;
 
+use pointray_io::formats::ColumnSpec;
 use pointray_io::temporaries::TemporaryFolder;
 use pointray_io::{MemoryBudget, PointStream};
 use pointray_patches::PrepSettings;
 
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::tiles::disk_room::{ensure_room, sorted_points_need, store_need};
-use crate::tiles::kept_sort::open_kept;
+use crate::tiles::kept_sort::{is_kept_sort, open_kept};
 use crate::tiles::merge::MergeSummary;
 use crate::tiles::spool::TileSpool;
 use crate::tiles::stream_budget::MIN_TILE_POINTS;
@@ -124,6 +125,25 @@ fn beside<M: Send, W: Send, G: Send>(
 /// What a scoped thread returned; its panic goes on.
 fn joined<T>(thread: std::thread::ScopedJoinHandle<'_, T>) -> T {
     thread.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+}
+
+/// Preps tile `index` of `count` of the points at `points`, a cloud file (read with
+/// `columns`) or a sort kept in that folder for tile jobs (`kept_sort`): what a tile job runs,
+/// `prep --tile I --of N` or Python's `prep_tile`. Returns the tile's own points.
+pub fn prep_tile_job(
+    points: &Path,
+    columns: Option<&ColumnSpec>,
+    settings: &PrepSettings,
+    cut: (usize, usize),
+    memory: MemoryBudget,
+    (output, scratch_parent): (&Path, &Path),
+    progress: &dyn PrepProgress,
+) -> Result<u64, StreamError> {
+    if is_kept_sort(points) {
+        return prep_one_kept_tile(points, settings, cut, memory, output, progress);
+    }
+    let mut stream = PointStream::open(points, columns, memory)?;
+    prep_one_tile(&mut stream, settings, cut, memory, (output, scratch_parent), progress)
 }
 
 /// Preps tile `index` of `count` of `stream` within `memory` and writes it alone to the
