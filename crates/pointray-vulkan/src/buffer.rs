@@ -90,16 +90,7 @@ impl Buffer {
         bytes: &[u8],
         usage: vk::BufferUsageFlags,
     ) -> Result<Self, VulkanError> {
-        let size = bytes.len() as u64;
-        let buffer = Self::new(
-            context,
-            name,
-            size,
-            usage | vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuOnly,
-        )?;
-        buffer.fill(name, 0, bytes, STAGING_BYTES)?;
-        Ok(buffer)
+        Self::device_from_pieces(context, name, bytes.len() as u64, usage, std::iter::once(bytes))
     }
 
     /// A device-local buffer of `size` bytes holding `pieces` one after another, each made
@@ -109,7 +100,7 @@ impl Buffer {
         name: &'static str,
         size: u64,
         usage: vk::BufferUsageFlags,
-        pieces: impl Iterator<Item = Vec<u8>>,
+        pieces: impl Iterator<Item = impl AsRef<[u8]>>,
     ) -> Result<Self, VulkanError> {
         let buffer = Self::new(
             context,
@@ -120,7 +111,8 @@ impl Buffer {
         )?;
         let mut offset = 0;
         for piece in pieces {
-            buffer.fill(name, offset, &piece, STAGING_BYTES)?;
+            let piece = piece.as_ref();
+            buffer.fill(name, offset, piece, STAGING_BYTES)?;
             offset += piece.len() as u64;
         }
         Ok(buffer)
