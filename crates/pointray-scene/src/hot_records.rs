@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 /// Packed records (`PatchHot`, 32 bytes a patch) or records unpacked at upload
 /// (`PatchUnpacked`, 64 bytes), which the intersection shader reads without decoding. The
 /// Vulkan backend gives each form its own hit groups, so that neither carries the other's
-/// code; the CPU renderer decodes the packed records once as it loads them.
+/// code; the CPU renderer reads the packed records whatever the setting.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum HotRecords {
