@@ -169,7 +169,8 @@ fn lit_coloured_sphere_over_a_mirror_floor_matches_the_cpu() {
 fn combined_buffers_colour_as_split_buffers_do() {
     let Some(renderer) = vulkan_renderer() else { return };
     let scene = lit_on_floor(coloured_sphere());
-    let split = settings(96);
+    // Packed records both ways: the combined buffer holds those only.
+    let split = RenderSettings { hot_records: Some(pointray_scene::HotRecords::Packed), ..settings(96) };
     let combined = RenderSettings { buffer_layout: pointray_scene::BufferLayout::Combined, ..split };
     let from_split = renderer.render(&scene, &split).expect("renders with split buffers");
     let from_combined = renderer.render(&scene, &combined).expect("renders with combined buffers");

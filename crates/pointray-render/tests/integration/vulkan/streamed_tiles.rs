@@ -16,7 +16,7 @@ use pointray_scene::{Background, Geometry, Material};
 use pointray_scene::{Camera, RenderSettings, RenderedImage, Scene};
 use pointray_test_support::floor_scenes::{mesh, model_on_floor, object, point_light, settings};
 use pointray_test_support::{assert_no_validation_messages, vulkan_renderer};
-use pointray_vulkan::{PreparedScene, SceneLayout, TileResidency, VulkanError, VulkanRenderer};
+use pointray_vulkan::{HotRecords, PreparedScene, SceneLayout, TileResidency, VulkanError, VulkanRenderer};
 
 const SIZE: u32 = 96;
 
@@ -106,6 +106,29 @@ fn a_cloud_over_its_budget_streams_the_tiles_each_view_sees_and_draws_what_it_dr
         let name = format!("bunny streamed, seen from side {side}");
         assert_same_hits(&name, &image, &whole_image(&renderer, &mut whole, camera));
     }
+    assert_no_validation_messages(&renderer);
+}
+
+#[test]
+fn streamed_tiles_of_unpacked_records_draw_what_the_whole_unpacked_set_draws() {
+    let Some(renderer) = vulkan_renderer() else { return };
+    let (scene, bounds) = bunny_scene();
+    let unpacked = SceneLayout { hot_records: HotRecords::Unpacked, ..SceneLayout::default() };
+    let mut whole = renderer.prepare_with_layout(&scene, unpacked).expect("prepares whole");
+    let budget = whole.build_report().gpu_bytes() * 3 / 4;
+    let layout = SceneLayout {
+        memory_budget: Some(budget),
+        stream_tiles_for: Some((SIZE, SIZE)),
+        max_tile_patches: Some(TILE),
+        ..unpacked
+    };
+    let mut prepared = renderer.prepare_with_layout(&scene, layout).expect("streams within the budget");
+    let camera = close_view(&bounds, 1.0);
+    let residency = stream(&mut prepared, camera, None);
+    assert!(residency.resident < residency.tiles, "{residency:?}: the budget holds some tiles only");
+    assert_eq!(prepared.build_report().hot_records, HotRecords::Unpacked);
+    let image = renderer.trace(&prepared, &unshadowed()).expect("traces streamed");
+    assert_same_hits("unpacked bunny streamed", &image, &whole_image(&renderer, &mut whole, camera));
     assert_no_validation_messages(&renderer);
 }
 
