@@ -82,13 +82,13 @@ impl FromStr for MemoryBudget {
     }
 }
 
-/// A `/proc/meminfo` field, in bytes.
 /// The memory the system reports available now (Linux: `MemAvailable`), in bytes; `None`
 /// where it does not say.
 pub fn available_memory() -> Option<u64> {
     meminfo("MemAvailable:")
 }
 
+/// A `/proc/meminfo` field, in bytes.
 fn meminfo(field: &str) -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
     let line = text.lines().find(|line| line.starts_with(field))?;
