@@ -3,6 +3,7 @@
 use std::sync::Arc;
 
 use ash::vk;
+use bytemuck::Pod;
 use gpu_allocator::MemoryLocation;
 use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
 use rayon::prelude::*;
@@ -93,14 +94,15 @@ impl Buffer {
         Self::device_from_pieces(context, name, bytes.len() as u64, usage, std::iter::once(bytes))
     }
 
-    /// A device-local buffer of `size` bytes holding `pieces` one after another, each made
-    /// only as it goes up, so that contents made on the way are never held on the host whole.
-    pub(crate) fn device_from_pieces(
+    /// A device-local buffer of `size` bytes holding the records of `pieces` one after
+    /// another, each piece made only as it goes up, so that contents made on the way are never
+    /// held on the host whole.
+    pub(crate) fn device_from_pieces<T: Pod>(
         context: &Arc<GpuContext>,
         name: &'static str,
         size: u64,
         usage: vk::BufferUsageFlags,
-        pieces: impl Iterator<Item = impl AsRef<[u8]>>,
+        pieces: impl Iterator<Item = impl AsRef<[T]>>,
     ) -> Result<Self, VulkanError> {
         let buffer = Self::new(
             context,
@@ -111,7 +113,7 @@ impl Buffer {
         )?;
         let mut offset = 0;
         for piece in pieces {
-            let piece = piece.as_ref();
+            let piece: &[u8] = bytemuck::cast_slice(piece.as_ref());
             buffer.fill(name, offset, piece, STAGING_BYTES)?;
             offset += piece.len() as u64;
         }

@@ -214,10 +214,9 @@ pub(crate) fn patch_records(
 /// at a time: a large set's unpacked records would take twice its packed ones on the host.
 fn unpacked_records(context: &Arc<GpuContext>, hot: &[PatchHot]) -> Result<Buffer, VulkanError> {
     const PIECE_RECORDS: usize = (32 << 20) / size_of::<PatchUnpacked>();
-    let pieces = hot.chunks(PIECE_RECORDS).map(|piece| {
-        let unpacked: Vec<PatchUnpacked> = piece.par_iter().map(PatchUnpacked::from).collect();
-        bytemuck::cast_slice(&unpacked).to_vec()
-    });
+    let pieces = hot
+        .chunks(PIECE_RECORDS)
+        .map(|piece| piece.par_iter().map(PatchUnpacked::from).collect::<Vec<PatchUnpacked>>());
     let size = (hot.len() * size_of::<PatchUnpacked>()) as u64;
     Buffer::device_from_pieces(context, "unpacked hot patch records", size, storage_usage(), pieces)
 }
