@@ -150,9 +150,7 @@ impl SceneLayout {
             group_to_fit: settings.patches_per_box.is_none()
                 && settings.hot_records != Some(HotRecords::Unpacked),
             hot_records: settings.hot_records.unwrap_or_default(),
-            unpack_to_fit: settings.hot_records.is_none()
-                && settings.buffer_layout == BufferLayout::Split
-                && settings.patches_per_box.unwrap_or(1) == 1,
+            unpack_to_fit: settings.hot_records.is_none(),
             ..Self::default()
         }
     }
@@ -168,21 +166,22 @@ impl SceneLayout {
         }
     }
 
-    /// This layout with unpacked hot records, where it leaves them open (`unpack_to_fit`) and
-    /// `scene`'s point sets are small enough to gain by them.
-    fn unpacked_for(self, scene: &Scene) -> Option<Self> {
-        let patches = point_set_patches(scene);
-        let unpacks = self.unpack_to_fit
-            && self.buffers == BufferLayout::Split
-            && self.blas.patches_per_box() == 1
-            && (1..=UNPACKED_MOST_PATCHES).contains(&patches);
-        unpacks.then_some(Self { hot_records: HotRecords::Unpacked, unpack_to_fit: false, ..self })
+    /// Whether unpacked records can be read in this layout: by the hit group of boxes of one
+    /// patch, from split buffers.
+    fn reads_unpacked(&self) -> bool {
+        self.buffers == BufferLayout::Split && self.blas.patches_per_box() == 1
     }
 
-    /// Unpacked records are read by the hit group of boxes of one patch, from split buffers.
+    /// Whether to try `scene` with unpacked hot records: the layout leaves them open
+    /// (`unpack_to_fit`), can read them, and the point sets are small enough to gain by them.
+    fn unpacks(&self, scene: &Scene) -> bool {
+        self.unpack_to_fit
+            && self.reads_unpacked()
+            && (1..=UNPACKED_MOST_PATCHES).contains(&point_set_patches(scene))
+    }
+
     fn check_hot_records(&self) -> Result<(), VulkanError> {
-        let fits = self.buffers == BufferLayout::Split && self.blas.patches_per_box() == 1;
-        if self.hot_records == HotRecords::Unpacked && !fits {
+        if self.hot_records == HotRecords::Unpacked && !self.reads_unpacked() {
             return Err(VulkanError::InvalidSettings(
                 "unpacked hot records need boxes of one patch (patches_per_box = 1) and split buffers".into(),
             ));
@@ -422,8 +421,8 @@ pub(crate) fn prepare(
         return Err(VulkanError::InvalidScene(problem));
     }
     layout.check_hot_records()?;
-    if let Some(unpacked) = layout.unpacked_for(scene) {
-        return prepare_unpacked_to_fit(context, scene, unpacked, layout);
+    if layout.unpacks(scene) {
+        return prepare_unpacked_to_fit(context, scene, SceneLayout { unpack_to_fit: false, ..layout });
     }
     let streams = layout.stream_tiles_for.is_some() && has_point_sets(scene);
     if (layout.group_to_fit || streams) && !fits_compacted(context, scene, layout)? {
@@ -452,16 +451,15 @@ pub(crate) fn prepare(
     }
 }
 
-/// `scene` whole in `unpacked`, where it fits so, else prepared in `layout` with packed hot
-/// records. Streaming, grouping and the coarse level all keep records packed: a scene that
+/// `scene` whole in `packed` with unpacked hot records, where it fits so, else prepared in
+/// `packed`. Streaming, grouping and the coarse level all keep records packed: a scene that
 /// does not fit whole needs the memory more than the speed.
 fn prepare_unpacked_to_fit(
     context: &Arc<GpuContext>,
     scene: &Scene,
-    unpacked: SceneLayout,
-    layout: SceneLayout,
+    packed: SceneLayout,
 ) -> Result<PreparedScene, VulkanError> {
-    let packed = SceneLayout { unpack_to_fit: false, ..layout };
+    let unpacked = SceneLayout { hot_records: HotRecords::Unpacked, ..packed };
     if !fits_compacted(context, scene, unpacked)? {
         return prepare(context, scene, packed);
     }
