@@ -28,9 +28,11 @@
 //! colours and intensities (6 n, or none without colour columns), colour neighbours (4 m n:
 //! `m` patch indices per patch, `NO_NEIGHBOR` = unused), then the coarse level
 //! (`stored_coarse`): its patches a block (u32 a block) and its records (44 c). The full
-//! encoding, which tile files embed so that a merge quantises the records once: `Aabb`
-//! (24 n), `PatchHot` (32 n), `PatchCold` (12 n), colour neighbours (4 m n), the records as
-//! the renderers take them, and two empty sections where the coarse level would be.
+//! encoding, which tile files embed so that a merge quantises the records once: an empty
+//! section where the block frames would be, `PatchHot` (32 n), `PatchCold` (12 n), colour
+//! neighbours (4 m n), the records as the renderers take them, and two empty sections where
+//! the coarse level would be. Neither encoding stores the boxes: a reader makes them again
+//! from the records (`patch_bounds`), so they bound the patch the renderers see.
 //!
 //! The settings: `k`, `normal_k` (u32), recompute normals (u32, 0 or 1), radius (u32: 0 paper,
 //! 1 adaptive, 2 cell), disk scale (f32), boxes (u32: 0 cube, 1 tight), scan (u32: 0 auto,
@@ -61,6 +63,7 @@ use crate::compact_patches::{
     frame_problem, frames_of, keeps_colors, patches_of,
 };
 use crate::parallel_checksum;
+use crate::patch_bounds::patch_box;
 use crate::patch_records::PatchRecords;
 use crate::patch_set::PatchSet;
 use crate::prep_settings::{BoxKind, OutlierFilter, PrepSettings, RadiusMode, ScanMode};
@@ -134,7 +137,8 @@ pub(crate) struct Header {
 pub enum Encoding {
     /// Quantised within blocks (`compact_patches`): what `write` and prep write.
     Compact,
-    /// The records as the renderers take them, bit for bit: what tile files embed.
+    /// The hot and cold records as the renderers take them, bit for bit, without the boxes
+    /// (made again from them): what tile files embed.
     Full,
 }
 
@@ -165,7 +169,6 @@ impl RecordShape {
         let per_block = |bytes: usize| count.div_ceil(BLOCK_PATCHES as u64).checked_mul(bytes as u64);
         match (self.encoding, index) {
             (_, NEIGHBOR_SECTION) => per_patch(size_of::<u32>() * self.neighbor_slots as usize),
-            (Encoding::Full, 0) => per_patch(size_of::<Aabb>()),
             (Encoding::Full, 1) => per_patch(size_of::<PatchHot>()),
             (Encoding::Full, 2) => per_patch(size_of::<PatchCold>()),
             (Encoding::Full, _) => Some(0),
@@ -442,11 +445,11 @@ fn checked_store(path: &Path, bytes: &[u8], map: Option<&Arc<Mmap>>) -> Result<P
     let [first, second, third, neighbors, coarse_counts, coarse_records] = layout.sections;
     let section = |s: Section| &bytes[s.offset as usize..(s.offset + s.length) as usize];
     let (aabbs, hot, cold) = match shape.encoding {
-        Encoding::Full => (
-            records(section(first), map, first, path)?,
-            records(section(second), map, second, path)?,
-            records(section(third), map, third, path)?,
-        ),
+        Encoding::Full => {
+            let hot: PatchRecords<PatchHot> = records(section(second), map, second, path)?;
+            let aabbs = hot.par_iter().map(|patch| patch_box(patch, settings.boxes)).collect::<Vec<_>>();
+            (aabbs.into(), hot, records(section(third), map, third, path)?)
+        }
         Encoding::Compact => {
             let colors = shape.colors.then(|| section(third));
             decoded(section(first), section(second), colors, settings.boxes).map_err(malformed)?
@@ -616,7 +619,7 @@ mod tests {
         assert_eq!(plain.total_bytes, 580);
         let full = Layout::new(Counts::new(3, 0), RecordShape::full(COLOR_NEIGHBORS as u32)).unwrap();
         let sections = full.sections.map(|s| (s.offset, s.length));
-        assert_eq!(sections, [(432, 72), (512, 96), (608, 36), (656, 144), (800, 0), (800, 0)]);
+        assert_eq!(sections, [(432, 0), (432, 96), (528, 36), (576, 144), (720, 0), (720, 0)]);
         assert!(Layout::new(Counts::new(u64::MAX, 0), RecordShape::compact(0, false)).is_none());
     }
 

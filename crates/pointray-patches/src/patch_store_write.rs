@@ -156,7 +156,6 @@ fn write_contents(
         writer.write_zeros(section.offset - position)?;
         match (shape.encoding, index) {
             (_, NEIGHBOR_SECTION) => writer.write_all(bytemuck::cast_slice(&patches.color_neighbors))?,
-            (Encoding::Full, 0) => writer.write_all(bytemuck::cast_slice(&patches.aabbs))?,
             (Encoding::Full, 1) => writer.write_all(bytemuck::cast_slice(&patches.hot))?,
             (Encoding::Full, 2) => writer.write_all(bytemuck::cast_slice(&patches.cold))?,
             (Encoding::Compact, 0) => writer.write_all(bytemuck::cast_slice(&frames))?,

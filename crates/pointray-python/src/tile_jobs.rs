@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use pointray_io::MemoryBudget;
 use pointray_io::formats::ColumnSpec;
 use pointray_surface::NoProgress;
-use pointray_surface::tiles::merge::merge_tile_files;
+use pointray_surface::tiles::merge::{MergedTiles, merge_tile_files};
 use pointray_surface::tiles::streamed_prep::prep_tile_job;
 use pyo3::prelude::*;
 
@@ -49,21 +49,24 @@ pub fn prep_tile(
 
 /// Merges the tile files `tile_paths` (every tile of one cut, once each, in any order) into
 /// the patch store `output`, the bytes `pointray prep --tiles N` writes in one process;
-/// returns the patches written.
+/// returns the patches written. `remove_tiles` removes each tile file once its records are
+/// in, as `prep --merge --remove-tiles` does.
 #[pyfunction]
-#[pyo3(signature = (tile_paths, output, memory=None))]
+#[pyo3(signature = (tile_paths, output, memory=None, remove_tiles=false))]
 pub fn merge_tiles(
     py: Python<'_>,
     tile_paths: Vec<PathBuf>,
     output: PathBuf,
     memory: Option<&str>,
+    remove_tiles: bool,
 ) -> PyResult<u64> {
     let memory = memory_budget(memory)?;
+    let tiles = if remove_tiles { MergedTiles::Removed } else { MergedTiles::Kept };
     py.detach(|| -> PyResult<u64> {
         pointray_io::ensure_outputs_spare_inputs(&tile_paths, std::slice::from_ref(&output))
             .map_err(|e| to_python(&e))?;
-        let merged =
-            merge_tile_files(&tile_paths, &output, memory, &NoProgress).map_err(|e| to_python(&e))?;
+        let merged = merge_tile_files(&tile_paths, &output, (memory, tiles), &NoProgress)
+            .map_err(|e| to_python(&e))?;
         Ok(merged.patches)
     })
 }

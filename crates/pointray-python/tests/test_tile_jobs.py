@@ -15,6 +15,9 @@ def test_tile_jobs_merge_to_the_command_lines_store(bunny, tmp_path):
     patches = pointray.merge_tiles(reversed(tiles), tmp_path / "python.patches")
     assert patches == len(pointray.Patches.load(tmp_path / "cli.patches"))
     assert (tmp_path / "python.patches").read_bytes() == (tmp_path / "cli.patches").read_bytes()
+    assert pointray.merge_tiles(tiles, tmp_path / "removed.patches", remove_tiles=True) == patches
+    assert (tmp_path / "removed.patches").read_bytes() == (tmp_path / "cli.patches").read_bytes()
+    assert not any(path.exists() for path in tiles)
 
 
 def test_tile_jobs_on_a_sort_the_command_line_kept_write_the_same_tiles(bunny, tmp_path):

@@ -11,7 +11,7 @@ use pointray_patches::PrepSettings;
 use pointray_surface::peak_memory::peak_rss;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
 use pointray_surface::tiles::kept_sort::{is_kept_sort, keep_sort};
-use pointray_surface::tiles::merge::{MergeSummary, merge_tile_files};
+use pointray_surface::tiles::merge::{MergeSummary, MergedTiles, merge_tile_files};
 use pointray_surface::tiles::streamed_prep::{prep_kept_streamed, prep_streamed, prep_tile_job};
 use pointray_surface::tiles::streamed_tiles::TileCount;
 use pointray_surface::{PrepError, prep_owned};
@@ -58,6 +58,11 @@ pub struct PrepArgs {
     /// Merge these tile files (every tile of one cut) into the store `--output`.
     #[arg(long, value_name = "TILE_FILES", num_args = 1.., conflicts_with = "points")]
     merge: Vec<PathBuf>,
+    /// Remove each tile file as soon as its records are in the store, once every tile has been
+    /// read and checked: for a disk that cannot hold the tiles and the store at once. A merge
+    /// that fails after that leaves the removed tiles to be prepped again.
+    #[arg(long, requires = "merge")]
+    remove_tiles: bool,
     /// The memory prep may use, e.g. `8G` or `512M` (default: half the machine's RAM).
     #[arg(long, value_parser = MemoryBudget::from_str)]
     memory: Option<MemoryBudget>,
@@ -87,7 +92,8 @@ pub fn run(args: PrepArgs) -> anyhow::Result<()> {
     }
     anyhow::ensure!(args.points.len() <= 1, "several points files are sweeps of one map: give their --poses");
     let Some(points) = args.points.first() else {
-        let merged = merge_tile_files(&args.merge, &args.output, memory, &bar)?;
+        let tiles = if args.remove_tiles { MergedTiles::Removed } else { MergedTiles::Kept };
+        let merged = merge_tile_files(&args.merge, &args.output, (memory, tiles), &bar)?;
         report_store(&merged, &args.output);
         return Ok(());
     };

@@ -65,4 +65,6 @@ def _ensure_output_spares_input(points_path: Path, output: Path) -> None:
 
 
 def _merge_after(_tile_jobs: list[int], tile_paths: list[Path], output: Path, memory: Optional[str]) -> int:
-    return merge_tiles(tile_paths, output, memory=memory)
+    # The tile files are this function's own, removed at the end either way: removed as they
+    # are merged, the store and the tiles need not fit the disk at once.
+    return merge_tiles(tile_paths, output, memory=memory, remove_tiles=True)

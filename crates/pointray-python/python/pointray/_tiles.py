@@ -27,8 +27,15 @@ def prep_tile(points_path: PathLike, tile: int, of: int, output: PathLike, *,
                              memory=memory, columns=columns)
 
 
-def merge_tiles(tile_paths: Iterable[PathLike], output: PathLike, *, memory: Optional[str] = None) -> int:
+def merge_tiles(tile_paths: Iterable[PathLike], output: PathLike, *, memory: Optional[str] = None,
+                remove_tiles: bool = False) -> int:
     """Merges tile files (every tile of one cut, once each, in any order) into the patch store
     ``output``: the bytes ``pointray prep --tiles N`` writes in one process, as
-    ``pointray prep --merge`` writes them. Returns the number of patches."""
-    return _native.merge_tiles([os.fspath(path) for path in tile_paths], os.fspath(output), memory=memory)
+    ``pointray prep --merge`` writes them. Returns the number of patches.
+
+    ``remove_tiles`` removes each tile file as soon as its records are in the store, once
+    every tile has been read and checked (``prep --merge --remove-tiles``): for a disk that
+    cannot hold the tiles and the store at once. A merge that fails after that leaves the
+    removed tiles to be prepped again."""
+    return _native.merge_tiles([os.fspath(path) for path in tile_paths], os.fspath(output), memory=memory,
+                               remove_tiles=remove_tiles)

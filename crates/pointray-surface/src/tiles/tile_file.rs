@@ -6,7 +6,7 @@
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"PRTILE\0\0"` |
-//! | 8 | 4 | version, u32 = 2 |
+//! | 8 | 4 | version, u32 = 3 |
 //! | 12 | 4 | tile index, u32 |
 //! | 16 | 4 | tile count, u32 |
 //! | 20 | 4 | colour neighbours per patch `m`, u32 |
@@ -27,8 +27,9 @@ use crate::tiles::stream_error::StreamError;
 use crate::tiles::tiled_prep::TilePatches;
 
 const MAGIC: [u8; 8] = *b"PRTILE\0\0";
-/// Version 2 embeds a version 8 store of full records, which the merge quantises once.
-const VERSION: u32 = 2;
+/// Version 3 embeds a version 9 store of full records without their boxes (48 bytes a patch
+/// with its input point, where version 2's boxes made it 72), which the merge quantises once.
+const VERSION: u32 = 3;
 const HEADER_BYTES: usize = size_of::<TileHeader>();
 
 /// Where a tile belongs.

@@ -8,12 +8,13 @@ use std::path::{Path, PathBuf};
 use pointray_io::formats::ply::write_point_cloud;
 use pointray_io::formats::read_point_cloud;
 use pointray_io::{MemoryBudget, PointStream};
+use pointray_kernels::COLOR_NEIGHBORS;
 use pointray_patches::PrepSettings;
 use pointray_patches::coarse_level::CoarseLevel;
 use pointray_patches::patch_store;
 use pointray_surface::NoProgress;
 use pointray_surface::tiles::kept_sort::{is_kept_sort, keep_sort};
-use pointray_surface::tiles::merge::merge_tile_files;
+use pointray_surface::tiles::merge::{MergedTiles, merge_tile_files};
 use pointray_surface::tiles::stream_error::StreamError;
 use pointray_surface::tiles::streamed_prep::{
     prep_kept_streamed, prep_one_kept_tile, prep_one_tile, prep_streamed,
@@ -24,6 +25,7 @@ use pointray_surface::tiles::tiled_prep::prep_tiled;
 use crate::tiled_prep::coloured_sheet;
 
 const PLENTY: MemoryBudget = MemoryBudget { bytes: 4 << 30 };
+const KEEP_TILES: (MemoryBudget, MergedTiles) = (PLENTY, MergedTiles::Kept);
 
 /// The sheet as a PLY file, and its settings.
 fn sheet_file(dir: &Path) -> (PathBuf, PrepSettings) {
@@ -120,17 +122,17 @@ fn tiles_prepped_alone_merge_into_the_single_process_store() {
         prep_one_tile(&mut open(&path), &settings, (i, 4), PLENTY, places(tile), &NoProgress).unwrap();
     }
     let merged = dir.path().join("merged.patches");
-    merge_tile_files(&tiles, &merged, PLENTY, &NoProgress).unwrap();
+    merge_tile_files(&tiles, &merged, KEEP_TILES, &NoProgress).unwrap();
     assert!(std::fs::read(&merged).unwrap() == std::fs::read(&whole).unwrap(), "same bytes");
 
     let error =
-        merge_tile_files(&tiles[1..], &dir.path().join("m.patches"), PLENTY, &NoProgress).unwrap_err();
+        merge_tile_files(&tiles[1..], &dir.path().join("m.patches"), KEEP_TILES, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("tile 3 of 4 is missing"), "{error}");
     let twice = [tiles.clone(), vec![tiles[0].clone()]].concat();
-    let error = merge_tile_files(&twice, &dir.path().join("m.patches"), PLENTY, &NoProgress).unwrap_err();
+    let error = merge_tile_files(&twice, &dir.path().join("m.patches"), KEEP_TILES, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("is also"), "{error}");
     let error =
-        merge_tile_files(std::slice::from_ref(&path), &dir.path().join("m.patches"), PLENTY, &NoProgress)
+        merge_tile_files(std::slice::from_ref(&path), &dir.path().join("m.patches"), KEEP_TILES, &NoProgress)
             .unwrap_err();
     assert!(error.to_string().contains("sheet.ply: not a pointray tile file"), "{error}");
 }
@@ -150,15 +152,26 @@ fn tile_jobs_on_a_kept_sort_merge_into_the_single_process_store() {
     for (i, tile) in tiles.iter().enumerate() {
         prep_one_kept_tile(&kept, &settings, (i, 4), PLENTY, tile, &NoProgress).unwrap();
     }
+    // Each patch's hot and cold records (44 bytes), input point and colour neighbours, and no box.
+    let per_patch = 44 + 4 + 4 * COLOR_NEIGHBORS as u64;
+    let patches = patch_store::read(&whole).unwrap().len() as u64;
+    let bytes: u64 = tiles.iter().map(|tile| std::fs::metadata(tile).unwrap().len()).sum();
+    let records = per_patch * patches;
+    assert!((records..records + 4096).contains(&bytes), "{bytes} bytes of tiles for {patches} patches");
     let merged = dir.path().join("merged.patches");
-    merge_tile_files(&tiles, &merged, PLENTY, &NoProgress).unwrap();
+    let removing = (PLENTY, MergedTiles::Removed);
+    let error = merge_tile_files(&tiles[..3], &merged, removing, &NoProgress).unwrap_err();
+    assert!(error.to_string().contains("tile 3 of 4 is missing"), "{error}");
+    assert!(tiles.iter().all(|tile| tile.exists()), "a refused merge removes no tile");
+    merge_tile_files(&tiles, &merged, removing, &NoProgress).unwrap();
     assert!(std::fs::read(&merged).unwrap() == std::fs::read(&whole).unwrap(), "same bytes");
+    assert!(tiles.iter().all(|tile| !tile.exists()), "each tile removed once merged");
     // The whole cloud prepped from the kept sort, in one process.
     let from_kept = dir.path().join("from_kept.patches");
     prep_kept_streamed(&kept, &settings, (TileCount::AtLeast(4), PLENTY), &from_kept, &NoProgress).unwrap();
     assert!(std::fs::read(&from_kept).unwrap() == std::fs::read(&whole).unwrap(), "same bytes");
-    // The input, the stores, the kept sort, the tiles: no scratch is left.
-    assert_no_scratch(dir.path(), 5 + tiles.len());
+    // The input, the stores and the kept sort: no scratch is left.
+    assert_no_scratch(dir.path(), 5);
 
     let error = keep_sort(&mut open(&path), &settings, PLENTY, &kept, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("already exists"), "{error}");
