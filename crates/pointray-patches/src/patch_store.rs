@@ -64,6 +64,7 @@ use crate::compact_patches::{
 };
 use crate::parallel_checksum;
 use crate::patch_bounds::patch_box;
+use crate::patch_checks::check_records;
 use crate::patch_records::PatchRecords;
 use crate::patch_set::PatchSet;
 use crate::prep_settings::{BoxKind, OutlierFilter, PrepSettings, RadiusMode, ScanMode};
@@ -429,19 +430,9 @@ pub fn read_from(bytes: &[u8], path: &Path) -> Result<PatchSet, StoreError> {
 /// The patch set of a whole store's `bytes` (which `map`, when given, maps), once every
 /// check has passed: the same checks whether the bytes are mapped or read.
 fn checked_store(path: &Path, bytes: &[u8], map: Option<&Arc<Mmap>>) -> Result<PatchSet, StoreError> {
-    let (header, shape) = checked_header_fields(path, bytes, bytes.len() as u64)?;
-    let layout = Layout::of_table(header.sections, header.counts(), shape).expect("checked with the header");
-    let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
-    if stored != parallel_checksum::checksum(body).to_le_bytes() {
-        return Err(StoreError::ChecksumMismatch { path: path.to_path_buf() });
-    }
+    let (shape, layout, settings, offset) = checked_frame(path, bytes)?;
     let malformed =
         |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
-    if header.header_bytes as usize != HEADER_BYTES {
-        return Err(malformed("the header size is not this version's"));
-    }
-    let settings = header.settings.decode(header.sensor).map_err(malformed)?;
-    header.scan().map_err(malformed)?;
     let [first, second, third, neighbors, coarse_counts, coarse_records] = layout.sections;
     let section = |s: Section| &bytes[s.offset as usize..(s.offset + s.length) as usize];
     let (aabbs, hot, cold) = match shape.encoding {
@@ -456,7 +447,6 @@ fn checked_store(path: &Path, bytes: &[u8], map: Option<&Arc<Mmap>>) -> Result<P
         }
     };
     let color_neighbors = records(section(neighbors), map, neighbors, path)?;
-    let offset = DVec3::from_array(header.offset);
     let mut patches = PatchSet { settings, offset, aabbs, hot, cold, color_neighbors, coarse: None };
     // A store can pass its checksum and still hold numbers no renderer can build on.
     patches.check().map_err(|problem| malformed(&problem))?;
@@ -467,6 +457,52 @@ fn checked_store(path: &Path, bytes: &[u8], map: Option<&Arc<Mmap>>) -> Result<P
             Some(level_of_sections(&counts, &records, &patches).map_err(|problem| malformed(&problem))?);
     }
     Ok(patches)
+}
+
+/// A store of the full encoding without colour neighbours, as tile files embed it: its
+/// records as they are, without the boxes a `PatchSet` carries, which a merge has no use for.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FullRecords {
+    pub settings: PrepSettings,
+    pub offset: DVec3,
+    pub hot: Vec<PatchHot>,
+    pub cold: Vec<PatchCold>,
+}
+
+/// The records of a whole full store held in memory, once every check but the boxes' has
+/// passed; `path` names it in errors.
+pub fn read_full_records(bytes: &[u8], path: &Path) -> Result<FullRecords, StoreError> {
+    let (shape, layout, settings, offset) = checked_frame(path, bytes)?;
+    let malformed = |problem: String| StoreError::Malformed { path: path.to_path_buf(), problem };
+    if shape != RecordShape::full(0) {
+        return Err(malformed("not full records without colour neighbours".into()));
+    }
+    let [_, hot, cold, ..] =
+        layout.sections.map(|s| &bytes[s.offset as usize..(s.offset + s.length) as usize]);
+    let (hot, cold) = (bytemuck::pod_collect_to_vec(hot), bytemuck::pod_collect_to_vec(cold));
+    check_records(&settings, offset, &hot, &cold).map_err(malformed)?;
+    Ok(FullRecords { settings, offset, hot, cold })
+}
+
+/// A whole store's shape, layout, settings and offset, once its header and checksum pass.
+fn checked_frame(
+    path: &Path,
+    bytes: &[u8],
+) -> Result<(RecordShape, Layout, PrepSettings, DVec3), StoreError> {
+    let (header, shape) = checked_header_fields(path, bytes, bytes.len() as u64)?;
+    let layout = Layout::of_table(header.sections, header.counts(), shape).expect("checked with the header");
+    let (body, stored) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
+    if stored != parallel_checksum::checksum(body).to_le_bytes() {
+        return Err(StoreError::ChecksumMismatch { path: path.to_path_buf() });
+    }
+    let malformed =
+        |problem: &str| StoreError::Malformed { path: path.to_path_buf(), problem: problem.into() };
+    if header.header_bytes as usize != HEADER_BYTES {
+        return Err(malformed("the header size is not this version's"));
+    }
+    let settings = header.settings.decode(header.sensor).map_err(malformed)?;
+    header.scan().map_err(malformed)?;
+    Ok((shape, layout, settings, DVec3::from_array(header.offset)))
 }
 
 /// The records of `section`: mapped where `map` is given, else copied from `bytes`.

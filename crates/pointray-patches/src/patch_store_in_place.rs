@@ -20,7 +20,6 @@ use rayon::prelude::*;
 use crate::compact_patches::{BLOCK_PATCHES, BlockFrame, CompactColor, CompactPatch, cold_problem};
 use crate::compact_patches::{colors_of, frames_of, patches_of, stored_origin_bounds};
 use crate::parallel_checksum::{joined, piece_hasher, zeros_hasher};
-use crate::patch_set::PatchSet;
 use crate::patch_store::{
     Counts, HEADER_BYTES, Layout, NEIGHBOR_SECTION, RecordShape, SECTION_COUNT, Section, StoreError,
 };
@@ -73,11 +72,16 @@ impl StoreInPlace {
         })
     }
 
-    /// Writes `set`'s records after those written so far, its colour neighbours naming input
-    /// points. The first patches fix the colour neighbours per patch; a store has colour
-    /// columns when it has colour neighbours.
-    pub fn append(&mut self, set: &PatchSet) -> Result<(), StoreError> {
-        let count = set.len() as u64;
+    /// Writes the records `hot`, `cold` and `color_neighbors` (which name input points)
+    /// after those written so far. The first patches fix the colour neighbours per patch; a
+    /// store has colour columns when it has colour neighbours.
+    pub fn append(
+        &mut self,
+        hot: &[PatchHot],
+        cold: &[PatchCold],
+        color_neighbors: &[u32],
+    ) -> Result<(), StoreError> {
+        let count = hot.len() as u64;
         if count == 0 {
             return Ok(());
         }
@@ -85,18 +89,22 @@ impl StoreInPlace {
             let problem = format!("{} patches overflow the room for {}", self.patches + count, self.room);
             return Err(self.inconsistent(problem));
         }
-        let slots = (set.color_neighbors.len() as u64 / count) as u32;
+        let slots = (color_neighbors.len() as u64 / count) as u32;
         let (shape, starts) = self.placed(slots)?;
-        if shape.neighbor_slots != slots || set.color_neighbors.len() as u64 != count * u64::from(slots) {
-            return Err(self.inconsistent("the batches' colour neighbours per patch differ".into()));
+        if shape.neighbor_slots != slots
+            || color_neighbors.len() as u64 != count * u64::from(slots)
+            || cold.len() != hot.len()
+        {
+            let problem = "the batches' colour neighbours per patch, or a batch's records, differ in number";
+            return Err(self.inconsistent(problem.into()));
         }
-        if let Some(problem) = cold_problem(&set.cold, shape.colors) {
+        if let Some(problem) = cold_problem(cold, shape.colors) {
             return Err(self.inconsistent(problem));
         }
         let at = starts[NEIGHBOR_SECTION] + self.patches * 4 * u64::from(slots);
-        self.write_at(bytemuck::cast_slice(&set.color_neighbors), at).map_err(|e| self.io_error(e))?;
+        self.write_at(bytemuck::cast_slice(color_neighbors), at).map_err(|e| self.io_error(e))?;
         self.patches += count;
-        self.encode(&set.hot, &set.cold)
+        self.encode(hot, cold)
     }
 
     /// The shape and section starts, fixed now by a batch of `slots` colour neighbours a patch

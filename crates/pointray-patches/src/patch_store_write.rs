@@ -37,13 +37,6 @@ pub struct StoreSummary {
     pub scan: ScanStructure,
 }
 
-impl StoreSummary {
-    /// Counts `set`'s patches after those counted so far.
-    pub fn add(&mut self, set: &PatchSet) {
-        self.patches += set.len() as u64;
-    }
-}
-
 /// Writes `patches` compactly to `path` atomically (`pointray_io::write_atomically`): a
 /// temporary file in the same directory, renamed over `path` only once complete. The store
 /// records no scan structure.

@@ -79,6 +79,13 @@ fn tiles_prepped_by_parallel_processes_merge_into_the_single_process_store() {
         assert!(ok, "{stderr}");
         assert!(read(&tile) == read(&format!("tile{i}.tile")), "tile {i} from the kept sort");
     }
+    let kept_tiles = ["kept0.tile", "kept1.tile", "kept2.tile", "kept3.tile"];
+    let merge =
+        [&["prep", "--merge"][..], &kept_tiles, &["-o", "removed.patches", "--remove-tiles"]].concat();
+    let (ok, _, stderr) = pointray_in(dir.path(), &merge);
+    assert!(ok, "{stderr}");
+    assert!(read("removed.patches") == read("single.patches"), "tiles removed as they are merged");
+    assert!(kept_tiles.iter().all(|tile| !dir.path().join(tile).exists()), "each tile removed");
     let whole = [&["prep", "sheet.sorted", "-o", "kept.patches", "--tiles", "4"][..], &sensor].concat();
     let (ok, _, stderr) = pointray_in(dir.path(), &whole);
     assert!(ok, "{stderr}");

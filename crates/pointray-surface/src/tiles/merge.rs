@@ -7,17 +7,16 @@
 use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};
 
+use glam::DVec3;
 use pointray_io::MemoryBudget;
-use pointray_patches::ScanStructure;
-use pointray_patches::patch_store::StoreSummary;
-use pointray_patches::patch_store_in_place::StoreInPlace;
+use pointray_patches::PrepSettings;
 
 use crate::prep_progress::{PrepProgress, Stage};
 use crate::tiles::disk_room::{Need, ensure_room, store_need};
-use crate::tiles::patch_map::PatchMap;
+use crate::tiles::spool::TileSpool;
 use crate::tiles::stream_budget::{STORE_BYTES_PER_POINT, StreamBudget};
 use crate::tiles::stream_error::StreamError;
-use crate::tiles::tile_file::{read_tile_file, read_tile_header};
+use crate::tiles::tile_file::{TileRecords, read_tile_file, read_tile_header};
 
 /// What a merge wrote.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,7 +47,9 @@ pub fn merge_tile_files(
     merge_ordered_tile_files(&in_tile_order(tiles)?, output, (memory, merged), progress)
 }
 
-/// Merges tile files already in order (at least one) into the store `output`.
+/// Merges tile files already in order (at least one) into the store `output`. One tile is
+/// read while the one before it is written; a merge that removes its tiles first reads and
+/// checks them all, so that no tile goes before every one is known to be whole.
 pub(crate) fn merge_ordered_tile_files(
     ordered: &[PathBuf],
     output: &Path,
@@ -56,28 +57,100 @@ pub(crate) fn merge_ordered_tile_files(
     progress: &dyn PrepProgress,
 ) -> Result<MergeSummary, StreamError> {
     let first = read_tile_header(&ordered[0])?;
-    if !StreamBudget::new(memory, 0).holds_store_writing(first.input_points) {
-        let problem = format!(
-            "merging tiles of {} points maps each to its patch and holds the coarse level \
-             ({STORE_BYTES_PER_POINT} bytes a point), which the memory budget cannot hold",
-            first.input_points
-        );
-        return Err(StreamError::OverBudget { path: output.to_path_buf(), problem });
-    }
+    ensure_memory(ordered, first.input_points, memory, output)?;
+    ensure_room(&[store_room_need(output, first.input_points, ordered, merged)])?;
     progress.stage_started(Stage::MergeTiles, first.input_points);
     let started = std::time::Instant::now();
-    let (summary, patch_of) = survey_tiles(ordered, first.input_points, progress)?;
-    ensure_room(&[store_room_need(output, first.input_points, ordered, merged)])?;
-    let mut store = StoreInPlace::create(output, summary.room)?;
-    for path in ordered {
-        store.append(&read_tile_file(path)?.1.patches)?;
-        if merged == MergedTiles::Removed {
-            std::fs::remove_file(path).map_err(|e| StreamError::scratch(path, e))?;
-        }
+    if merged == MergedTiles::Removed {
+        check_tiles(ordered)?;
     }
-    store.finish(&summary, |input| patch_of.patch(input))?;
+    let mut spool: Option<TileSpool> = None;
+    std::thread::scope(|scope| -> Result<(), StreamError> {
+        let (send, receive) = std::sync::mpsc::sync_channel(0);
+        scope.spawn(move || {
+            for path in ordered {
+                let tile = read_tile_file(path);
+                let failed = tile.is_err();
+                if send.send((path, tile)).is_err() || failed {
+                    break;
+                }
+            }
+        });
+        for (path, tile) in receive {
+            let (_, tile) = tile?;
+            let spool = match &mut spool {
+                Some(spool) => spool,
+                None => spool.insert(TileSpool::new(output, first.input_points, frame_of(&tile))?),
+            };
+            same_frame(spool.frame(), &tile, path, &ordered[0])?;
+            let records = &tile.records;
+            spool.push_records((&records.hot, &records.cold, &tile.color_neighbors), &tile.sources)?;
+            if merged == MergedTiles::Removed {
+                std::fs::remove_file(path).map_err(|e| StreamError::scratch(path, e))?;
+            }
+            progress.advanced(tile.sources.len() as u64);
+        }
+        Ok(())
+    })?;
+    let written = spool.expect("at least one tile, or an error").finish()?;
     progress.stage_finished(Stage::MergeTiles, started.elapsed());
-    Ok(MergeSummary { tiles: ordered.len(), input_points: first.input_points, patches: summary.patches })
+    Ok(MergeSummary { tiles: ordered.len(), ..written })
+}
+
+/// Refuses a budget that cannot hold the map from points to patches and the coarse level
+/// beside two tiles, each as read and as decoded (about twice its file).
+fn ensure_memory(
+    ordered: &[PathBuf],
+    input_points: u64,
+    memory: MemoryBudget,
+    output: &Path,
+) -> Result<(), StreamError> {
+    let largest = ordered.iter().filter_map(|path| std::fs::metadata(path).ok()).map(|meta| meta.len()).max();
+    let tiles = 4 * largest.unwrap_or(0);
+    let budget = StreamBudget::new(memory, 0);
+    if budget.holds_store_writing(input_points) && budget.with_store_writing(input_points).usable() >= tiles {
+        return Ok(());
+    }
+    let problem = format!(
+        "merging tiles of {input_points} points maps each to its patch and holds the coarse level \
+         ({STORE_BYTES_PER_POINT} bytes a point) beside two tiles as read and decoded ({} MiB), which \
+         the memory budget cannot hold",
+        tiles >> 20
+    );
+    Err(StreamError::OverBudget { path: output.to_path_buf(), problem })
+}
+
+/// Reads every tile whole, and checks that they were prepped alike.
+fn check_tiles(ordered: &[PathBuf]) -> Result<(), StreamError> {
+    let mut frame = None;
+    for path in ordered {
+        let (_, tile) = read_tile_file(path)?;
+        same_frame(*frame.get_or_insert(frame_of(&tile)), &tile, path, &ordered[0])?;
+    }
+    Ok(())
+}
+
+/// The settings and offset a tile was prepped with.
+fn frame_of(tile: &TileRecords) -> (PrepSettings, DVec3) {
+    (tile.records.settings, tile.records.offset)
+}
+
+/// Refuses the tile at `path` unless it was prepped with the settings and offset of the
+/// first tile, at `first`.
+fn same_frame(
+    expected: (PrepSettings, DVec3),
+    tile: &TileRecords,
+    path: &Path,
+    first: &Path,
+) -> Result<(), StreamError> {
+    if frame_of(tile) == expected {
+        return Ok(());
+    }
+    let problem = format!(
+        "its prep settings or offset differ from {}'s: the tiles come from different preps",
+        first.display()
+    );
+    Err(StreamError::BadTile { path: path.to_path_buf(), problem })
 }
 
 /// The room the store of `input_points` points needs beside what is on the output's disk:
@@ -143,38 +216,4 @@ fn in_tile_order(tiles: &[PathBuf]) -> Result<Vec<PathBuf>, StreamError> {
         return Err(StreamError::BadTile { path: first_path.clone(), problem });
     }
     Ok(slots.into_iter().flatten().collect())
-}
-
-/// The store's header from every tile and each of the `input_points` input points' patch,
-/// with every tile file checked whole; tiles must agree on the settings and the offset.
-fn survey_tiles(
-    ordered: &[PathBuf],
-    input_points: u64,
-    progress: &dyn PrepProgress,
-) -> Result<(StoreSummary, PatchMap), StreamError> {
-    let mut summary: Option<StoreSummary> = None;
-    let mut patch_of = PatchMap::new(input_points as usize);
-    for path in ordered {
-        let (header, tile) = read_tile_file(path)?;
-        let set = &tile.patches;
-        let total = summary.get_or_insert(StoreSummary {
-            settings: set.settings,
-            offset: set.offset,
-            patches: 0,
-            room: header.input_points,
-            neighbor_slots: header.neighbor_slots,
-            scan: ScanStructure::NotRecorded,
-        });
-        if set.settings != total.settings || set.offset != total.offset {
-            let problem = format!(
-                "its prep settings or offset differ from {}'s: the tiles come from different preps",
-                ordered[0].display()
-            );
-            return Err(StreamError::BadTile { path: path.clone(), problem });
-        }
-        patch_of.note(&tile.sources, total.patches);
-        total.add(set);
-        progress.advanced(tile.sources.len() as u64);
-    }
-    Ok((summary.expect("at least one tile"), patch_of))
 }

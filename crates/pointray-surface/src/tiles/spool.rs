@@ -12,6 +12,7 @@ use crate::tiles::patch_map::PatchMap;
 use crate::tiles::stream_error::StreamError;
 use crate::tiles::tiled_prep::TilePatches;
 use glam::DVec3;
+use pointray_kernels::{PatchCold, PatchHot};
 use pointray_patches::patch_store::StoreSummary;
 use pointray_patches::patch_store_in_place::StoreInPlace;
 use pointray_patches::{PrepSettings, ScanStructure};
@@ -46,18 +47,29 @@ impl TileSpool {
     }
 
     /// Appends the next tile along the curve.
-    pub(crate) fn push(&mut self, tile: TilePatches) -> Result<(), StreamError> {
-        let TilePatches { patches: set, sources } = tile;
+    pub(crate) fn push(&mut self, tile: &TilePatches) -> Result<(), StreamError> {
+        let set = &tile.patches;
+        self.push_records((&set.hot, &set.cold, &set.color_neighbors), &tile.sources)
+    }
+
+    /// Appends the next tile's records (hot, cold, colour neighbours naming input points),
+    /// each patch made from the input point `sources` names.
+    pub(crate) fn push_records(
+        &mut self,
+        (hot, cold, color_neighbors): (&[PatchHot], &[PatchCold], &[u32]),
+        sources: &[u32],
+    ) -> Result<(), StreamError> {
         let total = &mut self.summary;
         if !sources.is_empty() {
-            total.neighbor_slots = (set.color_neighbors.len() / sources.len()) as u32;
+            total.neighbor_slots = (color_neighbors.len() / sources.len()) as u32;
         }
         let first_patch = total.patches;
-        total.add(&set);
+        total.patches += sources.len() as u64;
         let patch_of = &mut self.patch_of;
         let store = &mut self.store;
         // The records go to disk while the map is filled.
-        let (_, written) = rayon::join(|| patch_of.note(&sources, first_patch), || store.append(&set));
+        let (_, written) =
+            rayon::join(|| patch_of.note(sources, first_patch), || store.append(hot, cold, color_neighbors));
         written?;
         self.tiles += 1;
         Ok(())
@@ -66,12 +78,23 @@ impl TileSpool {
     /// Finishes the store: the colour neighbours mapped to patches, the header and the
     /// checksum; it then replaces the output atomically.
     pub(crate) fn write_store(self, progress: &dyn PrepProgress) -> Result<MergeSummary, StreamError> {
-        let Self { store, patch_of, summary, tiles, input_points } = self;
-        progress.stage_started(Stage::MergeTiles, summary.patches);
+        progress.stage_started(Stage::MergeTiles, self.summary.patches);
         let started = std::time::Instant::now();
-        store.finish(&summary, |input| patch_of.patch(input))?;
-        progress.advanced(summary.patches);
+        let written = self.finish()?;
+        progress.advanced(written.patches);
         progress.stage_finished(Stage::MergeTiles, started.elapsed());
+        Ok(written)
+    }
+
+    /// `write_store` without its progress, for a merge whose stage spans the tiles' reading.
+    pub(crate) fn finish(self) -> Result<MergeSummary, StreamError> {
+        let Self { store, patch_of, summary, tiles, input_points } = self;
+        store.finish(&summary, |input| patch_of.patch(input))?;
         Ok(MergeSummary { tiles, input_points, patches: summary.patches })
+    }
+
+    /// The settings and offset the tiles were prepped with.
+    pub(crate) fn frame(&self) -> (PrepSettings, DVec3) {
+        (self.summary.settings, self.summary.offset)
     }
 }

@@ -77,7 +77,7 @@ fn prep_planned(
             Gathered::Tile(tile) => {
                 let ((prepped, wrote), following) = beside(
                     || plan.prep_gathered(settings, *tile),
-                    || written.take().map_or(Ok(()), |tile| spool.push(tile)),
+                    || written.take().map_or(Ok(()), |tile| spool.push(&tile)),
                     || pending.pop_front().map(gather).transpose(),
                 );
                 wrote?;
@@ -97,7 +97,7 @@ fn prep_planned(
         }
     }
     if let Some(tile) = written {
-        spool.push(tile)?;
+        spool.push(&tile)?;
     }
     progress.stage_finished(Stage::PrepTiles, started.elapsed());
     spool.write_store(progress)

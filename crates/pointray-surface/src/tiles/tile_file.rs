@@ -21,7 +21,7 @@ use std::io::Read;
 use std::path::Path;
 
 use bytemuck::{Pod, Zeroable};
-use pointray_patches::patch_store::{self, Encoding};
+use pointray_patches::patch_store::{self, Encoding, FullRecords};
 
 use crate::tiles::stream_error::StreamError;
 use crate::tiles::tiled_prep::TilePatches;
@@ -81,8 +81,18 @@ pub fn read_tile_header(path: &Path) -> Result<TileHeader, StreamError> {
     checked_header(&bytes, path)
 }
 
+/// One tile's records as a tile file holds them: without boxes, which a merge has no use for.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TileRecords {
+    pub records: FullRecords,
+    /// Colour neighbours named by input point.
+    pub color_neighbors: Vec<u32>,
+    /// Each patch's input point.
+    pub sources: Vec<u32>,
+}
+
 /// A whole tile file, checked.
-pub fn read_tile_file(path: &Path) -> Result<(TileHeader, TilePatches), StreamError> {
+pub fn read_tile_file(path: &Path) -> Result<(TileHeader, TileRecords), StreamError> {
     let bytes = std::fs::read(path).map_err(|e| StreamError::scratch(path, e))?;
     let header = checked_header(bytes.get(..HEADER_BYTES).unwrap_or(&[]), path)?;
     let (n, m) = (header.patches as usize, header.neighbor_slots as usize);
@@ -95,17 +105,17 @@ pub fn read_tile_file(path: &Path) -> Result<(TileHeader, TilePatches), StreamEr
     if crc32fast::hash(body).to_le_bytes() != checksum {
         return Err(bad(path, "corrupted: checksum mismatch"));
     }
-    let mut patches = patch_store::read_from(&body[store_start..], path)?;
-    if patches.len() != n || !patches.color_neighbors.is_empty() {
+    let records = patch_store::read_full_records(&body[store_start..], path)?;
+    if records.hot.len() != n {
         return Err(bad(path, "its patches do not match its header's count"));
     }
     let table = |start: usize, len: usize| bytemuck::pod_collect_to_vec::<u8, u32>(&body[start..start + len]);
     let sources = table(HEADER_BYTES, 4 * n);
-    patches.color_neighbors = table(HEADER_BYTES + 4 * n, 4 * m * n).into();
+    let color_neighbors = table(HEADER_BYTES + 4 * n, 4 * m * n);
     if sources.iter().any(|&s| u64::from(s) >= header.input_points) {
         return Err(bad(path, "a patch names a point beyond the input's count"));
     }
-    Ok((header, TilePatches { patches, sources }))
+    Ok((header, TileRecords { records, color_neighbors, sources }))
 }
 
 fn checked_header(bytes: &[u8], path: &Path) -> Result<TileHeader, StreamError> {

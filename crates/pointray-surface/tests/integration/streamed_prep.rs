@@ -163,6 +163,16 @@ fn tile_jobs_on_a_kept_sort_merge_into_the_single_process_store() {
     let error = merge_tile_files(&tiles[..3], &merged, removing, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("tile 3 of 4 is missing"), "{error}");
     assert!(tiles.iter().all(|tile| tile.exists()), "a refused merge removes no tile");
+    let damaged = dir.path().join("damaged.tile");
+    let mut bytes = std::fs::read(&tiles[3]).unwrap();
+    let middle = bytes.len() / 2;
+    bytes[middle] ^= 1;
+    std::fs::write(&damaged, bytes).unwrap();
+    let cut = [&tiles[..3], std::slice::from_ref(&damaged)].concat();
+    let error = merge_tile_files(&cut, &merged, removing, &NoProgress).unwrap_err();
+    assert!(error.to_string().contains("damaged.tile: corrupted"), "{error}");
+    assert!(cut.iter().all(|tile| tile.exists()), "every tile is checked before the first goes");
+    std::fs::remove_file(&damaged).unwrap();
     merge_tile_files(&tiles, &merged, removing, &NoProgress).unwrap();
     assert!(std::fs::read(&merged).unwrap() == std::fs::read(&whole).unwrap(), "same bytes");
     assert!(tiles.iter().all(|tile| !tile.exists()), "each tile removed once merged");
