@@ -217,3 +217,27 @@ fn in_tile_order(tiles: &[PathBuf]) -> Result<Vec<PathBuf>, StreamError> {
     }
     Ok(slots.into_iter().flatten().collect())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn removed_tiles_on_the_outputs_disk_leave_room_for_the_store_but_the_largest() {
+        let dir = tempfile::tempdir().unwrap();
+        let tiles: Vec<PathBuf> = [1000, 3000, 2000]
+            .iter()
+            .enumerate()
+            .map(|(i, &bytes)| {
+                let path = dir.path().join(format!("{i}.tile"));
+                std::fs::write(&path, vec![0u8; bytes]).unwrap();
+                path
+            })
+            .collect();
+        let output = dir.path().join("out.patches");
+        let kept = store_room_need(&output, 1000, &tiles, MergedTiles::Kept);
+        assert_eq!(kept.bytes, 28_000);
+        let removed = store_room_need(&output, 1000, &tiles, MergedTiles::Removed);
+        assert_eq!(removed.bytes, 28_000 - 3000, "all but the largest tile are freed in time");
+    }
+}

@@ -135,6 +135,18 @@ fn tiles_prepped_alone_merge_into_the_single_process_store() {
         merge_tile_files(std::slice::from_ref(&path), &dir.path().join("m.patches"), KEEP_TILES, &NoProgress)
             .unwrap_err();
     assert!(error.to_string().contains("sheet.ply: not a pointray tile file"), "{error}");
+    // Two tiles as read and decoded (four times the largest file) beside the map and the coarse
+    // level, past what the program itself takes (32 MiB).
+    let largest = tiles.iter().map(|tile| std::fs::metadata(tile).unwrap().len()).max().unwrap();
+    let short = MemoryBudget { bytes: (32 << 20) + 4 * largest };
+    let error =
+        merge_tile_files(&tiles, &dir.path().join("m.patches"), (short, MergedTiles::Kept), &NoProgress)
+            .unwrap_err();
+    assert!(matches!(error, StreamError::OverBudget { .. }), "{error}");
+    assert!(error.to_string().contains("beside two tiles as read and decoded"), "{error}");
+    let enough = MemoryBudget { bytes: (33 << 20) + 4 * largest };
+    merge_tile_files(&tiles, &dir.path().join("m.patches"), (enough, MergedTiles::Kept), &NoProgress)
+        .unwrap();
 }
 
 #[test]
