@@ -94,7 +94,7 @@ pub(crate) fn merge_ordered_tile_files(
     })?;
     let written = spool.expect("at least one tile, or an error").finish()?;
     progress.stage_finished(Stage::MergeTiles, started.elapsed());
-    Ok(MergeSummary { tiles: ordered.len(), ..written })
+    Ok(written)
 }
 
 /// Refuses a budget that cannot hold the map from points to patches and the coarse level
