@@ -184,6 +184,10 @@ fn tile_jobs_on_a_kept_sort_merge_into_the_single_process_store() {
     let error = merge_tile_files(&cut, &merged, removing, &NoProgress).unwrap_err();
     assert!(error.to_string().contains("damaged.tile: corrupted"), "{error}");
     assert!(cut.iter().all(|tile| tile.exists()), "every tile is checked before the first goes");
+    // Kept tiles are read as they are merged: the damaged one stops the merge there.
+    let error = merge_tile_files(&cut, &merged, KEEP_TILES, &NoProgress).unwrap_err();
+    assert!(error.to_string().contains("damaged.tile: corrupted"), "{error}");
+    assert!(!merged.exists(), "a failed merge writes no store");
     std::fs::remove_file(&damaged).unwrap();
     merge_tile_files(&tiles, &merged, removing, &NoProgress).unwrap();
     assert!(std::fs::read(&merged).unwrap() == std::fs::read(&whole).unwrap(), "same bytes");
