@@ -3,11 +3,10 @@
 //! cannot hold it). A rung that does not fit
 //! is skipped with the reason, before anything is generated.
 
-use std::os::unix::fs::MetadataExt;
 use std::path::Path;
 
 use pointray_io::MemoryBudget;
-use pointray_io::disk_space::free_bytes;
+use pointray_io::disk_space::{file_system, free_bytes};
 use pointray_kernels::{Aabb, PatchCold, PatchHot};
 use pointray_patches::PrepSettings;
 use pointray_surface::prep_memory::{PrepRoute, prep_route};
@@ -88,7 +87,6 @@ impl MachineLimits {
     /// prep's points in `scratch` (the cache when `None`) and rendering on `device`, or on the
     /// CPU when there is none.
     pub fn now((cache, scratch): (&Path, Option<&Path>), device: Option<DeviceLimits>) -> Self {
-        let file_system = |folder: &Path| std::fs::metadata(folder).ok().map(|metadata| metadata.dev());
         let apart = scratch.filter(|&scratch| file_system(scratch) != file_system(cache));
         Self {
             available_memory: pointray_io::available_memory(),

@@ -2,10 +2,9 @@
 //! checked before any work: a billion points sort into 36 GB of scratch beside a 31 GB store,
 //! and a disk that fills after minutes of work wastes them.
 
-use std::os::unix::fs::MetadataExt;
 use std::path::Path;
 
-use pointray_io::disk_space::free_bytes;
+use pointray_io::disk_space::{file_system, free_bytes};
 use pointray_io::{IoError, PointStream};
 
 use crate::tiles::point_records::KEYED_POSITION_BYTES;
@@ -72,8 +71,7 @@ fn gigabytes(bytes: u64) -> String {
 
 /// The folder's file system and the bytes free on it for this user.
 fn device_and_free(folder: &Path) -> Option<(u64, u64)> {
-    let device = std::fs::metadata(folder).ok()?.dev();
-    Some((device, free_bytes(folder)?))
+    Some((file_system(folder)?, free_bytes(folder)?))
 }
 
 #[cfg(test)]

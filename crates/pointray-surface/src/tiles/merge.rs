@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use pointray_io::MemoryBudget;
+use pointray_io::disk_space::file_system;
 use pointray_patches::PrepSettings;
 
 use crate::prep_progress::{PrepProgress, Stage};
@@ -165,11 +166,12 @@ fn store_room_need<'a>(
     let folder = pointray_io::folder_of(output);
     let mut need = store_need(input_points, folder);
     if merged == MergedTiles::Removed {
-        let disk = |path: &Path| std::fs::metadata(path).ok().map(|meta| meta.dev());
+        let output_disk = file_system(folder);
         let freed: Vec<u64> = tiles
             .iter()
-            .filter(|tile| disk(tile).is_some_and(|d| Some(d) == disk(folder)))
-            .filter_map(|tile| std::fs::metadata(tile).ok().map(|meta| meta.len()))
+            .filter_map(|tile| std::fs::metadata(tile).ok())
+            .filter(|meta| output_disk == Some(meta.dev()))
+            .map(|meta| meta.len())
             .collect();
         let largest = freed.iter().copied().max().unwrap_or(0);
         need.bytes = need.bytes.saturating_sub(freed.iter().sum::<u64>() - largest);
