@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
+use crate::formats::copc_octree::CopcOctree;
 use crate::formats::detect::PointFormat;
 use crate::formats::intensity::IntensityRange;
 use crate::formats::las_chunks::{LasChunks, LasRanges};
@@ -125,6 +126,15 @@ impl PointStream {
             // A raw sweep's records are in the sensor's own frame.
             Source::RawBin(_) => Some(DVec3::ZERO),
             Source::Ply(_) | Source::Las(_) => None,
+        }
+    }
+
+    /// The octree of a COPC file read in chunks, with the top levels that hold at least
+    /// `sample_points` points read (`CopcOctree::open`); `None` for any other source.
+    pub fn copc_octree(&self, sample_points: u64) -> Result<Option<CopcOctree>, IoError> {
+        match &self.source {
+            Source::Las(chunks) if chunks.is_copc() => CopcOctree::open(&self.path, sample_points).map(Some),
+            _ => Ok(None),
         }
     }
 

@@ -50,6 +50,16 @@ impl MortonGrid {
         Self { min, scale: Vec3::splat(MAX_CELL / extent) }
     }
 
+    /// The grid's corner and its cells' scale, as a kept sort's index stores them.
+    pub(crate) fn parts(&self) -> (Vec3, f32) {
+        (self.min, self.scale.x)
+    }
+
+    /// The grid of `parts`.
+    pub(crate) fn from_parts(min: Vec3, scale: f32) -> Self {
+        Self { min, scale: Vec3::splat(scale) }
+    }
+
     /// The interleaved 63-bit code of `p`'s cell.
     pub fn code(&self, p: Vec3) -> u64 {
         morton_code(p, self.min, self.scale)

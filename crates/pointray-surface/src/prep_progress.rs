@@ -28,6 +28,9 @@ pub enum Stage {
     SortRuns,
     /// The runs merged into one file along the Morton curve.
     MergeRuns,
+    /// A COPC file's octree read node by node into one file along the Morton curve, in
+    /// place of the survey and the runs.
+    SortOctree,
     /// The tiles prepped one after another, each with its halo.
     PrepTiles,
     /// The tiles' patches written as one store.
@@ -55,6 +58,7 @@ impl Stage {
             Stage::Survey => "read bounds",
             Stage::SortRuns => "sort runs",
             Stage::MergeRuns => "merge runs",
+            Stage::SortOctree => "sort along the octree",
             Stage::PrepTiles => "prep tiles",
             Stage::MergeTiles => "write store",
         }

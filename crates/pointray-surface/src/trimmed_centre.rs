@@ -8,7 +8,7 @@
 use glam::DVec3;
 
 /// At most about this many points, evenly spaced in input order, place the centre.
-const SAMPLE_POINTS: u64 = 1 << 16;
+pub(crate) const CENTRE_SAMPLE_POINTS: u64 = 1 << 16;
 
 /// The share of the sample left out at each end of each axis.
 const TRIMMED_SHARE: f64 = 0.01;
@@ -22,7 +22,7 @@ pub(crate) struct CentreSample {
 impl CentreSample {
     /// A sample of a cloud of `points` points.
     pub fn new(points: u64) -> Self {
-        let stride = points.div_ceil(SAMPLE_POINTS).max(1);
+        let stride = points.div_ceil(CENTRE_SAMPLE_POINTS).max(1);
         Self { stride, positions: Vec::with_capacity(points.div_ceil(stride) as usize) }
     }
 

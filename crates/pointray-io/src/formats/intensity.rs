@@ -33,6 +33,11 @@ impl IntensityRange {
         }
     }
 
+    /// The smallest and largest value seen, if any.
+    pub(crate) fn bounds(&self) -> Option<(f64, f64)> {
+        self.range
+    }
+
     /// The scale onto [0, 1], or `None` when every value was zero or there were none.
     pub(crate) fn scale(&self) -> Option<IntensityScale> {
         let (min, max) = self.range?;

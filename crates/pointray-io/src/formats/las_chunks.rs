@@ -55,6 +55,11 @@ impl LasChunks {
         self.declared
     }
 
+    /// Whether the file is COPC, whose octree may be walked instead (`copc_octree`).
+    pub(crate) fn is_copc(&self) -> bool {
+        matches!(self.decoder, Decoder::Copc(_))
+    }
+
     /// The attributes the chunks may carry (intensities and classifications are dropped
     /// later when the file never fills them).
     pub(crate) fn attributes(&self) -> AttributeBytes {
@@ -134,7 +139,7 @@ fn is_copc_file(path: &Path) -> Result<bool, IoError> {
 }
 
 impl LasRanges {
-    fn include(&mut self, batch: &PointData) {
+    pub(super) fn include(&mut self, batch: &PointData) {
         batch.intensity().for_each(|value| self.intensities.include(value.into()));
         self.any_classification |= batch.classification().any(|class| class != 0);
         if let Some(rgb) = batch.rgb() {
@@ -143,8 +148,25 @@ impl LasRanges {
         }
     }
 
+    /// Widens these ranges by `other`'s.
+    pub(super) fn join(&mut self, other: &LasRanges) {
+        if let Some((low, high)) = other.intensities.bounds() {
+            self.intensities.include(low);
+            self.intensities.include(high);
+        }
+        self.any_classification |= other.any_classification;
+        self.largest_color = self.largest_color.max(other.largest_color);
+    }
+
+    /// Whether attributes scaled by these ranges and by `other` come out the same.
+    pub(super) fn scales_as(&self, other: &LasRanges) -> bool {
+        self.intensities.scale() == other.intensities.scale()
+            && self.largest_color.and_then(color_shift) == other.largest_color.and_then(color_shift)
+            && self.any_classification == other.any_classification
+    }
+
     /// The batch's points with attributes scaled as a whole read of the file scales them.
-    fn scaled(&self, batch: &PointData, positions: Vec<DVec3>) -> PointCloud {
+    pub(super) fn scaled(&self, batch: &PointData, positions: Vec<DVec3>) -> PointCloud {
         let intensities =
             self.intensities.scale().map(|scale| batch.intensity().map(|v| scale.apply(v.into())).collect());
         let shift = self.largest_color.and_then(color_shift);

@@ -5,6 +5,7 @@ pub mod columns;
 pub mod copc;
 mod copc_chunks;
 mod copc_hierarchy;
+pub mod copc_octree;
 pub mod detect;
 mod dispatch;
 pub mod e57;

@@ -1,8 +1,8 @@
 //! A cloud sorted along its curve once and kept in a folder, so that tile jobs
 //! (`streamed_prep::prep_one_tile` on it) read their tiles without each reading and sorting
 //! the whole cloud again. The folder holds the sorted records (`points`) and an index
-//! (`index`): the cloud's box, its recentring, the records' layout, the sensor's position and
-//! the bounds of every block of records. Jobs cut the same tiles from it as from the input.
+//! (`index`): the cloud's box, its recentring, the records' layout, the sensor's position, the
+//! curve the records are sorted along and the bounds of every block of records. Jobs cut the same tiles from it as from the input.
 
 use std::path::Path;
 
@@ -11,6 +11,7 @@ use pointray_io::temporaries::TemporaryFolder;
 use pointray_io::{IoError, MemoryBudget, PointStream};
 use pointray_patches::PrepSettings;
 
+use crate::morton::MortonGrid;
 use crate::prep_progress::PrepProgress;
 use crate::tiles::disk_room::{ensure_room, sorted_points_need};
 use crate::tiles::point_records::RecordLayout;
@@ -20,11 +21,12 @@ use crate::tiles::streamed_tiles::{CloudBox, StreamPlan, TileCount};
 
 const RECORDS: &str = "points";
 const INDEX: &str = "index";
-const MAGIC: [u8; 8] = *b"PRSORT01";
+const MAGIC: [u8; 8] = *b"PRSORT02";
 
 /// Bytes of the index before the block bounds: the magic, the layout's flags, the point
-/// count, the offset, the box and the sensor's position (with a flag).
-const HEAD_BYTES: usize = 8 + 8 + 8 + 3 * 8 + 6 * 8 + 8 + 3 * 8;
+/// count, the offset, the box, the sensor's position (with a flag) and the curve's grid
+/// (its corner and scale).
+const HEAD_BYTES: usize = 8 + 8 + 8 + 3 * 8 + 6 * 8 + 8 + 3 * 8 + 4 * 8;
 
 /// Bytes of one block's bounds.
 const BLOCK_BYTES: usize = 6 * 4;
@@ -94,6 +96,9 @@ fn index_bytes(cloud: &CloudBox, sorted: &SortedPoints) -> Vec<u8> {
     put_vector(&mut out, cloud.bounds.1);
     out.extend(u64::from(sorted.sensor_position().is_some()).to_le_bytes());
     put_vector(&mut out, sorted.sensor_position().unwrap_or(DVec3::ZERO));
+    let (corner, scale) = cloud.grid.parts();
+    put_vector(&mut out, corner.as_dvec3());
+    out.extend(f64::from(scale).to_le_bytes());
     for (low, high) in sorted.blocks() {
         [low, high].iter().for_each(|v| v.to_array().iter().for_each(|x| out.extend(x.to_le_bytes())));
     }
@@ -104,7 +109,7 @@ type Index = (CloudBox, RecordLayout, Option<DVec3>, Vec<BlockBounds>);
 
 fn read_index(bytes: &[u8]) -> Result<Index, String> {
     if bytes.len() < HEAD_BYTES || bytes[..8] != MAGIC {
-        return Err("its index is not one".into());
+        return Err("its index is not one this version of pointray reads; keep the sort again".into());
     }
     let words: Vec<[u8; 8]> =
         bytes[8..HEAD_BYTES].chunks_exact(8).map(|w| w.try_into().expect("8 bytes")).collect();
@@ -115,10 +120,12 @@ fn read_index(bytes: &[u8]) -> Result<Index, String> {
     let points = u64::from_le_bytes(words[1]);
     let (offset, min, max) = (vector(2), vector(5), vector(8));
     let sensor = (u64::from_le_bytes(words[11]) != 0).then(|| vector(12));
-    let finite = [offset, min, max, sensor.unwrap_or(DVec3::ZERO)].iter().all(|v| v.is_finite());
-    if !finite || min.cmpgt(max).any() {
-        return Err("its box or offset is not finite and ordered".into());
+    let (corner, scale) = (vector(15), float(18));
+    let finite = [offset, min, max, sensor.unwrap_or(DVec3::ZERO), corner].iter().all(|v| v.is_finite());
+    if !finite || min.cmpgt(max).any() || !(scale.is_finite() && scale > 0.0) {
+        return Err("its box, offset or curve is not finite and ordered".into());
     }
+    let grid = MortonGrid::from_parts(corner.as_vec3(), scale as f32);
     let body = &bytes[HEAD_BYTES..];
     if !body.len().is_multiple_of(BLOCK_BYTES) {
         return Err("its block bounds are cut short".into());
@@ -130,5 +137,5 @@ fn read_index(bytes: &[u8]) -> Result<Index, String> {
             (Vec3::new(value(0), value(1), value(2)), Vec3::new(value(3), value(4), value(5)))
         })
         .collect();
-    Ok((CloudBox { bounds: (min, max), offset, points }, layout, sensor, blocks))
+    Ok((CloudBox { bounds: (min, max), offset, points, grid }, layout, sensor, blocks))
 }

@@ -19,6 +19,7 @@ mod halo_reach;
 mod halo_test;
 pub mod kept_sort;
 pub mod merge;
+mod octree_sort;
 mod out_of_core_sort;
 mod patch_map;
 mod point_records;

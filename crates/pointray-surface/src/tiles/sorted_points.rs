@@ -237,6 +237,11 @@ impl SortedFile {
         Ok(Self { path: path.to_path_buf(), file, layout, offset, count })
     }
 
+    /// Bytes a record takes.
+    pub(crate) fn record_bytes(&self) -> usize {
+        self.layout.bytes()
+    }
+
     /// A writer of the records from sorted position `first` on, holding `buffer_bytes`.
     pub(crate) fn piece(&self, first: u64, buffer_bytes: usize) -> SortedPiece<'_> {
         let size = self.layout.bytes();

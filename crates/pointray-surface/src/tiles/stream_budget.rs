@@ -72,6 +72,12 @@ impl StreamBudget {
         (self.usable / 32 / READ_BYTES_PER_POINT).clamp(256, 1 << 20) as usize
     }
 
+    /// Points of a COPC file's octree decoded at a time: two batches are held at once (one
+    /// decoded while the one before is sorted and written), the three chunks a read may hold.
+    pub(crate) fn octree_batch_points(&self) -> u64 {
+        3 * self.chunk_points() as u64 / 2
+    }
+
     /// Bytes of records sorted in memory at a time (with their keys, about half again).
     pub(crate) fn run_bytes(&self) -> usize {
         (self.usable / 3).max(1 << 20) as usize

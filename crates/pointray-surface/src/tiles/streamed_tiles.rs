@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use glam::{DVec3, Vec3};
+use pointray_io::formats::copc_octree::CopcOctree;
 use pointray_io::{MemoryBudget, PointCloud, PointStream};
 use pointray_patches::PrepSettings;
 use pointray_patches::patch_tiles::even_ranges;
@@ -25,12 +26,14 @@ use crate::tiles::cloud_subset::subset;
 use crate::tiles::curve_span::CurveSpan;
 use crate::tiles::halo_reach::{CURVE_CONTEXT, halo_reaches};
 use crate::tiles::halo_test::HaloTest;
+use crate::tiles::octree_sort::{OctreeSort, OctreeSortPlan, octree_grid, sort_along_octree};
 use crate::tiles::out_of_core_sort::{SortPlan, sort_points};
+use crate::tiles::point_records::KEYED_POSITION_BYTES;
 use crate::tiles::sorted_points::SortedPoints;
 use crate::tiles::stream_budget::{MIN_TILE_POINTS, STORE_BYTES_PER_POINT, StreamBudget};
 use crate::tiles::stream_error::StreamError;
 use crate::tiles::tiled_prep::{TilePatches, own_patches};
-use crate::trimmed_centre::CentreSample;
+use crate::trimmed_centre::{CENTRE_SAMPLE_POINTS, CentreSample, trimmed_centre};
 
 /// How many tiles to cut the cloud into.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -42,13 +45,22 @@ pub enum TileCount {
     Exactly(usize),
 }
 
-/// The box of a cloud's points (min, max), the offset it is recentred by and how many
-/// points it holds: what a first read finds.
+/// The box of a cloud's points (min, max), the offset it is recentred by, how many points
+/// it holds and the curve they are sorted along: what a first read finds.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct CloudBox {
     pub bounds: (DVec3, DVec3),
     pub offset: DVec3,
     pub points: u64,
+    pub grid: MortonGrid,
+}
+
+impl CloudBox {
+    /// A cloud sorted along the curve over its own box, as a single pass sorts it.
+    pub(crate) fn over_its_box(bounds: (DVec3, DVec3), offset: DVec3, points: u64) -> Self {
+        let grid = MortonGrid::over((bounds.0 - offset).as_vec3(), (bounds.1 - offset).as_vec3());
+        Self { bounds, offset, points, grid }
+    }
 }
 
 /// What a cloud's box and the settings give, checked: the tiles' shared context, the curve,
@@ -92,7 +104,7 @@ impl Cut {
             bounds: (min, max),
             points: points as usize,
         };
-        Ok(Self { frame, grid: MortonGrid::over(low, high), tiles, budget })
+        Ok(Self { frame, grid: cloud.grid, tiles, budget })
     }
 
     /// The plan over `sorted`, the cloud of `input` sorted along this cut's curve.
@@ -118,7 +130,8 @@ pub struct StreamPlan {
 }
 
 impl StreamPlan {
-    /// Reads `stream` twice and sorts it into `scratch`.
+    /// Sorts `stream` into `scratch`: a COPC file along its octree in one read where that
+    /// fits (`octree_sort`), any other in two reads.
     pub fn new(
         stream: &mut PointStream,
         settings: &PrepSettings,
@@ -128,9 +141,16 @@ impl StreamPlan {
     ) -> Result<Self, StreamError> {
         let input = stream.path().to_path_buf();
         let attribute_bytes = stream.attribute_bytes_per_point();
+        if let Some(octree) = stream.copc_octree(CENTRE_SAMPLE_POINTS)? {
+            let along =
+                Self::along_octree(&octree, settings, (count, memory, attribute_bytes), scratch, progress)?;
+            if let Some(plan) = along {
+                return Ok(plan);
+            }
+        }
         let chunk_points = StreamBudget::new(memory, attribute_bytes).chunk_points();
         let (min, max, centre) = survey_bounds(stream, chunk_points, progress)?;
-        let cloud = CloudBox { bounds: (min, max), offset: centre.centre(), points: stream.len() };
+        let cloud = CloudBox::over_its_box((min, max), centre.centre(), stream.len());
         let cut = Cut::new(&input, &cloud, settings, (count, memory, attribute_bytes))?;
         let plan = SortPlan {
             grid: cut.grid,
@@ -141,6 +161,50 @@ impl StreamPlan {
         };
         let sorted = sort_points(stream, &plan, progress)?;
         Ok(cut.over(input, sorted))
+    }
+
+    /// The plan over a COPC file sorted along its octree, or none when that sort is
+    /// declined (logged with the reason) or the out-of-core sort will refuse the cloud.
+    fn along_octree(
+        octree: &CopcOctree,
+        settings: &PrepSettings,
+        (count, memory, attribute_bytes): (TileCount, MemoryBudget, u64),
+        scratch: &Path,
+        progress: &dyn PrepProgress,
+    ) -> Result<Option<Self>, StreamError> {
+        let input = octree.path().to_path_buf();
+        let points = octree.points();
+        let declined = |why: &str| {
+            tracing::info!("{}: {why}; sorting it out of core instead", input.display());
+            Ok(None)
+        };
+        // The out-of-core route says why it refuses these.
+        if points <= u64::from(settings.k.max(settings.normal_k)) || points > u64::from(u32::MAX) {
+            return Ok(None);
+        }
+        let budget = StreamBudget::new(memory, attribute_bytes);
+        tile_count(count, points, settings, &budget, &input)?;
+        let budget = budget.with_store_writing(points);
+        let offset = trimmed_centre(octree.sample());
+        let Some(grid) = octree_grid(octree, offset) else {
+            return declined("its octree's cube has no finite size");
+        };
+        let plan = OctreeSortPlan {
+            grid,
+            offset,
+            batch_points: budget.octree_batch_points(),
+            waiting_bytes: budget.run_bytes() as u64,
+            record_bytes: KEYED_POSITION_BYTES + attribute_bytes,
+            folder: scratch,
+        };
+        match sort_along_octree(octree, &plan, progress)? {
+            OctreeSort::Sorted { bounds, sorted } => {
+                let cloud = CloudBox { bounds, offset, points, grid };
+                let cut = Cut::new(&input, &cloud, settings, (count, memory, attribute_bytes))?;
+                Ok(Some(cut.over(input, sorted)))
+            }
+            OctreeSort::Declined(why) => declined(&why),
+        }
     }
 
     /// The plan over a cloud sorted once and kept (`tiles::kept_sort`), read from `folder`.
@@ -157,7 +221,12 @@ impl StreamPlan {
 
     /// The box, recentring and point count of the whole cloud.
     pub(crate) fn cloud_box(&self) -> CloudBox {
-        CloudBox { bounds: self.frame.bounds, offset: self.frame.offset, points: self.frame.points as u64 }
+        CloudBox {
+            bounds: self.frame.bounds,
+            offset: self.frame.offset,
+            points: self.frame.points as u64,
+            grid: self.grid,
+        }
     }
 
     /// The sorted points, for keeping.

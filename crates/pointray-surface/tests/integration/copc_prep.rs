@@ -5,10 +5,16 @@
 //! float rounding: prep recentres on an offset taken from a strided sample of the points, so
 //! the order moves the offset and with it the rounding of every local coordinate, which a few
 //! ill-conditioned fits carry further.
+//!
+//! Streamed, a COPC file is sorted along its octree in one read, with no survey or sorting
+//! pass; a kept sort of it cuts the tiles its prep cuts; and an octree whose boxes do not
+//! hold their points is sorted out of core instead.
 
 use std::cmp::Ordering;
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::Duration;
 
 use glam::{DVec3, IVec3};
 
@@ -16,10 +22,11 @@ use pointray_io::formats::read_point_cloud;
 use pointray_io::{MemoryBudget, PointCloud, PointStream};
 use pointray_kernels::tangent_frame::unpack_normal;
 use pointray_patches::{PatchSet, PrepSettings, patch_store};
-use pointray_surface::tiles::streamed_prep::prep_streamed;
+use pointray_surface::tiles::kept_sort::keep_sort;
+use pointray_surface::tiles::streamed_prep::{prep_kept_streamed, prep_streamed};
 use pointray_surface::tiles::streamed_tiles::TileCount;
 use pointray_surface::tiles::tiled_prep::prep_tiled;
-use pointray_surface::{NoProgress, prep};
+use pointray_surface::{NoProgress, PrepProgress, Stage, prep};
 
 fn read(relative: &str) -> PointCloud {
     read_point_cloud(&pointray_test_support::data_file(relative)).unwrap()
@@ -131,19 +138,91 @@ fn unmatched(a: &[WorldPatch], b: &[WorldPatch]) -> usize {
     missing
 }
 
-fn prep_streamed_file(relative: &str, output: &Path) -> PatchSet {
-    let settings = PrepSettings::default();
-    let budget = MemoryBudget { bytes: 1 << 30 };
-    let mut stream = PointStream::open(&pointray_test_support::data_file(relative), None, budget).unwrap();
-    prep_streamed(
-        &mut stream,
-        &settings,
-        (TileCount::Exactly(4), budget),
-        (output, pointray_io::folder_of(output)),
-        &NoProgress,
-    )
-    .unwrap();
+const BUDGET: MemoryBudget = MemoryBudget { bytes: 1 << 30 };
+
+/// The stages a prep began, in order.
+#[derive(Default)]
+struct Stages(Mutex<Vec<Stage>>);
+
+impl PrepProgress for Stages {
+    fn stage_started(&self, stage: Stage, _: u64) {
+        self.0.lock().unwrap().push(stage);
+    }
+    fn advanced(&self, _: u64) {}
+    fn stage_finished(&self, _: Stage, _: Duration) {}
+}
+
+impl Stages {
+    fn began(&self, stage: Stage) -> bool {
+        self.0.lock().unwrap().contains(&stage)
+    }
+}
+
+/// Preps the points at `input` streamed in 4 tiles into the store `output`.
+fn prep_streamed_path(input: &Path, output: &Path, progress: &dyn PrepProgress) -> PatchSet {
+    let mut stream = PointStream::open(input, None, BUDGET).unwrap();
+    let (count, places) = ((TileCount::Exactly(4), BUDGET), (output, pointray_io::folder_of(output)));
+    prep_streamed(&mut stream, &PrepSettings::default(), count, places, progress).unwrap();
     patch_store::read(output).unwrap()
+}
+
+fn prep_streamed_file(relative: &str, output: &Path) -> PatchSet {
+    prep_streamed_path(&pointray_test_support::data_file(relative), output, &NoProgress)
+}
+
+#[test]
+fn a_copc_file_is_sorted_along_its_octree_in_one_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let stages = Stages::default();
+    let copc = pointray_test_support::data_file("scans/autzen_trim.copc.laz");
+    prep_streamed_path(&copc, &dir.path().join("copc.patches"), &stages);
+    assert!(stages.began(Stage::SortOctree), "{:?}", stages.0.lock().unwrap());
+    for pass in [Stage::Survey, Stage::SortRuns, Stage::MergeRuns] {
+        assert!(!stages.began(pass), "{pass} ran: {:?}", stages.0.lock().unwrap());
+    }
+}
+
+#[test]
+fn a_kept_sort_of_a_copc_file_cuts_the_tiles_its_prep_cuts() {
+    let dir = tempfile::tempdir().unwrap();
+    let copc = pointray_test_support::data_file("scans/autzen_trim.copc.laz");
+    let streamed = dir.path().join("streamed.patches");
+    prep_streamed_path(&copc, &streamed, &NoProgress);
+    let (kept, from_kept) = (dir.path().join("kept"), dir.path().join("from_kept.patches"));
+    let settings = PrepSettings::default();
+    keep_sort(&mut PointStream::open(&copc, None, BUDGET).unwrap(), &settings, BUDGET, &kept, &NoProgress)
+        .unwrap();
+    prep_kept_streamed(&kept, &settings, (TileCount::Exactly(4), BUDGET), &from_kept, &NoProgress).unwrap();
+    assert!(std::fs::read(&from_kept).unwrap() == std::fs::read(&streamed).unwrap(), "the same store");
+}
+
+/// Bytes into a COPC file of its octree's half size: the LAS 1.4 header (375 bytes), the
+/// COPC info VLR's header (54) and the cube's centre (24).
+const HALF_SIZE_AT: usize = 375 + 54 + 24;
+
+/// A copy of the Autzen COPC tile whose octree's cube is `shrink` times its size.
+fn shrunk_octree(dir: &Path, shrink: f64) -> PathBuf {
+    let mut bytes = std::fs::read(pointray_test_support::data_file("scans/autzen_trim.copc.laz")).unwrap();
+    let half = f64::from_le_bytes(bytes[HALF_SIZE_AT..HALF_SIZE_AT + 8].try_into().unwrap());
+    bytes[HALF_SIZE_AT..HALF_SIZE_AT + 8].copy_from_slice(&(half * shrink).to_le_bytes());
+    let path = dir.join(format!("shrunk-{shrink}.copc.laz"));
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+#[test]
+fn an_octree_whose_boxes_do_not_hold_their_points_is_sorted_out_of_core() {
+    let dir = tempfile::tempdir().unwrap();
+    let las = world_patches(&prep_streamed_file("scans/autzen_trim.las", &dir.path().join("las.patches")));
+    for shrink in [0.5, 0.0, f64::NAN] {
+        let stages = Stages::default();
+        let output = dir.path().join("shrunk.patches");
+        let copc = world_patches(&prep_streamed_path(&shrunk_octree(dir.path(), shrink), &output, &stages));
+        assert!(stages.began(Stage::SortRuns), "{shrink}: {:?}", stages.0.lock().unwrap());
+        assert_eq!(copc.len(), las.len());
+        let unmatched = unmatched(&copc, &las);
+        assert!(unmatched <= las.len() / 2000, "{shrink}: {unmatched} of {} patches unmatched", las.len());
+    }
 }
 
 #[test]
