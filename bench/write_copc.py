@@ -5,8 +5,9 @@ The octree has the levels of detail COPC writers give: every level holds a share
 points spread over the whole cloud (chosen by a seeded shuffle), the share of level l in
 proportion to 4^l, as the occupied nodes of a surface grow, down to the level where a node
 holds about NODE_POINTS points. Every point lands in the node of its level whose box holds
-it. Intensities run with height over the 8-bit range, so that the attributes are scaled as
-a LiDAR tile's are.
+it. The attributes are filled as a LiDAR tile's are: intensities run with height over the
+8-bit range, GPS times with the points' order in the input (a microsecond apart), scan
+angles with their x, and every point is the one return of its pulse from source 1.
 
 Needs `pip install copclib==2.6.3 numpy`.
 
@@ -93,6 +94,9 @@ def main():
     records["x"], records["y"], records["z"] = quantised[:, 0], quantised[:, 1], quantised[:, 2]
     records["intensity"] = np.round((xyz[:, 2] - low[2]) / max(high[2] - low[2], scale) * 255).astype(np.uint16)
     records["returns"] = 0x11
+    records["gps_time"] = 3.0e8 + np.arange(len(xyz)) * 1e-6
+    records["scan_angle"] = np.round((unit[:, 0] - 0.5) * 6000).astype(np.int16)
+    records["point_source"] = 1
     records = records[order]
     keys = keys[order]
 

@@ -1,14 +1,18 @@
 //! COPC (https://copc.io): LAZ 1.4 whose points are stored in independently compressed
 //! chunks, one per node of an octree that a hierarchy EVLR lists. The chunks are decoded in
-//! parallel with the `las` crate's `CopcReader`, one reader per worker, after the hierarchy
-//! has been checked against the file (`copc_hierarchy`).
+//! parallel, one decoder per worker, after the hierarchy has been checked against the file
+//! (`copc_hierarchy`). LAZ 1.4 compresses each field in a layer of its own, and the decoder
+//! decompresses only the layers pointray reads (positions, intensity, classification,
+//! colour); the GPS time, scan angle, user data, point source and flags layers are skipped.
 
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
 use las::copc::Entry;
-use las::{CopcReader, PointData};
+use las::{PointData, PointDataBuilder};
+use laz::record::{LayeredPointRecordDecompressor, RecordDecompressor};
+use laz::{DecompressionSelection, LazItem};
 use rayon::prelude::*;
 
 use super::copc_hierarchy::{ChunkRoom, point_chunks};
@@ -20,8 +24,6 @@ use crate::{IoError, PointCloud};
 const INFO_USER_ID_AT: u64 = 375 + 2;
 const INFO_RECORD_ID: u16 = 1;
 const HIERARCHY_RECORD_ID: u16 = 1000;
-
-type FileCopcReader = CopcReader<'static, BufReader<File>>;
 
 /// Whether the LAS stream `read` is COPC (its first VLR is the COPC info VLR, as the
 /// specification places it). Leaves the stream at its start.
@@ -81,7 +83,13 @@ impl CopcFile {
         let path = self.path.as_path();
         chunks
             .par_iter()
-            .map_init(|| open_reader(path), |reader, chunk| decode_chunk(reader, chunk, path))
+            .map_init(
+                || ChunkDecoder::open(path, &self.header),
+                |decoder, chunk| match decoder {
+                    Ok(decoder) => decoder.decode(chunk, &self.header, path),
+                    Err(error) => Err(IoError::malformed(path, format!("reopening failed: {error}"))),
+                },
+            )
             .collect()
     }
 }
@@ -135,17 +143,47 @@ fn read_array_at<R: Read + Seek, const N: usize>(read: &mut R, at: u64) -> std::
     Ok(bytes)
 }
 
-fn open_reader(path: &Path) -> Result<FileCopcReader, IoError> {
-    let read = open(path)?;
-    survive_decoder(path, || CopcReader::new(read).map_err(|error| las_error(path, error)))
+/// The layers pointray reads: positions (x, y and the returns always come first), intensity,
+/// classification and colour.
+fn read_layers() -> DecompressionSelection {
+    DecompressionSelection(
+        DecompressionSelection::Z
+            | DecompressionSelection::INTENSITY
+            | DecompressionSelection::CLASSIFICATION
+            | DecompressionSelection::RGB,
+    )
 }
 
-fn decode_chunk(
-    reader: &mut Result<FileCopcReader, IoError>,
-    chunk: &Entry,
-    path: &Path,
-) -> Result<PointData, IoError> {
-    let reader =
-        reader.as_mut().map_err(|error| IoError::malformed(path, format!("reopening failed: {error}")))?;
-    survive_decoder(path, || reader.read_entry(chunk).map_err(|error| las_error(path, error)))
+/// A worker's decoder of a file's chunks.
+struct ChunkDecoder {
+    decompressor: LayeredPointRecordDecompressor<'static, BufReader<File>>,
+    items: Vec<LazItem>,
+}
+
+impl ChunkDecoder {
+    fn open(path: &Path, header: &las::Header) -> Result<Self, IoError> {
+        let items = header.laz_vlr().map_err(|error| las_error(path, error))?.items().clone();
+        Ok(Self { decompressor: LayeredPointRecordDecompressor::new(open(path)?), items })
+    }
+
+    fn decode(&mut self, chunk: &Entry, header: &las::Header, path: &Path) -> Result<PointData, IoError> {
+        let record_bytes = usize::from(header.point_format().len());
+        let mut records = vec![0u8; chunk.point_count as usize * record_bytes];
+        let decompressed = survive_decoder(path, || {
+            let laz = |error: laz::LasZipError| las_error(path, las::Error::from(error));
+            self.decompressor
+                .get_mut()
+                .seek(SeekFrom::Start(chunk.offset))
+                .map_err(|e| IoError::os(path, e))?;
+            self.decompressor.reset();
+            self.decompressor.set_fields_from(&self.items).map_err(laz)?;
+            self.decompressor.set_selection(read_layers());
+            self.decompressor.decompress_many(&mut records).map_err(|e| las_error(path, las::Error::from(e)))
+        });
+        decompressed?;
+        PointDataBuilder::new()
+            .for_header(header)
+            .build_from_bytes(records)
+            .map_err(|error| las_error(path, error))
+    }
 }
