@@ -4,7 +4,8 @@ The octree is 4 levels deep: a fixed share of the points (chosen by input index,
 the file is the same on every run) sits at each coarser level, the rest at the finest.
 Every point lands in the node of its level whose box contains it, as COPC requires.
 
-Needs `pip install copclib==2.6.3 laspy==2.7.0 numpy`; run from the repository root.
+Needs `pip install copclib==2.6.3 laspy==2.7.0 numpy`; run from the repository root. The
+Python package's tests write the tile again with `write_copc`, into a scratch folder.
 """
 
 import sys
@@ -27,8 +28,9 @@ def level_of(index):
     return FINEST_LEVEL
 
 
-def main():
-    las = laspy.read(SOURCE)
+def write_copc(source, target):
+    """Writes the LAS file `source` as the COPC file `target`; returns the nodes written."""
+    las = laspy.read(source)
     xyz = np.stack([las.x, las.y, las.z], axis=1)
     low, high = xyz.min(axis=0), xyz.max(axis=0)
     centre = (low + high) / 2
@@ -53,7 +55,7 @@ def main():
         cell = np.clip(cell, 0, cells - 1)
         nodes.setdefault((level, *cell.tolist()), []).append(index)
 
-    writer = copclib.FileWriter(TARGET, config)
+    writer = copclib.FileWriter(str(target), config)
     for (level, x, y, z), indices in sorted(nodes.items()):
         points = copclib.Points(writer.copc_config.las_header)
         for index in indices:
@@ -70,7 +72,12 @@ def main():
             points.AddPoint(point)
         writer.AddNode(copclib.VoxelKey(level, x, y, z), points)
     writer.Close()
-    print(f"wrote {TARGET}: {len(xyz)} points in {len(nodes)} nodes", file=sys.stderr)
+    return len(nodes)
+
+
+def main():
+    nodes = write_copc(SOURCE, TARGET)
+    print(f"wrote {TARGET}: {nodes} nodes", file=sys.stderr)
 
 
 if __name__ == "__main__":
