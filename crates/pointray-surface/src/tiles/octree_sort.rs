@@ -33,7 +33,7 @@ const BOX_MARGIN: f64 = 1.0 / (1u64 << 19) as f64;
 /// Bytes a waiting record's sort key and place take beside it.
 const WAITING_KEY_BYTES: u64 = 16;
 
-/// Bytes of records each thread writes at a time.
+/// Records each thread writes at a time.
 const WRITE_BATCH_RECORDS: usize = 1 << 15;
 
 /// How a COPC cloud is sorted along its octree.
