@@ -35,9 +35,8 @@ pub struct OctreeNode {
 pub struct CopcOctree {
     file: CopcFile,
     cube: (DVec3, DVec3),
-    /// The nodes, in the file's order, beside their chunks.
+    /// The nodes, in the file's order: node `i` is the file's chunk `i`.
     nodes: Vec<OctreeNode>,
-    chunks: Vec<Entry>,
     sample: Vec<DVec3>,
     predicted: LasRanges,
     seen: Mutex<LasRanges>,
@@ -53,9 +52,9 @@ impl CopcOctree {
     pub fn open(path: &Path, sample_points: u64) -> Result<Self, IoError> {
         let file = CopcFile::open(path)?;
         let cube = cube_of(file.header(), path)?;
-        let chunks = file.chunks().to_vec();
         let mut first_point = 0;
-        let nodes = chunks
+        let nodes = file
+            .chunks()
             .iter()
             .map(|chunk| {
                 let node = OctreeNode {
@@ -72,7 +71,6 @@ impl CopcOctree {
             file,
             cube,
             nodes,
-            chunks,
             sample: Vec::new(),
             predicted: LasRanges::default(),
             seen: Mutex::new(LasRanges::default()),
@@ -107,7 +105,7 @@ impl CopcOctree {
     /// The points of `nodes` (indices into `nodes()`), each node's as a cloud in the file's
     /// order, decoded in parallel, their attributes scaled as the top levels predict.
     pub fn decode(&self, nodes: &[usize]) -> Result<Vec<PointCloud>, IoError> {
-        let chunks: Vec<Entry> = nodes.iter().map(|&node| self.chunks[node]).collect();
+        let chunks: Vec<Entry> = nodes.iter().map(|&node| self.file.chunks()[node]).collect();
         let decoded = self.file.decode_each(&chunks)?;
         let (clouds, ranges): (Vec<PointCloud>, Vec<LasRanges>) = decoded
             .par_iter()
@@ -143,7 +141,7 @@ impl CopcOctree {
                 taken >= sample_points
             })
             .or(levels.last().copied());
-        let top: Vec<Entry> = (self.chunks.iter().zip(&self.nodes))
+        let top: Vec<Entry> = (self.file.chunks().iter().zip(&self.nodes))
             .filter(|(_, node)| deepest.is_some_and(|deepest| node.level <= deepest))
             .map(|(chunk, _)| *chunk)
             .collect();
